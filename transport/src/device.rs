@@ -1,0 +1,166 @@
+//! A drive handle's engine: reads and writes parameters over a [`Link`].
+
+use core::marker::PhantomData;
+
+use crate::error::{BusError, Error, ValueError};
+use crate::link::{Link, MAX_VALUE_BYTES};
+use crate::parameter::{Parameter, Readable, Writable};
+use crate::read_set::ReadSet;
+use crate::value::WireValue;
+use crate::VariantId;
+
+/// A link plus the device's selected variant; generated drive handles wrap one.
+#[derive(Debug)]
+pub struct Device<L> {
+    link: L,
+    variant: VariantId,
+}
+
+pub(crate) fn bus_error(parameter: &'static str) -> impl Fn(BusError) -> Error {
+    move |cause| Error::Bus { parameter, cause }
+}
+
+impl<L: Link> Device<L> {
+    /// A device reached over `link`, in configuration `variant`.
+    pub fn new(link: L, variant: VariantId) -> Self {
+        Self { link, variant }
+    }
+
+    /// The selected variant.
+    pub fn variant(&self) -> VariantId {
+        self.variant
+    }
+
+    /// Selects another variant (for example after reading the drive's configuration).
+    pub fn set_variant(&mut self, variant: VariantId) {
+        self.variant = variant;
+    }
+
+    /// The link, for protocol-specific operations.
+    pub fn link_mut(&mut self) -> &mut L {
+        &mut self.link
+    }
+
+    /// Gives the link back.
+    pub fn into_link(self) -> L {
+        self.link
+    }
+
+    /// Reads a parameter in engineering units.
+    pub fn read<P: Readable<L::Protocol>>(&mut self) -> Result<P::Value, Error> {
+        let raw = self.read_raw::<P>()?;
+        let scale = P::read_scale(self)?;
+        P::decode(raw, scale).map_err(|e| named::<P>(e))
+    }
+
+    /// Reads a parameter's raw value, unscaled.
+    pub fn read_raw<P: Readable<L::Protocol>>(&mut self) -> Result<P::Raw, Error> {
+        let address =
+            P::read_address(self.variant).ok_or(Error::NotInVariant { parameter: P::NAME })?;
+        let mut buf = [0u8; MAX_VALUE_BYTES];
+        let len = self
+            .link
+            .read(&address, &mut buf)
+            .map_err(bus_error(P::NAME))?;
+        P::Raw::decode_le(&buf[..len]).map_err(named::<P>)
+    }
+
+    /// Writes a parameter in engineering units; range-checked before anything is sent.
+    pub fn write<P: Writable<L::Protocol>>(&mut self, value: P::Value) -> Result<(), Error> {
+        let scale = P::write_scale(self)?;
+        let raw = P::encode(value, scale).map_err(named::<P>)?;
+        self.write_raw::<P>(raw)
+    }
+
+    /// Writes a raw value; still checked against the description's range and allowed values.
+    pub fn write_raw<P: Writable<L::Protocol>>(&mut self, raw: P::Raw) -> Result<(), Error> {
+        P::check(&raw).map_err(named::<P>)?;
+        let address =
+            P::write_address(self.variant).ok_or(Error::NotInVariant { parameter: P::NAME })?;
+        let len = match self.link.wire_bytes(&address) {
+            0 => P::Raw::WIRE_BYTES,
+            n => n,
+        };
+        let mut buf = [0u8; MAX_VALUE_BYTES];
+        let bytes = buf
+            .get_mut(..len)
+            .ok_or(Error::Value(ValueError::WrongLength {
+                expected: MAX_VALUE_BYTES,
+                actual: len,
+            }))?;
+        raw.encode_le(bytes).map_err(named::<P>)?;
+        self.link.write(&address, bytes).map_err(bus_error(P::NAME))
+    }
+
+    /// Reads several parameters at once, in as few requests as the link can manage.
+    pub fn read_many<S: ReadSet<L>>(&mut self, set: S) -> Result<S::Values, Error> {
+        set.read_from(self)
+    }
+
+    /// A typed accessor for parameter `P`.
+    pub fn parameter<P: Parameter>(&mut self) -> Accessor<'_, L, P> {
+        Accessor {
+            device: self,
+            parameter: PhantomData,
+        }
+    }
+}
+
+/// Fills in the parameter name of a value error raised below the parameter layer.
+pub(crate) fn named<P: Parameter>(error: ValueError) -> Error {
+    Error::Value(error.named(P::NAME))
+}
+
+/// A borrowed handle on one parameter of a device: `drive.bus_dc_link().read()`.
+#[must_use = "an accessor does nothing until read or written"]
+pub struct Accessor<'d, L, P> {
+    device: &'d mut Device<L>,
+    parameter: PhantomData<P>,
+}
+
+impl<L: Link, P: Parameter> Accessor<'_, L, P> {
+    /// Reads the value in engineering units.
+    #[inline]
+    pub fn read(self) -> Result<P::Value, Error>
+    where
+        P: Readable<L::Protocol>,
+    {
+        self.device.read::<P>()
+    }
+
+    /// Reads the raw value.
+    #[inline]
+    pub fn read_raw(self) -> Result<P::Raw, Error>
+    where
+        P: Readable<L::Protocol>,
+    {
+        self.device.read_raw::<P>()
+    }
+
+    /// Writes a value in engineering units.
+    #[inline]
+    pub fn write(self, value: P::Value) -> Result<(), Error>
+    where
+        P: Writable<L::Protocol>,
+    {
+        self.device.write::<P>(value)
+    }
+
+    /// Writes a raw value.
+    #[inline]
+    pub fn write_raw(self, raw: P::Raw) -> Result<(), Error>
+    where
+        P: Writable<L::Protocol>,
+    {
+        self.device.write_raw::<P>(raw)
+    }
+
+    /// Reads, changes and writes back the value.
+    pub fn modify(self, change: impl FnOnce(P::Value) -> P::Value) -> Result<(), Error>
+    where
+        P: Readable<L::Protocol> + Writable<L::Protocol>,
+    {
+        let value = self.device.read::<P>()?;
+        self.device.write::<P>(change(value))
+    }
+}

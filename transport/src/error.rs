@@ -1,0 +1,235 @@
+//! Typed errors of the runtime: value conversion, bus failures and protocol rejections.
+
+use core::fmt;
+
+/// A value could not be converted between its engineering form and its raw wire form.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum ValueError {
+    /// The value lies outside the range the description declares for the parameter.
+    OutOfRange {
+        /// Parameter name as in the description.
+        parameter: &'static str,
+        /// The raw value that was asked for (as a float so every type fits).
+        raw: f64,
+        /// Smallest allowed raw value.
+        min: f64,
+        /// Largest allowed raw value.
+        max: f64,
+    },
+    /// The value does not fit the parameter's raw type at all.
+    Overflow {
+        /// Parameter name as in the description.
+        parameter: &'static str,
+    },
+    /// The value is not a whole multiple of the parameter's scale step; writing it would round.
+    NotRepresentable {
+        /// Parameter name as in the description.
+        parameter: &'static str,
+        /// The engineering value that was asked for.
+        value: f64,
+        /// The smallest step the parameter can express, in engineering units.
+        step: f64,
+    },
+    /// The raw value is not one of the values the description allows (enum or value set).
+    NotAllowed {
+        /// Parameter name as in the description.
+        parameter: &'static str,
+        /// The rejected raw value.
+        raw: i128,
+    },
+    /// A run-time scale factor evaluated to zero, a division by zero or an overflow.
+    BadScale {
+        /// Parameter name as in the description.
+        parameter: &'static str,
+    },
+    /// The payload the bus delivered has the wrong length for the parameter's type.
+    WrongLength {
+        /// Bytes expected.
+        expected: usize,
+        /// Bytes received.
+        actual: usize,
+    },
+    /// A text value is not valid for its encoding, or longer than its capacity.
+    BadText,
+}
+
+impl fmt::Display for ValueError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::OutOfRange { parameter, raw, min, max } => {
+                write!(f, "{parameter}: raw value {raw} is outside the allowed range {min}..={max}")
+            }
+            Self::Overflow { parameter } => write!(f, "{parameter}: value does not fit the raw type"),
+            Self::NotRepresentable { parameter, value, step } => write!(
+                f,
+                "{parameter}: {value} is not a multiple of the parameter's resolution {step}; it would be rounded"
+            ),
+            Self::NotAllowed { parameter, raw } => {
+                write!(f, "{parameter}: raw value {raw} is not one of the allowed values")
+            }
+            Self::BadScale { parameter } => {
+                write!(f, "{parameter}: the run-time scale factor could not be computed")
+            }
+            Self::WrongLength { expected, actual } => {
+                write!(f, "payload has {actual} bytes, the parameter needs {expected}")
+            }
+            Self::BadText => write!(f, "text is not valid for the parameter's encoding or too long"),
+        }
+    }
+}
+
+/// A failure below the value layer: the bus, the framing or the remote device.
+#[derive(Debug, Clone, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum BusError {
+    /// No (valid) answer arrived within the configured time.
+    Timeout,
+    /// The Modbus device answered with an exception response.
+    ModbusException {
+        /// Function code of the request.
+        function: u8,
+        /// Exception code (1 illegal function, 2 illegal data address, 3 illegal data value, ...).
+        code: u8,
+    },
+    /// The CANopen device aborted an SDO transfer.
+    SdoAbort {
+        /// Object index of the transfer.
+        index: u16,
+        /// Object subindex of the transfer.
+        subindex: u8,
+        /// CiA 301 abort code.
+        code: u32,
+    },
+    /// A frame arrived but is malformed or does not match the request.
+    Frame(&'static str),
+    /// The request needs a feature the device does not support (per its description).
+    Unsupported(&'static str),
+    /// The underlying I/O channel failed.
+    #[cfg(feature = "std")]
+    Io(std::io::ErrorKind),
+}
+
+impl fmt::Display for BusError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Timeout => write!(f, "no answer within the timeout"),
+            Self::ModbusException { function, code } => write!(
+                f,
+                "Modbus exception {code:#04x} ({}) to function {function:#04x}",
+                modbus_exception_meaning(*code)
+            ),
+            Self::SdoAbort {
+                index,
+                subindex,
+                code,
+            } => {
+                write!(f, "SDO abort {code:#010x} on {index:#06x}:{subindex}")
+            }
+            Self::Frame(why) => write!(f, "bad frame: {why}"),
+            Self::Unsupported(what) => write!(f, "not supported by the device: {what}"),
+            #[cfg(feature = "std")]
+            Self::Io(kind) => write!(f, "I/O error: {kind}"),
+        }
+    }
+}
+
+/// The meaning of a standard Modbus exception code.
+pub fn modbus_exception_meaning(code: u8) -> &'static str {
+    match code {
+        0x01 => "illegal function",
+        0x02 => "illegal data address",
+        0x03 => "illegal data value",
+        0x04 => "server device failure",
+        0x05 => "acknowledge",
+        0x06 => "server device busy",
+        0x08 => "memory parity error",
+        0x0A => "gateway path unavailable",
+        0x0B => "gateway target device failed to respond",
+        _ => "unknown exception",
+    }
+}
+
+/// Everything a generated accessor can fail with.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum Error {
+    /// The value could not be converted; nothing was sent.
+    Value(ValueError),
+    /// The bus or the device failed.
+    Bus {
+        /// Parameter being accessed, when known.
+        parameter: &'static str,
+        /// What went wrong.
+        cause: BusError,
+    },
+    /// The parameter does not exist in the drive's selected firmware/configuration variant.
+    NotInVariant {
+        /// Parameter name as in the description.
+        parameter: &'static str,
+    },
+}
+
+impl Error {
+    /// The bus error, if this is one.
+    pub fn bus(&self) -> Option<&BusError> {
+        match self {
+            Self::Bus { cause, .. } => Some(cause),
+            _ => None,
+        }
+    }
+}
+
+impl From<ValueError> for Error {
+    fn from(e: ValueError) -> Self {
+        Self::Value(e)
+    }
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Value(e) => write!(f, "{e}"),
+            Self::Bus { parameter, cause } => write!(f, "{parameter}: {cause}"),
+            Self::NotInVariant { parameter } => {
+                write!(
+                    f,
+                    "{parameter} does not exist in the drive's selected variant"
+                )
+            }
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for Error {}
+#[cfg(feature = "std")]
+impl std::error::Error for BusError {}
+#[cfg(feature = "std")]
+impl std::error::Error for ValueError {}
+
+impl ValueError {
+    /// Names the parameter in an error raised by a codec that did not know it.
+    pub fn named(self, name: &'static str) -> Self {
+        match self {
+            Self::OutOfRange { raw, min, max, .. } => Self::OutOfRange {
+                parameter: name,
+                raw,
+                min,
+                max,
+            },
+            Self::Overflow { .. } => Self::Overflow { parameter: name },
+            Self::NotRepresentable { value, step, .. } => Self::NotRepresentable {
+                parameter: name,
+                value,
+                step,
+            },
+            Self::NotAllowed { raw, .. } => Self::NotAllowed {
+                parameter: name,
+                raw,
+            },
+            Self::BadScale { .. } => Self::BadScale { parameter: name },
+            other => other,
+        }
+    }
+}

@@ -1,0 +1,53 @@
+//! `drivebus`: the runtime that drivegen-generated drive crates call.
+//!
+//! The crate is layered so that the generated API stays protocol independent:
+//!
+//! * [`parameter`] — the traits a generated parameter marker implements: identity, value codec and
+//!   per-protocol read/write capabilities (a missing capability is a compile error).
+//! * [`value`] — raw wire types and their little-endian codecs.
+//! * [`scale`] / [`units`] — exact rational scaling and the unit newtypes values are returned in.
+//! * [`link`] — the one trait a protocol binding implements; [`device`] drives it.
+//! * [`modbus`] / [`canopen`] — protocol addresses and the bus traits transports implement.
+//!
+//! The core is `#![no_std]`; the `std` feature adds the in-memory bus used by tests and examples.
+#![no_std]
+#![deny(missing_docs)]
+
+#[cfg(feature = "std")]
+extern crate std;
+
+pub mod canopen;
+pub mod device;
+pub mod error;
+pub mod link;
+#[cfg(feature = "std")]
+pub mod memory;
+pub mod modbus;
+pub mod parameter;
+pub mod read_set;
+pub mod scale;
+pub mod units;
+pub mod value;
+
+pub use device::{Accessor, Device};
+pub use error::{BusError, Error, ValueError};
+pub use link::Link;
+pub use parameter::{Parameter, Readable, Writable};
+pub use scale::{Ratio, Scale};
+
+/// Re-exported so generated crates need no direct `bitflags` dependency.
+pub use bitflags;
+
+/// The protocol a [`Link`] speaks; selects which address a parameter is reached at.
+pub trait Protocol: 'static {
+    /// How a parameter is addressed on this protocol.
+    type Address: Copy + core::fmt::Debug + PartialEq;
+    /// Human-readable protocol name used in diagnostics.
+    const NAME: &'static str;
+}
+
+/// Index of a firmware or parameter-configuration variant, as numbered by the generated crate.
+///
+/// Variant 0 is always the description's default configuration.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct VariantId(pub u16);

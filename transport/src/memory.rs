@@ -1,0 +1,184 @@
+//! An in-memory bus: a register map and an object dictionary in a `BTreeMap`, for tests and
+//! examples. It records every request so tests can count transactions.
+
+use std::collections::BTreeMap;
+use std::vec::Vec;
+
+use crate::canopen::{NodeId, SdoBus};
+use crate::error::BusError;
+use crate::modbus::{RegisterBus, Table, UnitId};
+
+/// One request as the memory bus saw it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Request {
+    /// A register read.
+    Read {
+        /// Table read.
+        table: Table,
+        /// First register.
+        start: u16,
+        /// Register count.
+        count: u16,
+    },
+    /// A register write (single or multiple).
+    Write {
+        /// First register.
+        start: u16,
+        /// Values written.
+        values: Vec<u16>,
+    },
+    /// An SDO upload.
+    Upload(u16, u8),
+    /// An SDO download.
+    Download(u16, u8, Vec<u8>),
+}
+
+/// Registers and objects held in memory. Unknown addresses answer like a device would: Modbus
+/// exception 0x02 (illegal data address) or SDO abort 0x06020000 (object does not exist).
+#[derive(Debug, Default, Clone)]
+pub struct MemoryBus {
+    registers: BTreeMap<(Table, u16), u16>,
+    objects: BTreeMap<(u16, u8), Vec<u8>>,
+    log: Vec<Request>,
+}
+
+const ILLEGAL_DATA_ADDRESS: u8 = 0x02;
+const OBJECT_DOES_NOT_EXIST: u32 = 0x0602_0000;
+
+impl MemoryBus {
+    /// An empty bus.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Sets a register.
+    pub fn set_register(&mut self, table: Table, address: u16, value: u16) -> &mut Self {
+        self.registers.insert((table, address), value);
+        self
+    }
+
+    /// A register's value.
+    pub fn register(&self, table: Table, address: u16) -> Option<u16> {
+        self.registers.get(&(table, address)).copied()
+    }
+
+    /// Sets an object's value bytes.
+    pub fn set_object(&mut self, index: u16, subindex: u8, value: &[u8]) -> &mut Self {
+        self.objects.insert((index, subindex), value.to_vec());
+        self
+    }
+
+    /// An object's value bytes.
+    pub fn object(&self, index: u16, subindex: u8) -> Option<&[u8]> {
+        self.objects.get(&(index, subindex)).map(Vec::as_slice)
+    }
+
+    /// Every request seen so far.
+    pub fn log(&self) -> &[Request] {
+        &self.log
+    }
+
+    fn exception(function: u8) -> BusError {
+        BusError::ModbusException {
+            function,
+            code: ILLEGAL_DATA_ADDRESS,
+        }
+    }
+}
+
+impl RegisterBus for MemoryBus {
+    fn read_registers(
+        &mut self,
+        _unit: UnitId,
+        table: Table,
+        start: u16,
+        out: &mut [u16],
+    ) -> Result<(), BusError> {
+        self.log.push(Request::Read {
+            table,
+            start,
+            count: out.len() as u16,
+        });
+        let function = if table == Table::Input { 0x04 } else { 0x03 };
+        for (offset, slot) in out.iter_mut().enumerate() {
+            let address = start
+                .checked_add(offset as u16)
+                .ok_or(Self::exception(function))?;
+            *slot = self
+                .register(table, address)
+                .ok_or(Self::exception(function))?;
+        }
+        Ok(())
+    }
+
+    fn write_register(&mut self, unit: UnitId, address: u16, value: u16) -> Result<(), BusError> {
+        self.write_registers(unit, address, &[value])
+    }
+
+    fn write_registers(
+        &mut self,
+        _unit: UnitId,
+        start: u16,
+        values: &[u16],
+    ) -> Result<(), BusError> {
+        self.log.push(Request::Write {
+            start,
+            values: values.to_vec(),
+        });
+        let function = if values.len() == 1 { 0x06 } else { 0x10 };
+        // Check every address first so a refused write changes nothing.
+        for offset in 0..values.len() as u16 {
+            let address = start.checked_add(offset).ok_or(Self::exception(function))?;
+            self.register(Table::Holding, address)
+                .ok_or(Self::exception(function))?;
+        }
+        for (offset, value) in values.iter().enumerate() {
+            self.registers
+                .insert((Table::Holding, start + offset as u16), *value);
+        }
+        Ok(())
+    }
+}
+
+impl SdoBus for MemoryBus {
+    fn upload(
+        &mut self,
+        _node: NodeId,
+        index: u16,
+        subindex: u8,
+        out: &mut [u8],
+    ) -> Result<usize, BusError> {
+        self.log.push(Request::Upload(index, subindex));
+        let value = self.object(index, subindex).ok_or(BusError::SdoAbort {
+            index,
+            subindex,
+            code: OBJECT_DOES_NOT_EXIST,
+        })?;
+        let target = out
+            .get_mut(..value.len())
+            .ok_or(BusError::Frame("object larger than buffer"))?;
+        target.copy_from_slice(value);
+        Ok(value.len())
+    }
+
+    fn download(
+        &mut self,
+        _node: NodeId,
+        index: u16,
+        subindex: u8,
+        data: &[u8],
+    ) -> Result<(), BusError> {
+        self.log
+            .push(Request::Download(index, subindex, data.to_vec()));
+        let slot = self
+            .objects
+            .get_mut(&(index, subindex))
+            .ok_or(BusError::SdoAbort {
+                index,
+                subindex,
+                code: OBJECT_DOES_NOT_EXIST,
+            })?;
+        *slot = data.to_vec();
+        Ok(())
+    }
+}

@@ -1,0 +1,75 @@
+//! The traits every generated parameter marker implements.
+//!
+//! A parameter is a zero-sized marker type. [`Parameter`] gives its identity and value codec;
+//! [`Readable`] and [`Writable`] are implemented once per protocol the description allows the access
+//! on. A missing implementation is a compile error that reads in plain English.
+
+use crate::device::Device;
+use crate::error::{Error, ValueError};
+use crate::link::Link;
+use crate::scale::Scale;
+use crate::value::WireValue;
+use crate::{Protocol, VariantId};
+
+/// Identity and value codec of a parameter.
+pub trait Parameter: 'static {
+    /// Name as in the description.
+    const NAME: &'static str;
+    /// The fixed part of the scale; parameters with run-time factors override the protocol traits'
+    /// scale functions instead.
+    const SCALE: Scale = Scale::IDENTITY;
+    /// The raw type on the wire.
+    type Raw: WireValue;
+    /// The engineering type users read and write (a unit newtype, enum, flags or the raw type).
+    type Value;
+
+    /// Raw → engineering value.
+    fn decode(raw: Self::Raw, scale: Scale) -> Result<Self::Value, ValueError>;
+    /// Engineering → raw value; fails instead of rounding or truncating.
+    fn encode(value: Self::Value, scale: Scale) -> Result<Self::Raw, ValueError>;
+    /// Checks a raw value against the description's range and allowed values.
+    fn check(_raw: &Self::Raw) -> Result<(), ValueError> {
+        Ok(())
+    }
+}
+
+/// The parameter can be read over protocol `P`.
+#[diagnostic::on_unimplemented(
+    message = "the parameter `{Self}` cannot be read over {P}",
+    label = "not readable over this protocol",
+    note = "its description gives it no readable address for this protocol (write-only, or another protocol only)"
+)]
+pub trait Readable<P: Protocol>: Parameter {
+    /// The address to read from in the given variant, or `None` if absent there.
+    fn read_address(variant: VariantId) -> Option<P::Address>;
+    /// The scale in force; reads the factor's inputs for run-time scaled parameters.
+    fn read_scale<L: Link<Protocol = P>>(_device: &mut Device<L>) -> Result<Scale, Error> {
+        Ok(Self::SCALE)
+    }
+}
+
+/// The parameter can be written over protocol `P`.
+#[diagnostic::on_unimplemented(
+    message = "the parameter `{Self}` cannot be written over {P}",
+    label = "not writable over this protocol",
+    note = "its description makes it read-only, or gives it no address for this protocol"
+)]
+pub trait Writable<P: Protocol>: Parameter {
+    /// The address to write to in the given variant, or `None` if absent there.
+    fn write_address(variant: VariantId) -> Option<P::Address>;
+    /// The scale in force; reads the factor's inputs for run-time scaled parameters.
+    fn write_scale<L: Link<Protocol = P>>(_device: &mut Device<L>) -> Result<Scale, Error> {
+        Ok(Self::SCALE)
+    }
+}
+
+/// Implemented by generated open enumerations: any raw value survives a read, but building one from
+/// a number goes through the fallible `TryFrom`.
+pub trait OpenEnum: Copy + 'static {
+    /// The raw integer type.
+    type Raw: Copy;
+    /// The raw value.
+    fn raw(self) -> Self::Raw;
+    /// The name of the value in the description, or `None` if the drive sent an undocumented one.
+    fn name(self) -> Option<&'static str>;
+}
