@@ -17,6 +17,7 @@
 extern crate std;
 
 pub mod canopen;
+pub mod check;
 pub mod device;
 pub mod error;
 pub mod link;

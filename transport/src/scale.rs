@@ -99,6 +99,14 @@ impl Ratio {
         )
     }
 
+    /// An integer raw value as a ratio, `None` if it is not a whole number within `i64`.
+    pub fn from_raw<R: Numeric>(raw: R) -> Option<Ratio> {
+        let value = raw.to_f64();
+        let whole = i64::from_f64(value)?;
+        // `to_f64` is exact only up to 2^53; refuse larger values rather than use a rounded one.
+        (value.abs() < 9_007_199_254_740_992.0).then_some(Ratio::int(whole))
+    }
+
     /// The nearest `f64`.
     pub fn to_f64(self) -> f64 {
         self.num as f64 / self.den as f64
@@ -120,6 +128,14 @@ impl Scale {
         factor: Ratio::ONE,
         offset: Ratio::ZERO,
     };
+
+    /// A scale with the given factor and offset, from the generator's exact fractions.
+    pub const fn fixed(num: i64, den: i64, offset_num: i64, offset_den: i64) -> Scale {
+        match (Ratio::new(num, den), Ratio::new(offset_num, offset_den)) {
+            (Some(factor), Some(offset)) => Scale { factor, offset },
+            _ => panic!("the generator emits only valid scales"),
+        }
+    }
 
     /// A scale with the given factor and no offset.
     pub const fn factor(factor: Ratio) -> Scale {

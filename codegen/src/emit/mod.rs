@@ -1,0 +1,6 @@
+//! Emitters: turn a valid IR into artifacts. Only Rust for now; every emitter reads the IR alone.
+
+pub mod ident;
+pub mod rust;
+
+mod doc;

@@ -1,0 +1,124 @@
+//! The drive handle: constructors per protocol and one accessor method per parameter.
+
+use proc_macro2::TokenStream;
+use quote::quote;
+
+use super::{doc_attrs, ident};
+use crate::emit::{doc, ident as names};
+use crate::ir::Device;
+
+fn modbus_limits(device: &Device) -> TokenStream {
+    let Some(m) = &device.modbus else {
+        return quote! { ::drivebus::modbus::ModbusLimits::SPEC };
+    };
+    let (read, write, gaps) = (m.max_read_registers, m.max_write_registers, m.read_gaps);
+    let multiple = m.functions.contains(&0x10);
+    quote! {
+        ::drivebus::modbus::ModbusLimits {
+            max_read_registers: #read,
+            max_write_registers: #write,
+            write_multiple: #multiple,
+            read_gaps: #gaps,
+        }
+    }
+}
+
+fn constructors(device: &Device, handle: &proc_macro2::Ident) -> TokenStream {
+    let has_modbus = device.parameters.iter().any(|p| !p.modbus.is_empty());
+    let has_canopen = device.parameters.iter().any(|p| !p.canopen.is_empty());
+    let limits = modbus_limits(device);
+    let modbus = has_modbus.then(|| {
+        quote! {
+            /// The device's Modbus limits, from its description.
+            pub const MODBUS_LIMITS: ::drivebus::modbus::ModbusLimits = #limits;
+
+            impl<B: ::drivebus::modbus::RegisterBus> #handle<::drivebus::modbus::ModbusLink<B>> {
+                /// A drive reached over Modbus at `unit`.
+                pub fn modbus(bus: B, unit: ::drivebus::modbus::UnitId) -> Self {
+                    Self::new(::drivebus::modbus::ModbusLink::new(bus, unit, MODBUS_LIMITS))
+                }
+            }
+        }
+    });
+    let canopen = has_canopen.then(|| {
+        quote! {
+            impl<B: ::drivebus::canopen::SdoBus> #handle<::drivebus::canopen::CanOpenLink<B>> {
+                /// A drive reached over CANopen at `node`.
+                pub fn canopen(bus: B, node: ::drivebus::canopen::NodeId) -> Self {
+                    Self::new(::drivebus::canopen::CanOpenLink::new(bus, node))
+                }
+            }
+        }
+    });
+    quote! { #modbus #canopen }
+}
+
+pub fn emit(device: &Device) -> TokenStream {
+    let handle = ident(&names::camel(&device.device.handle));
+    let title = doc::escape(&device.device.name);
+    let handle_doc = doc_attrs(&format!("A {title} drive, reached over the link `L`.\n\nEach parameter has an accessor: `drive.<parameter>().read()`, `.write(value)`, `.modify(f)`."));
+    let accessors = device.parameters.iter().map(|p| {
+        let method = ident(&names::method(&p.name));
+        let marker = ident(&names::camel(&p.name));
+        let summary = doc::escape(p.doc.as_deref().unwrap_or(&p.name))
+            .lines()
+            .next()
+            .unwrap_or_default()
+            .to_owned();
+        let docs = doc_attrs(&format!(
+            "{summary}\n\nSee [`params::{marker}`] for address, type, unit and source."
+        ));
+        quote! {
+            #docs
+            #[inline]
+            pub fn #method(&mut self) -> ::drivebus::Accessor<'_, L, params::#marker> {
+                self.device.parameter()
+            }
+        }
+    });
+    let variant_setter = (!device.variants.is_empty()).then(|| {
+        quote! {
+            /// Selects the drive's firmware / configuration variant (the default is the first).
+            pub fn set_variant(&mut self, variant: Variant) {
+                self.device.set_variant(variant.id());
+            }
+        }
+    });
+    let constructors = constructors(device, &handle);
+    quote! {
+        #handle_doc
+        #[derive(Debug)]
+        pub struct #handle<L> {
+            device: ::drivebus::Device<L>,
+        }
+
+        #constructors
+
+        impl<L: ::drivebus::Link> #handle<L> {
+            /// A drive reached over any link.
+            pub fn new(link: L) -> Self {
+                Self { device: ::drivebus::Device::new(link, ::drivebus::VariantId::default()) }
+            }
+
+            /// The runtime device, for generic code.
+            pub fn device(&mut self) -> &mut ::drivebus::Device<L> {
+                &mut self.device
+            }
+
+            /// Gives the link back.
+            pub fn into_link(self) -> L {
+                self.device.into_link()
+            }
+
+            /// Reads several parameters at once, e.g. `drive.read_many((params::A, params::B))`,
+            /// in as few requests as the link allows.
+            pub fn read_many<S: ::drivebus::read_set::ReadSet<L>>(&mut self, set: S) -> Result<S::Values, ::drivebus::Error> {
+                self.device.read_many(set)
+            }
+
+            #variant_setter
+
+            #( #accessors )*
+        }
+    }
+}

@@ -1,0 +1,160 @@
+//! The rustdoc of a parameter: what it is, where it lives, its type, unit, access and citation.
+
+use std::fmt::Write as _;
+
+use crate::emit::doc;
+use crate::ir::{Access, Device, Effect, Number, Parameter, Scale};
+
+fn access(a: Access) -> &'static str {
+    match (a.read, a.write) {
+        (true, true) => "read/write",
+        (true, false) => "read-only",
+        (false, true) => "write-only",
+        (false, false) => "no access",
+    }
+}
+
+fn number(n: Number) -> String {
+    match n {
+        Number::Int(i) => i.to_string(),
+        Number::Float(f) => f.to_string(),
+    }
+}
+
+/// The full doc text of a parameter's marker type.
+pub fn text(p: &Parameter, device: &Device) -> String {
+    let mut out = doc::escape(p.doc.as_deref().unwrap_or(&p.name));
+    out.push_str("\n\n| | |\n|---|---|\n");
+    let row = |out: &mut String, key: &str, value: String| {
+        let _ = writeln!(out, "| {key} | {value} |");
+    };
+    for a in &p.modbus {
+        let variant = a
+            .variant
+            .as_deref()
+            .map(|v| format!(" (variant `{v}`)"))
+            .unwrap_or_default();
+        let words = if a.words > 1 {
+            format!(", {} words {:?}", a.words, a.word_order).to_lowercase()
+        } else {
+            String::new()
+        };
+        row(
+            &mut out,
+            "Modbus",
+            format!(
+                "{:?} register `{:#06X}`{words}, {}{variant}",
+                a.table,
+                a.address,
+                access(a.access)
+            )
+            .replace("0X", "0x"),
+        );
+    }
+    for a in &p.canopen {
+        row(
+            &mut out,
+            "CANopen",
+            format!(
+                "object `{:#06X}:{}`, {}{}",
+                a.index,
+                a.subindex,
+                access(a.access),
+                if a.constant { " (const)" } else { "" }
+            )
+            .replace("0X", "0x"),
+        );
+    }
+    for a in &p.rs232 {
+        row(
+            &mut out,
+            "RS-232",
+            format!(
+                "object `{:#06X}:{}`, {}",
+                a.index,
+                a.subindex,
+                access(a.access)
+            )
+            .replace("0X", "0x"),
+        );
+    }
+    let mut ty = format!("`{}`", p.data_type.name());
+    if let Some(unit) = &p.unit {
+        let _ = write!(ty, ", unit {}", doc::escape(unit));
+    }
+    match &p.scale {
+        Some(Scale::Fixed {
+            numerator,
+            denominator,
+            offset,
+        }) => {
+            let _ = write!(ty, ", scale {numerator}/{denominator}");
+            if offset.numerator != 0 {
+                let _ = write!(ty, ", offset {}/{}", offset.numerator, offset.denominator);
+            }
+        }
+        Some(Scale::Runtime { expr, .. }) => {
+            let _ = write!(ty, ", scale `{}` (read at run time)", doc::escape(expr));
+        }
+        None => {}
+    }
+    row(&mut out, "Type", ty);
+    if let Some(r) = &p.range {
+        row(
+            &mut out,
+            "Range (raw)",
+            format!("{}..={}", number(r.min), number(r.max)),
+        );
+    }
+    if !p.allowed.is_empty() {
+        row(
+            &mut out,
+            "Allowed (raw)",
+            p.allowed
+                .iter()
+                .map(|n| number(*n))
+                .collect::<Vec<_>>()
+                .join(", "),
+        );
+    }
+    if let Some(d) = p.default {
+        row(&mut out, "Default (raw)", number(d));
+    }
+    match p.effect {
+        Effect::Immediate => {}
+        Effect::AfterReset => row(&mut out, "Takes effect", "after a reset".into()),
+        Effect::AfterStoreReset => row(&mut out, "Takes effect", "after store + reset".into()),
+    }
+    if let Some(c) = &p.command {
+        row(
+            &mut out,
+            "Command",
+            format!("{:?}, trigger value {:?}; never retried", c.kind, c.value),
+        );
+    }
+    if !p.variants.is_empty() {
+        row(&mut out, "Variants", p.variants.join(", "));
+    }
+    if let Some(c) = &p.source {
+        let title = device
+            .sources
+            .iter()
+            .find(|s| s.id == c.doc)
+            .map_or(c.file.as_str(), |s| s.title.as_str());
+        let mut cite = format!("{} (`{}`)", doc::escape(title), doc::escape(&c.file));
+        if let Some(section) = &c.section {
+            let _ = write!(cite, " §{}", doc::escape(section));
+        }
+        if let Some(line) = c.line {
+            let _ = write!(cite, ", line {line}");
+        }
+        row(&mut out, "Source", cite);
+        if let Some(example) = &c.example {
+            row(&mut out, "Manual example", doc::escape(example));
+        }
+    }
+    if let Some(e) = &p.erratum {
+        row(&mut out, "Erratum", doc::escape(e).replace('\n', " "));
+    }
+    out
+}

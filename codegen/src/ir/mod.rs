@@ -1,0 +1,527 @@
+//! The IR: the one normalized device model every emitter and check reads.
+//!
+//! `drivegen dump --json` serializes it; the schema is documented in `docs/ir-json.md` and is
+//! stable: fields are only ever added. Spans are kept for diagnostics and never serialized.
+
+mod data_type;
+mod expr;
+mod number;
+
+pub use data_type::DataType;
+pub use expr::{Expr, ExprError, Op};
+pub use number::Number;
+
+use serde::Serialize;
+
+use crate::diagnostic::Span;
+
+/// Version of the IR JSON schema.
+pub const IR_SCHEMA_VERSION: u32 = 1;
+
+/// A whole device (or a profile).
+#[derive(Debug, Clone, Serialize)]
+pub struct Device {
+    /// IR JSON schema version.
+    pub schema: u32,
+    /// Identity and provenance.
+    pub device: Identity,
+    /// Manuals cited.
+    pub sources: Vec<SourceDoc>,
+    /// Modbus capabilities, if the device speaks Modbus.
+    pub modbus: Option<ModbusCaps>,
+    /// CANopen capabilities, if the device speaks CANopen.
+    pub canopen: Option<CanOpenCaps>,
+    /// Firmware / configuration variants; the first is the default.
+    pub variants: Vec<Variant>,
+    /// Enumerations.
+    pub enums: Vec<Enum>,
+    /// Bit-field words.
+    pub flags: Vec<Flags>,
+    /// CANopen records and arrays.
+    pub records: Vec<Record>,
+    /// Parameters.
+    pub parameters: Vec<Parameter>,
+}
+
+/// Who the device is and where the description comes from.
+#[derive(Debug, Clone, Serialize)]
+pub struct Identity {
+    /// Human name.
+    pub name: String,
+    /// Rust type name of the drive handle.
+    pub handle: String,
+    /// Vendor.
+    pub vendor: Option<String>,
+    /// Firmware the description was written against.
+    pub firmware: Option<String>,
+    /// Documentation.
+    pub doc: Option<String>,
+    /// Citation.
+    pub source: Option<Citation>,
+    /// True for a profile fragment (no `[device]`).
+    pub is_profile: bool,
+}
+
+/// A manual.
+#[derive(Debug, Clone, Serialize)]
+pub struct SourceDoc {
+    /// Short id cited by `source.doc`.
+    pub id: String,
+    /// File name or URL.
+    pub file: String,
+    /// Title.
+    pub title: String,
+}
+
+/// A place in a manual.
+#[derive(Debug, Clone, Serialize, Default)]
+pub struct Citation {
+    /// `SourceDoc::id`.
+    pub doc: String,
+    /// The `SourceDoc::file` it resolves to.
+    pub file: String,
+    /// Section.
+    pub section: Option<String>,
+    /// Line in the file.
+    pub line: Option<u32>,
+    /// A worked example quoted from the manual.
+    pub example: Option<String>,
+    /// Where the citation is written.
+    #[serde(skip)]
+    pub span: Span,
+}
+
+/// The device's Modbus capabilities.
+#[derive(Debug, Clone, Serialize)]
+pub struct ModbusCaps {
+    /// Most registers per read.
+    pub max_read_registers: u16,
+    /// Most registers per write.
+    pub max_write_registers: u16,
+    /// Function codes implemented.
+    pub functions: Vec<u8>,
+    /// Whether unit id 0 is accepted.
+    pub broadcast: bool,
+    /// Whether reads may span undocumented addresses.
+    pub read_gaps: bool,
+    /// Default word order.
+    pub word_order: WordOrder,
+    /// Exception code for an illegal address.
+    pub illegal_address_exception: u8,
+    /// Exception code for an illegal value.
+    pub illegal_value_exception: u8,
+    /// Citation.
+    pub source: Option<Citation>,
+}
+
+/// The device's CANopen capabilities.
+#[derive(Debug, Clone, Serialize)]
+pub struct CanOpenCaps {
+    /// Node id out of the box.
+    pub default_node_id: u8,
+    /// Citation.
+    pub source: Option<Citation>,
+}
+
+/// A firmware or parameter-configuration variant.
+#[derive(Debug, Clone, Serialize)]
+pub struct Variant {
+    /// snake_case name.
+    pub name: String,
+    /// Documentation.
+    pub doc: Option<String>,
+    /// Citation.
+    pub source: Option<Citation>,
+    /// Where it is declared.
+    #[serde(skip)]
+    pub span: Span,
+}
+
+/// An open enumeration.
+#[derive(Debug, Clone, Serialize)]
+pub struct Enum {
+    /// snake_case name.
+    pub name: String,
+    /// Integer type.
+    #[serde(rename = "type")]
+    pub data_type: DataType,
+    /// Documentation.
+    pub doc: Option<String>,
+    /// Values.
+    pub values: Vec<EnumValue>,
+    /// Citation.
+    pub source: Option<Citation>,
+    /// Errata decision.
+    pub erratum: Option<String>,
+    /// Where it is declared.
+    #[serde(skip)]
+    pub span: Span,
+}
+
+/// One value of an enumeration.
+#[derive(Debug, Clone, Serialize)]
+pub struct EnumValue {
+    /// snake_case name.
+    pub name: String,
+    /// Raw value.
+    pub value: i64,
+    /// Documentation.
+    pub doc: Option<String>,
+    /// Where it is declared.
+    #[serde(skip)]
+    pub span: Span,
+}
+
+/// A bit-field word.
+#[derive(Debug, Clone, Serialize)]
+pub struct Flags {
+    /// snake_case name.
+    pub name: String,
+    /// Unsigned integer type.
+    #[serde(rename = "type")]
+    pub data_type: DataType,
+    /// Documentation.
+    pub doc: Option<String>,
+    /// Single-bit flags.
+    pub bits: Vec<Bit>,
+    /// Multi-bit fields.
+    pub fields: Vec<BitField>,
+    /// Citation.
+    pub source: Option<Citation>,
+    /// Errata decision.
+    pub erratum: Option<String>,
+    /// Where it is declared.
+    #[serde(skip)]
+    pub span: Span,
+}
+
+/// One flag bit.
+#[derive(Debug, Clone, Serialize)]
+pub struct Bit {
+    /// snake_case name.
+    pub name: String,
+    /// Bit number, 0 = least significant.
+    pub bit: u32,
+    /// Documentation.
+    pub doc: Option<String>,
+    /// Where it is declared.
+    #[serde(skip)]
+    pub span: Span,
+}
+
+/// A multi-bit field.
+#[derive(Debug, Clone, Serialize)]
+pub struct BitField {
+    /// snake_case name.
+    pub name: String,
+    /// Least significant bit.
+    pub lsb: u32,
+    /// Width in bits.
+    pub width: u32,
+    /// Documentation.
+    pub doc: Option<String>,
+    /// Enumeration of the field's values.
+    #[serde(rename = "enum")]
+    pub enumeration: Option<String>,
+    /// Where it is declared.
+    #[serde(skip)]
+    pub span: Span,
+}
+
+/// Record or array.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum RecordKind {
+    /// CiA 301 RECORD (object code 0x9).
+    Record,
+    /// CiA 301 ARRAY (object code 0x8).
+    Array,
+}
+
+/// A CANopen record or array; its members are parameters naming it.
+#[derive(Debug, Clone, Serialize)]
+pub struct Record {
+    /// snake_case name.
+    pub name: String,
+    /// Record or array.
+    pub kind: RecordKind,
+    /// Object index.
+    pub index: u16,
+    /// Documentation.
+    pub doc: Option<String>,
+    /// Citation.
+    pub source: Option<Citation>,
+    /// Where it is declared.
+    #[serde(skip)]
+    pub span: Span,
+}
+
+/// Word order of multi-register values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum WordOrder {
+    /// Most significant word first.
+    HighFirst,
+    /// Least significant word first.
+    LowFirst,
+}
+
+/// Modbus register table.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Table {
+    /// Input registers (FC 0x04).
+    Input,
+    /// Holding registers (FC 0x03, 0x06, 0x10).
+    Holding,
+}
+
+/// Access over one protocol address.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct Access {
+    /// Readable.
+    pub read: bool,
+    /// Writable.
+    pub write: bool,
+}
+
+/// A Modbus address of a parameter.
+#[derive(Debug, Clone, Serialize)]
+pub struct ModbusAddress {
+    /// Table.
+    pub table: Table,
+    /// PDU address.
+    pub address: u16,
+    /// Registers occupied.
+    pub words: u16,
+    /// Word order.
+    pub word_order: WordOrder,
+    /// Access.
+    pub access: Access,
+    /// Variant this address is limited to.
+    pub variant: Option<String>,
+    /// Where it is declared.
+    #[serde(skip)]
+    pub span: Span,
+}
+
+/// PDO mappability.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Pdo {
+    /// Not mappable.
+    None,
+    /// Mappable into receive PDOs (master → drive).
+    Rx,
+    /// Mappable into transmit PDOs (drive → master).
+    Tx,
+    /// Both directions.
+    Both,
+}
+
+/// A CANopen (or Kinco RS-232) object address of a parameter.
+#[derive(Debug, Clone, Serialize)]
+pub struct ObjectAddress {
+    /// Index.
+    pub index: u16,
+    /// Subindex.
+    pub subindex: u8,
+    /// Access.
+    pub access: Access,
+    /// Constant object (CiA 306 `const`).
+    pub constant: bool,
+    /// PDO mappability.
+    pub pdo: Pdo,
+    /// Variant this address is limited to.
+    pub variant: Option<String>,
+    /// Where it is declared.
+    #[serde(skip)]
+    pub span: Span,
+}
+
+/// An exact rational in JSON.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct RatioJson {
+    /// Numerator.
+    pub numerator: i64,
+    /// Denominator (positive).
+    pub denominator: i64,
+}
+
+/// How raw values become engineering values.
+#[derive(Debug, Clone, Serialize)]
+#[serde(untagged)]
+pub enum Scale {
+    /// `raw × numerator / denominator + offset`.
+    Fixed {
+        /// Factor numerator.
+        numerator: i64,
+        /// Factor denominator.
+        denominator: i64,
+        /// Offset.
+        offset: RatioJson,
+    },
+    /// A factor computed at run time from other parameters.
+    Runtime {
+        /// The expression as written.
+        expr: String,
+        /// The parameters it reads.
+        inputs: Vec<String>,
+        /// The parsed expression.
+        #[serde(skip)]
+        ast: Expr,
+    },
+}
+
+/// When a written value takes effect.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Effect {
+    /// At once.
+    #[default]
+    Immediate,
+    /// After a device reset.
+    AfterReset,
+    /// After storing to non-volatile memory and a reset.
+    AfterStoreReset,
+}
+
+/// What a command register does.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum CommandKind {
+    /// Store parameters to non-volatile memory.
+    Store,
+    /// Restore factory parameters.
+    RestoreFactory,
+    /// Reset the device.
+    Reset,
+    /// Any other action.
+    Action,
+}
+
+/// A command register.
+#[derive(Debug, Clone, Serialize)]
+pub struct Command {
+    /// What it does.
+    pub kind: CommandKind,
+    /// The raw value that triggers it.
+    pub value: Option<i64>,
+}
+
+/// An inclusive raw range.
+#[derive(Debug, Clone, Serialize)]
+pub struct Range {
+    /// Smallest raw value.
+    pub min: Number,
+    /// Largest raw value.
+    pub max: Number,
+}
+
+/// A parameter.
+#[derive(Debug, Clone, Serialize)]
+pub struct Parameter {
+    /// snake_case name.
+    pub name: String,
+    /// Documentation.
+    pub doc: Option<String>,
+    /// Data type.
+    #[serde(rename = "type")]
+    pub data_type: DataType,
+    /// Unit symbol.
+    pub unit: Option<String>,
+    /// Scaling.
+    pub scale: Option<Scale>,
+    /// Raw default.
+    pub default: Option<Number>,
+    /// Raw range.
+    pub range: Option<Range>,
+    /// Allowed raw values.
+    pub allowed: Vec<Number>,
+    /// Enumeration of the value.
+    #[serde(rename = "enum")]
+    pub enumeration: Option<String>,
+    /// Bit-field type of the value.
+    pub flags: Option<String>,
+    /// Record this is a member of.
+    pub record: Option<String>,
+    /// Modbus addresses.
+    pub modbus: Vec<ModbusAddress>,
+    /// CANopen addresses.
+    pub canopen: Vec<ObjectAddress>,
+    /// Kinco RS-232 addresses.
+    pub rs232: Vec<ObjectAddress>,
+    /// When a write takes effect.
+    pub effect: Effect,
+    /// Command register.
+    pub command: Option<Command>,
+    /// Variants the parameter exists in (empty = all).
+    pub variants: Vec<String>,
+    /// Citation.
+    pub source: Option<Citation>,
+    /// Errata decision.
+    pub erratum: Option<String>,
+    /// Where things are declared.
+    #[serde(skip)]
+    pub spans: ParameterSpans,
+}
+
+/// Source locations of a parameter's keys, for diagnostics.
+#[derive(Debug, Clone, Default)]
+pub struct ParameterSpans {
+    /// The name.
+    pub name: Span,
+    /// The type.
+    pub data_type: Span,
+    /// The default.
+    pub default: Option<Span>,
+    /// The range.
+    pub range: Option<Span>,
+    /// The allowed values.
+    pub allowed: Option<Span>,
+    /// The scale.
+    pub scale: Option<Span>,
+    /// The unit.
+    pub unit: Option<Span>,
+    /// The enum reference.
+    pub enumeration: Option<Span>,
+    /// The flags reference.
+    pub flags: Option<Span>,
+    /// The record reference.
+    pub record: Option<Span>,
+    /// The variants list.
+    pub variants: Vec<Span>,
+}
+
+impl Device {
+    /// A parameter by name.
+    pub fn parameter(&self, name: &str) -> Option<&Parameter> {
+        self.parameters.iter().find(|p| p.name == name)
+    }
+    /// An enumeration by name.
+    pub fn enumeration(&self, name: &str) -> Option<&Enum> {
+        self.enums.iter().find(|e| e.name == name)
+    }
+    /// A flags type by name.
+    pub fn flags_type(&self, name: &str) -> Option<&Flags> {
+        self.flags.iter().find(|f| f.name == name)
+    }
+}
+
+impl Access {
+    /// Read-only.
+    pub const READ: Access = Access {
+        read: true,
+        write: false,
+    };
+    /// Write-only.
+    pub const WRITE: Access = Access {
+        read: false,
+        write: true,
+    };
+    /// Read/write.
+    pub const READ_WRITE: Access = Access {
+        read: true,
+        write: true,
+    };
+}

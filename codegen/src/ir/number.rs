@@ -1,0 +1,38 @@
+//! Raw numbers of defaults, ranges and allowed values: exact integers, or floats for float types.
+
+use serde::{Serialize, Serializer};
+
+/// A raw value as written in a description.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Number {
+    /// An integer.
+    Int(i64),
+    /// A float (only for `f32`/`f64` parameters).
+    Float(f64),
+}
+
+impl Number {
+    /// The value as `f64`.
+    pub fn as_f64(self) -> f64 {
+        match self {
+            Number::Int(i) => i as f64,
+            Number::Float(f) => f,
+        }
+    }
+    /// The value as an integer, if it is one.
+    pub fn as_int(self) -> Option<i64> {
+        match self {
+            Number::Int(i) => Some(i),
+            Number::Float(_) => None,
+        }
+    }
+}
+
+impl Serialize for Number {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        match self {
+            Number::Int(i) => serializer.serialize_i64(*i),
+            Number::Float(f) => serializer.serialize_f64(*f),
+        }
+    }
+}

@@ -1,0 +1,122 @@
+//! Loading: read a description's files (following `include`), keep spans, lower to the IR.
+
+pub mod exact;
+mod lower;
+mod raw;
+
+use std::path::{Path, PathBuf};
+
+use crate::diagnostic::{Diagnostic, FileId, Files, Span};
+use raw::{RawFile, RawInclude};
+
+pub use lower::lower;
+
+/// The file a folder description is loaded through.
+pub const DEVICE_FILE: &str = "device.toml";
+
+/// Includes nested deeper than this are refused (and cycles are reported before that).
+const MAX_INCLUDE_DEPTH: usize = 8;
+
+/// A parsed file and the names its includer asked for (`None` = everything).
+pub struct LoadedFile {
+    /// Which file.
+    pub id: FileId,
+    /// Its contents.
+    pub raw: RawFile,
+    /// The `only` filter of the include that brought it in.
+    pub only: Option<Vec<String>>,
+}
+
+/// Reads a description file (or a folder's `device.toml`) and everything it includes.
+///
+/// Files are returned root first. Problems are pushed to `diagnostics`; a file that cannot be read
+/// or parsed is left out.
+pub fn read_files(
+    path: &Path,
+    files: &mut Files,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> Vec<LoadedFile> {
+    let root = if path.is_dir() {
+        path.join(DEVICE_FILE)
+    } else {
+        path.to_path_buf()
+    };
+    let mut loaded = Vec::new();
+    let mut chain = Vec::new();
+    read_recursive(
+        &root,
+        None,
+        None,
+        files,
+        diagnostics,
+        &mut loaded,
+        &mut chain,
+    );
+    loaded
+}
+
+fn read_recursive(
+    path: &Path,
+    only: Option<Vec<String>>,
+    included_at: Option<Span>,
+    files: &mut Files,
+    diagnostics: &mut Vec<Diagnostic>,
+    loaded: &mut Vec<LoadedFile>,
+    chain: &mut Vec<PathBuf>,
+) {
+    let canonical = path.canonicalize().unwrap_or_else(|_| path.to_path_buf());
+    let located = |message: String| match &included_at {
+        Some(span) => Diagnostic::error("includes_resolve", span.clone(), message),
+        None => Diagnostic::error_at_no_place("io", message),
+    };
+    if chain.contains(&canonical) || chain.len() >= MAX_INCLUDE_DEPTH {
+        diagnostics.push(located(format!("`{}` includes itself", path.display())));
+        return;
+    }
+    let text = match std::fs::read_to_string(path) {
+        Ok(text) => text,
+        Err(e) => {
+            diagnostics.push(located(format!("cannot read `{}`: {e}", path.display())));
+            return;
+        }
+    };
+    let id = files.add(path.to_path_buf(), text);
+    let raw: RawFile = match toml::from_str(files.text(id)) {
+        Ok(raw) => raw,
+        Err(e) => {
+            diagnostics.push(syntax_error(id, &e));
+            return;
+        }
+    };
+    let includes: Vec<_> = raw
+        .include
+        .iter()
+        .map(|i| (i.get_ref().clone(), i.span()))
+        .collect();
+    loaded.push(LoadedFile { id, raw, only });
+    chain.push(canonical);
+    let base = path.parent().unwrap_or(Path::new("."));
+    for (include, range) in includes {
+        let (target, only) = match include {
+            RawInclude::Path(p) => (p, None),
+            RawInclude::Table { path, only } => (path, only),
+        };
+        let span = Span::new(id, range);
+        read_recursive(
+            &base.join(target),
+            only,
+            Some(span),
+            files,
+            diagnostics,
+            loaded,
+            chain,
+        );
+    }
+    chain.pop();
+}
+
+fn syntax_error(id: FileId, error: &toml::de::Error) -> Diagnostic {
+    let span = Span::new(id, error.span().unwrap_or(0..0));
+    let message = error.message().trim_end().to_owned();
+    Diagnostic::error("syntax", span, message)
+}

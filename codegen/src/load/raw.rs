@@ -1,0 +1,285 @@
+//! The description file as written: serde structures that keep the source span of every value.
+//!
+//! Nothing here is interpreted; [`super::lower`] turns these into the IR and reports what is wrong.
+
+use serde::Deserialize;
+use toml::Spanned;
+
+/// One TOML file of a description.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawFile {
+    pub format: Spanned<i64>,
+    #[serde(default)]
+    pub include: Vec<Spanned<RawInclude>>,
+    pub device: Option<RawDevice>,
+    pub profile: Option<RawProfile>,
+    #[serde(default)]
+    pub source: Vec<RawSource>,
+    pub modbus: Option<RawModbusCaps>,
+    pub canopen: Option<RawCanOpenCaps>,
+    #[serde(default)]
+    pub variant: Vec<RawVariant>,
+    #[serde(default, rename = "enum")]
+    pub enums: Vec<RawEnum>,
+    #[serde(default)]
+    pub flags: Vec<RawFlags>,
+    #[serde(default)]
+    pub record: Vec<RawRecord>,
+    #[serde(default)]
+    pub parameter: Vec<RawParameter>,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(untagged)]
+pub enum RawInclude {
+    Path(String),
+    Table {
+        path: String,
+        only: Option<Vec<String>>,
+    },
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawDevice {
+    pub name: Spanned<String>,
+    pub handle: Spanned<String>,
+    pub vendor: Option<String>,
+    pub firmware: Option<String>,
+    pub doc: Option<String>,
+    pub source: Option<Spanned<RawCitation>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawProfile {
+    pub name: Spanned<String>,
+    pub doc: Option<String>,
+    pub source: Option<Spanned<RawCitation>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawSource {
+    pub id: Spanned<String>,
+    pub file: String,
+    pub title: String,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawCitation {
+    pub doc: Spanned<String>,
+    pub section: Option<String>,
+    pub line: Option<Spanned<i64>>,
+    pub example: Option<String>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawModbusCaps {
+    pub max_read_registers: Option<Spanned<i64>>,
+    pub max_write_registers: Option<Spanned<i64>>,
+    pub functions: Option<Spanned<Vec<i64>>>,
+    pub broadcast: Option<bool>,
+    pub read_gaps: Option<bool>,
+    pub word_order: Option<Spanned<String>>,
+    pub illegal_address_exception: Option<Spanned<i64>>,
+    pub illegal_value_exception: Option<Spanned<i64>>,
+    pub source: Option<Spanned<RawCitation>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawCanOpenCaps {
+    pub default_node_id: Option<Spanned<i64>>,
+    pub source: Option<Spanned<RawCitation>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawVariant {
+    pub name: Spanned<String>,
+    pub doc: Option<String>,
+    pub source: Option<Spanned<RawCitation>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawEnum {
+    pub name: Spanned<String>,
+    #[serde(rename = "type")]
+    pub ty: Spanned<String>,
+    pub doc: Option<String>,
+    pub source: Option<Spanned<RawCitation>>,
+    pub values: Vec<Spanned<RawEnumValue>>,
+    pub erratum: Option<String>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawEnumValue {
+    pub name: Spanned<String>,
+    pub value: Spanned<i64>,
+    pub doc: Option<String>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawFlags {
+    pub name: Spanned<String>,
+    #[serde(rename = "type")]
+    pub ty: Spanned<String>,
+    pub doc: Option<String>,
+    pub source: Option<Spanned<RawCitation>>,
+    #[serde(default)]
+    pub bits: Vec<Spanned<RawBit>>,
+    #[serde(default)]
+    pub fields: Vec<Spanned<RawField>>,
+    pub erratum: Option<String>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawBit {
+    pub name: Spanned<String>,
+    pub bit: Spanned<i64>,
+    pub doc: Option<String>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawField {
+    pub name: Spanned<String>,
+    pub lsb: Spanned<i64>,
+    pub width: Spanned<i64>,
+    pub doc: Option<String>,
+    #[serde(rename = "enum")]
+    pub enumeration: Option<Spanned<String>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawRecord {
+    pub name: Spanned<String>,
+    pub kind: Spanned<String>,
+    pub index: Spanned<i64>,
+    pub doc: Option<String>,
+    pub source: Option<Spanned<RawCitation>>,
+}
+
+/// A number as written: TOML integers and floats.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(untagged)]
+pub enum RawNumber {
+    Int(i64),
+    Float(f64),
+}
+
+/// A `scale` as written.
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub enum RawScale {
+    Int(i64),
+    Float(f64),
+    Text(String),
+    Table(RawScaleTable),
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawScaleTable {
+    pub factor: Option<RawScalar>,
+    pub offset: Option<RawScalar>,
+    pub expr: Option<String>,
+}
+
+/// An exact number written as an integer, a float or a string (`"1/100"`).
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub enum RawScalar {
+    Int(i64),
+    Float(f64),
+    Text(String),
+}
+
+/// One inline table or an array of them.
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub enum OneOrMany<T> {
+    One(T),
+    Many(Vec<T>),
+}
+
+impl<T> OneOrMany<T> {
+    pub fn into_vec(self) -> Vec<T> {
+        match self {
+            Self::One(one) => vec![one],
+            Self::Many(many) => many,
+        }
+    }
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawParameter {
+    pub name: Spanned<String>,
+    pub doc: Option<String>,
+    #[serde(rename = "type")]
+    pub ty: Spanned<String>,
+    pub length: Option<Spanned<i64>>,
+    pub unit: Option<Spanned<String>>,
+    pub scale: Option<Spanned<RawScale>>,
+    pub default: Option<Spanned<RawNumber>>,
+    pub range: Option<Spanned<Vec<RawNumber>>>,
+    pub allowed: Option<Spanned<Vec<RawNumber>>>,
+    #[serde(rename = "enum")]
+    pub enumeration: Option<Spanned<String>>,
+    pub flags: Option<Spanned<String>>,
+    pub record: Option<Spanned<String>>,
+    // serde cannot keep spans inside an untagged enum, so an address list is located as a whole.
+    pub modbus: Option<Spanned<OneOrMany<RawModbusAddress>>>,
+    pub canopen: Option<Spanned<OneOrMany<RawCanOpenAddress>>>,
+    pub rs232: Option<Spanned<OneOrMany<RawCanOpenAddress>>>,
+    pub effect: Option<Spanned<String>>,
+    pub command: Option<Spanned<RawCommand>>,
+    pub variants: Option<Vec<Spanned<String>>>,
+    pub source: Option<Spanned<RawCitation>>,
+    pub erratum: Option<String>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawModbusAddress {
+    pub table: String,
+    pub address: i64,
+    pub words: Option<i64>,
+    pub word_order: Option<String>,
+    pub access: Option<String>,
+    pub variant: Option<String>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawCanOpenAddress {
+    pub index: i64,
+    pub subindex: Option<i64>,
+    pub access: Option<String>,
+    pub pdo: Option<RawPdo>,
+    pub variant: Option<String>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub enum RawPdo {
+    Flag(bool),
+    Direction(String),
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawCommand {
+    pub kind: Spanned<String>,
+    pub value: Option<Spanned<i64>>,
+}

@@ -1,0 +1,91 @@
+//! A run-time scale reads only integer, unscaled parameters that are readable over every protocol
+//! the scaled parameter uses (the factor must be computable wherever the value is).
+
+use crate::diagnostic::Diagnostic;
+use crate::ir::{Device, Parameter, Scale};
+
+const RULE: &str = "scale_inputs_exist";
+
+fn readable_modbus(p: &Parameter) -> bool {
+    p.modbus.iter().any(|a| a.access.read)
+}
+
+fn readable_canopen(p: &Parameter) -> bool {
+    p.canopen.iter().any(|a| a.access.read)
+}
+
+/// Reports run-time scale inputs that do not exist or cannot be read.
+pub fn check(device: &Device) -> Vec<Diagnostic> {
+    let mut out = Vec::new();
+    for p in &device.parameters {
+        let (Some(Scale::Runtime { inputs, .. }), Some(span)) = (&p.scale, &p.spans.scale) else {
+            continue;
+        };
+        for name in inputs {
+            let error = |message: String| Diagnostic::error(RULE, span.clone(), message);
+            let Some(input) = device.parameter(name) else {
+                out.push(error(format!(
+                    "scale of `{}` reads `{name}`, which is not a parameter",
+                    p.name
+                )));
+                continue;
+            };
+            if !input.data_type.is_integer()
+                || input.scale.is_some()
+                || input.enumeration.is_some()
+                || input.flags.is_some()
+            {
+                out.push(error(format!(
+                    "scale input `{name}` must be a plain integer parameter without scale"
+                )));
+            }
+            let missing = [
+                ("Modbus", !p.modbus.is_empty() && !readable_modbus(input)),
+                ("CANopen", !p.canopen.is_empty() && !readable_canopen(input)),
+            ];
+            for (protocol, _) in missing.iter().filter(|(_, m)| *m) {
+                out.push(
+                    error(format!(
+                        "scale input `{name}` of `{}` is not readable over {protocol}",
+                        p.name
+                    ))
+                    .help("give it a readable address on that protocol"),
+                );
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::validate::test_support::messages;
+
+    const SPEED: &str = r#"
+[[parameter]]
+name = "target_speed"
+type = "i32"
+unit = "rpm"
+scale = { expr = "1875 / (512 * encoder_resolution)" }
+canopen = { index = 0x60FF, access = "rw" }
+modbus = { table = "holding", address = 0x6F00, access = "rw" }
+source = { doc = "m", line = 1 }
+"#;
+
+    #[test]
+    fn unknown_input_is_reported() {
+        assert_eq!(
+            messages("scale_inputs_exist", SPEED),
+            ["scale of `target_speed` reads `encoder_resolution`, which is not a parameter"]
+        );
+    }
+
+    #[test]
+    fn input_missing_on_a_protocol_is_reported() {
+        let body = format!("{SPEED}\n[[parameter]]\nname = \"encoder_resolution\"\ntype = \"u32\"\ncanopen = {{ index = 0x6410, subindex = 3, access = \"rw\" }}\nsource = {{ doc = \"m\", line = 1 }}\n");
+        assert_eq!(
+            messages("scale_inputs_exist", &body),
+            ["scale input `encoder_resolution` of `target_speed` is not readable over Modbus"]
+        );
+    }
+}

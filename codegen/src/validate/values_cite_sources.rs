@@ -1,0 +1,71 @@
+//! Every parameter, enum, flags type and record cites the manual line it comes from.
+
+use crate::diagnostic::{Diagnostic, Span};
+use crate::ir::{Citation, Device};
+
+const RULE: &str = "values_cite_sources";
+
+fn uncited(kind: &str, name: &str, span: &Span, source: &Option<Citation>) -> Option<Diagnostic> {
+    let message = match source {
+        None => format!("{kind} `{name}` cites no source"),
+        Some(c) if c.line.is_none() => format!("{kind} `{name}` cites no line of `{}`", c.doc),
+        Some(_) => return None,
+    };
+    Some(
+        Diagnostic::error(RULE, span.clone(), message)
+            .help("add `source = { doc = \"<id>\", section = \"...\", line = N }`"),
+    )
+}
+
+/// Reports items without a citation or without a line number.
+pub fn check(device: &Device) -> Vec<Diagnostic> {
+    let parameters = device
+        .parameters
+        .iter()
+        .map(|p| ("parameter", &p.name, &p.spans.name, &p.source));
+    let enums = device
+        .enums
+        .iter()
+        .map(|e| ("enum", &e.name, &e.span, &e.source));
+    let flags = device
+        .flags
+        .iter()
+        .map(|f| ("flags", &f.name, &f.span, &f.source));
+    let records = device
+        .records
+        .iter()
+        .map(|r| ("record", &r.name, &r.span, &r.source));
+    parameters
+        .chain(enums)
+        .chain(flags)
+        .chain(records)
+        .filter_map(|(kind, name, span, source)| uncited(kind, name, span, source))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::validate::test_support::messages;
+
+    #[test]
+    fn missing_source_and_missing_line_are_reported() {
+        let body = r#"
+[[parameter]]
+name = "a"
+type = "u8"
+modbus = { table = "holding", address = 1 }
+[[parameter]]
+name = "b"
+type = "u8"
+modbus = { table = "holding", address = 2 }
+source = { doc = "m", section = "2" }
+"#;
+        assert_eq!(
+            messages("values_cite_sources", body),
+            [
+                "parameter `a` cites no source",
+                "parameter `b` cites no line of `m`"
+            ]
+        );
+    }
+}
