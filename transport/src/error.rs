@@ -101,6 +101,16 @@ pub enum BusError {
         /// CiA 301 abort code.
         code: u32,
     },
+    /// The CANopen client aborted an SDO transfer (toggle or sequence error, unexpected command,
+    /// CRC error, buffer too small) and told the server so.
+    SdoClientAbort {
+        /// Object index of the transfer.
+        index: u16,
+        /// Object subindex of the transfer.
+        subindex: u8,
+        /// CiA 301 abort code the client sent.
+        code: u32,
+    },
     /// A frame arrived but is malformed or does not match the request.
     Frame(&'static str),
     /// The request needs a feature the device does not support (per its description).
@@ -125,6 +135,16 @@ impl fmt::Display for BusError {
                 code,
             } => {
                 write!(f, "SDO abort {code:#010x} on {index:#06x}:{subindex}")
+            }
+            Self::SdoClientAbort {
+                index,
+                subindex,
+                code,
+            } => {
+                write!(
+                    f,
+                    "SDO transfer of {index:#06x}:{subindex} aborted by the client with {code:#010x}"
+                )
             }
             Self::Frame(why) => write!(f, "bad frame: {why}"),
             Self::Unsupported(what) => write!(f, "not supported by the device: {what}"),
