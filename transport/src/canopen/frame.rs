@@ -63,6 +63,18 @@ impl CanFrame {
         }
     }
 
+    /// The same frame cut to `len` bytes (at most 8), the rest zeroed.
+    pub(crate) const fn truncated(mut self, len: u8) -> Self {
+        let len = if len > 8 { 8 } else { len };
+        let mut i = len as usize;
+        while i < 8 {
+            self.data[i] = 0;
+            i += 1;
+        }
+        self.len = len;
+        self
+    }
+
     /// The 11-bit identifier.
     pub const fn id(&self) -> u16 {
         self.id
