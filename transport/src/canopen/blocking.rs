@@ -1,13 +1,18 @@
 //! A blocking SDO client over any [`CanBus`]: the sans-I/O transfers driven with a real clock.
 
 use core::time::Duration;
+use std::collections::VecDeque;
 use std::time::Instant;
 
 use super::address::NodeId;
 use super::backend::CanBus;
+use super::frame::CanFrame;
 use super::link::SdoBus;
 use super::sdo::{Progress, SdoClient, Transfer};
 use crate::error::BusError;
+
+/// Most frames kept for [`CanBus::recv`] while transfers run; older ones are dropped first.
+pub const BACKLOG: usize = 1024;
 
 /// Default time a server has to answer each request.
 pub const DEFAULT_TIMEOUT: Duration = Duration::from_millis(500);
@@ -15,11 +20,14 @@ pub const DEFAULT_TIMEOUT: Duration = Duration::from_millis(500);
 /// Runs SDO transfers over a [`CanBus`]; implements [`SdoBus`], so a
 /// [`CanOpenLink`](super::CanOpenLink) works over every backend.
 ///
-/// Frames that do not belong to the running transfer (PDOs, heartbeats, other nodes' SDOs) are
-/// read and dropped.
+/// Frames that arrive during a transfer but are not SDO responses for it (PDOs, heartbeats,
+/// EMCY, other nodes' SDOs) are kept, up to [`BACKLOG`] of them, and handed out first by this
+/// type's own [`CanBus::recv`], so one bus serves SDO and everything else.
 #[derive(Debug)]
 pub struct BlockingSdo<B> {
     bus: B,
+    backlog: VecDeque<CanFrame>,
+    dropped: usize,
     timeout: Duration,
     block_threshold: Option<usize>,
     block_size: u8,
@@ -31,6 +39,8 @@ impl<B: CanBus> BlockingSdo<B> {
     pub fn new(bus: B) -> Self {
         Self {
             bus,
+            backlog: VecDeque::new(),
+            dropped: 0,
             timeout: DEFAULT_TIMEOUT,
             block_threshold: None,
             block_size: super::sdo::block::MAX_BLOCK_SIZE,
@@ -60,6 +70,19 @@ impl<B: CanBus> BlockingSdo<B> {
     /// Gives the bus back.
     pub fn into_inner(self) -> B {
         self.bus
+    }
+
+    /// Frames dropped because the backlog was full.
+    pub fn dropped_frames(&self) -> usize {
+        self.dropped
+    }
+
+    fn keep(&mut self, frame: CanFrame) {
+        if self.backlog.len() == BACKLOG {
+            self.backlog.pop_front();
+            self.dropped += 1;
+        }
+        self.backlog.push_back(frame);
     }
 
     fn now(&self) -> Duration {
@@ -94,7 +117,13 @@ impl<B: CanBus> BlockingSdo<B> {
             };
             let now = self.now();
             progress = match self.bus.recv(deadline.saturating_sub(now))? {
-                Some(frame) => transfer.handle(&frame, self.now()),
+                Some(frame) if frame.id() == transfer.response_cob() => {
+                    transfer.handle(&frame, self.now())
+                }
+                Some(frame) => {
+                    self.keep(frame);
+                    Progress::Pending
+                }
                 None => transfer.handle_timeout(self.now()),
             };
         }
@@ -134,5 +163,19 @@ impl<B: CanBus> SdoBus for BlockingSdo<B> {
             client.download(index, subindex, data, now)
         };
         self.run(&mut transfer).map(|_| ())
+    }
+}
+
+/// The bus beside the SDO client: frames that arrived during transfers come first.
+impl<B: CanBus> CanBus for BlockingSdo<B> {
+    fn send(&mut self, frame: &CanFrame) -> Result<(), BusError> {
+        self.bus.send(frame)
+    }
+
+    fn recv(&mut self, timeout: Duration) -> Result<Option<CanFrame>, BusError> {
+        match self.backlog.pop_front() {
+            Some(frame) => Ok(Some(frame)),
+            None => self.bus.recv(timeout),
+        }
     }
 }

@@ -224,6 +224,10 @@ impl Transfer for Upload<'_> {
     fn object(&self) -> (u16, u8) {
         (self.ch.index, self.ch.subindex)
     }
+
+    fn response_cob(&self) -> u16 {
+        self.ch.response_cob()
+    }
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -334,5 +338,9 @@ impl Transfer for Download<'_> {
 
     fn object(&self) -> (u16, u8) {
         (self.ch.index, self.ch.subindex)
+    }
+
+    fn response_cob(&self) -> u16 {
+        self.ch.response_cob()
     }
 }

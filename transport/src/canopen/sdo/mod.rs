@@ -118,6 +118,8 @@ pub trait Transfer {
     fn deadline(&self) -> Option<Duration>;
     /// The object this transfer moves.
     fn object(&self) -> (u16, u8);
+    /// The COB-ID the server answers on; frames with other ids are not this transfer's.
+    fn response_cob(&self) -> u16;
 }
 
 /// The connection state every transfer shares: COB-IDs, multiplexer, deadline, outgoing frame.
@@ -225,6 +227,10 @@ impl Channel {
         } else {
             Progress::Pending
         }
+    }
+
+    pub(crate) fn response_cob(&self) -> u16 {
+        self.response_cob
     }
 
     pub(crate) fn deadline(&self) -> Option<Duration> {
