@@ -276,3 +276,31 @@ fn a_canopen_link_over_candump_reads_and_writes_like_a_generated_handle() {
     assert_eq!(u16::from_le_bytes(buf), 0xBEEF);
     assert_eq!(link.wire_bytes(&address), 2);
 }
+
+#[test]
+fn a_tpdo_configuration_plan_is_applied_to_the_peer() {
+    use drivebus::canopen::pdo::{MappedObject, PdoConfig, PdoKind};
+    let mut peer = Peer::start();
+    assert_eq!(
+        peer.read(0x1800, 1).unwrap(),
+        0x185u32.to_le_bytes(),
+        "EDS default $NODEID+0x180"
+    );
+    let entries = [
+        MappedObject::new(0x2002, 0, 16),
+        MappedObject::new(0x2004, 0, 32),
+        MappedObject::new(0x2001, 0, 8),
+    ];
+    let config = PdoConfig {
+        kind: PdoKind::Transmit,
+        number: 1,
+        cob_id: 0x185,
+        transmission_type: Some(1),
+        entries: &entries,
+    };
+    config.apply(&mut peer.sdo, NODE_ID).unwrap();
+    assert_eq!(peer.read(0x1A00, 0).unwrap(), [3]);
+    assert_eq!(peer.read(0x1A00, 2).unwrap(), 0x2004_0020u32.to_le_bytes());
+    assert_eq!(peer.read(0x1800, 2).unwrap(), [1]);
+    assert_eq!(peer.read(0x1800, 1).unwrap(), 0x185u32.to_le_bytes());
+}
