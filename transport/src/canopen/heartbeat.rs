@@ -131,7 +131,7 @@ mod tests {
             "not armed before the first heartbeat"
         );
         let beat = heartbeat_frame(node, NmtState::Operational);
-        let first = consumer.handle(&beat, 0 * MS);
+        let first = consumer.handle(&beat, Duration::ZERO);
         assert!(matches!(
             first,
             Some(HeartbeatEvent::Node(NodeEvent::StateChanged { .. }))
@@ -156,8 +156,11 @@ mod tests {
         let mut consumer = HeartbeatConsumer::new();
         consumer.monitor(a, 50 * MS);
         consumer.monitor(b, 200 * MS);
-        consumer.handle(&heartbeat_frame(a, NmtState::PreOperational), 0 * MS);
-        let boot = consumer.handle(&heartbeat_frame(b, NmtState::Initializing), 0 * MS);
+        consumer.handle(
+            &heartbeat_frame(a, NmtState::PreOperational),
+            Duration::ZERO,
+        );
+        let boot = consumer.handle(&heartbeat_frame(b, NmtState::Initializing), Duration::ZERO);
         assert_eq!(boot, Some(HeartbeatEvent::Node(NodeEvent::BootUp(b))));
         assert_eq!(consumer.poll(60 * MS), Some(HeartbeatEvent::Timeout(a)));
         assert_eq!(consumer.poll(60 * MS), None);

@@ -72,8 +72,8 @@ mod tests {
 
     #[test]
     fn periodic_sync_without_counter() {
-        let mut sync = SyncProducer::new(10 * MS, None, 0 * MS);
-        let frame = sync.poll(0 * MS).unwrap();
+        let mut sync = SyncProducer::new(10 * MS, None, Duration::ZERO);
+        let frame = sync.poll(Duration::ZERO).unwrap();
         assert_eq!((frame.id(), frame.dlc()), (0x080, 0));
         assert_eq!(sync.poll(9 * MS), None);
         assert!(sync.poll(10 * MS).is_some());
@@ -86,15 +86,15 @@ mod tests {
 
     #[test]
     fn counter_runs_from_one_to_overflow() {
-        let mut sync = SyncProducer::new(MS, Some(3), 0 * MS).with_cob_id(0x81);
+        let mut sync = SyncProducer::new(MS, Some(3), Duration::ZERO).with_cob_id(0x81);
         let counters: std::vec::Vec<u8> = (0..7)
             .map(|t| sync.poll(t * MS).unwrap().data()[0])
             .collect();
         assert_eq!(counters, [1, 2, 3, 1, 2, 3, 1]);
         assert_eq!(sync.poll(7 * MS).unwrap().id(), 0x81);
         assert_eq!(
-            SyncProducer::new(MS, Some(1), 0 * MS)
-                .poll(0 * MS)
+            SyncProducer::new(MS, Some(1), Duration::ZERO)
+                .poll(Duration::ZERO)
                 .unwrap()
                 .dlc(),
             0,

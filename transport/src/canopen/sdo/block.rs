@@ -123,10 +123,10 @@ impl Upload<'_> {
     ) -> Progress {
         match block {
             UploadBlock::Initiate { block_size } => {
-                if specifier(data) == scs::INITIATE_UPLOAD || specifier(data) == scs::BLOCK_UPLOAD {
-                    if !self.ch.mux_matches(data) {
-                        return Progress::Pending;
-                    }
+                let answers_initiate =
+                    specifier(data) == scs::INITIATE_UPLOAD || specifier(data) == scs::BLOCK_UPLOAD;
+                if answers_initiate && !self.ch.mux_matches(data) {
+                    return Progress::Pending;
                 }
                 if specifier(data) == scs::INITIATE_UPLOAD {
                     // The server switched to the normal protocol, as CiA 301 allows.
@@ -187,7 +187,9 @@ impl Upload<'_> {
                 // Out-of-order segments are dropped; the acknowledgement makes the server
                 // repeat everything after the last good one.
                 let good = if in_order { expected } else { expected - 1 };
-                let block_over = (last && in_order) || seq == block_size || (last && !in_order);
+                // A block ends at its last sequence number, or early at the value's last
+                // segment (in order or not: an out-of-order one is acknowledged short).
+                let block_over = last || seq == block_size;
                 if !block_over {
                     self.state = UploadState::Block(UploadBlock::Receiving {
                         expected: if in_order { expected + 1 } else { expected },
