@@ -134,16 +134,21 @@ impl fmt::Display for BusError {
                 subindex,
                 code,
             } => {
-                write!(f, "SDO abort {code:#010x} on {index:#06x}:{subindex}")
+                let meaning = crate::canopen::sdo::AbortCode::from_u32(*code).meaning();
+                write!(
+                    f,
+                    "SDO abort {code:#010x} ({meaning}) on {index:#06x}:{subindex}"
+                )
             }
             Self::SdoClientAbort {
                 index,
                 subindex,
                 code,
             } => {
+                let meaning = crate::canopen::sdo::AbortCode::from_u32(*code).meaning();
                 write!(
                     f,
-                    "SDO transfer of {index:#06x}:{subindex} aborted by the client with {code:#010x}"
+                    "SDO transfer of {index:#06x}:{subindex} aborted by the client with {code:#010x} ({meaning})"
                 )
             }
             Self::Frame(why) => write!(f, "bad frame: {why}"),
