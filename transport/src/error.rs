@@ -101,6 +101,16 @@ pub enum BusError {
         /// CiA 301 abort code.
         code: u32,
     },
+    /// The CANopen client aborted an SDO transfer (toggle or sequence error, unexpected command,
+    /// CRC error, buffer too small) and told the server so.
+    SdoClientAbort {
+        /// Object index of the transfer.
+        index: u16,
+        /// Object subindex of the transfer.
+        subindex: u8,
+        /// CiA 301 abort code the client sent.
+        code: u32,
+    },
     /// A frame arrived but is malformed or does not match the request.
     Frame(&'static str),
     /// The request needs a feature the device does not support (per its description).
@@ -124,7 +134,22 @@ impl fmt::Display for BusError {
                 subindex,
                 code,
             } => {
-                write!(f, "SDO abort {code:#010x} on {index:#06x}:{subindex}")
+                let meaning = crate::canopen::sdo::AbortCode::from_u32(*code).meaning();
+                write!(
+                    f,
+                    "SDO abort {code:#010x} ({meaning}) on {index:#06x}:{subindex}"
+                )
+            }
+            Self::SdoClientAbort {
+                index,
+                subindex,
+                code,
+            } => {
+                let meaning = crate::canopen::sdo::AbortCode::from_u32(*code).meaning();
+                write!(
+                    f,
+                    "SDO transfer of {index:#06x}:{subindex} aborted by the client with {code:#010x} ({meaning})"
+                )
             }
             Self::Frame(why) => write!(f, "bad frame: {why}"),
             Self::Unsupported(what) => write!(f, "not supported by the device: {what}"),

@@ -1,32 +1,8 @@
-//! CANopen addressing and the SDO-bus trait that CANopen transports implement.
+//! The SDO-bus trait CANopen transports implement, and the [`Link`] generated drive handles use.
 
+use super::address::{CanOpen, NodeId, ObjectAddress};
 use crate::error::BusError;
 use crate::link::Link;
-use crate::Protocol;
-
-/// The CANopen protocol marker.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct CanOpen;
-
-impl Protocol for CanOpen {
-    type Address = ObjectAddress;
-    const NAME: &'static str = "CANopen";
-}
-
-/// An object dictionary entry.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct ObjectAddress {
-    /// Object index.
-    pub index: u16,
-    /// Subindex.
-    pub subindex: u8,
-    /// Size in bytes on the wire (odd widths such as 3 for INTEGER24 included); 0 = variable.
-    pub bytes: u16,
-}
-
-/// A CANopen node id (1..=127).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub struct NodeId(pub u8);
 
 /// A CANopen client able to upload and download object values of one node at a time.
 pub trait SdoBus {
@@ -46,6 +22,27 @@ pub trait SdoBus {
         subindex: u8,
         data: &[u8],
     ) -> Result<(), BusError>;
+}
+
+impl<B: SdoBus + ?Sized> SdoBus for &mut B {
+    fn upload(
+        &mut self,
+        node: NodeId,
+        index: u16,
+        subindex: u8,
+        out: &mut [u8],
+    ) -> Result<usize, BusError> {
+        (**self).upload(node, index, subindex, out)
+    }
+    fn download(
+        &mut self,
+        node: NodeId,
+        index: u16,
+        subindex: u8,
+        data: &[u8],
+    ) -> Result<(), BusError> {
+        (**self).download(node, index, subindex, data)
+    }
 }
 
 /// An [`SdoBus`] bound to one node: the [`Link`] generated CANopen drive handles use.

@@ -1,0 +1,80 @@
+"""A python-canopen LocalNode on python-can's virtual bus, relayed to stdin/stdout as candump
+compact lines (`605#4000100000000000`, `701#R1`), so a separate process can reach it.
+
+    canopen_relay.py EDS NODE_ID
+
+Beyond LocalNode: it sends a boot-up at start and after an NMT reset (LocalNode does not), and a
+write to 0x2000 sends an EMCY with the written code (register 0x01, manufacturer bytes 01..05).
+It exits when stdin closes.
+"""
+import os
+import sys
+import threading
+
+import can
+import canopen
+
+
+def parse(line):
+    can_id, _, payload = line.partition("#")
+    if payload[:1] in ("R", "r"):
+        dlc = int(payload[1:] or "0", 16)
+        return can.Message(arbitration_id=int(can_id, 16), is_extended_id=False,
+                           is_remote_frame=True, dlc=dlc)
+    return can.Message(arbitration_id=int(can_id, 16), is_extended_id=False,
+                       data=bytes.fromhex(payload.replace(".", "")))
+
+
+def compact(msg):
+    if msg.is_remote_frame:
+        return f"{msg.arbitration_id:03X}#R{msg.dlc or ''}"
+    return f"{msg.arbitration_id:03X}#{bytes(msg.data).hex().upper()}"
+
+
+def main():
+    eds, node_id = sys.argv[1], int(sys.argv[2], 0)
+    channel = f"drivegen-relay-{os.getpid()}"
+    # The relay's own bus exists before anything is sent, so it sees the first boot-up.
+    relay = can.Bus(interface="virtual", channel=channel)
+    network = canopen.Network()
+    network.connect(interface="virtual", channel=channel)
+    node = canopen.LocalNode(node_id, eds)
+    network.add_node(node)
+
+    def boot():
+        node.nmt.send_command(0x81)  # INITIALISING: sends the boot-up message
+        node.nmt.send_command(0x80)  # PRE-OPERATIONAL: starts the heartbeat if 0x1017 is set
+
+    def on_nmt(can_id, data, timestamp):
+        command, target = data[0], data[1]
+        if command in (0x81, 0x82) and target in (0, node_id):
+            boot()
+
+    def on_write(index, subindex, od, data, **kwargs):
+        if index == 0x2000:
+            node.emcy.send(int.from_bytes(data, "little"), 0x01, b"\x01\x02\x03\x04\x05")
+
+    node.add_write_callback(on_write)
+    network.subscribe(0, on_nmt)
+    out_lock = threading.Lock()
+
+    def pump_out():
+        while True:
+            msg = relay.recv(0.1)
+            if msg is not None:
+                with out_lock:
+                    sys.stdout.write(compact(msg) + "\n")
+                    sys.stdout.flush()
+
+    threading.Thread(target=pump_out, daemon=True).start()
+    boot()
+    for line in sys.stdin:
+        line = line.strip()
+        if line:
+            relay.send(parse(line))
+    network.disconnect()
+    relay.shutdown()
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,46 @@
+//! How a parameter is reached over CANopen: the protocol marker, object addresses and node ids.
+
+use crate::Protocol;
+
+/// The CANopen protocol marker.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CanOpen;
+
+impl Protocol for CanOpen {
+    type Address = ObjectAddress;
+    const NAME: &'static str = "CANopen";
+}
+
+/// An object dictionary entry.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct ObjectAddress {
+    /// Object index.
+    pub index: u16,
+    /// Subindex.
+    pub subindex: u8,
+    /// Size in bytes on the wire (odd widths such as 3 for INTEGER24 included); 0 = variable.
+    pub bytes: u16,
+}
+
+/// A CANopen node id (1..=127).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct NodeId(pub u8);
+
+impl NodeId {
+    /// Highest node id CiA 301 allows.
+    pub const MAX: u8 = 127;
+
+    /// The id if it lies in 1..=127.
+    pub const fn new(id: u8) -> Option<Self> {
+        if id >= 1 && id <= Self::MAX {
+            Some(Self(id))
+        } else {
+            None
+        }
+    }
+
+    /// The raw id.
+    pub const fn get(self) -> u8 {
+        self.0
+    }
+}

@@ -1,0 +1,71 @@
+//! CANopen (CiA 301 / CiA 402 master side).
+//!
+//! The protocol cores are sans-I/O and `no_std`: each is a pure function of received frames and
+//! the time the caller passes in ([`core::time::Duration`] since any fixed origin), returning the
+//! frames to send and the events to act on. They never read a clock or touch a bus.
+//!
+//! * [`frame`] — the [`CanFrame`] type and the predefined connection set (COB-IDs).
+//! * [`sdo`] — SDO client transfers (expedited, segmented, block) and the abort codes.
+//! * [`nmt`], [`heartbeat`], [`emcy`], [`sync`], [`pdo`] — the other CiA 301 services.
+//! * [`message`] — classifies any frame of the predefined connection set into typed values.
+//! * [`backend`] — the [`CanBus`] trait; with `canopen`: SocketCAN, SLCAN, candump streams and an
+//!   in-process bus.
+//! * [`blocking`] — (`canopen`) an [`SdoBus`] over any [`CanBus`], so [`CanOpenLink`] runs on every
+//!   backend.
+//!
+//! # Opening a backend
+//!
+//! | backend | how |
+//! | --- | --- |
+//! | SocketCAN (feature `socketcan`) | `backend::socketcan::SocketCanBus::open("can0")` |
+//! | SLCAN over TCP | `SlcanBus::connect("127.0.0.1:3333")?` then `.open(Bitrate::K500)` |
+//! | SLCAN over a serial port | `SlcanBus::new(port)` with any `Read + Write` port that has a read timeout, then `.open(..)` |
+//! | candump stdio / pipes | `CandumpBus::from_child(&mut child)` or `CandumpBus::new(reader, writer)` |
+//! | candump file replay | `CandumpBus::new(File::open(path)?, std::io::sink())`; offline: `CandumpReader` |
+//! | in-process (tests) | `let bus = InProcessBus::new(); let a = bus.endpoint();` |
+//!
+//! # An SDO read over a candump stdio relay
+//!
+//! ```no_run
+//! # #[cfg(feature = "canopen")]
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! use std::process::{Command, Stdio};
+//! use std::time::Duration;
+//! use drivebus::canopen::backend::candump::CandumpBus;
+//! use drivebus::canopen::blocking::BlockingSdo;
+//! use drivebus::canopen::{NodeId, SdoBus};
+//!
+//! // Any process that speaks candump compact lines on stdio, e.g. tests/peers/canopen_relay.py.
+//! let mut relay = Command::new("relay").stdin(Stdio::piped()).stdout(Stdio::piped()).spawn()?;
+//! let mut sdo = BlockingSdo::new(CandumpBus::from_child(&mut relay)?)
+//!     .with_timeout(Duration::from_millis(500));
+//! let mut buf = [0u8; 4];
+//! let len = sdo.upload(NodeId(5), 0x1000, 0, &mut buf)?; // device type
+//! println!("0x1000 = {:#010x}", u32::from_le_bytes(buf));
+//! # let _ = len;
+//! relay.kill()?;
+//! relay.wait()?;
+//! # Ok(())
+//! # }
+//! # #[cfg(not(feature = "canopen"))]
+//! # fn main() {}
+//! ```
+
+mod address;
+pub mod backend;
+#[cfg(feature = "canopen")]
+pub mod blocking;
+pub mod emcy;
+pub mod frame;
+pub mod heartbeat;
+mod link;
+pub mod message;
+pub mod nmt;
+pub mod pdo;
+pub mod sdo;
+pub mod sync;
+
+pub use address::{CanOpen, NodeId, ObjectAddress};
+pub use backend::CanBus;
+pub use frame::CanFrame;
+pub use link::{CanOpenLink, SdoBus};
