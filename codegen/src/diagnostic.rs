@@ -127,17 +127,19 @@ impl Diagnostic {
             Severity::Warning => "warning",
         };
         let mut out = format!("{level}[{}]: {}\n", self.rule, self.message);
+        let mut pad = String::new();
         if let Some(span) = &self.span {
-            render_snippet(&mut out, files, span, &self.label);
+            pad = render_snippet(&mut out, files, span, &self.label);
         }
         if let Some(help) = &self.help {
-            let _ = writeln!(out, "   = help: {help}");
+            let _ = writeln!(out, "{pad} = help: {help}");
         }
         out
     }
 }
 
-fn render_snippet(out: &mut String, files: &Files, span: &Span, label: &str) {
+/// Writes the location and the quoted line; returns the gutter padding for follow-up lines.
+fn render_snippet(out: &mut String, files: &Files, span: &Span, label: &str) -> String {
     let (line, col) = files.line_col(span.file, span.range.start);
     let text = files.text(span.file);
     let source_line = text.lines().nth(line - 1).unwrap_or("");
@@ -153,13 +155,8 @@ fn render_snippet(out: &mut String, files: &Files, span: &Span, label: &str) {
         .map_or(1, |s| s.lines().next().unwrap_or("").chars().count())
         .clamp(1, line_chars.saturating_sub(col - 1).max(1));
     let marker = format!("{}{}", " ".repeat(col - 1), "^".repeat(width));
-    let _ = writeln!(out, "{pad} | {marker} {label}").map(|_| ());
-    // Trailing spaces after an empty label would make expected-output files fragile.
-    if label.is_empty() {
-        let trimmed = out.trim_end_matches([' ', '\n']).len();
-        out.truncate(trimmed);
-        out.push('\n');
-    }
+    let _ = writeln!(out, "{}", format!("{pad} | {marker} {label}").trim_end());
+    pad
 }
 
 /// The outcome of a step that collects diagnostics: a value if no error was found.
@@ -180,7 +177,7 @@ mod tests {
             .help("use snake_case");
         assert_eq!(
             d.render(&files),
-            "error[names_are_valid]: bad name\n --> dev.toml:2:8\n  |\n2 | name = \"x y\"\n  |        ^^^^^ here\n   = help: use snake_case\n"
+            "error[names_are_valid]: bad name\n --> dev.toml:2:8\n  |\n2 | name = \"x y\"\n  |        ^^^^^ here\n  = help: use snake_case\n"
         );
     }
 }

@@ -66,6 +66,13 @@ fn body<A>(
         return None;
     }
     let everywhere = usable.iter().find(|a| variant(a).is_none());
+    if let (Some(a), true) = (
+        everywhere,
+        p.variants.is_empty() && usable.iter().all(|a| variant(a).is_none()),
+    ) {
+        let address = tokens(a);
+        return Some(quote! { Some(#address) });
+    }
     let specific = usable.iter().filter_map(|a| {
         let index = variants::index(device, variant(a).as_deref()?);
         let address = tokens(a);

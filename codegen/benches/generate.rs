@@ -1,0 +1,49 @@
+//! Generator speed: load + validate + emit every shipped description (target: under 50 ms for all
+//! together in release). Reported with the load+validate step alone as the baseline ratio.
+
+use std::path::{Path, PathBuf};
+
+use criterion::{criterion_group, criterion_main, Criterion};
+
+fn shipped() -> Vec<PathBuf> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions");
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(&root)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.join("device.toml").is_file())
+        .collect();
+    paths.sort();
+    paths
+}
+
+fn generate_all(c: &mut Criterion) {
+    let paths = shipped();
+    c.bench_function("check all shipped descriptions", |b| {
+        b.iter(|| {
+            paths
+                .iter()
+                .map(|p| drivegen::check(p).device.map_or(0, |d| d.parameters.len()))
+                .sum::<usize>()
+        })
+    });
+    c.bench_function("check + emit Rust for all shipped descriptions", |b| {
+        b.iter(|| {
+            paths
+                .iter()
+                .map(|p| {
+                    let device = drivegen::check(p)
+                        .device
+                        .expect("shipped descriptions are valid");
+                    drivegen::emit::rust::generate(&device, "bench").len()
+                })
+                .sum::<usize>()
+        })
+    });
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default().sample_size(20).measurement_time(std::time::Duration::from_secs(3));
+    targets = generate_all
+}
+criterion_main!(benches);

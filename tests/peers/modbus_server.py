@@ -1,0 +1,84 @@
+"""A pymodbus 3.16.1 server the Rust peer tests talk to.
+
+    modbus_server.py tcp             -> serves Modbus TCP on 127.0.0.1, port chosen by the OS;
+                                        prints "PORT <n>" on stdout once listening
+    modbus_server.py rtu-over-tcp    -> like tcp, with RTU frames (a serial gateway)
+    modbus_server.py rtu <pty path>  -> serves Modbus RTU on the pty; prints "READY" once open
+
+Unit 1 holds a Lafert-like register map (non-shared tables, wire address 0 = first value):
+  holding 0x0000..=0x00FF  value = address, except 0x0028 (drive address) = 1
+  input   0x0060..=0x0070  value = 0x1000 + address, except 0x006B/0x006C = 0x5678/0x1234
+                           (AXIS POSITION LOW/HIGH = 0x12345678)
+  coils   0..=31           True at even addresses
+  discrete inputs 0..=15   True at addresses divisible by 3
+Anything else answers exception 0x02. Writing 0x0028 with a value outside 1..=247 answers
+exception 0x03 (illegal data value), as the drive documents.
+The process exits when stdin closes, so a test that dies cannot leave it behind.
+"""
+
+import asyncio
+import sys
+
+from pymodbus import FramerType
+from pymodbus.constants import ExcCodes
+from pymodbus.server import ModbusSerialServer, ModbusTcpServer
+from pymodbus.simulator import DataType, SimData, SimDevice
+
+ADDRESS_REGISTER = 0x0028
+
+
+def holding():
+    values = list(range(0x100))
+    values[ADDRESS_REGISTER] = 1
+    return [SimData(address=0, values=values, datatype=DataType.REGISTERS)]
+
+
+def inputs():
+    values = [0x1000 + a for a in range(0x60, 0x71)]
+    values[0x6B - 0x60] = 0x5678
+    values[0x6C - 0x60] = 0x1234
+    return [SimData(address=0x60, values=values, datatype=DataType.REGISTERS)]
+
+
+async def action(function_code, start_address, address, count, current_registers, set_values):
+    """Enforces the drive address range on writes."""
+    if function_code in (0x06, 0x10) and set_values is not None:
+        for offset, value in enumerate(set_values):
+            if address + offset == ADDRESS_REGISTER and not 1 <= int(value) <= 247:
+                return ExcCodes.ILLEGAL_VALUE
+    return None
+
+
+def device():
+    coils = [SimData(address=0, values=[a % 2 == 0 for a in range(32)], datatype=DataType.BITS)]
+    discrete = [SimData(address=0, values=[a % 3 == 0 for a in range(16)], datatype=DataType.BITS)]
+    return SimDevice(id=1, simdata=(coils, discrete, holding(), inputs()), action=action)
+
+
+async def wait_for_stdin_eof():
+    loop = asyncio.get_running_loop()
+    await loop.run_in_executor(None, sys.stdin.read)
+
+
+async def main():
+    mode = sys.argv[1]
+    if mode == "tcp":
+        server = ModbusTcpServer(device(), address=("127.0.0.1", 0))
+    elif mode == "rtu-over-tcp":
+        server = ModbusTcpServer(device(), address=("127.0.0.1", 0), framer=FramerType.RTU)
+    elif mode == "rtu":
+        server = ModbusSerialServer(device(), port=sys.argv[2], baudrate=19200)
+    else:
+        raise SystemExit(f"unknown mode {mode!r}")
+    await server.serve_forever(background=True)
+    if mode != "rtu":
+        port = server.transport.sockets[0].getsockname()[1]
+        print(f"PORT {port}", flush=True)
+    else:
+        print("READY", flush=True)
+    await wait_for_stdin_eof()
+    await server.shutdown()
+
+
+if __name__ == "__main__":
+    asyncio.run(main())

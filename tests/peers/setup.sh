@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs the independent test peers: socat (pty pairs) and a Python venv at the workspace root
+# with pinned pymodbus / pyserial / canopen / python-can. Idempotent; a no-op when already done.
+set -euo pipefail
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+venv="$root/.venv"
+pins=(pymodbus==3.16.1 pyserial==3.5 canopen==2.4.1 python-can==4.6.1)
+stamp="$venv/.drivegen-peers"
+
+if ! command -v socat >/dev/null 2>&1; then
+    sudo_cmd=()
+    if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+    "${sudo_cmd[@]}" apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq socat >/dev/null
+fi
+
+# The stamp records the exact pins, so changing a pin reinstalls and an unchanged venv is skipped.
+if [ -x "$venv/bin/python" ] && [ -f "$stamp" ] && [ "$(cat "$stamp")" = "${pins[*]}" ]; then
+    exit 0
+fi
+
+python="${DRIVEGEN_BOOTSTRAP_PYTHON:-python3}"
+if [ ! -x "$venv/bin/python" ]; then
+    "$python" -m venv "$venv"
+fi
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check "${pins[@]}"
+printf '%s' "${pins[*]}" >"$stamp"
+echo "peers ready: $(socat -V | sed -n 2p | tr -s ' '); $("$venv/bin/python" -c 'import pymodbus; print("pymodbus", pymodbus.__version__)')"

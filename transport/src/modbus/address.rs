@@ -1,0 +1,112 @@
+//! Where values live on a Modbus device, what the device accepts, and register ↔ byte conversion.
+
+/// A Modbus data table. Input and holding registers are separate address spaces.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Table {
+    /// Read-only 16-bit registers (FC 0x04).
+    Input,
+    /// Read/write 16-bit registers (FC 0x03, 0x06, 0x10).
+    Holding,
+}
+
+/// Order of the 16-bit words of a multi-register value.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum WordOrder {
+    /// Most significant word at the lowest address (Modbus convention).
+    HighFirst,
+    /// Least significant word at the lowest address (Lafert LOW/HIGH pairs, Kinco).
+    LowFirst,
+}
+
+/// Where a parameter lives on a Modbus device.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ModbusAddress {
+    /// Register table.
+    pub table: Table,
+    /// PDU address of the first register (0-based, as on the wire).
+    pub address: u16,
+    /// Number of 16-bit registers the value occupies.
+    pub words: u16,
+    /// Word order when `words > 1`.
+    pub word_order: WordOrder,
+}
+
+/// A Modbus unit (slave) id.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct UnitId(pub u8);
+
+/// What a device accepts, from its description; the link and the request planner respect it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ModbusLimits {
+    /// Most registers one read request may ask for (Lenze smd: 1).
+    pub max_read_registers: u16,
+    /// Most registers one write request may carry.
+    pub max_write_registers: u16,
+    /// Whether the device implements FC 0x10 (write multiple registers).
+    pub write_multiple: bool,
+    /// Whether a read may span addresses the description does not list.
+    pub read_gaps: bool,
+}
+
+impl ModbusLimits {
+    /// The limits of the Modbus specification itself.
+    pub const SPEC: ModbusLimits = ModbusLimits {
+        max_read_registers: 125,
+        max_write_registers: 123,
+        write_multiple: true,
+        read_gaps: true,
+    };
+}
+
+/// Most registers one value may occupy (a 64-byte string); larger values are refused.
+pub const MAX_VALUE_WORDS: usize = 32;
+
+/// Registers → little-endian value bytes, in the given word order. `out` holds `2 × regs` bytes.
+pub fn registers_to_le(registers: &[u16], order: WordOrder, out: &mut [u8]) {
+    let n = registers.len();
+    for (i, chunk) in out.chunks_exact_mut(2).enumerate().take(n) {
+        let word = match order {
+            WordOrder::LowFirst => registers[i],
+            WordOrder::HighFirst => registers[n - 1 - i],
+        };
+        chunk.copy_from_slice(&word.to_le_bytes());
+    }
+}
+
+/// Little-endian value bytes → registers, in the given word order (inverse of [`registers_to_le`]).
+pub fn le_to_registers(bytes: &[u8], order: WordOrder, out: &mut [u16]) {
+    let n = out.len();
+    for (i, chunk) in bytes.chunks_exact(2).enumerate().take(n) {
+        let word = u16::from_le_bytes([chunk[0], chunk[1]]);
+        match order {
+            WordOrder::LowFirst => out[i] = word,
+            WordOrder::HighFirst => out[n - 1 - i] = word,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn low_first_pair_becomes_little_endian_bytes() {
+        let mut out = [0u8; 4];
+        registers_to_le(&[0x5678, 0x1234], WordOrder::LowFirst, &mut out);
+        assert_eq!(u32::from_le_bytes(out), 0x1234_5678);
+        registers_to_le(&[0x1234, 0x5678], WordOrder::HighFirst, &mut out);
+        assert_eq!(u32::from_le_bytes(out), 0x1234_5678);
+    }
+
+    #[test]
+    fn register_conversion_round_trips() {
+        for order in [WordOrder::LowFirst, WordOrder::HighFirst] {
+            let bytes = 0x0102_0304_0506_0708u64.to_le_bytes();
+            let mut regs = [0u16; 4];
+            le_to_registers(&bytes, order, &mut regs);
+            let mut back = [0u8; 8];
+            registers_to_le(&regs, order, &mut back);
+            assert_eq!(back, bytes);
+        }
+    }
+}

@@ -1,0 +1,259 @@
+//! [`ModbusLink`]: a [`RegisterBus`] bound to one unit, as the [`Link`] generated handles use.
+
+use crate::error::BusError;
+use crate::link::{Link, ReadRequest};
+
+use super::address::{
+    le_to_registers, registers_to_le, ModbusAddress, ModbusLimits, Table, UnitId, MAX_VALUE_WORDS,
+};
+use super::pdu::MAX_READ_REGISTERS;
+use super::planner::{check_item, next_read};
+use super::{Modbus, RegisterBus};
+
+/// A [`RegisterBus`] bound to one unit: the [`Link`] generated Modbus drive handles use.
+#[derive(Debug)]
+pub struct ModbusLink<B> {
+    bus: B,
+    unit: UnitId,
+    limits: ModbusLimits,
+}
+
+impl<B: RegisterBus> ModbusLink<B> {
+    /// Binds `bus` to `unit`, respecting the device's `limits`.
+    pub fn new(bus: B, unit: UnitId, limits: ModbusLimits) -> Self {
+        Self { bus, unit, limits }
+    }
+    /// The unit this link talks to.
+    pub fn unit(&self) -> UnitId {
+        self.unit
+    }
+    /// The device limits this link respects.
+    pub fn limits(&self) -> ModbusLimits {
+        self.limits
+    }
+    /// The underlying bus.
+    pub fn bus_mut(&mut self) -> &mut B {
+        &mut self.bus
+    }
+    /// Gives the bus back.
+    pub fn into_bus(self) -> B {
+        self.bus
+    }
+}
+
+fn value_words(address: &ModbusAddress) -> Result<usize, BusError> {
+    let words = address.words as usize;
+    if words == 0 || words > MAX_VALUE_WORDS {
+        return Err(BusError::Unsupported("value wider than 32 registers"));
+    }
+    Ok(words)
+}
+
+impl<B: RegisterBus> Link for ModbusLink<B> {
+    type Protocol = Modbus;
+
+    fn read(&mut self, address: &ModbusAddress, out: &mut [u8]) -> Result<usize, BusError> {
+        check_item(&self.limits, address)?;
+        let words = address.words as usize;
+        let mut registers = [0u16; MAX_VALUE_WORDS];
+        let registers = &mut registers[..words];
+        self.bus
+            .read_registers(self.unit, address.table, address.address, registers)?;
+        let bytes = out
+            .get_mut(..words * 2)
+            .ok_or(BusError::Frame("value buffer too small"))?;
+        registers_to_le(registers, address.word_order, bytes);
+        Ok(words * 2)
+    }
+
+    fn write(&mut self, address: &ModbusAddress, data: &[u8]) -> Result<(), BusError> {
+        if address.table != Table::Holding {
+            return Err(BusError::Unsupported(
+                "only holding registers can be written",
+            ));
+        }
+        let words = value_words(address)?;
+        if data.len() != words * 2 {
+            return Err(BusError::Frame(
+                "value length does not match its register count",
+            ));
+        }
+        let mut registers = [0u16; MAX_VALUE_WORDS];
+        let registers = &mut registers[..words];
+        le_to_registers(data, address.word_order, registers);
+        if words == 1 {
+            self.bus
+                .write_register(self.unit, address.address, registers[0])
+        } else if self.limits.write_multiple && words <= self.limits.max_write_registers as usize {
+            self.bus
+                .write_registers(self.unit, address.address, registers)
+        } else {
+            // Without FC 0x10 the words go one by one, lowest address first; the device sees the
+            // value torn for a moment, which the description's word order makes explicit.
+            for (i, word) in registers.iter().enumerate() {
+                self.bus
+                    .write_register(self.unit, address.address + i as u16, *word)?;
+            }
+            Ok(())
+        }
+    }
+
+    fn wire_bytes(&self, address: &ModbusAddress) -> usize {
+        address.words as usize * 2
+    }
+
+    /// Reads the batch with the fewest requests the device's limits allow (see
+    /// [`planner`](super::planner)). On an error, the values already read keep their `len`; the
+    /// others have `len == 0`.
+    fn read_many(
+        &mut self,
+        requests: &mut [ReadRequest<'_, ModbusAddress>],
+    ) -> Result<(), BusError> {
+        for request in requests.iter_mut() {
+            request.len = 0;
+        }
+        let mut registers = [0u16; MAX_READ_REGISTERS as usize];
+        // A value is never zero bytes long, so `len != 0` doubles as "already read".
+        while let Some(read) = next_read(&self.limits, requests.len(), |i| {
+            (requests[i].address, requests[i].len != 0)
+        })? {
+            let registers = &mut registers[..read.count as usize];
+            self.bus
+                .read_registers(self.unit, read.table, read.start, registers)?;
+            for request in requests.iter_mut().filter(|r| r.len == 0) {
+                let Some(offset) = read.offset_of(&request.address) else {
+                    continue;
+                };
+                let words = request.address.words as usize;
+                let bytes = request
+                    .buf
+                    .get_mut(..words * 2)
+                    .ok_or(BusError::Frame("value buffer too small"))?;
+                registers_to_le(
+                    &registers[offset..offset + words],
+                    request.address.word_order,
+                    bytes,
+                );
+                request.len = words * 2;
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(all(test, feature = "std"))]
+mod tests {
+    use super::*;
+    use crate::memory::{MemoryBus, Request};
+    use crate::modbus::WordOrder;
+
+    fn input(address: u16, words: u16) -> ModbusAddress {
+        ModbusAddress {
+            table: Table::Input,
+            address,
+            words,
+            word_order: WordOrder::LowFirst,
+        }
+    }
+
+    fn lafert_bus() -> MemoryBus {
+        let mut bus = MemoryBus::new();
+        for a in 0x60..=0x70 {
+            bus.set_register(Table::Input, a, a);
+        }
+        bus.set_register(Table::Input, 0x6B, 0x5678)
+            .set_register(Table::Input, 0x6C, 0x1234);
+        bus
+    }
+
+    #[test]
+    fn batch_read_uses_the_plan() {
+        let mut link = ModbusLink::new(lafert_bus(), UnitId(1), ModbusLimits::SPEC);
+        let mut bufs = [[0u8; 8]; 3];
+        let [a, b, c] = &mut bufs;
+        let mut requests = [
+            ReadRequest {
+                address: input(0x70, 1),
+                buf: a,
+                len: 99,
+            },
+            ReadRequest {
+                address: input(0x6B, 2),
+                buf: b,
+                len: 0,
+            },
+            ReadRequest {
+                address: input(0x60, 1),
+                buf: c,
+                len: 0,
+            },
+        ];
+        link.read_many(&mut requests).unwrap();
+        assert_eq!(requests.map(|r| r.len), [2, 4, 2]);
+        assert_eq!(u16::from_le_bytes([bufs[0][0], bufs[0][1]]), 0x70);
+        assert_eq!(
+            u32::from_le_bytes(bufs[1][..4].try_into().unwrap()),
+            0x1234_5678
+        );
+        assert_eq!(u16::from_le_bytes([bufs[2][0], bufs[2][1]]), 0x60);
+        let bus = link.into_bus();
+        assert_eq!(
+            bus.log(),
+            [Request::Read {
+                table: Table::Input,
+                start: 0x60,
+                count: 17
+            }]
+        );
+    }
+
+    #[test]
+    fn batch_read_respects_limits_and_reports_errors() {
+        let limits = ModbusLimits {
+            max_read_registers: 1,
+            ..ModbusLimits::SPEC
+        };
+        let mut link = ModbusLink::new(lafert_bus(), UnitId(1), limits);
+        let (mut a, mut b) = ([0u8; 2], [0u8; 2]);
+        let mut requests = [
+            ReadRequest {
+                address: input(0x60, 1),
+                buf: &mut a,
+                len: 0,
+            },
+            ReadRequest {
+                address: input(0x61, 1),
+                buf: &mut b,
+                len: 0,
+            },
+        ];
+        link.read_many(&mut requests).unwrap();
+        assert_eq!(link.bus_mut().log().len(), 2);
+
+        let mut link = ModbusLink::new(lafert_bus(), UnitId(1), ModbusLimits::SPEC);
+        let mut small = [0u8; 2];
+        let mut requests = [ReadRequest {
+            address: input(0x6B, 2),
+            buf: &mut small,
+            len: 0,
+        }];
+        assert_eq!(
+            link.read_many(&mut requests),
+            Err(BusError::Frame("value buffer too small"))
+        );
+        let mut buf = [0u8; 2];
+        let mut requests = [ReadRequest {
+            address: input(0x71, 1),
+            buf: &mut buf,
+            len: 0,
+        }];
+        assert_eq!(
+            link.read_many(&mut requests),
+            Err(BusError::ModbusException {
+                function: 4,
+                code: 2
+            })
+        );
+        assert_eq!(requests[0].len, 0);
+    }
+}

@@ -1,0 +1,107 @@
+//! Modbus: addressing, a sans-I/O client core and blocking transports.
+//!
+//! Layers, from the wire up:
+//!
+//! * [`pdu`] — request encoding and response decoding for FC 0x01–0x06, 0x0F and 0x10; a response
+//!   is checked against the request it answers. [`exception`] types exception responses.
+//! * [`rtu`] (feature `modbus-core`) — RTU framing: CRC-16/MODBUS ([`crc`]), frame scanning that
+//!   resynchronises after garbage, and t1.5/t3.5 timing from the baud rate. [`tcp`] — MBAP framing.
+//! * [`planner`] — the fewest read requests covering a set of values within [`ModbusLimits`].
+//! * [`retry`] — which requests may be repeated after a failure, and how often.
+//! * [`transport`] (feature `modbus`) — blocking clients over a serial port, Modbus TCP and
+//!   RTU-over-TCP, all implementing [`RegisterBus`] and [`BitBus`].
+//!
+//! [`ModbusLink`] binds a [`RegisterBus`] and a unit id into a [`Link`](crate::Link): it reads and
+//! writes the registers a parameter occupies and converts between registers and the little-endian
+//! bytes of the value codec, honouring the parameter's word order. Batch reads go through the
+//! planner.
+
+mod address;
+#[cfg(feature = "modbus-core")]
+pub mod crc;
+pub mod exception;
+pub mod framing;
+mod link;
+pub mod pdu;
+pub mod planner;
+pub mod retry;
+#[cfg(feature = "modbus-core")]
+pub mod rtu;
+pub mod tcp;
+#[cfg(feature = "modbus")]
+pub mod transport;
+
+pub use address::{
+    le_to_registers, registers_to_le, ModbusAddress, ModbusLimits, Table, UnitId, WordOrder,
+    MAX_VALUE_WORDS,
+};
+pub use exception::ExceptionCode;
+pub use link::ModbusLink;
+
+use crate::error::BusError;
+use crate::Protocol;
+
+/// The Modbus protocol marker.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Modbus;
+
+impl Protocol for Modbus {
+    type Address = ModbusAddress;
+    const NAME: &'static str = "Modbus";
+}
+/// A Modbus client able to read and write registers of one unit at a time.
+pub trait RegisterBus {
+    /// Reads `out.len()` registers starting at `start` (FC 0x04 for input, 0x03 for holding).
+    fn read_registers(
+        &mut self,
+        unit: UnitId,
+        table: Table,
+        start: u16,
+        out: &mut [u16],
+    ) -> Result<(), BusError>;
+    /// Writes one holding register (FC 0x06).
+    fn write_register(&mut self, unit: UnitId, address: u16, value: u16) -> Result<(), BusError>;
+    /// Writes consecutive holding registers (FC 0x10).
+    fn write_registers(&mut self, unit: UnitId, start: u16, values: &[u16])
+        -> Result<(), BusError>;
+}
+
+impl<B: RegisterBus + ?Sized> RegisterBus for &mut B {
+    fn read_registers(
+        &mut self,
+        unit: UnitId,
+        table: Table,
+        start: u16,
+        out: &mut [u16],
+    ) -> Result<(), BusError> {
+        (**self).read_registers(unit, table, start, out)
+    }
+    fn write_register(&mut self, unit: UnitId, address: u16, value: u16) -> Result<(), BusError> {
+        (**self).write_register(unit, address, value)
+    }
+    fn write_registers(
+        &mut self,
+        unit: UnitId,
+        start: u16,
+        values: &[u16],
+    ) -> Result<(), BusError> {
+        (**self).write_registers(unit, start, values)
+    }
+}
+
+/// A Modbus client able to read and write single-bit data (coils and discrete inputs).
+pub trait BitBus {
+    /// Reads `out.len()` coils starting at `start` (FC 0x01).
+    fn read_coils(&mut self, unit: UnitId, start: u16, out: &mut [bool]) -> Result<(), BusError>;
+    /// Reads `out.len()` discrete inputs starting at `start` (FC 0x02).
+    fn read_discrete_inputs(
+        &mut self,
+        unit: UnitId,
+        start: u16,
+        out: &mut [bool],
+    ) -> Result<(), BusError>;
+    /// Writes one coil (FC 0x05).
+    fn write_coil(&mut self, unit: UnitId, address: u16, value: bool) -> Result<(), BusError>;
+    /// Writes consecutive coils (FC 0x0F).
+    fn write_coils(&mut self, unit: UnitId, start: u16, values: &[bool]) -> Result<(), BusError>;
+}

@@ -1,0 +1,329 @@
+//! The request planner: the fewest read requests that fetch a set of values within a device's
+//! [`ModbusLimits`].
+//!
+//! Reads are planned one at a time ([`next_read`]), so a caller without an allocator can interleave
+//! planning and reading; [`plan`] collects a whole plan. The greedy choice — start at the lowest
+//! value not yet read and take every pending value that fits — is optimal: any plan must cover
+//! that value with a read starting at or below it, and moving that read up to start exactly at the
+//! value covers everything it covered before (nothing pending lies lower).
+//!
+//! Rules: input and holding registers are never mixed; a multi-word value is always read whole by
+//! one request, so its words arrive in their word order; a read never exceeds
+//! `max_read_registers`; and without `read_gaps` a read only covers registers some value occupies
+//! (adjacent and overlapping values still coalesce).
+
+use crate::error::BusError;
+
+use super::address::{ModbusAddress, ModbusLimits, Table, MAX_VALUE_WORDS};
+use super::pdu::{Request, MAX_READ_REGISTERS};
+
+/// One read request of a plan.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct PlannedRead {
+    /// Register table.
+    pub table: Table,
+    /// First register.
+    pub start: u16,
+    /// Number of registers.
+    pub count: u16,
+}
+
+impl PlannedRead {
+    /// The register offset of `item` inside this read, if the read covers all of it.
+    pub fn offset_of(&self, item: &ModbusAddress) -> Option<usize> {
+        let offset = (item.address as usize).checked_sub(self.start as usize)?;
+        (item.table == self.table && offset + item.words as usize <= self.count as usize)
+            .then_some(offset)
+    }
+
+    /// The Modbus request for this read.
+    pub fn request(&self) -> Request<'static> {
+        Request::read_registers(self.table, self.start, self.count)
+    }
+}
+
+/// Registers one request may read on this device.
+fn read_limit(limits: &ModbusLimits) -> usize {
+    limits.max_read_registers.min(MAX_READ_REGISTERS) as usize
+}
+
+/// Checks that `item` can be read at all under `limits`.
+pub fn check_item(limits: &ModbusLimits, item: &ModbusAddress) -> Result<(), BusError> {
+    let words = item.words as usize;
+    if words == 0 || words > MAX_VALUE_WORDS {
+        return Err(BusError::Unsupported("value wider than 32 registers"));
+    }
+    if words > read_limit(limits) {
+        return Err(BusError::Unsupported(
+            "value wider than the device's read limit",
+        ));
+    }
+    if item.address as usize + words > 0x1_0000 {
+        return Err(BusError::Unsupported("value runs past register 0xFFFF"));
+    }
+    Ok(())
+}
+
+fn end(item: &ModbusAddress) -> usize {
+    item.address as usize + item.words as usize
+}
+
+/// Plans the next read for `len` items, where `item(i)` is item `i`'s address and whether it has
+/// been read already. `None` once every item is read.
+///
+/// The items already read still count as requested registers for bridging gaps.
+pub fn next_read(
+    limits: &ModbusLimits,
+    len: usize,
+    item: impl Fn(usize) -> (ModbusAddress, bool),
+) -> Result<Option<PlannedRead>, BusError> {
+    let mut first: Option<ModbusAddress> = None;
+    for i in 0..len {
+        let (address, done) = item(i);
+        check_item(limits, &address)?;
+        let lower = first.is_none_or(|f| (address.table, address.address) < (f.table, f.address));
+        if !done && lower {
+            first = Some(address);
+        }
+    }
+    let Some(first) = first else {
+        return Ok(None);
+    };
+    let start = first.address as usize;
+    let mut limit = start + read_limit(limits);
+    if !limits.read_gaps {
+        // Extend the run of requested registers from `start` until it stops growing.
+        let mut reach = start;
+        loop {
+            let grown = (0..len)
+                .map(|i| item(i).0)
+                .filter(|a| a.table == first.table && a.address as usize <= reach)
+                .map(|a| end(&a))
+                .fold(reach, usize::max);
+            if grown == reach || grown >= limit {
+                reach = grown;
+                break;
+            }
+            reach = grown;
+        }
+        limit = limit.min(reach);
+    }
+    let last = (0..len)
+        .map(&item)
+        .filter(|(a, done)| {
+            !done && a.table == first.table && a.address as usize >= start && end(a) <= limit
+        })
+        .map(|(a, _)| end(&a))
+        .fold(end(&first), usize::max);
+    Ok(Some(PlannedRead {
+        table: first.table,
+        start: first.address,
+        count: (last - start) as u16,
+    }))
+}
+
+/// The whole plan for `items`: every item lies inside one of the returned reads.
+#[cfg(feature = "std")]
+pub fn plan(
+    limits: &ModbusLimits,
+    items: &[ModbusAddress],
+) -> Result<std::vec::Vec<PlannedRead>, BusError> {
+    let mut done = std::vec![false; items.len()];
+    let mut reads = std::vec::Vec::new();
+    while let Some(read) = next_read(limits, items.len(), |i| (items[i], done[i]))? {
+        for (item, done) in items.iter().zip(done.iter_mut()) {
+            *done |= read.offset_of(item).is_some();
+        }
+        reads.push(read);
+    }
+    Ok(reads)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::modbus::address::WordOrder;
+    use proptest::prelude::*;
+    use std::vec::Vec;
+
+    fn at(table: Table, address: u16, words: u16) -> ModbusAddress {
+        ModbusAddress {
+            table,
+            address,
+            words,
+            word_order: WordOrder::LowFirst,
+        }
+    }
+
+    fn limits(max: u16, read_gaps: bool) -> ModbusLimits {
+        ModbusLimits {
+            max_read_registers: max,
+            read_gaps,
+            ..ModbusLimits::SPEC
+        }
+    }
+
+    fn read(table: Table, start: u16, count: u16) -> PlannedRead {
+        PlannedRead {
+            table,
+            start,
+            count,
+        }
+    }
+
+    #[test]
+    fn lafert_status_block_is_one_request() {
+        // 0x0060..=0x0070 with the LOW/HIGH pairs 0x61/0x62 and 0x6B/0x6C as 32-bit values.
+        let mut items: Vec<_> = (0x60..=0x70)
+            .filter(|a| ![0x61, 0x62, 0x6B, 0x6C].contains(a))
+            .map(|a| at(Table::Input, a, 1))
+            .collect();
+        items.push(at(Table::Input, 0x61, 2));
+        items.push(at(Table::Input, 0x6B, 2));
+        for read_gaps in [true, false] {
+            let plan = plan(&limits(125, read_gaps), &items).unwrap();
+            assert_eq!(plan, [read(Table::Input, 0x60, 17)]);
+        }
+    }
+
+    #[test]
+    fn tables_stay_apart_and_limits_hold() {
+        let items = [
+            at(Table::Holding, 0x3C, 1),
+            at(Table::Input, 0x3C, 1),
+            at(Table::Holding, 0x3D, 2),
+        ];
+        let plan = plan(&limits(125, true), &items).unwrap();
+        assert_eq!(
+            plan,
+            [read(Table::Input, 0x3C, 1), read(Table::Holding, 0x3C, 3)]
+        );
+        // A pair never straddles two requests: with room for 2, 0x3C goes alone.
+        let plan = super::plan(&limits(2, true), &items).unwrap();
+        assert_eq!(
+            plan,
+            [
+                read(Table::Input, 0x3C, 1),
+                read(Table::Holding, 0x3C, 1),
+                read(Table::Holding, 0x3D, 2)
+            ]
+        );
+    }
+
+    #[test]
+    fn gaps_are_read_only_when_allowed() {
+        let items = [at(Table::Holding, 10, 1), at(Table::Holding, 12, 1)];
+        assert_eq!(
+            plan(&limits(125, true), &items).unwrap(),
+            [read(Table::Holding, 10, 3)]
+        );
+        assert_eq!(
+            plan(&limits(125, false), &items).unwrap(),
+            [read(Table::Holding, 10, 1), read(Table::Holding, 12, 1)]
+        );
+        // Overlapping values bridge each other.
+        let items = [
+            at(Table::Holding, 10, 2),
+            at(Table::Holding, 11, 2),
+            at(Table::Holding, 13, 1),
+        ];
+        assert_eq!(
+            plan(&limits(125, false), &items).unwrap(),
+            [read(Table::Holding, 10, 4)]
+        );
+    }
+
+    #[test]
+    fn single_register_devices_get_one_read_per_register() {
+        let items = [
+            at(Table::Input, 1, 1),
+            at(Table::Input, 2, 1),
+            at(Table::Input, 1, 1),
+        ];
+        assert_eq!(
+            plan(&limits(1, true), &items).unwrap(),
+            [read(Table::Input, 1, 1), read(Table::Input, 2, 1)]
+        );
+        assert_eq!(
+            plan(&limits(1, true), &[at(Table::Input, 1, 2)]),
+            Err(BusError::Unsupported(
+                "value wider than the device's read limit"
+            ))
+        );
+        assert!(plan(&limits(125, true), &[at(Table::Input, 0xFFFF, 2)]).is_err());
+        assert!(plan(&limits(125, true), &[at(Table::Input, 0, 0)]).is_err());
+        assert_eq!(plan(&limits(125, true), &[]).unwrap(), []);
+    }
+
+    /// The fewest reads, by exhaustive search over reads starting at an item and ending at an
+    /// item's end (every optimal plan can be shifted to such reads).
+    fn optimum(limits: &ModbusLimits, items: &[ModbusAddress]) -> usize {
+        let n = items.len();
+        let requested = |table, register: usize| {
+            items
+                .iter()
+                .any(|a| a.table == table && (a.address as usize..end(a)).contains(&register))
+        };
+        let mut windows = Vec::new();
+        for s in items {
+            for e in items {
+                let (start, stop) = (s.address as usize, end(e));
+                let ok = s.table == e.table
+                    && stop > start
+                    && stop - start <= read_limit(limits)
+                    && (limits.read_gaps || (start..stop).all(|r| requested(s.table, r)));
+                if ok {
+                    let cover = read(s.table, s.address, (stop - start) as u16);
+                    let mask = (0..n).filter(|&i| cover.offset_of(&items[i]).is_some());
+                    windows.push(mask.fold(0u32, |m, i| m | 1 << i));
+                }
+            }
+        }
+        let mut best = std::vec![usize::MAX; 1 << n];
+        best[0] = 0;
+        for mask in 0..(1usize << n) {
+            if best[mask] == usize::MAX {
+                continue;
+            }
+            for w in &windows {
+                let next = mask | *w as usize;
+                best[next] = best[next].min(best[mask] + 1);
+            }
+        }
+        best[(1 << n) - 1]
+    }
+
+    fn any_item() -> impl Strategy<Value = ModbusAddress> {
+        (
+            prop_oneof![Just(Table::Input), Just(Table::Holding)],
+            0u16..40,
+            1u16..=3,
+        )
+            .prop_map(|(table, address, words)| at(table, address, words))
+    }
+
+    proptest! {
+        #[test]
+        fn plans_cover_everything_within_limits_and_are_minimal(
+            items in proptest::collection::vec(any_item(), 0..7),
+            max in 3u16..10,
+            read_gaps in any::<bool>(),
+        ) {
+            let limits = limits(max, read_gaps);
+            let plan = plan(&limits, &items).unwrap();
+            for item in &items {
+                prop_assert!(plan.iter().any(|r| r.offset_of(item).is_some()), "{:?} not covered", item);
+            }
+            for r in &plan {
+                prop_assert!(r.count >= 1 && r.count <= max);
+                if !read_gaps {
+                    for register in r.start as usize..r.start as usize + r.count as usize {
+                        prop_assert!(items.iter().any(|a| a.table == r.table
+                            && (a.address as usize..end(a)).contains(&register)));
+                    }
+                }
+            }
+            prop_assert_eq!(plan.len(), optimum(&limits, &items));
+        }
+    }
+}

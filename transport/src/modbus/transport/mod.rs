@@ -1,0 +1,361 @@
+//! Blocking Modbus clients: one request/response engine over any [`ByteStream`], with RTU or MBAP
+//! framing.
+//!
+//! | client | stream | framing | opened with |
+//! | --- | --- | --- | --- |
+//! | [`SerialRtuClient`] | serial port | RTU | [`SerialRtuClient::open`] + [`SerialConfig`] |
+//! | [`ModbusTcpClient`] | TCP | MBAP | [`ModbusTcpClient::connect`] + [`TcpConfig`] |
+//! | [`RtuOverTcpClient`] | TCP (serial gateway) | RTU | [`RtuOverTcpClient::connect`] + [`TcpConfig`] |
+//!
+//! Every request: wait until the line has been idle long enough (t3.5 and the turnaround delay on
+//! RTU), drop stale input, send, then read until the [`Framing`] finds the answer — skipping
+//! garbage, corrupted frames and late answers to earlier requests — or the timeout passes. Failed
+//! requests are repeated only as the [`RetryPolicy`] allows. Buffers live in the client: the
+//! request path does not allocate.
+
+mod rtu_over_tcp;
+mod serial;
+mod tcp;
+
+use core::ops::Range;
+use std::time::{Duration, Instant};
+
+pub use rtu_over_tcp::RtuOverTcpClient;
+pub use serial::{SerialConfig, SerialRtuClient, SerialStream};
+pub use tcp::{ModbusTcpClient, NetStream, TcpConfig};
+
+use crate::error::BusError;
+
+use super::framing::{Framing, Scan};
+use super::pdu::{decode_response, Request, Response};
+use super::retry::{is_transient, Idempotency, RetryPolicy};
+use super::rtu::RtuFraming;
+use super::tcp::TcpFraming;
+use super::{BitBus, RegisterBus, Table, UnitId};
+
+/// The byte channel under a client: a serial port, a TCP connection, or a test double.
+pub trait ByteStream {
+    /// Sends all of `bytes`.
+    fn send(&mut self, bytes: &[u8]) -> Result<(), BusError>;
+    /// Waits until some bytes arrived or `deadline` passed; returns how many were stored in `buf`
+    /// (0: the deadline passed).
+    fn receive(&mut self, buf: &mut [u8], deadline: Instant) -> Result<usize, BusError>;
+    /// Drops input that arrived but was not read: late answers and line noise.
+    fn discard_input(&mut self) -> Result<(), BusError>;
+    /// Re-establishes the channel after an I/O failure (TCP reconnects). Default: nothing to do.
+    fn reconnect(&mut self) -> Result<(), BusError> {
+        Ok(())
+    }
+}
+
+impl<S: ByteStream + ?Sized> ByteStream for &mut S {
+    fn send(&mut self, bytes: &[u8]) -> Result<(), BusError> {
+        (**self).send(bytes)
+    }
+    fn receive(&mut self, buf: &mut [u8], deadline: Instant) -> Result<usize, BusError> {
+        (**self).receive(buf, deadline)
+    }
+    fn discard_input(&mut self) -> Result<(), BusError> {
+        (**self).discard_input()
+    }
+    fn reconnect(&mut self) -> Result<(), BusError> {
+        (**self).reconnect()
+    }
+}
+
+/// Maps an I/O error to the bus error that carries its kind.
+pub(crate) fn io_error(error: std::io::Error) -> BusError {
+    BusError::Io(error.kind())
+}
+
+/// How a client times, retries and paces requests.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ClientConfig {
+    /// How long to wait for the answer to one attempt.
+    pub timeout: Duration,
+    /// Which failed requests are repeated.
+    pub retry: RetryPolicy,
+    /// Least idle time between the end of one exchange and the next request (t3.5 and the
+    /// device's turnaround delay on RTU; usually zero on TCP).
+    pub idle_gap: Duration,
+}
+
+impl Default for ClientConfig {
+    fn default() -> Self {
+        Self {
+            timeout: Duration::from_secs(1),
+            retry: RetryPolicy::reads(2),
+            idle_gap: Duration::ZERO,
+        }
+    }
+}
+
+/// The broadcast unit id: RTU devices execute writes to it and never answer.
+pub const BROADCAST: UnitId = UnitId(0);
+
+/// Room for a little more than two ADUs, so a frame can complete behind garbage.
+const RX_CAPACITY: usize = 2 * super::tcp::MAX_ADU;
+
+/// A blocking Modbus client over stream `S` with framing `F`.
+#[derive(Debug)]
+pub struct Client<S, F> {
+    stream: S,
+    framing: F,
+    config: ClientConfig,
+    tx: [u8; super::tcp::MAX_ADU],
+    rx: [u8; RX_CAPACITY],
+    rx_len: usize,
+    last_io: Option<Instant>,
+    broken: bool,
+}
+
+/// A Modbus RTU client over any byte stream.
+pub type RtuClient<S> = Client<S, RtuFraming>;
+/// A Modbus TCP (MBAP) client over any byte stream.
+pub type TcpClient<S> = Client<S, TcpFraming>;
+
+impl<S: ByteStream, F: Framing> Client<S, F> {
+    /// A client sending over `stream` with `framing`.
+    pub fn new(stream: S, framing: F, config: ClientConfig) -> Self {
+        Self {
+            stream,
+            framing,
+            config,
+            tx: [0; super::tcp::MAX_ADU],
+            rx: [0; RX_CAPACITY],
+            rx_len: 0,
+            last_io: None,
+            broken: false,
+        }
+    }
+
+    /// The timing and retry settings.
+    pub fn config(&self) -> &ClientConfig {
+        &self.config
+    }
+
+    /// Changes the timing and retry settings.
+    pub fn config_mut(&mut self) -> &mut ClientConfig {
+        &mut self.config
+    }
+
+    /// The underlying stream.
+    pub fn stream_mut(&mut self) -> &mut S {
+        &mut self.stream
+    }
+
+    /// Gives the stream back.
+    pub fn into_stream(self) -> S {
+        self.stream
+    }
+
+    /// Sends `request` to `unit` and returns the validated answer. `declared` overrides whether a
+    /// write may be repeated (see [`RetryPolicy::is_idempotent`]). A write to [`BROADCAST`] is
+    /// sent once and answers [`Response::Written`] without waiting.
+    pub fn execute(
+        &mut self,
+        unit: UnitId,
+        request: &Request<'_>,
+        declared: Option<Idempotency>,
+    ) -> Result<Response<'_>, BusError> {
+        request.validate()?;
+        if unit == BROADCAST && !request.is_write() {
+            return Err(BusError::Unsupported("reads cannot be broadcast"));
+        }
+        let attempts = self.config.retry.attempts(request, declared);
+        let mut attempt = 1;
+        let frame = loop {
+            match self.transact(unit, request) {
+                Ok(frame) => break frame,
+                Err(error) if attempt < attempts && is_transient(&error) => attempt += 1,
+                Err(error) => return Err(error),
+            }
+        };
+        match frame {
+            Some(range) => decode_response(request, self.framing.pdu(&self.rx[range])),
+            None => Ok(Response::Written),
+        }
+    }
+
+    /// Writes one holding register, stating whether the write may be repeated after a lost answer.
+    pub fn write_register_as(
+        &mut self,
+        unit: UnitId,
+        address: u16,
+        value: u16,
+        idempotency: Idempotency,
+    ) -> Result<(), BusError> {
+        let request = Request::WriteSingleRegister { address, value };
+        self.execute(unit, &request, Some(idempotency)).map(drop)
+    }
+
+    /// Writes consecutive holding registers, stating whether the write may be repeated.
+    pub fn write_registers_as(
+        &mut self,
+        unit: UnitId,
+        start: u16,
+        values: &[u16],
+        idempotency: Idempotency,
+    ) -> Result<(), BusError> {
+        let request = Request::WriteMultipleRegisters { start, values };
+        self.execute(unit, &request, Some(idempotency)).map(drop)
+    }
+
+    /// One attempt; a broken channel is re-established first, and an I/O failure marks it broken.
+    fn transact(
+        &mut self,
+        unit: UnitId,
+        request: &Request<'_>,
+    ) -> Result<Option<Range<usize>>, BusError> {
+        if self.broken {
+            self.stream.reconnect()?;
+            self.broken = false;
+        }
+        let result = self.exchange(unit, request);
+        if let Err(BusError::Io(_)) = result {
+            self.broken = true;
+        }
+        result
+    }
+
+    fn exchange(
+        &mut self,
+        unit: UnitId,
+        request: &Request<'_>,
+    ) -> Result<Option<Range<usize>>, BusError> {
+        if let Some(ready) = self.last_io.map(|at| at + self.config.idle_gap) {
+            let now = Instant::now();
+            if ready > now {
+                std::thread::sleep(ready - now);
+            }
+        }
+        self.stream.discard_input()?;
+        self.rx_len = 0;
+        let len = self.framing.encode_request(unit, request, &mut self.tx)?;
+        self.stream.send(&self.tx[..len])?;
+        self.last_io = Some(Instant::now());
+        if unit == BROADCAST {
+            return Ok(None);
+        }
+        let deadline = Instant::now() + self.config.timeout;
+        let mut rejected = None;
+        loop {
+            match self.framing.scan(unit, request, &self.rx[..self.rx_len]) {
+                Scan::Found { start, len } => return Ok(Some(start..start + len)),
+                Scan::Incomplete {
+                    discard,
+                    rejected: why,
+                } => {
+                    rejected = why.or(rejected);
+                    self.drop_front(discard);
+                }
+            }
+            if self.rx_len == self.rx.len() {
+                // Unreachable with well-behaved framings (a pending frame is shorter than an
+                // ADU); dropping old bytes keeps a misbehaving one from stalling.
+                self.drop_front(self.rx.len() / 2);
+            }
+            let got = self.stream.receive(&mut self.rx[self.rx_len..], deadline)?;
+            if got == 0 {
+                return Err(rejected.map_or(BusError::Timeout, BusError::Frame));
+            }
+            self.rx_len += got;
+            self.last_io = Some(Instant::now());
+        }
+    }
+
+    fn drop_front(&mut self, n: usize) {
+        let n = n.min(self.rx_len);
+        self.rx.copy_within(n..self.rx_len, 0);
+        self.rx_len -= n;
+    }
+
+    fn read_into_registers(
+        &mut self,
+        unit: UnitId,
+        request: Request<'_>,
+        out: &mut [u16],
+    ) -> Result<(), BusError> {
+        match self.execute(unit, &request, None)? {
+            Response::Registers(registers) => registers.copy_to(out),
+            _ => Err(BusError::Frame("response does not match the request")),
+        }
+    }
+
+    fn read_into_bits(
+        &mut self,
+        unit: UnitId,
+        request: Request<'_>,
+        out: &mut [bool],
+    ) -> Result<(), BusError> {
+        match self.execute(unit, &request, None)? {
+            Response::Bits(bits) => bits.copy_to(out),
+            _ => Err(BusError::Frame("response does not match the request")),
+        }
+    }
+}
+
+fn count(items: usize) -> Result<u16, BusError> {
+    u16::try_from(items).map_err(|_| BusError::Unsupported("item count outside the Modbus limits"))
+}
+
+impl<S: ByteStream, F: Framing> RegisterBus for Client<S, F> {
+    fn read_registers(
+        &mut self,
+        unit: UnitId,
+        table: Table,
+        start: u16,
+        out: &mut [u16],
+    ) -> Result<(), BusError> {
+        let request = Request::read_registers(table, start, count(out.len())?);
+        self.read_into_registers(unit, request, out)
+    }
+
+    fn write_register(&mut self, unit: UnitId, address: u16, value: u16) -> Result<(), BusError> {
+        let request = Request::WriteSingleRegister { address, value };
+        self.execute(unit, &request, None).map(drop)
+    }
+
+    fn write_registers(
+        &mut self,
+        unit: UnitId,
+        start: u16,
+        values: &[u16],
+    ) -> Result<(), BusError> {
+        let request = Request::WriteMultipleRegisters { start, values };
+        self.execute(unit, &request, None).map(drop)
+    }
+}
+
+impl<S: ByteStream, F: Framing> BitBus for Client<S, F> {
+    fn read_coils(&mut self, unit: UnitId, start: u16, out: &mut [bool]) -> Result<(), BusError> {
+        let request = Request::ReadCoils {
+            start,
+            count: count(out.len())?,
+        };
+        self.read_into_bits(unit, request, out)
+    }
+
+    fn read_discrete_inputs(
+        &mut self,
+        unit: UnitId,
+        start: u16,
+        out: &mut [bool],
+    ) -> Result<(), BusError> {
+        let request = Request::ReadDiscreteInputs {
+            start,
+            count: count(out.len())?,
+        };
+        self.read_into_bits(unit, request, out)
+    }
+
+    fn write_coil(&mut self, unit: UnitId, address: u16, value: bool) -> Result<(), BusError> {
+        let request = Request::WriteSingleCoil { address, value };
+        self.execute(unit, &request, None).map(drop)
+    }
+
+    fn write_coils(&mut self, unit: UnitId, start: u16, values: &[bool]) -> Result<(), BusError> {
+        let request = Request::WriteMultipleCoils { start, values };
+        self.execute(unit, &request, None).map(drop)
+    }
+}

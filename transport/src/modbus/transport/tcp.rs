@@ -1,0 +1,147 @@
+//! Modbus TCP: MBAP frames over a TCP connection, reconnecting after failures.
+
+use std::io::{ErrorKind, Read, Write};
+use std::net::{SocketAddr, TcpStream, ToSocketAddrs};
+use std::time::{Duration, Instant};
+
+use super::{io_error, ByteStream, Client, ClientConfig};
+use crate::error::BusError;
+use crate::modbus::retry::RetryPolicy;
+use crate::modbus::tcp::TcpFraming;
+
+/// Connection and client settings for Modbus TCP and RTU-over-TCP.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct TcpConfig {
+    /// How long to wait for each answer.
+    pub timeout: Duration,
+    /// How long to wait for the connection to be established.
+    pub connect_timeout: Duration,
+    /// Least pause between an answer and the next request (for gateways that need one).
+    pub turnaround: Duration,
+    /// Which failed requests are repeated.
+    pub retry: RetryPolicy,
+}
+
+impl Default for TcpConfig {
+    fn default() -> Self {
+        Self {
+            timeout: Duration::from_secs(1),
+            connect_timeout: Duration::from_secs(3),
+            turnaround: Duration::ZERO,
+            retry: RetryPolicy::reads(2),
+        }
+    }
+}
+
+impl TcpConfig {
+    /// The client settings.
+    pub fn client_config(&self) -> ClientConfig {
+        ClientConfig {
+            timeout: self.timeout,
+            retry: self.retry.clone(),
+            idle_gap: self.turnaround,
+        }
+    }
+}
+
+/// A TCP connection as a [`ByteStream`]; reconnects to the same peer on request.
+#[derive(Debug)]
+pub struct NetStream {
+    stream: TcpStream,
+    peer: SocketAddr,
+    connect_timeout: Duration,
+}
+
+fn open(peer: &SocketAddr, connect_timeout: Duration) -> Result<TcpStream, BusError> {
+    let stream = TcpStream::connect_timeout(peer, connect_timeout).map_err(io_error)?;
+    // Requests are single small writes: Nagle would only add latency.
+    stream.set_nodelay(true).map_err(io_error)?;
+    Ok(stream)
+}
+
+impl NetStream {
+    /// Connects to the first address `addr` resolves to.
+    pub fn connect(addr: impl ToSocketAddrs, connect_timeout: Duration) -> Result<Self, BusError> {
+        let peer = addr
+            .to_socket_addrs()
+            .map_err(io_error)?
+            .next()
+            .ok_or(BusError::Io(ErrorKind::AddrNotAvailable))?;
+        Ok(Self {
+            stream: open(&peer, connect_timeout)?,
+            peer,
+            connect_timeout,
+        })
+    }
+
+    /// The peer's address.
+    pub fn peer(&self) -> SocketAddr {
+        self.peer
+    }
+}
+
+/// Shortest read timeout handed to the socket (zero would mean "block forever").
+const MIN_POLL: Duration = Duration::from_millis(1);
+
+impl ByteStream for NetStream {
+    fn send(&mut self, bytes: &[u8]) -> Result<(), BusError> {
+        self.stream.write_all(bytes).map_err(io_error)
+    }
+
+    fn receive(&mut self, buf: &mut [u8], deadline: Instant) -> Result<usize, BusError> {
+        loop {
+            let Some(left) = deadline.checked_duration_since(Instant::now()) else {
+                return Ok(0);
+            };
+            self.stream
+                .set_read_timeout(Some(left.max(MIN_POLL)))
+                .map_err(io_error)?;
+            match self.stream.read(buf) {
+                Ok(0) => return Err(BusError::Io(ErrorKind::ConnectionAborted)),
+                Ok(n) => return Ok(n),
+                Err(e) if matches!(e.kind(), ErrorKind::TimedOut | ErrorKind::WouldBlock) => {}
+                Err(e) if e.kind() == ErrorKind::Interrupted => {}
+                Err(e) => return Err(io_error(e)),
+            }
+        }
+    }
+
+    fn discard_input(&mut self) -> Result<(), BusError> {
+        self.stream.set_nonblocking(true).map_err(io_error)?;
+        let mut scratch = [0u8; 256];
+        let closed = loop {
+            match self.stream.read(&mut scratch) {
+                Ok(0) => break true,
+                Ok(_) => {}
+                Err(e) if e.kind() == ErrorKind::Interrupted => {}
+                Err(e) if e.kind() == ErrorKind::WouldBlock => break false,
+                Err(_) => break true,
+            }
+        };
+        if closed {
+            // Nothing has been sent yet, so reconnecting here is safe even for writes.
+            return self.reconnect();
+        }
+        self.stream.set_nonblocking(false).map_err(io_error)
+    }
+
+    fn reconnect(&mut self) -> Result<(), BusError> {
+        self.stream = open(&self.peer, self.connect_timeout)?;
+        Ok(())
+    }
+}
+
+/// Modbus TCP (MBAP framing) over a TCP connection.
+pub type ModbusTcpClient = Client<NetStream, TcpFraming>;
+
+impl ModbusTcpClient {
+    /// Connects to a Modbus TCP server (`"192.168.0.10:502"`).
+    pub fn connect(addr: impl ToSocketAddrs, config: &TcpConfig) -> Result<Self, BusError> {
+        let stream = NetStream::connect(addr, config.connect_timeout)?;
+        Ok(Client::new(
+            stream,
+            TcpFraming::default(),
+            config.client_config(),
+        ))
+    }
+}

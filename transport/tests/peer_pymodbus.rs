@@ -1,0 +1,321 @@
+//! Against an independent implementation: pymodbus 3.16.1 serving Modbus TCP, RTU-over-TCP and RTU
+//! on a socat pty pair. Each test starts its own peer processes and stops them by PID.
+//!
+//! Python comes from `DRIVEGEN_PYTHON`, else `.venv/bin/python` at the workspace root, else
+//! `python3`. Missing peers fail the test with instructions; `tests/peers/setup.sh` installs them.
+#![cfg(feature = "modbus")]
+
+use std::io::{BufRead, BufReader};
+use std::path::{Path, PathBuf};
+use std::process::{Child, ChildStdin, Command, Stdio};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
+
+use drivebus::link::ReadRequest;
+use drivebus::modbus::retry::RetryPolicy;
+use drivebus::modbus::transport::{
+    ModbusTcpClient, RtuOverTcpClient, SerialConfig, SerialRtuClient, TcpConfig,
+};
+use drivebus::modbus::{
+    BitBus, ExceptionCode, ModbusAddress, ModbusLimits, ModbusLink, RegisterBus, Table, UnitId,
+    WordOrder,
+};
+use drivebus::{BusError, Link};
+
+const UNIT: UnitId = UnitId(1);
+const SETUP_HINT: &str = "run `bash tests/peers/setup.sh` at the workspace root";
+
+fn workspace_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+fn python() -> PathBuf {
+    if let Some(python) = std::env::var_os("DRIVEGEN_PYTHON") {
+        return python.into();
+    }
+    let venv = workspace_root().join(".venv/bin/python");
+    if venv.exists() {
+        venv
+    } else {
+        "python3".into()
+    }
+}
+
+/// A child process killed (by its PID) and reaped when dropped.
+struct Process {
+    child: Child,
+    _stdin: Option<ChildStdin>,
+}
+
+impl Drop for Process {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// Starts the pymodbus server in `mode` and waits for its first stdout line.
+fn start_server(args: &[&str]) -> (Process, String) {
+    let python = python();
+    let script = workspace_root().join("tests/peers/modbus_server.py");
+    let mut child = Command::new(&python)
+        .arg(&script)
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::inherit())
+        .spawn()
+        .unwrap_or_else(|e| panic!("cannot start {} ({e}); {SETUP_HINT}", python.display()));
+    let stdin = child.stdin.take();
+    let stdout = child.stdout.take().expect("piped stdout");
+    let process = Process {
+        child,
+        _stdin: stdin,
+    };
+    let mut line = String::new();
+    BufReader::new(stdout)
+        .read_line(&mut line)
+        .expect("read the peer's stdout");
+    assert!(
+        !line.is_empty(),
+        "the pymodbus peer exited before it was ready (is pymodbus 3.16.1 installed for {}?); {SETUP_HINT}",
+        python.display()
+    );
+    (process, line.trim().to_owned())
+}
+
+fn tcp_server(mode: &str) -> (Process, String) {
+    let (process, line) = start_server(&[mode]);
+    let port = line
+        .strip_prefix("PORT ")
+        .unwrap_or_else(|| panic!("unexpected peer output {line:?}"));
+    (process, format!("127.0.0.1:{port}"))
+}
+
+/// A socat pty pair; returns the process and the two link paths.
+fn pty_pair() -> (Process, PathBuf, PathBuf) {
+    static NEXT: AtomicUsize = AtomicUsize::new(0);
+    let dir = std::env::temp_dir().join(format!(
+        "drivegen-pty-{}-{}",
+        std::process::id(),
+        NEXT.fetch_add(1, Ordering::Relaxed)
+    ));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (a, b) = (dir.join("client"), dir.join("server"));
+    let child = Command::new("socat")
+        .arg(format!("pty,raw,echo=0,link={}", a.display()))
+        .arg(format!("pty,raw,echo=0,link={}", b.display()))
+        .stdin(Stdio::null())
+        .spawn()
+        .unwrap_or_else(|e| panic!("cannot start socat ({e}); {SETUP_HINT}"));
+    let process = Process {
+        child,
+        _stdin: None,
+    };
+    // socat creates the links asynchronously.
+    let deadline = Instant::now() + Duration::from_secs(5);
+    while !(a.exists() && b.exists()) {
+        assert!(
+            Instant::now() < deadline,
+            "socat did not create the pty links"
+        );
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    (process, a, b)
+}
+
+fn tcp_config() -> TcpConfig {
+    TcpConfig {
+        timeout: Duration::from_secs(2),
+        ..TcpConfig::default()
+    }
+}
+
+/// The register and bit traffic every transport must carry the same way.
+fn exercise<B: RegisterBus + BitBus>(bus: &mut B) {
+    let mut status = [0u16; 17];
+    bus.read_registers(UNIT, Table::Input, 0x60, &mut status)
+        .unwrap();
+    assert_eq!(status[0], 0x1060);
+    assert_eq!(status[16], 0x1070);
+    assert_eq!([status[11], status[12]], [0x5678, 0x1234]);
+
+    bus.write_register(UNIT, 0x30, 777).unwrap();
+    bus.write_registers(UNIT, 0x40, &[1, 2, 3]).unwrap();
+    let mut back = [0u16; 4];
+    bus.read_registers(UNIT, Table::Holding, 0x40, &mut back[..3])
+        .unwrap();
+    assert_eq!(back[..3], [1, 2, 3]);
+    bus.read_registers(UNIT, Table::Holding, 0x30, &mut back[..1])
+        .unwrap();
+    assert_eq!(back[0], 777);
+
+    let mut coils = [false; 10];
+    bus.read_coils(UNIT, 0, &mut coils).unwrap();
+    assert_eq!(coils, core::array::from_fn(|i| i % 2 == 0));
+    bus.write_coil(UNIT, 1, true).unwrap();
+    bus.write_coils(UNIT, 8, &[false, true, true]).unwrap();
+    bus.read_coils(UNIT, 0, &mut coils).unwrap();
+    assert!(coils[1] && !coils[8] && coils[9]);
+    let mut inputs = [false; 7];
+    bus.read_discrete_inputs(UNIT, 0, &mut inputs).unwrap();
+    assert_eq!(inputs, core::array::from_fn(|i| i % 3 == 0));
+
+    // Exceptions come back typed, with their meaning.
+    let mut one = [0u16; 1];
+    let missing = bus
+        .read_registers(UNIT, Table::Holding, 0x0200, &mut one)
+        .unwrap_err();
+    assert_eq!(
+        missing,
+        BusError::ModbusException {
+            function: 0x03,
+            code: 0x02
+        }
+    );
+    assert_eq!(
+        missing.modbus_exception(),
+        Some(ExceptionCode::IllegalDataAddress)
+    );
+    let refused = bus.write_register(UNIT, 0x28, 0).unwrap_err();
+    assert_eq!(
+        refused.modbus_exception(),
+        Some(ExceptionCode::IllegalDataValue)
+    );
+    assert_eq!(
+        refused.to_string(),
+        "Modbus exception 0x03 (illegal data value) to function 0x06"
+    );
+    let refused = bus.write_registers(UNIT, 0x27, &[5, 300]).unwrap_err();
+    assert_eq!(
+        refused,
+        BusError::ModbusException {
+            function: 0x10,
+            code: 0x03
+        }
+    );
+    // The client is still in step after the exceptions.
+    bus.read_registers(UNIT, Table::Holding, 0x28, &mut one)
+        .unwrap();
+    assert_eq!(one, [1]);
+}
+
+fn pair(table: Table, address: u16) -> ModbusAddress {
+    ModbusAddress {
+        table,
+        address,
+        words: 2,
+        word_order: WordOrder::LowFirst,
+    }
+}
+
+fn one(table: Table, address: u16) -> ModbusAddress {
+    ModbusAddress {
+        table,
+        address,
+        words: 1,
+        word_order: WordOrder::HighFirst,
+    }
+}
+
+/// Values through the generated-code path: 32-bit LOW/HIGH pairs and a planned batch read.
+fn exercise_link<B: RegisterBus>(bus: B) {
+    let mut link = ModbusLink::new(bus, UNIT, ModbusLimits::SPEC);
+    let mut out = [0u8; 4];
+    assert_eq!(link.read(&pair(Table::Input, 0x6B), &mut out), Ok(4));
+    assert_eq!(u32::from_le_bytes(out), 0x1234_5678);
+
+    link.write(&pair(Table::Holding, 0x50), &0xCAFE_F00Du32.to_le_bytes())
+        .unwrap();
+    let mut raw = [0u16; 2];
+    link.bus_mut()
+        .read_registers(UNIT, Table::Holding, 0x50, &mut raw)
+        .unwrap();
+    assert_eq!(raw, [0xF00D, 0xCAFE], "LOW word first");
+
+    let (mut a, mut b, mut c) = ([0u8; 2], [0u8; 4], [0u8; 2]);
+    let mut batch = [
+        ReadRequest {
+            address: one(Table::Input, 0x60),
+            buf: &mut a,
+            len: 0,
+        },
+        ReadRequest {
+            address: pair(Table::Input, 0x6B),
+            buf: &mut b,
+            len: 0,
+        },
+        ReadRequest {
+            address: one(Table::Input, 0x70),
+            buf: &mut c,
+            len: 0,
+        },
+    ];
+    link.read_many(&mut batch).unwrap();
+    assert_eq!(batch.each_ref().map(|r| r.len), [2, 4, 2]);
+    assert_eq!(u16::from_le_bytes(a), 0x1060);
+    assert_eq!(u32::from_le_bytes(b), 0x1234_5678);
+    assert_eq!(u16::from_le_bytes(c), 0x1070);
+
+    let mut bad = [0u8; 2];
+    assert_eq!(
+        link.read(&one(Table::Input, 0x71), &mut bad),
+        Err(BusError::ModbusException {
+            function: 0x04,
+            code: 0x02
+        })
+    );
+}
+
+#[test]
+fn modbus_tcp_against_pymodbus() {
+    let (_server, addr) = tcp_server("tcp");
+    let mut client = ModbusTcpClient::connect(&addr, &tcp_config()).unwrap();
+    exercise(&mut client);
+    exercise_link(client);
+}
+
+#[test]
+fn rtu_over_tcp_against_pymodbus() {
+    let (_server, addr) = tcp_server("rtu-over-tcp");
+    let mut client = RtuOverTcpClient::connect(&addr, &tcp_config()).unwrap();
+    exercise(&mut client);
+    exercise_link(client);
+}
+
+fn serial_config() -> SerialConfig {
+    SerialConfig {
+        timeout: Duration::from_secs(2),
+        ..SerialConfig::new(19_200)
+    }
+}
+
+#[test]
+fn rtu_on_a_pty_against_pymodbus() {
+    let (_socat, client_end, server_end) = pty_pair();
+    let (_server, ready) = start_server(&["rtu", server_end.to_str().unwrap()]);
+    assert_eq!(ready, "READY");
+    let mut client = SerialRtuClient::open(client_end.to_str().unwrap(), &serial_config()).unwrap();
+    exercise(&mut client);
+    exercise_link(client);
+}
+
+#[test]
+fn silence_on_a_pty_ends_in_a_timeout() {
+    let (_socat, client_end, _nobody) = pty_pair();
+    let config = SerialConfig {
+        timeout: Duration::from_millis(200),
+        retry: RetryPolicy::reads(1),
+        ..SerialConfig::new(19_200)
+    };
+    let mut client = SerialRtuClient::open(client_end.to_str().unwrap(), &config).unwrap();
+    let started = Instant::now();
+    let mut out = [0u16; 1];
+    assert_eq!(
+        client.read_registers(UNIT, Table::Holding, 0, &mut out),
+        Err(BusError::Timeout)
+    );
+    // Two attempts of 200 ms; the bound only proves the call ends, not timing precision.
+    assert!(started.elapsed() < Duration::from_secs(10));
+    assert_eq!(client.write_register(UNIT, 0, 1), Err(BusError::Timeout));
+}
