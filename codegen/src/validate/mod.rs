@@ -13,7 +13,7 @@ mod parameters_have_addresses;
 mod ranges_fit_type;
 mod records_hold_their_members;
 mod references_resolve;
-mod scale_inputs_exist;
+pub(crate) mod scale_inputs_exist;
 mod scale_is_representable;
 mod strings_have_length;
 mod units_are_known;

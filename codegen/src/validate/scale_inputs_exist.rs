@@ -1,17 +1,31 @@
-//! A run-time scale reads only integer, unscaled parameters that are readable over every protocol
-//! the scaled parameter uses (the factor must be computable wherever the value is).
+//! A run-time scale reads only integer, unscaled parameters. Where an input is not readable over a
+//! protocol the scaled parameter uses, the factor cannot be computed there: that is a warning, and
+//! the generated API leaves the parameter out of that protocol (it does not compile) rather than
+//! return unscaled values.
 
 use crate::diagnostic::Diagnostic;
 use crate::ir::{Device, Parameter, Scale};
 
 const RULE: &str = "scale_inputs_exist";
 
-fn readable_modbus(p: &Parameter) -> bool {
+/// Whether `p` has a readable Modbus address.
+pub fn readable_modbus(p: &Parameter) -> bool {
     p.modbus.iter().any(|a| a.access.read)
 }
 
-fn readable_canopen(p: &Parameter) -> bool {
+/// Whether `p` has a readable CANopen address.
+pub fn readable_canopen(p: &Parameter) -> bool {
     p.canopen.iter().any(|a| a.access.read)
+}
+
+/// Whether every run-time scale input of `p` is readable by `readable` (true without one).
+pub fn inputs_readable(p: &Parameter, device: &Device, readable: fn(&Parameter) -> bool) -> bool {
+    match &p.scale {
+        Some(Scale::Runtime { inputs, .. }) => inputs
+            .iter()
+            .all(|i| device.parameter(i).is_some_and(readable)),
+        _ => true,
+    }
 }
 
 /// Reports run-time scale inputs that do not exist or cannot be read.
@@ -44,13 +58,13 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
                 ("CANopen", !p.canopen.is_empty() && !readable_canopen(input)),
             ];
             for (protocol, _) in missing.iter().filter(|(_, m)| *m) {
-                out.push(
-                    error(format!(
-                        "scale input `{name}` of `{}` is not readable over {protocol}",
-                        p.name
-                    ))
-                    .help("give it a readable address on that protocol"),
+                let message = format!(
+                    "scale input `{name}` of `{}` is not readable over {protocol}; `{}` is left out of the {protocol} API",
+                    p.name, p.name
                 );
+                let help =
+                    "give the input a readable address on that protocol if the manual has one";
+                out.push(error(message).warning().help(help));
             }
         }
     }
@@ -83,9 +97,12 @@ source = { doc = "m", line = 1 }
     #[test]
     fn input_missing_on_a_protocol_is_reported() {
         let body = format!("{SPEED}\n[[parameter]]\nname = \"encoder_resolution\"\ntype = \"u32\"\ncanopen = {{ index = 0x6410, subindex = 3, access = \"rw\" }}\nsource = {{ doc = \"m\", line = 1 }}\n");
+        let found = crate::validate::test_support::diagnostics("scale_inputs_exist", &body);
+        assert_eq!(found.len(), 1);
+        assert_eq!(found[0].severity, crate::Severity::Warning);
         assert_eq!(
-            messages("scale_inputs_exist", &body),
-            ["scale input `encoder_resolution` of `target_speed` is not readable over Modbus"]
+            found[0].message,
+            "scale input `encoder_resolution` of `target_speed` is not readable over Modbus; `target_speed` is left out of the Modbus API"
         );
     }
 }

@@ -9,6 +9,7 @@ use super::enums::int_literal;
 use super::{doc_attrs, ident, parameter_doc};
 use crate::emit::ident as names;
 use crate::ir::{Device, Expr, Number, Op, Parameter, Scale};
+use crate::validate::scale_inputs_exist::{inputs_readable, readable_canopen, readable_modbus};
 
 fn raw_type(p: &Parameter) -> syn::Type {
     syn::parse_str(&p.data_type.rust_type()).expect("raw types are valid Rust types")
@@ -233,30 +234,35 @@ pub fn emit(p: &Parameter, device: &Device) -> TokenStream {
     };
     let modbus = quote! { ::drivebus::modbus::Modbus };
     let canopen = quote! { ::drivebus::canopen::CanOpen };
+    // A run-time factor that cannot be read over a protocol leaves the parameter out of it.
+    let on_modbus = inputs_readable(p, device, readable_modbus);
+    let on_canopen = inputs_readable(p, device, readable_canopen);
+    let modbus_address = |d| addresses::modbus(p, device, d).filter(|_| on_modbus);
+    let canopen_address = |d| addresses::canopen(p, device, d).filter(|_| on_canopen);
     let capabilities = [
         capability(
             p,
             modbus.clone(),
             Direction::Read,
-            addresses::modbus(p, device, Direction::Read),
+            modbus_address(Direction::Read),
         ),
         capability(
             p,
             modbus,
             Direction::Write,
-            addresses::modbus(p, device, Direction::Write),
+            modbus_address(Direction::Write),
         ),
         capability(
             p,
             canopen.clone(),
             Direction::Read,
-            addresses::canopen(p, device, Direction::Read),
+            canopen_address(Direction::Read),
         ),
         capability(
             p,
             canopen,
             Direction::Write,
-            addresses::canopen(p, device, Direction::Write),
+            canopen_address(Direction::Write),
         ),
     ];
     let runtime = runtime_scale(p);
