@@ -172,6 +172,9 @@ impl Upload<'_> {
                 self.ch.touch(now);
                 let seq = data[0] & !LAST;
                 let last = data[0] & LAST != 0;
+                if seq == 0 || seq > block_size {
+                    return self.ch.abort(AbortCode::InvalidSequenceNumber);
+                }
                 let in_order = seq == expected;
                 let mut received = received;
                 if in_order {
