@@ -747,6 +747,16 @@ fn roundtrip(value: &[u8], mode: Mode) -> Result<(), TestCaseError> {
     Ok(())
 }
 
+#[test]
+fn boundary_lengths_round_trip_in_every_mode() {
+    for len in [0usize, 1, 4, 5, 7, 8, 14, 15, 889, 890] {
+        let value: Vec<u8> = (0..len).map(|i| (i * 31 + 7) as u8).collect();
+        for mode in [Mode::Normal, Mode::Block(1), Mode::Block(127)] {
+            roundtrip(&value, mode).unwrap_or_else(|e| panic!("{len} bytes, {mode:?}: {e}"));
+        }
+    }
+}
+
 proptest! {
     #[test]
     fn transfers_of_any_length_round_trip(
