@@ -93,7 +93,7 @@ fn noise(bus: &InProcessBus) -> Background {
 }
 
 fn client(bus: &InProcessBus) -> BlockingSdo<InProcessEndpoint> {
-    BlockingSdo::new(bus.endpoint()).with_timeout(Duration::from_millis(200))
+    BlockingSdo::new(bus.endpoint()).with_timeout(Duration::from_millis(500))
 }
 
 /// Every frame a bystander saw, for checking what the client put on the bus.

@@ -10,7 +10,7 @@
 //! * [`message`] — classifies any frame of the predefined connection set into typed values.
 //! * [`backend`] — the [`CanBus`] trait; with `canopen`: SocketCAN, SLCAN, candump streams and an
 //!   in-process bus.
-//! * [`blocking`] — (`canopen`) an [`SdoBus`] over any [`CanBus`], so [`CanOpenLink`] runs on every
+//! * `blocking` — (`canopen`) an [`SdoBus`] over any [`CanBus`], so [`CanOpenLink`] runs on every
 //!   backend.
 //!
 //! # Opening a backend

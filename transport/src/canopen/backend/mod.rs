@@ -1,9 +1,9 @@
 //! CAN backends behind one trait.
 //!
-//! * [`in_process`] — several endpoints in one process, frames broadcast to the others (tests).
-//! * [`slcan`] — Lawicel ASCII adapters over any byte stream (serial port, TCP).
-//! * [`candump`] — can-utils text lines over pipes and files (relays, replay, offline decoding).
-//! * [`socketcan`] — Linux kernel CAN (feature `socketcan`).
+//! * `in_process` — several endpoints in one process, frames broadcast to the others (tests).
+//! * `slcan` — Lawicel ASCII adapters over any byte stream (serial port, TCP).
+//! * `candump` — can-utils text lines over pipes and files (relays, replay, offline decoding).
+//! * `socketcan` — Linux kernel CAN (feature `socketcan`).
 
 use core::time::Duration;
 

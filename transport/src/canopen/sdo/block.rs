@@ -3,7 +3,9 @@
 use core::time::Duration;
 
 use super::client::{read_size, size_bytes, DownloadState, UploadState, SEGMENT_BYTES};
-use super::{ccs, scs, specifier, AbortCode, Channel, Download, Progress, SdoClient, Upload};
+use super::{
+    ccs, command_only, scs, specifier, AbortCode, Channel, Download, Progress, SdoClient, Upload,
+};
 use crate::canopen::frame::CanFrame;
 
 /// Largest number of segments in one block.
@@ -148,16 +150,7 @@ impl Upload<'_> {
                     crc: data[0] & CRC_SUPPORTED != 0,
                 });
                 self.ch.send(
-                    [
-                        (ccs::BLOCK_UPLOAD << 5) | CS_START_UPLOAD,
-                        0,
-                        0,
-                        0,
-                        0,
-                        0,
-                        0,
-                        0,
-                    ],
+                    command_only((ccs::BLOCK_UPLOAD << 5) | CS_START_UPLOAD),
                     now,
                 );
                 Progress::Pending
@@ -172,6 +165,9 @@ impl Upload<'_> {
                 self.ch.touch(now);
                 let seq = data[0] & !LAST;
                 let last = data[0] & LAST != 0;
+                if seq == 0 || seq > block_size {
+                    return self.ch.abort(AbortCode::InvalidSequenceNumber);
+                }
                 let in_order = seq == expected;
                 let mut received = received;
                 if in_order {
@@ -247,10 +243,8 @@ impl Upload<'_> {
                 if crc && crc16(&self.buf[..len]) != u16::from_le_bytes([data[1], data[2]]) {
                     return self.ch.abort(AbortCode::CrcError);
                 }
-                self.ch.send(
-                    [(ccs::BLOCK_UPLOAD << 5) | CS_END, 0, 0, 0, 0, 0, 0, 0],
-                    now,
-                );
+                self.ch
+                    .send(command_only((ccs::BLOCK_UPLOAD << 5) | CS_END), now);
                 self.ch.done(len)
             }
         }

@@ -2,7 +2,7 @@
 
 use core::time::Duration;
 
-use super::{ccs, scs, specifier, AbortCode, Channel, Progress, Transfer, TOGGLE};
+use super::{ccs, command_only, scs, specifier, AbortCode, Channel, Progress, Transfer, TOGGLE};
 use crate::canopen::address::NodeId;
 use crate::canopen::frame::{cob, CanFrame};
 
@@ -142,8 +142,7 @@ impl Upload<'_> {
             received: 0,
             size,
         };
-        self.ch
-            .send([ccs::UPLOAD_SEGMENT << 5, 0, 0, 0, 0, 0, 0, 0], now);
+        self.ch.send(command_only(ccs::UPLOAD_SEGMENT << 5), now);
         Progress::Pending
     }
 
@@ -180,10 +179,8 @@ impl Upload<'_> {
             received,
             size,
         };
-        self.ch.send(
-            [(ccs::UPLOAD_SEGMENT << 5) | toggle, 0, 0, 0, 0, 0, 0, 0],
-            now,
-        );
+        self.ch
+            .send(command_only((ccs::UPLOAD_SEGMENT << 5) | toggle), now);
         Progress::Pending
     }
 }

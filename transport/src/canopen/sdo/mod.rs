@@ -55,6 +55,11 @@ pub(crate) const fn specifier(data: &[u8; 8]) -> u8 {
     data[0] >> 5
 }
 
+/// A frame that carries only its command byte.
+pub(crate) const fn command_only(command: u8) -> [u8; 8] {
+    [command, 0, 0, 0, 0, 0, 0, 0]
+}
+
 /// Toggle bit of a segment command byte.
 pub(crate) const TOGGLE: u8 = 0x10;
 

@@ -8,7 +8,7 @@ use std::vec::Vec;
 
 use super::block::{crc16, MAX_BLOCK_SIZE};
 use super::client::SEGMENT_BYTES;
-use super::{ccs, scs, AbortCode, TOGGLE};
+use super::{ccs, command_only, scs, AbortCode, TOGGLE};
 use crate::canopen::address::NodeId;
 use crate::canopen::frame::{cob, CanFrame};
 
@@ -230,16 +230,7 @@ impl<D: ObjectDictionary> SdoServer<D> {
                         toggle: toggle ^ TOGGLE,
                     };
                 }
-                out.push(self.response([
-                    (scs::DOWNLOAD_SEGMENT << 5) | toggle,
-                    0,
-                    0,
-                    0,
-                    0,
-                    0,
-                    0,
-                    0,
-                ]));
+                out.push(self.response(command_only((scs::DOWNLOAD_SEGMENT << 5) | toggle)));
                 Ok(())
             }
             (ccs::BLOCK_UPLOAD, state) => self.block_upload(state, data, out),
@@ -385,7 +376,7 @@ impl<D: ObjectDictionary> SdoServer<D> {
                     return Err(AbortCode::CrcError);
                 }
                 self.dictionary.write(self.mux.0, self.mux.1, &buf)?;
-                out.push(self.response([(scs::BLOCK_DOWNLOAD << 5) | 1, 0, 0, 0, 0, 0, 0, 0]));
+                out.push(self.response(command_only((scs::BLOCK_DOWNLOAD << 5) | 1)));
                 Ok(())
             }
             _ => Err(AbortCode::InvalidCommandSpecifier),

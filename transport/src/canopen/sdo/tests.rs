@@ -556,6 +556,137 @@ fn block_download_with_a_crc_mismatch_is_aborted_by_the_server() {
     );
 }
 
+#[test]
+fn block_upload_rejects_a_sequence_number_outside_the_block() {
+    let mut buf = [0u8; 64];
+    let mut transfer = client().block_upload(0x2106, 0, &mut buf, 4, Duration::ZERO);
+    transfer.poll_transmit();
+    transfer.handle(
+        &response([0xC6, 0x06, 0x21, 0, 40, 0, 0, 0]),
+        Duration::ZERO,
+    );
+    assert_eq!(
+        transfer.poll_transmit(),
+        Some(request([0xA3, 0, 0, 0, 0, 0, 0, 0]))
+    );
+    let progress = transfer.handle(&response([5, 1, 2, 3, 4, 5, 6, 7]), Duration::ZERO);
+    assert_eq!(
+        progress,
+        Progress::Failed(SdoError::Client(AbortCode::InvalidSequenceNumber))
+    );
+    assert_eq!(
+        transfer.poll_transmit(),
+        Some(abort_frame(0x2106, 0, AbortCode::InvalidSequenceNumber))
+    );
+}
+
+#[test]
+fn block_upload_end_checks_the_announced_size() {
+    let mut buf = [0u8; 64];
+    let mut transfer = client().block_upload(0x2107, 0, &mut buf, 4, Duration::ZERO);
+    transfer.poll_transmit();
+    transfer.handle(
+        &response([0xC6, 0x07, 0x21, 0, 10, 0, 0, 0]),
+        Duration::ZERO,
+    );
+    transfer.poll_transmit();
+    transfer.handle(&response([0x81, 1, 2, 3, 4, 5, 6, 7]), Duration::ZERO);
+    assert_eq!(
+        transfer.poll_transmit(),
+        Some(request([0xA2, 1, 4, 0, 0, 0, 0, 0]))
+    );
+    // End frame: 0 unused bytes, so 7 bytes, but 10 were announced.
+    let progress = transfer.handle(&response([0xC1, 0, 0, 0, 0, 0, 0, 0]), Duration::ZERO);
+    assert_eq!(
+        progress,
+        Progress::Failed(SdoError::Client(AbortCode::LengthMismatch))
+    );
+}
+
+#[test]
+fn block_download_with_a_lost_acknowledgement_times_out() {
+    let mut server = server(&[((0x2108, 0), &[])]).with_block_size(4);
+    let outcome = pump(
+        &mut client().block_download(0x2108, 0, &[1; 100], Duration::ZERO),
+        &mut server,
+        |dir, frame| {
+            if dir == Dir::ToClient && frame.data()[0] == 0xA2 {
+                vec![]
+            } else {
+                vec![frame]
+            }
+        },
+    );
+    assert_eq!(
+        outcome.progress,
+        Progress::Failed(SdoError::Client(AbortCode::ProtocolTimedOut))
+    );
+    assert_eq!(
+        outcome.sent.last(),
+        Some(&abort_frame(0x2108, 0, AbortCode::ProtocolTimedOut))
+    );
+}
+
+#[test]
+fn block_download_end_answered_with_the_wrong_command_aborts() {
+    let mut transfer = client().block_download(0x2109, 0, &[1, 2], Duration::ZERO);
+    transfer.poll_transmit();
+    transfer.handle(&response([0xA4, 0x09, 0x21, 0, 4, 0, 0, 0]), Duration::ZERO);
+    assert_eq!(
+        transfer.poll_transmit(),
+        Some(request([0x81, 1, 2, 0, 0, 0, 0, 0]))
+    );
+    transfer.handle(&response([0xA2, 1, 4, 0, 0, 0, 0, 0]), Duration::ZERO);
+    let end = transfer.poll_transmit().unwrap();
+    assert_eq!(
+        end.data()[0],
+        0xC1 | (5 << 2),
+        "5 bytes of the last segment unused"
+    );
+    assert_eq!(
+        u16::from_le_bytes([end.data()[1], end.data()[2]]),
+        block::crc16(&[1, 2])
+    );
+    let progress = transfer.handle(&response([0xA2, 1, 4, 0, 0, 0, 0, 0]), Duration::ZERO);
+    assert_eq!(
+        progress,
+        Progress::Failed(SdoError::Client(AbortCode::InvalidCommandSpecifier))
+    );
+}
+
+#[test]
+fn a_download_initiate_answered_as_an_upload_aborts() {
+    let mut transfer = client().download(0x200A, 0, &[1, 2, 3, 4, 5], Duration::ZERO);
+    assert_eq!(
+        transfer.poll_transmit(),
+        Some(request([0x21, 0x0A, 0x20, 0, 5, 0, 0, 0]))
+    );
+    let progress = transfer.handle(&response([0x43, 0x0A, 0x20, 0, 0, 0, 0, 0]), Duration::ZERO);
+    assert_eq!(
+        progress,
+        Progress::Failed(SdoError::Client(AbortCode::InvalidCommandSpecifier))
+    );
+}
+
+#[test]
+fn a_server_abort_in_the_middle_of_a_segmented_download() {
+    let mut transfer = client().download(0x200B, 0, &[0; 30], Duration::ZERO);
+    transfer.poll_transmit();
+    transfer.handle(&response([0x60, 0x0B, 0x20, 0, 0, 0, 0, 0]), Duration::ZERO);
+    transfer.poll_transmit();
+    let abort = response([0x80, 0x0B, 0x20, 0, 0x20, 0, 0, 0x08]);
+    assert_eq!(
+        transfer.handle(&abort, Duration::ZERO),
+        Progress::Failed(SdoError::Server(AbortCode::CannotStore))
+    );
+    assert_eq!(transfer.poll_transmit(), None);
+    assert_eq!(
+        transfer.handle_timeout(Duration::from_secs(60)),
+        Progress::Pending,
+        "finished transfers do not time out"
+    );
+}
+
 // --- Property tests: random lengths through every mode. ---
 
 #[derive(Debug, Clone, Copy)]
@@ -614,6 +745,16 @@ fn roundtrip(value: &[u8], mode: Mode) -> Result<(), TestCaseError> {
     prop_assert_eq!(upload.progress, Progress::Done(value.len()));
     prop_assert_eq!(&buf[..value.len()], value);
     Ok(())
+}
+
+#[test]
+fn boundary_lengths_round_trip_in_every_mode() {
+    for len in [0usize, 1, 4, 5, 7, 8, 14, 15, 889, 890] {
+        let value: Vec<u8> = (0..len).map(|i| (i * 31 + 7) as u8).collect();
+        for mode in [Mode::Normal, Mode::Block(1), Mode::Block(127)] {
+            roundtrip(&value, mode).unwrap_or_else(|e| panic!("{len} bytes, {mode:?}: {e}"));
+        }
+    }
 }
 
 proptest! {
