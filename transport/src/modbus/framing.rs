@@ -47,6 +47,7 @@ pub trait Framing {
 }
 
 /// Whether a PDU is an acceptable answer: a matching normal response or an exception.
+#[inline]
 pub(crate) fn answers(request: &Request<'_>, pdu: &[u8]) -> Result<(), &'static str> {
     match super::pdu::decode_response(request, pdu) {
         Ok(_) | Err(BusError::ModbusException { .. }) => Ok(()),

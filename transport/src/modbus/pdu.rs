@@ -106,11 +106,13 @@ pub enum Request<'a> {
     },
 }
 
+#[inline]
 fn frame_error(why: &'static str) -> BusError {
     BusError::Frame(why)
 }
 
 /// Checks that `count` items starting at `start` are within `1..=max` and the 16-bit address space.
+#[inline]
 fn check_span(start: u16, count: usize, max: u16) -> Result<(), BusError> {
     if count == 0 || count > max as usize {
         return Err(BusError::Unsupported(
@@ -123,12 +125,14 @@ fn check_span(start: u16, count: usize, max: u16) -> Result<(), BusError> {
     Ok(())
 }
 
+#[inline]
 const fn bit_bytes(count: usize) -> usize {
     count.div_ceil(8)
 }
 
 impl<'a> Request<'a> {
     /// The read request for `count` registers of `table` from `start`.
+    #[inline]
     pub const fn read_registers(table: Table, start: u16, count: u16) -> Self {
         match table {
             Table::Input => Self::ReadInputRegisters { start, count },
@@ -137,6 +141,7 @@ impl<'a> Request<'a> {
     }
 
     /// The function code.
+    #[inline]
     pub const fn function(&self) -> u8 {
         match self {
             Self::ReadCoils { .. } => function::READ_COILS,
@@ -151,6 +156,7 @@ impl<'a> Request<'a> {
     }
 
     /// Whether the request changes the device (writes are not retried blindly).
+    #[inline]
     pub const fn is_write(&self) -> bool {
         matches!(
             self,
@@ -162,6 +168,7 @@ impl<'a> Request<'a> {
     }
 
     /// First address and number of items the request touches.
+    #[inline]
     pub fn span(&self) -> (u16, usize) {
         match *self {
             Self::ReadCoils { start, count }
@@ -177,6 +184,7 @@ impl<'a> Request<'a> {
     }
 
     /// Checks counts against the specification's limits and the address space.
+    #[inline]
     pub fn validate(&self) -> Result<(), BusError> {
         let (start, count) = self.span();
         let max = match self {
@@ -192,6 +200,7 @@ impl<'a> Request<'a> {
     }
 
     /// Length of the encoded request PDU.
+    #[inline]
     pub fn encoded_len(&self) -> usize {
         match self {
             Self::WriteMultipleCoils { values, .. } => 6 + bit_bytes(values.len()),
@@ -201,6 +210,7 @@ impl<'a> Request<'a> {
     }
 
     /// Length of the normal (non-exception) response PDU.
+    #[inline]
     pub fn response_len(&self) -> usize {
         match *self {
             Self::ReadCoils { count, .. } | Self::ReadDiscreteInputs { count, .. } => {
@@ -214,35 +224,70 @@ impl<'a> Request<'a> {
     }
 
     /// Encodes the PDU into `out`; returns its length.
+    #[inline]
     pub fn encode(&self, out: &mut [u8]) -> Result<usize, BusError> {
+        // One dispatch: each arm validates and writes its own fields (this is the hot path).
+        let (function, first, second, max) = match *self {
+            Self::ReadCoils { start, count } => (function::READ_COILS, start, count, MAX_READ_BITS),
+            Self::ReadDiscreteInputs { start, count } => {
+                (function::READ_DISCRETE_INPUTS, start, count, MAX_READ_BITS)
+            }
+            Self::ReadHoldingRegisters { start, count } => (
+                function::READ_HOLDING_REGISTERS,
+                start,
+                count,
+                MAX_READ_REGISTERS,
+            ),
+            Self::ReadInputRegisters { start, count } => (
+                function::READ_INPUT_REGISTERS,
+                start,
+                count,
+                MAX_READ_REGISTERS,
+            ),
+            Self::WriteSingleCoil { address, value } => (
+                function::WRITE_SINGLE_COIL,
+                address,
+                if value { COIL_ON } else { COIL_OFF },
+                u16::MAX,
+            ),
+            Self::WriteSingleRegister { address, value } => {
+                (function::WRITE_SINGLE_REGISTER, address, value, u16::MAX)
+            }
+            Self::WriteMultipleCoils { .. } | Self::WriteMultipleRegisters { .. } => {
+                return self.encode_multiple(out);
+            }
+        };
+        if max != u16::MAX {
+            check_span(first, second as usize, max)?;
+        }
+        let head = out.get_mut(..5).ok_or(BusError::Unsupported(
+            "output buffer too small for the request",
+        ))?;
+        let [a, b] = first.to_be_bytes();
+        let [c, d] = second.to_be_bytes();
+        head.copy_from_slice(&[function, a, b, c, d]);
+        Ok(5)
+    }
+
+    fn encode_multiple(&self, out: &mut [u8]) -> Result<usize, BusError> {
         self.validate()?;
         let len = self.encoded_len();
         let out = out.get_mut(..len).ok_or(BusError::Unsupported(
             "output buffer too small for the request",
         ))?;
-        out[0] = self.function();
         let (start, count) = self.span();
+        out[0] = self.function();
         out[1..3].copy_from_slice(&start.to_be_bytes());
+        out[3..5].copy_from_slice(&(count as u16).to_be_bytes());
+        out[5] = (len - 6) as u8;
         match *self {
-            Self::WriteSingleCoil { value, .. } => {
-                out[3..5].copy_from_slice(&(if value { COIL_ON } else { COIL_OFF }).to_be_bytes())
-            }
-            Self::WriteSingleRegister { value, .. } => {
-                out[3..5].copy_from_slice(&value.to_be_bytes())
-            }
-            Self::WriteMultipleCoils { values, .. } => {
-                out[3..5].copy_from_slice(&(count as u16).to_be_bytes());
-                out[5] = bit_bytes(count) as u8;
-                pack_bits(values, &mut out[6..]);
-            }
+            Self::WriteMultipleCoils { values, .. } => pack_bits(values, &mut out[6..]),
             Self::WriteMultipleRegisters { values, .. } => {
-                out[3..5].copy_from_slice(&(count as u16).to_be_bytes());
-                out[5] = (2 * count) as u8;
                 for (chunk, value) in out[6..].chunks_exact_mut(2).zip(values) {
                     chunk.copy_from_slice(&value.to_be_bytes());
                 }
             }
-            _ => out[3..5].copy_from_slice(&(count as u16).to_be_bytes()),
+            _ => {}
         }
         Ok(len)
     }
@@ -265,31 +310,37 @@ pub struct Registers<'a> {
 
 impl<'a> Registers<'a> {
     /// Views big-endian register bytes; an odd trailing byte is ignored.
+    #[inline]
     pub fn new(bytes: &'a [u8]) -> Self {
         Self {
             bytes: &bytes[..bytes.len() & !1],
         }
     }
     /// Number of registers.
+    #[inline]
     pub fn len(&self) -> usize {
         self.bytes.len() / 2
     }
     /// Whether there are none.
+    #[inline]
     pub fn is_empty(&self) -> bool {
         self.bytes.is_empty()
     }
     /// Register `i`, if present.
+    #[inline]
     pub fn get(&self, i: usize) -> Option<u16> {
         let pair = self.bytes.get(2 * i..2 * i + 2)?;
         Some(u16::from_be_bytes([pair[0], pair[1]]))
     }
     /// The registers in address order.
+    #[inline]
     pub fn iter(&self) -> impl Iterator<Item = u16> + 'a {
         self.bytes
             .chunks_exact(2)
             .map(|pair| u16::from_be_bytes([pair[0], pair[1]]))
     }
     /// Copies the registers into `out`, which must have exactly [`len`](Self::len) slots.
+    #[inline]
     pub fn copy_to(&self, out: &mut [u16]) -> Result<(), BusError> {
         if out.len() != self.len() {
             return Err(frame_error("register count does not match the request"));
@@ -310,6 +361,7 @@ pub struct Bits<'a> {
 
 impl<'a> Bits<'a> {
     /// Views `count` packed bits (fewer if `bytes` is short).
+    #[inline]
     pub fn new(bytes: &'a [u8], count: usize) -> Self {
         Self {
             bytes,
@@ -317,14 +369,17 @@ impl<'a> Bits<'a> {
         }
     }
     /// Number of bits.
+    #[inline]
     pub fn len(&self) -> usize {
         self.count
     }
     /// Whether there are none.
+    #[inline]
     pub fn is_empty(&self) -> bool {
         self.count == 0
     }
     /// Bit `i`, if present.
+    #[inline]
     pub fn get(&self, i: usize) -> Option<bool> {
         if i >= self.count {
             return None;
@@ -332,6 +387,7 @@ impl<'a> Bits<'a> {
         Some(self.bytes[i / 8] & (1 << (i % 8)) != 0)
     }
     /// Copies the bits into `out`, which must have exactly [`len`](Self::len) slots.
+    #[inline]
     pub fn copy_to(&self, out: &mut [bool]) -> Result<(), BusError> {
         if out.len() != self.count {
             return Err(frame_error("bit count does not match the request"));
@@ -354,6 +410,7 @@ pub enum Response<'a> {
     Written,
 }
 
+#[inline]
 fn be16(bytes: &[u8], at: usize) -> u16 {
     u16::from_be_bytes([bytes[at], bytes[at + 1]])
 }
@@ -363,6 +420,7 @@ fn be16(bytes: &[u8], at: usize) -> u16 {
 /// Anything that is not exactly the answer to this request — another function code, a byte
 /// count or echo that does not match, a wrong length — is rejected; an exception response becomes
 /// [`BusError::ModbusException`].
+#[inline]
 pub fn decode_response<'a>(request: &Request<'_>, pdu: &'a [u8]) -> Result<Response<'a>, BusError> {
     let function = request.function();
     let (&got, body) = pdu.split_first().ok_or(frame_error("empty response PDU"))?;
@@ -415,6 +473,7 @@ pub fn decode_response<'a>(request: &Request<'_>, pdu: &'a [u8]) -> Result<Respo
 }
 
 /// The byte count is redundant with the request's count (already checked through the length).
+#[inline]
 fn check_byte_count(body: &[u8]) -> Result<(), BusError> {
     if body[0] as usize != body.len() - 1 {
         return Err(frame_error("byte count does not match the request"));
@@ -466,6 +525,7 @@ pub enum ServerRequest<'a> {
 
 /// Decodes a request PDU (server side); every malformed PDU is a [`BusError::Frame`], an unknown
 /// function code [`BusError::Unsupported`].
+#[inline]
 pub fn decode_request(pdu: &[u8]) -> Result<ServerRequest<'_>, BusError> {
     let (&function, _) = pdu.split_first().ok_or(frame_error("empty request PDU"))?;
     if pdu.len() < 5 {
@@ -538,6 +598,7 @@ pub fn decode_request(pdu: &[u8]) -> Result<ServerRequest<'_>, BusError> {
 }
 
 /// Encodes a register read response (FC 0x03 / 0x04) into `out`; returns its length.
+#[inline]
 pub fn encode_registers_response(
     function: u8,
     values: &[u16],
@@ -557,6 +618,7 @@ pub fn encode_registers_response(
 }
 
 /// Encodes a bit read response (FC 0x01 / 0x02) into `out`; returns its length.
+#[inline]
 pub fn encode_bits_response(
     function: u8,
     values: &[bool],
@@ -574,6 +636,7 @@ pub fn encode_bits_response(
 }
 
 /// Encodes the response confirming a write request `pdu` (the echo of its first five bytes).
+#[inline]
 pub fn encode_write_response(request_pdu: &[u8], out: &mut [u8]) -> Result<usize, BusError> {
     let echo = request_pdu
         .get(..5)
@@ -587,6 +650,7 @@ pub fn encode_write_response(request_pdu: &[u8], out: &mut [u8]) -> Result<usize
 }
 
 /// Encodes an exception response into `out`; returns its length (2).
+#[inline]
 pub fn encode_exception(function: u8, code: u8, out: &mut [u8]) -> Result<usize, BusError> {
     let out = out.get_mut(..2).ok_or(BusError::Unsupported(
         "output buffer too small for the response",

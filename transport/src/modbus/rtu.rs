@@ -14,6 +14,7 @@ use super::pdu::{function, Request, MAX_PDU};
 pub const MAX_ADU: usize = 1 + MAX_PDU + 2;
 
 /// Encodes `request` to `unit` as an RTU frame into `out`; returns its length.
+#[inline]
 pub fn encode_request(
     unit: UnitId,
     request: &Request<'_>,
@@ -28,6 +29,7 @@ pub fn encode_request(
 }
 
 /// Appends the CRC to the `len` bytes at the start of `out`; returns the frame length.
+#[inline]
 pub fn seal(out: &mut [u8], len: usize) -> Result<usize, BusError> {
     let crc = crc16(&out[..len]).to_le_bytes();
     out.get_mut(len..len + 2)
@@ -37,6 +39,7 @@ pub fn seal(out: &mut [u8], len: usize) -> Result<usize, BusError> {
 }
 
 /// Checks an RTU frame's CRC and unit id and returns its PDU.
+#[inline]
 pub fn open_frame(unit: UnitId, frame: &[u8]) -> Result<&[u8], BusError> {
     if frame.len() < 4 {
         return Err(BusError::Frame("RTU frame too short"));
@@ -52,6 +55,7 @@ pub fn open_frame(unit: UnitId, frame: &[u8]) -> Result<&[u8], BusError> {
 
 /// The length of the RTU frame answering `request` whose second byte (the function code) is
 /// `second`, if it can be an answer at all. Every answer's length follows from the request alone.
+#[inline]
 fn answer_len(request: &Request<'_>, second: u8) -> Option<usize> {
     let function = request.function();
     if second == function | function::EXCEPTION_FLAG {
@@ -65,6 +69,7 @@ fn answer_len(request: &Request<'_>, second: u8) -> Option<usize> {
 
 /// Finds the answer to `request` from `unit` in `buf`, trying every offset so that leading
 /// garbage, corrupted frames and answers to other requests are skipped.
+#[inline]
 pub fn scan(unit: UnitId, request: &Request<'_>, buf: &[u8]) -> Scan {
     let mut rejected = None;
     let mut pending = None;
@@ -106,6 +111,7 @@ pub struct RtuFraming;
 impl Framing for RtuFraming {
     const MAX_ADU: usize = MAX_ADU;
 
+    #[inline]
     fn encode_request(
         &mut self,
         unit: UnitId,
@@ -115,10 +121,12 @@ impl Framing for RtuFraming {
         encode_request(unit, request, out)
     }
 
+    #[inline]
     fn scan(&self, unit: UnitId, request: &Request<'_>, buf: &[u8]) -> Scan {
         scan(unit, request, buf)
     }
 
+    #[inline]
     fn pdu<'a>(&self, frame: &'a [u8]) -> &'a [u8] {
         &frame[1..frame.len() - 2]
     }
@@ -162,6 +170,7 @@ impl Timing {
     pub const FIXED_ABOVE_BAUD: u32 = 19_200;
 
     /// Timing of a line with 8 data bits at `baud`, with the given parity and stop bits.
+    #[inline]
     pub fn new(baud: u32, parity: Parity, stop_bits: StopBits) -> Self {
         let bits =
             1 + 8 + u64::from(parity != Parity::None) + 1 + u64::from(stop_bits == StopBits::Two);

@@ -25,11 +25,13 @@ pub struct Header {
 impl Header {
     /// Parses the first [`HEADER_LEN`] bytes of `bytes`. Protocol ids other than 0 and lengths no
     /// PDU can have are rejected: after either the stream is out of step.
+    #[inline]
     pub fn parse(bytes: &[u8]) -> Result<Self, BusError> {
         parse_header(bytes).map_err(BusError::Frame)
     }
 
     /// Writes the header for a PDU of `pdu_len` bytes into `out`.
+    #[inline]
     pub fn write(&self, out: &mut [u8]) -> Result<(), BusError> {
         let head = out.get_mut(..HEADER_LEN).ok_or(BusError::Unsupported(
             "output buffer too small for the header",
@@ -42,6 +44,7 @@ impl Header {
     }
 }
 
+#[inline]
 fn parse_header(bytes: &[u8]) -> Result<Header, &'static str> {
     let head = bytes.get(..HEADER_LEN).ok_or("MBAP header too short")?;
     if head[2..4] != [0, 0] {
@@ -59,6 +62,7 @@ fn parse_header(bytes: &[u8]) -> Result<Header, &'static str> {
 }
 
 /// Encodes `request` as an MBAP ADU into `out`; returns its length.
+#[inline]
 pub fn encode_request(
     transaction: u16,
     unit: UnitId,
@@ -79,6 +83,7 @@ pub fn encode_request(
 }
 
 /// Checks an MBAP frame's header against the request's transaction and unit; returns the PDU.
+#[inline]
 pub fn open_frame(transaction: u16, unit: UnitId, frame: &[u8]) -> Result<&[u8], BusError> {
     let header = Header::parse(frame)?;
     if frame.len() != HEADER_LEN + header.pdu_len {
@@ -96,6 +101,7 @@ pub fn open_frame(transaction: u16, unit: UnitId, frame: &[u8]) -> Result<&[u8],
 /// Finds the answer to transaction `transaction` in `buf`, which starts at a frame boundary.
 /// Frames of other transactions (late answers to earlier requests) are skipped; a header that
 /// cannot be valid means the stream lost step, and everything buffered is discarded.
+#[inline]
 pub fn scan(transaction: u16, unit: UnitId, request: &Request<'_>, buf: &[u8]) -> Scan {
     let mut start = 0;
     let mut rejected = None;
@@ -140,12 +146,14 @@ pub struct TcpFraming {
 
 impl TcpFraming {
     /// Framing whose first request has transaction id `first`.
+    #[inline]
     pub fn new(first: u16) -> Self {
         Self {
             transaction: first.wrapping_sub(1),
         }
     }
     /// The transaction id of the request last encoded.
+    #[inline]
     pub fn transaction(&self) -> u16 {
         self.transaction
     }
@@ -154,6 +162,7 @@ impl TcpFraming {
 impl Framing for TcpFraming {
     const MAX_ADU: usize = MAX_ADU;
 
+    #[inline]
     fn encode_request(
         &mut self,
         unit: UnitId,
@@ -164,10 +173,12 @@ impl Framing for TcpFraming {
         encode_request(self.transaction, unit, request, out)
     }
 
+    #[inline]
     fn scan(&self, unit: UnitId, request: &Request<'_>, buf: &[u8]) -> Scan {
         scan(self.transaction, unit, request, buf)
     }
 
+    #[inline]
     fn pdu<'a>(&self, frame: &'a [u8]) -> &'a [u8] {
         &frame[HEADER_LEN..]
     }
