@@ -4,7 +4,7 @@ use core::marker::PhantomData;
 
 use crate::error::{BusError, Error, ValueError};
 use crate::link::{Link, MAX_VALUE_BYTES};
-use crate::parameter::{Parameter, Readable, Writable};
+use crate::parameter::{Parameter, Readable, ValueOf, Writable};
 use crate::read_set::ReadSet;
 use crate::value::WireValue;
 use crate::VariantId;
@@ -139,11 +139,11 @@ impl<L: Link, P: Parameter> Accessor<'_, L, P> {
 
     /// Writes a value in engineering units.
     #[inline]
-    pub fn write(self, value: P::Value) -> Result<(), Error>
+    pub fn write(self, value: impl ValueOf<P>) -> Result<(), Error>
     where
         P: Writable<L::Protocol>,
     {
-        self.device.write::<P>(value)
+        self.device.write::<P>(value.into_value())
     }
 
     /// Writes a raw value.

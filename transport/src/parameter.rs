@@ -73,3 +73,18 @@ pub trait OpenEnum: Copy + 'static {
     /// The name of the value in the description, or `None` if the drive sent an undocumented one.
     fn name(self) -> Option<&'static str>;
 }
+
+/// A value that can be written to parameter `P`: exactly its engineering type `P::Value`.
+///
+/// Generated code implements it once per parameter (a blanket impl would turn a wrong unit into
+/// an unreadable type-projection error); passing volts where rpm are expected then reads as an
+/// error about the parameter.
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` is not a value of the parameter `{P}`",
+    label = "not the parameter's value type",
+    note = "the value type of a parameter is its unit newtype, enum, flags or raw integer type; see its docs"
+)]
+pub trait ValueOf<P: Parameter> {
+    /// The value as the parameter's engineering type.
+    fn into_value(self) -> P::Value;
+}

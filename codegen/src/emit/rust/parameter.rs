@@ -203,6 +203,8 @@ fn capability(
         }
     });
     quote! {
+        // Listing the other parameters that do have the capability would drown the message.
+        #[diagnostic::do_not_recommend]
         impl ::drivebus::#trait_name<#protocol> for #name {
             #[inline]
             fn #address_fn(variant: ::drivebus::VariantId) -> Option<#address_type> {
@@ -285,6 +287,14 @@ pub fn emit(p: &Parameter, device: &Device) -> TokenStream {
                 #encode
             }
             #check
+        }
+
+        #[diagnostic::do_not_recommend]
+        impl ::drivebus::parameter::ValueOf<#name> for #value_type {
+            #[inline]
+            fn into_value(self) -> Self {
+                self
+            }
         }
 
         #( #capabilities )*

@@ -1,0 +1,8 @@
+use drivebus::memory::MemoryBus;
+use drivebus::modbus::UnitId;
+use lafert_smartris::Smartris;
+
+fn main() {
+    let mut drive = Smartris::modbus(MemoryBus::new(), UnitId(1));
+    let _ = drive.motor_temperature().modify(|t| t);
+}

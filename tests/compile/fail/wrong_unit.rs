@@ -1,0 +1,9 @@
+use drivebus::memory::MemoryBus;
+use drivebus::modbus::UnitId;
+use drivebus::units::Volts;
+use lafert_smartris::Smartris;
+
+fn main() {
+    let mut drive = Smartris::modbus(MemoryBus::new(), UnitId(1));
+    let _ = drive.speed_setpoint().write(Volts(1500.0));
+}

@@ -1,0 +1,5 @@
+use lafert_smartris::types::BaudRate;
+
+fn main() {
+    let _ = BaudRate::VALUES[0].raw();
+}
