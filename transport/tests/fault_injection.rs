@@ -442,3 +442,50 @@ fn reads_are_retried_and_writes_are_not_unless_declared_idempotent() {
         assert_eq!(client.device().holding[0x42], 1500);
     }
 }
+
+#[test]
+fn broadcast_writes_do_not_wait_and_broadcast_reads_are_refused() {
+    let mut client = Client::new(FaultyDevice::new(Kind::Rtu), RtuFraming, config(0));
+    let started = Instant::now();
+    assert_eq!(client.write_register(UnitId(0), 5, 9), Ok(()));
+    assert!(
+        started.elapsed() < TIMEOUT,
+        "a broadcast has no answer to wait for"
+    );
+    assert_eq!(client.stream_mut().holding[5], 9);
+    let mut out = [0u16; 1];
+    assert!(matches!(
+        client.read_registers(UnitId(0), Table::Holding, 5, &mut out),
+        Err(BusError::Unsupported(_))
+    ));
+    // The (non-standard) answer the simulated device gave to the broadcast is not taken as the
+    // answer to the next request.
+    client.stream_mut().holding[5] = 10;
+    client
+        .read_registers(UNIT, Table::Holding, 5, &mut out)
+        .unwrap();
+    assert_eq!(out, [10]);
+}
+
+#[test]
+fn requests_keep_the_idle_gap() {
+    let gap = Duration::from_millis(25);
+    let config = ClientConfig {
+        idle_gap: gap,
+        ..config(0)
+    };
+    let mut client = Client::new(FaultyDevice::new(Kind::Rtu), RtuFraming, config);
+    let mut out = [0u16; 2];
+    let started = Instant::now();
+    client
+        .read_registers(UNIT, Table::Input, 0, &mut out)
+        .unwrap();
+    client
+        .read_registers(UNIT, Table::Input, 0, &mut out)
+        .unwrap();
+    // The second request waits `gap` after the first answer, which came after `started`.
+    assert!(
+        started.elapsed() >= gap,
+        "t3.5 / turnaround must pass before the next request"
+    );
+}
