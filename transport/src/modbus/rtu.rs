@@ -31,10 +31,11 @@ pub fn encode_request(
 /// Appends the CRC to the `len` bytes at the start of `out`; returns the frame length.
 #[inline]
 pub fn seal(out: &mut [u8], len: usize) -> Result<usize, BusError> {
+    if out.len() < len.saturating_add(2) {
+        return Err(BusError::Unsupported("output buffer too small for the CRC"));
+    }
     let crc = crc16(&out[..len]).to_le_bytes();
-    out.get_mut(len..len + 2)
-        .ok_or(BusError::Unsupported("output buffer too small for the CRC"))?
-        .copy_from_slice(&crc);
+    out[len..len + 2].copy_from_slice(&crc);
     Ok(len + 2)
 }
 
@@ -128,7 +129,7 @@ impl Framing for RtuFraming {
 
     #[inline]
     fn pdu<'a>(&self, frame: &'a [u8]) -> &'a [u8] {
-        &frame[1..frame.len() - 2]
+        frame.get(1..frame.len().saturating_sub(2)).unwrap_or(&[])
     }
 }
 
