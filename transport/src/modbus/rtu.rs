@@ -1,5 +1,11 @@
 //! Modbus RTU: framing with CRC-16, frame scanning that resynchronises after garbage, and the
 //! silent intervals t1.5 / t3.5 derived from the line settings.
+//!
+//! Frames are delimited by content, not by silence: the answer's length follows from the request,
+//! and a candidate is accepted only with a valid CRC, the right unit and a PDU that answers the
+//! request. A user-space client cannot observe a 750 µs gap inside a frame reliably (USB adapters
+//! deliver bytes in 1–16 ms batches), so t1.5 is informational; t3.5 is enforced as the least idle
+//! time before each request.
 
 use core::time::Duration;
 
