@@ -60,35 +60,100 @@ fn answer(tcp: bool, n: u16) -> Vec<u8> {
     out
 }
 
-fn drivebus_rtu(frame: &[u8], tx: &mut [u8; 256], out: &mut [u16]) {
-    let request = Request::ReadHoldingRegisters {
-        start: START,
-        count: out.len() as u16,
-    };
-    let len = rtu::encode_request(UNIT, &request, tx).unwrap();
-    black_box(&tx[..len]);
-    let Scan::Found { start, len } = rtu::scan(UNIT, &request, frame) else {
-        unreachable!()
-    };
-    match decode_response(&request, &frame[start + 1..start + len - 2]) {
-        Ok(Response::Registers(registers)) => registers.copy_to(out).unwrap(),
-        _ => unreachable!(),
-    }
+/// One codec workload: encode a 0x03 request for `n` registers, decode `frame` into `out`.
+/// Request parameters go through `black_box` so no implementation can fold its encoding away.
+struct Codec {
+    tcp: bool,
+    n: u16,
+    frame: Vec<u8>,
+    out: Vec<u16>,
+    tx: [u8; 260],
+    rmodbus_tx: Vec<u8>,
+    rmodbus_out: Vec<u16>,
 }
 
-fn drivebus_tcp(frame: &[u8], tx: &mut [u8; 260], out: &mut [u16]) {
-    let request = Request::ReadHoldingRegisters {
-        start: START,
-        count: out.len() as u16,
-    };
-    let len = mbap::encode_request(1, UNIT, &request, tx).unwrap();
-    black_box(&tx[..len]);
-    let Scan::Found { start, len } = mbap::scan(1, UNIT, &request, frame) else {
-        unreachable!()
-    };
-    match decode_response(&request, &frame[start + mbap::HEADER_LEN..start + len]) {
-        Ok(Response::Registers(registers)) => registers.copy_to(out).unwrap(),
-        _ => unreachable!(),
+type Op = fn(&mut Codec);
+
+/// The implementations compared, in report order.
+const CODECS: [(&str, Op); 3] = [
+    ("drivebus", Codec::drivebus),
+    ("floor", Codec::floor),
+    ("rmodbus", Codec::rmodbus),
+];
+
+impl Codec {
+    fn new(tcp: bool, n: u16) -> Self {
+        Self {
+            tcp,
+            n,
+            frame: answer(tcp, n),
+            out: vec![0; n as usize],
+            tx: [0; 260],
+            rmodbus_tx: Vec::with_capacity(300),
+            rmodbus_out: Vec::with_capacity(128),
+        }
+    }
+
+    fn drivebus(&mut self) {
+        let request = Request::ReadHoldingRegisters {
+            start: black_box(START),
+            count: black_box(self.n),
+        };
+        let unit = black_box(UNIT);
+        let frame = black_box(&self.frame[..]);
+        let (len, found, header) = if self.tcp {
+            let len = mbap::encode_request(1, unit, &request, &mut self.tx).unwrap();
+            (len, mbap::scan(1, unit, &request, frame), mbap::HEADER_LEN)
+        } else {
+            let len = rtu::encode_request(unit, &request, &mut self.tx).unwrap();
+            (len, rtu::scan(unit, &request, frame), 1)
+        };
+        black_box(&self.tx[..len]);
+        let Scan::Found { start, len } = found else {
+            unreachable!()
+        };
+        let trailer = if self.tcp { 0 } else { 2 };
+        match decode_response(&request, &frame[start + header..start + len - trailer]) {
+            Ok(Response::Registers(registers)) => registers.copy_to(&mut self.out).unwrap(),
+            _ => unreachable!(),
+        }
+    }
+
+    fn floor(&mut self) {
+        let (unit, start, n) = (black_box(UNIT.0), black_box(START), black_box(self.n));
+        let frame = black_box(&self.frame[..]);
+        let tx = &mut self.tx;
+        if self.tcp {
+            let tx: &mut [u8; 12] = (&mut tx[..12]).try_into().unwrap();
+            black_box(floor::tcp_encode(1, unit, start, n, tx));
+            floor::tcp_decode(1, unit, frame, &mut self.out).unwrap()
+        } else {
+            let tx: &mut [u8; 8] = (&mut tx[..8]).try_into().unwrap();
+            black_box(floor::rtu_encode(unit, start, n, tx));
+            floor::rtu_decode(unit, frame, &mut self.out).unwrap()
+        }
+    }
+
+    fn rmodbus(&mut self) {
+        let mut request = if self.tcp {
+            rmodbus::client::ModbusRequest::new_tcp_udp(black_box(UNIT.0), 1)
+        } else {
+            rmodbus::client::ModbusRequest::new(black_box(UNIT.0), rmodbus::ModbusProto::Rtu)
+        };
+        self.rmodbus_tx.clear();
+        request
+            .generate_get_holdings(black_box(START), black_box(self.n), &mut self.rmodbus_tx)
+            .unwrap();
+        black_box(&self.rmodbus_tx);
+        self.rmodbus_out.clear();
+        request
+            .parse_u16(black_box(&self.frame), &mut self.rmodbus_out)
+            .unwrap();
+    }
+
+    fn check(&self) {
+        assert_eq!(self.out, values(self.n));
+        assert!(self.rmodbus_out.is_empty() || self.rmodbus_out == values(self.n));
     }
 }
 
@@ -100,51 +165,42 @@ fn codec(c: &mut Criterion) {
             .measurement_time(Duration::from_secs(2))
             .sample_size(60);
         for n in SIZES {
-            let frame = answer(tcp, n);
-            let mut out = vec![0u16; n as usize];
-            group.bench_with_input(BenchmarkId::new("drivebus", n), &frame, |b, frame| {
-                let (mut rtu_tx, mut tcp_tx) = ([0u8; 256], [0u8; 260]);
-                b.iter(|| {
-                    if tcp {
-                        drivebus_tcp(black_box(frame), &mut tcp_tx, &mut out)
-                    } else {
-                        drivebus_rtu(black_box(frame), &mut rtu_tx, &mut out)
-                    }
-                })
-            });
-            assert_eq!(out, values(n));
-            group.bench_with_input(BenchmarkId::new("floor", n), &frame, |b, frame| {
-                let (mut rtu_tx, mut tcp_tx) = ([0u8; 8], [0u8; 12]);
-                b.iter(|| {
-                    if tcp {
-                        black_box(floor::tcp_encode(1, UNIT.0, START, n, &mut tcp_tx));
-                        floor::tcp_decode(1, UNIT.0, black_box(frame), &mut out).unwrap()
-                    } else {
-                        black_box(floor::rtu_encode(UNIT.0, START, n, &mut rtu_tx));
-                        floor::rtu_decode(UNIT.0, black_box(frame), &mut out).unwrap()
-                    }
-                })
-            });
-            assert_eq!(out, values(n));
-            group.bench_with_input(BenchmarkId::new("rmodbus", n), &frame, |b, frame| {
-                let (mut tx, mut regs) = (Vec::with_capacity(300), Vec::with_capacity(128));
-                b.iter(|| {
-                    let mut request = if tcp {
-                        rmodbus::client::ModbusRequest::new_tcp_udp(UNIT.0, 1)
-                    } else {
-                        rmodbus::client::ModbusRequest::new(UNIT.0, rmodbus::ModbusProto::Rtu)
-                    };
-                    tx.clear();
-                    request.generate_get_holdings(START, n, &mut tx).unwrap();
-                    black_box(&tx);
-                    regs.clear();
-                    request.parse_u16(black_box(frame), &mut regs).unwrap();
-                });
-                assert_eq!(regs, values(n));
-            });
+            let mut codec = Codec::new(tcp, n);
+            for (name, op) in CODECS {
+                group.bench_function(BenchmarkId::new(name, n), |b| b.iter(|| op(&mut codec)));
+                codec.check();
+            }
         }
         group.finish();
     }
+}
+
+/// Interleaved minima: each round times every implementation back to back, and the fastest
+/// round counts. Load from other processes slows rounds down but cannot make one faster, so the
+/// minima compare the implementations under the same conditions.
+fn interleaved() -> BTreeMap<(bool, u16), [f64; 3]> {
+    const ROUNDS: usize = 40;
+    let mut minima = BTreeMap::new();
+    for tcp in [false, true] {
+        for n in SIZES {
+            let mut codec = Codec::new(tcp, n);
+            let iters = if n > 100 { 1_000 } else { 10_000 };
+            let mut best = [f64::MAX; 3];
+            for _ in 0..ROUNDS {
+                for (slot, (_, op)) in best.iter_mut().zip(CODECS) {
+                    let started = Instant::now();
+                    for _ in 0..iters {
+                        op(&mut codec);
+                    }
+                    let ns = started.elapsed().as_nanos() as f64 / iters as f64;
+                    *slot = slot.min(ns);
+                }
+            }
+            codec.check();
+            minima.insert((tcp, n), best);
+        }
+    }
+    minima
 }
 
 /// An in-memory peer answering every request with a canned frame (transaction id patched).
@@ -461,7 +517,12 @@ fn table(dir: &Path, group: &str, functions: &[&str], baseline: &str) -> Option<
     Some(s)
 }
 
-fn report(dir: &Path, wire: &str, loopback: [(Duration, Duration); 2]) -> Option<String> {
+fn report(
+    dir: &Path,
+    minima: &BTreeMap<(bool, u16), [f64; 3]>,
+    wire: &str,
+    loopback: [(Duration, Duration); 2],
+) -> Option<String> {
     let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
     let load = load.split_whitespace().next().unwrap_or("?");
     let mut s = String::from("## Modbus\n\n");
@@ -480,10 +541,44 @@ fn report(dir: &Path, wire: &str, loopback: [(Duration, Duration); 2]) -> Option
           table (`benchmarks/src/lib.rs`), the target being drivebus ≤ 1.2× floor; `rmodbus` = \
           `generate_get_holdings` + `parse_u16` into reused `Vec`s.\n\n";
     let codec = ["drivebus", "floor", "rmodbus"];
-    s += "RTU:\n\n";
+    s += "RTU, criterion medians:\n\n";
     s += &table(dir, "codec_rtu", &codec, "floor")?;
-    s += "\nTCP (MBAP):\n\n";
+    s += "\nTCP (MBAP), criterion medians:\n\n";
     s += &table(dir, "codec_tcp", &codec, "floor")?;
+    s += "\nInterleaved minima (each round runs all three back to back; the fastest of 40 rounds \
+          counts, which cancels load from other processes — the fairest ratio on a shared \
+          machine):\n\n\
+          | framing | registers | drivebus ns/op | floor ns/op | rmodbus ns/op | drivebus / floor | rmodbus / floor |\n\
+          | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+    let framing = |tcp: bool| if tcp { "TCP" } else { "RTU" };
+    for ((tcp, n), [ours, floor, rmodbus]) in minima {
+        writeln!(
+            s,
+            "| {} | {n} | {ours:.1} | {floor:.1} | {rmodbus:.1} | {:.2}× | {:.2}× |",
+            framing(*tcp),
+            ours / floor,
+            rmodbus / floor
+        )
+        .unwrap();
+    }
+    let met = minima
+        .values()
+        .filter(|[ours, floor, _]| ours / floor <= 1.2)
+        .count();
+    let ((tcp, n), [ours, floor, _]) = minima
+        .iter()
+        .max_by(|a, b| (a.1[0] - a.1[1]).total_cmp(&(b.1[0] - b.1[1])))?;
+    write!(
+        s,
+        "\nTarget drivebus ≤ 1.2× floor: met in {met} of {} cases (interleaved minima). The \
+         largest gap is {:.1} ns ({} framing, {n} registers): the fixed cost of the general \
+         request type, typed errors and the resynchronising frame scan, against a floor that \
+         only handles this one well-formed answer.\n",
+        minima.len(),
+        ours - floor,
+        framing(*tcp)
+    )
+    .unwrap();
     s += "\n### Client call over an in-memory peer\n\n\
           tokio-modbus keeps its codec private, so it is compared through whole client calls: \
           `read_registers` (drivebus, blocking) versus `read_holding_registers().await` \
@@ -541,6 +636,7 @@ fn main() {
     codec(&mut c);
     client(&mut c);
     c.final_summary();
+    let minima = interleaved();
     let wire = wire_efficiency();
     println!("{wire}");
     let loopback = loopback();
@@ -548,7 +644,7 @@ fn main() {
         "loopback µs/request (cpu, wall): drivebus {:?}, tokio-modbus {:?}",
         loopback[0], loopback[1]
     );
-    match report(&dir, &wire, loopback) {
+    match report(&dir, &minima, &wire, loopback) {
         Some(section) => {
             let doc = root.join("docs/benchmarks.md");
             write_section(&doc, &section);

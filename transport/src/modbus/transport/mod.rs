@@ -12,6 +12,42 @@
 //! garbage, corrupted frames and late answers to earlier requests — or the timeout passes. Failed
 //! requests are repeated only as the [`RetryPolicy`] allows. Buffers live in the client: the
 //! request path does not allocate.
+//!
+//! ```no_run
+//! use std::time::Duration;
+//! use drivebus::modbus::retry::{Idempotency, RetryPolicy};
+//! use drivebus::modbus::rtu::Parity;
+//! use drivebus::modbus::transport::{
+//!     ModbusTcpClient, RtuOverTcpClient, SerialConfig, SerialRtuClient, TcpConfig,
+//! };
+//! use drivebus::modbus::{ModbusLimits, ModbusLink, RegisterBus, Table, UnitId};
+//!
+//! # fn main() -> Result<(), drivebus::BusError> {
+//! // RTU on a serial line: 19200 Bd, odd parity; never repeat writes to "store" or "reset".
+//! let config = SerialConfig {
+//!     parity: Parity::Odd,
+//!     turnaround: Duration::from_millis(5),
+//!     retry: RetryPolicy {
+//!         retries: 2,
+//!         writes_idempotent: true,
+//!         non_idempotent: &[0x0000..=0x0000, 0xA5A5..=0xA5A5],
+//!     },
+//!     ..SerialConfig::new(19_200)
+//! };
+//! let mut rtu = SerialRtuClient::open("/dev/ttyUSB0", &config)?;
+//! let mut status = [0u16; 17];
+//! rtu.read_registers(UnitId(1), Table::Input, 0x0060, &mut status)?;
+//! rtu.write_register_as(UnitId(1), 0x0000, 1, Idempotency::NonIdempotent)?;
+//!
+//! // Modbus TCP, and RTU frames through a serial-to-Ethernet gateway.
+//! let tcp = ModbusTcpClient::connect("192.168.0.10:502", &TcpConfig::default())?;
+//! let _gateway = RtuOverTcpClient::connect("192.168.0.20:4001", &TcpConfig::default())?;
+//!
+//! // What generated drive crates use: a Link whose batch reads go through the planner.
+//! let _link = ModbusLink::new(tcp, UnitId(1), ModbusLimits::SPEC);
+//! # Ok(())
+//! # }
+//! ```
 
 mod rtu_over_tcp;
 mod serial;
