@@ -489,3 +489,46 @@ fn requests_keep_the_idle_gap() {
         "t3.5 / turnaround must pass before the next request"
     );
 }
+
+/// A stream whose "device" answers every request with the same arbitrary bytes.
+struct Noise {
+    bytes: Vec<u8>,
+    pending: Option<usize>,
+}
+
+impl ByteStream for Noise {
+    fn send(&mut self, _: &[u8]) -> Result<(), BusError> {
+        self.pending = Some(0);
+        Ok(())
+    }
+    fn receive(&mut self, buf: &mut [u8], _deadline: Instant) -> Result<usize, BusError> {
+        let Some(at) = self.pending else { return Ok(0) };
+        let n = (self.bytes.len() - at).min(buf.len()).min(7);
+        buf[..n].copy_from_slice(&self.bytes[at..at + n]);
+        self.pending = (at + n < self.bytes.len()).then_some(at + n);
+        Ok(n)
+    }
+    fn discard_input(&mut self) -> Result<(), BusError> {
+        self.pending = None;
+        Ok(())
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
+
+    #[test]
+    fn arbitrary_answers_end_in_typed_errors(bytes in proptest::collection::vec(any::<u8>(), 0..700), tcp in any::<bool>()) {
+        let stream = Noise { bytes, pending: None };
+        let config = ClientConfig { timeout: Duration::ZERO, ..config(1) };
+        let mut out = [0u16; 3];
+        let result = if tcp {
+            Client::new(stream, TcpFraming::default(), config).read_registers(UNIT, Table::Input, 0, &mut out)
+        } else {
+            Client::new(stream, RtuFraming, config).read_registers(UNIT, Table::Input, 0, &mut out)
+        };
+        // Noise forming a valid answer (CRC, unit, function, byte count, transaction) is beyond
+        // proptest's reach; anything else must be refused with a typed error.
+        prop_assert!(matches!(result, Err(ref e) if typed(e)), "{:?}", result);
+    }
+}
