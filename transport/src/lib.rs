@@ -13,7 +13,8 @@
 #![no_std]
 #![deny(missing_docs)]
 
-#[cfg(any(test, feature = "std"))]
+// Tests use std (proptest, Vec) even when the crate is built without it.
+#[cfg(any(feature = "std", test))]
 extern crate std;
 
 pub mod canopen;

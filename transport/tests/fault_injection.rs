@@ -442,3 +442,93 @@ fn reads_are_retried_and_writes_are_not_unless_declared_idempotent() {
         assert_eq!(client.device().holding[0x42], 1500);
     }
 }
+
+#[test]
+fn broadcast_writes_do_not_wait_and_broadcast_reads_are_refused() {
+    let mut client = Client::new(FaultyDevice::new(Kind::Rtu), RtuFraming, config(0));
+    let started = Instant::now();
+    assert_eq!(client.write_register(UnitId(0), 5, 9), Ok(()));
+    assert!(
+        started.elapsed() < TIMEOUT,
+        "a broadcast has no answer to wait for"
+    );
+    assert_eq!(client.stream_mut().holding[5], 9);
+    let mut out = [0u16; 1];
+    assert!(matches!(
+        client.read_registers(UnitId(0), Table::Holding, 5, &mut out),
+        Err(BusError::Unsupported(_))
+    ));
+    // The (non-standard) answer the simulated device gave to the broadcast is not taken as the
+    // answer to the next request.
+    client.stream_mut().holding[5] = 10;
+    client
+        .read_registers(UNIT, Table::Holding, 5, &mut out)
+        .unwrap();
+    assert_eq!(out, [10]);
+}
+
+#[test]
+fn requests_keep_the_idle_gap() {
+    let gap = Duration::from_millis(25);
+    let config = ClientConfig {
+        idle_gap: gap,
+        ..config(0)
+    };
+    let mut client = Client::new(FaultyDevice::new(Kind::Rtu), RtuFraming, config);
+    let mut out = [0u16; 2];
+    let started = Instant::now();
+    client
+        .read_registers(UNIT, Table::Input, 0, &mut out)
+        .unwrap();
+    client
+        .read_registers(UNIT, Table::Input, 0, &mut out)
+        .unwrap();
+    // The second request waits `gap` after the first answer, which came after `started`.
+    assert!(
+        started.elapsed() >= gap,
+        "t3.5 / turnaround must pass before the next request"
+    );
+}
+
+/// A stream whose "device" answers every request with the same arbitrary bytes.
+struct Noise {
+    bytes: Vec<u8>,
+    pending: Option<usize>,
+}
+
+impl ByteStream for Noise {
+    fn send(&mut self, _: &[u8]) -> Result<(), BusError> {
+        self.pending = Some(0);
+        Ok(())
+    }
+    fn receive(&mut self, buf: &mut [u8], _deadline: Instant) -> Result<usize, BusError> {
+        let Some(at) = self.pending else { return Ok(0) };
+        let n = (self.bytes.len() - at).min(buf.len()).min(7);
+        buf[..n].copy_from_slice(&self.bytes[at..at + n]);
+        self.pending = (at + n < self.bytes.len()).then_some(at + n);
+        Ok(n)
+    }
+    fn discard_input(&mut self) -> Result<(), BusError> {
+        self.pending = None;
+        Ok(())
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
+
+    #[test]
+    fn arbitrary_answers_end_in_typed_errors(bytes in proptest::collection::vec(any::<u8>(), 0..700), tcp in any::<bool>()) {
+        let stream = Noise { bytes, pending: None };
+        let config = ClientConfig { timeout: Duration::ZERO, ..config(1) };
+        let mut out = [0u16; 3];
+        let result = if tcp {
+            Client::new(stream, TcpFraming::default(), config).read_registers(UNIT, Table::Input, 0, &mut out)
+        } else {
+            Client::new(stream, RtuFraming, config).read_registers(UNIT, Table::Input, 0, &mut out)
+        };
+        // Noise forming a valid answer (CRC, unit, function, byte count, transaction) is beyond
+        // proptest's reach; anything else must be refused with a typed error.
+        prop_assert!(matches!(result, Err(ref e) if typed(e)), "{:?}", result);
+    }
+}

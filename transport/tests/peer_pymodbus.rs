@@ -92,8 +92,20 @@ fn tcp_server(mode: &str) -> (Process, String) {
     (process, format!("127.0.0.1:{port}"))
 }
 
-/// A socat pty pair; returns the process and the two link paths.
-fn pty_pair() -> (Process, PathBuf, PathBuf) {
+/// A socat pty pair: the process and the directory holding its links, both removed when dropped.
+struct PtyPair {
+    _socat: Process,
+    dir: PathBuf,
+}
+
+impl Drop for PtyPair {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.dir);
+    }
+}
+
+/// A socat pty pair; returns its guard and the two link paths.
+fn pty_pair() -> (PtyPair, PathBuf, PathBuf) {
     static NEXT: AtomicUsize = AtomicUsize::new(0);
     let dir = std::env::temp_dir().join(format!(
         "drivegen-pty-{}-{}",
@@ -108,9 +120,12 @@ fn pty_pair() -> (Process, PathBuf, PathBuf) {
         .stdin(Stdio::null())
         .spawn()
         .unwrap_or_else(|e| panic!("cannot start socat ({e}); {SETUP_HINT}"));
-    let process = Process {
-        child,
-        _stdin: None,
+    let pair = PtyPair {
+        _socat: Process {
+            child,
+            _stdin: None,
+        },
+        dir,
     };
     // socat creates the links asynchronously.
     let deadline = Instant::now() + Duration::from_secs(5);
@@ -121,7 +136,7 @@ fn pty_pair() -> (Process, PathBuf, PathBuf) {
         );
         std::thread::sleep(Duration::from_millis(10));
     }
-    (process, a, b)
+    (pair, a, b)
 }
 
 fn tcp_config() -> TcpConfig {

@@ -4,11 +4,11 @@
 //!
 //! * [`pdu`] — request encoding and response decoding for FC 0x01–0x06, 0x0F and 0x10; a response
 //!   is checked against the request it answers. [`exception`] types exception responses.
-//! * [`rtu`] (feature `modbus-core`) — RTU framing: CRC-16/MODBUS ([`crc`]), frame scanning that
+//! * `rtu` (feature `modbus-core`) — RTU framing: CRC-16/MODBUS (`crc`), frame scanning that
 //!   resynchronises after garbage, and t1.5/t3.5 timing from the baud rate. [`tcp`] — MBAP framing.
 //! * [`planner`] — the fewest read requests covering a set of values within [`ModbusLimits`].
 //! * [`retry`] — which requests may be repeated after a failure, and how often.
-//! * [`transport`] (feature `modbus`) — blocking clients over a serial port, Modbus TCP and
+//! * `transport` (feature `modbus`) — blocking clients over a serial port, Modbus TCP and
 //!   RTU-over-TCP, all implementing [`RegisterBus`] and [`BitBus`].
 //!
 //! [`ModbusLink`] binds a [`RegisterBus`] and a unit id into a [`Link`](crate::Link): it reads and

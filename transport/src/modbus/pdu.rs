@@ -422,6 +422,24 @@ fn be16(bytes: &[u8], at: usize) -> u16 {
 /// [`BusError::ModbusException`].
 #[inline]
 pub fn decode_response<'a>(request: &Request<'_>, pdu: &'a [u8]) -> Result<Response<'a>, BusError> {
+    // Fast path, small enough to inline: a well-formed answer to a register read.
+    if let Request::ReadHoldingRegisters { count, .. } | Request::ReadInputRegisters { count, .. } =
+        *request
+    {
+        let bytes = 2 * count as usize;
+        if let [function, byte_count, data @ ..] = pdu {
+            if *function == request.function()
+                && *byte_count as usize == bytes
+                && data.len() == bytes
+            {
+                return Ok(Response::Registers(Registers { bytes: data }));
+            }
+        }
+    }
+    decode_any_response(request, pdu)
+}
+
+fn decode_any_response<'a>(request: &Request<'_>, pdu: &'a [u8]) -> Result<Response<'a>, BusError> {
     let function = request.function();
     let (&got, body) = pdu.split_first().ok_or(frame_error("empty response PDU"))?;
     if got == function | function::EXCEPTION_FLAG {

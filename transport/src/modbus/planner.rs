@@ -123,7 +123,7 @@ pub fn next_read(
 }
 
 /// The whole plan for `items`: every item lies inside one of the returned reads.
-#[cfg(feature = "std")]
+#[cfg(any(feature = "std", test))]
 pub fn plan(
     limits: &ModbusLimits,
     items: &[ModbusAddress],

@@ -21,7 +21,7 @@ pub enum Idempotency {
 }
 
 /// How a client retries failed requests.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct RetryPolicy {
     /// Further attempts after a failed idempotent request (0: every request is sent once).
     pub retries: u8,

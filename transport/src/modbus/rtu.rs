@@ -1,5 +1,11 @@
 //! Modbus RTU: framing with CRC-16, frame scanning that resynchronises after garbage, and the
 //! silent intervals t1.5 / t3.5 derived from the line settings.
+//!
+//! Frames are delimited by content, not by silence: the answer's length follows from the request,
+//! and a candidate is accepted only with a valid CRC, the right unit and a PDU that answers the
+//! request. A user-space client cannot observe a 750 µs gap inside a frame reliably (USB adapters
+//! deliver bytes in 1–16 ms batches), so t1.5 is informational; t3.5 is enforced as the least idle
+//! time before each request.
 
 use core::time::Duration;
 
@@ -31,10 +37,11 @@ pub fn encode_request(
 /// Appends the CRC to the `len` bytes at the start of `out`; returns the frame length.
 #[inline]
 pub fn seal(out: &mut [u8], len: usize) -> Result<usize, BusError> {
+    if out.len() < len.saturating_add(2) {
+        return Err(BusError::Unsupported("output buffer too small for the CRC"));
+    }
     let crc = crc16(&out[..len]).to_le_bytes();
-    out.get_mut(len..len + 2)
-        .ok_or(BusError::Unsupported("output buffer too small for the CRC"))?
-        .copy_from_slice(&crc);
+    out[len..len + 2].copy_from_slice(&crc);
     Ok(len + 2)
 }
 
@@ -128,7 +135,7 @@ impl Framing for RtuFraming {
 
     #[inline]
     fn pdu<'a>(&self, frame: &'a [u8]) -> &'a [u8] {
-        &frame[1..frame.len() - 2]
+        frame.get(1..frame.len().saturating_sub(2)).unwrap_or(&[])
     }
 }
 

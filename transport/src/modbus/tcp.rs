@@ -33,6 +33,9 @@ impl Header {
     /// Writes the header for a PDU of `pdu_len` bytes into `out`.
     #[inline]
     pub fn write(&self, out: &mut [u8]) -> Result<(), BusError> {
+        if self.pdu_len > MAX_PDU {
+            return Err(BusError::Unsupported("PDU longer than 253 bytes"));
+        }
         let head = out.get_mut(..HEADER_LEN).ok_or(BusError::Unsupported(
             "output buffer too small for the header",
         ))?;
@@ -180,7 +183,7 @@ impl Framing for TcpFraming {
 
     #[inline]
     fn pdu<'a>(&self, frame: &'a [u8]) -> &'a [u8] {
-        &frame[HEADER_LEN..]
+        frame.get(HEADER_LEN..).unwrap_or(&[])
     }
 }
 

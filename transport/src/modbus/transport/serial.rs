@@ -52,7 +52,7 @@ impl SerialConfig {
     pub fn client_config(&self) -> ClientConfig {
         ClientConfig {
             timeout: self.timeout,
-            retry: self.retry.clone(),
+            retry: self.retry,
             idle_gap: self.timing().t3_5.max(self.turnaround),
         }
     }

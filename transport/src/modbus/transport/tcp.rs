@@ -38,7 +38,7 @@ impl TcpConfig {
     pub fn client_config(&self) -> ClientConfig {
         ClientConfig {
             timeout: self.timeout,
-            retry: self.retry.clone(),
+            retry: self.retry,
             idle_gap: self.turnaround,
         }
     }
