@@ -1,0 +1,180 @@
+//! The sans-I/O Modbus server: a request PDU in, a response PDU out.
+
+use drivebus::modbus::pdu::{self, ServerRequest, MAX_PDU};
+use drivebus::modbus::Table;
+use drivebus::BusError;
+use drivegen::ir::{Device, ModbusCaps};
+
+use super::map::{self, Cell, RegisterMap};
+use crate::drive::Drive;
+use crate::refusal::Refusal;
+
+/// Exception code of an unsupported function.
+const ILLEGAL_FUNCTION: u8 = 0x01;
+/// Exception code of a malformed request or a count beyond the device's limits.
+const ILLEGAL_DATA_VALUE: u8 = 0x03;
+
+/// Answers Modbus requests for one drive.
+#[derive(Debug, Clone)]
+pub struct ModbusServer {
+    map: RegisterMap,
+    caps: Option<ModbusCaps>,
+}
+
+/// Why a request was answered with an exception.
+type Exception = u8;
+
+impl ModbusServer {
+    /// A server for `device` in `variant` (`None`: the default configuration).
+    pub fn new(device: &Device, variant: Option<&str>) -> Self {
+        Self {
+            map: RegisterMap::new(device, variant),
+            caps: device.modbus.clone(),
+        }
+    }
+
+    /// Answers the request `request` (a PDU) into `out` (at least [`MAX_PDU`] bytes); returns
+    /// the length of the response PDU.
+    pub fn handle(&self, drive: &mut Drive, request: &[u8], out: &mut [u8]) -> usize {
+        let function = request.first().copied().unwrap_or(0);
+        let answer = self.answer(drive, request, out);
+        let result = match answer {
+            Ok(len) => Ok(len),
+            Err(code) => pdu::encode_exception(function, code, out),
+        };
+        result.unwrap_or(0)
+    }
+
+    fn answer(
+        &self,
+        drive: &mut Drive,
+        request: &[u8],
+        out: &mut [u8],
+    ) -> Result<usize, Exception> {
+        let function = request.first().copied().unwrap_or(0);
+        if !self.supports(function) {
+            return Err(ILLEGAL_FUNCTION);
+        }
+        let decoded = pdu::decode_request(request).map_err(|e| match e {
+            BusError::Unsupported(_) => ILLEGAL_FUNCTION,
+            _ => ILLEGAL_DATA_VALUE,
+        })?;
+        match decoded {
+            ServerRequest::Read {
+                function,
+                start,
+                count,
+            } => {
+                let table = match function {
+                    pdu::function::READ_HOLDING_REGISTERS => Table::Holding,
+                    pdu::function::READ_INPUT_REGISTERS => Table::Input,
+                    _ => return Err(self.exception(Refusal::NoSuchAddress)),
+                };
+                let values = self.read(drive, table, start, count)?;
+                pdu::encode_registers_response(function, &values, out)
+                    .map_err(|_| ILLEGAL_DATA_VALUE)
+            }
+            ServerRequest::WriteSingleRegister { address, value } => {
+                self.write(drive, address, &[value])?;
+                pdu::encode_write_response(request, out).map_err(|_| ILLEGAL_DATA_VALUE)
+            }
+            ServerRequest::WriteMultipleRegisters { start, values } => {
+                let values: Vec<u16> = values.iter().collect();
+                if values.len() > usize::from(self.max_write()) {
+                    return Err(ILLEGAL_DATA_VALUE);
+                }
+                self.write(drive, start, &values)?;
+                pdu::encode_write_response(request, out).map_err(|_| ILLEGAL_DATA_VALUE)
+            }
+            ServerRequest::WriteSingleCoil { .. } | ServerRequest::WriteMultipleCoils { .. } => {
+                Err(self.exception(Refusal::NoSuchAddress))
+            }
+        }
+    }
+
+    fn supports(&self, function: u8) -> bool {
+        self.caps
+            .as_ref()
+            .map_or(function != 0 && function <= 0x10, |c| {
+                c.functions.contains(&function)
+            })
+    }
+
+    fn max_write(&self) -> u16 {
+        self.caps
+            .as_ref()
+            .map_or(pdu::MAX_WRITE_REGISTERS as u16, |c| c.max_write_registers)
+    }
+
+    fn exception(&self, refusal: Refusal) -> Exception {
+        refusal.modbus_exception(self.caps.as_ref())
+    }
+
+    fn read(
+        &self,
+        drive: &Drive,
+        table: Table,
+        start: u16,
+        count: u16,
+    ) -> Result<Vec<u16>, Exception> {
+        let max = self.caps.as_ref().map_or(125, |c| c.max_read_registers);
+        if count > max {
+            return Err(ILLEGAL_DATA_VALUE);
+        }
+        let gaps = self.caps.as_ref().is_some_and(|c| c.read_gaps);
+        let mut values = Vec::with_capacity(count as usize);
+        for address in (0..count).map(|i| start.wrapping_add(i)) {
+            let Some(cell) = self.map.cell(table, address) else {
+                if gaps {
+                    values.push(0);
+                    continue;
+                }
+                return Err(self.exception(Refusal::NoSuchAddress));
+            };
+            if !cell.access.read {
+                return Err(self.exception(Refusal::WriteOnly));
+            }
+            values.push(map::registers(drive.store(), cell)[(address - cell.first) as usize]);
+        }
+        Ok(values)
+    }
+
+    /// Writes `values` from `start`, parameter by parameter; every register is checked before
+    /// anything is stored.
+    fn write(&self, drive: &mut Drive, start: u16, values: &[u16]) -> Result<(), Exception> {
+        let mut writes: Vec<(Cell, Vec<u16>)> = Vec::new();
+        for (i, &value) in values.iter().enumerate() {
+            let address = start.wrapping_add(i as u16);
+            let cell = self
+                .map
+                .cell(Table::Holding, address)
+                .ok_or(self.exception(Refusal::NoSuchAddress))?;
+            if !cell.access.write {
+                return Err(self.exception(Refusal::ReadOnly));
+            }
+            if !writes.last().is_some_and(|(c, _)| c.id == cell.id) {
+                writes.push((cell, map::registers(drive.store(), cell)));
+            }
+            if let Some((_, regs)) = writes.last_mut() {
+                regs[(address - cell.first) as usize] = value;
+            }
+        }
+        let mut checked = Vec::with_capacity(writes.len());
+        for (cell, regs) in &writes {
+            let bytes =
+                map::parameter_bytes(drive.store(), *cell, regs).map_err(|r| self.exception(r))?;
+            drive
+                .store()
+                .check(cell.id, &bytes)
+                .map_err(|r| self.exception(r))?;
+            checked.push((cell.id, bytes));
+        }
+        for (id, bytes) in checked {
+            drive.write(id, &bytes).map_err(|r| self.exception(r))?;
+        }
+        Ok(())
+    }
+}
+
+/// Largest response PDU.
+pub const RESPONSE_CAPACITY: usize = MAX_PDU;
