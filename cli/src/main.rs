@@ -1,6 +1,14 @@
-//! The `drivegen` command-line tool.
+//! The `drivegen` command-line tool: validate and inspect descriptions, generate drive crates,
+//! simulate a drive, and read, write, watch or decode a drive's values by parameter name.
+#![deny(missing_docs)]
 
-use std::path::PathBuf;
+mod codec;
+mod commands;
+mod connect;
+mod error;
+mod suggest;
+mod table;
+
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
@@ -16,99 +24,38 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Validate a description and print diagnostics (exit code 1 on errors).
-    Check {
-        /// Description file, or a folder with a device.toml.
-        description: PathBuf,
-    },
-    /// Print the normalized device model.
-    Dump {
-        /// Description file, or a folder with a device.toml.
-        description: PathBuf,
-        /// Print JSON (the schema of docs/ir-json.md).
-        #[arg(long)]
-        json: bool,
-    },
-    /// Generate the Rust source of a drive crate into a folder.
-    Generate {
-        /// Description file, or a folder with a device.toml.
-        description: PathBuf,
-        /// Output folder; receives drive.rs.
-        #[arg(long)]
-        out: PathBuf,
-    },
+    Check(commands::check::Args),
+    /// Print the normalized device model (a table, or the IR JSON with --json).
+    Dump(commands::dump::Args),
+    /// Generate a standalone drive crate (Cargo.toml + src/lib.rs) into a folder.
+    Generate(commands::generate::Args),
+    /// Simulate the described drive on Modbus TCP, Modbus RTU or CANopen until interrupted.
+    Sim(commands::sim::Args),
+    /// Read parameters by name and print them in engineering units.
+    Read(commands::read::Args),
+    /// Write one parameter by name; the value is checked against the description first.
+    Write(commands::write::Args),
+    /// Poll parameters and show them live.
+    Watch(commands::watch::Args),
+    /// Decode a candump capture into named, typed values.
+    Decode(commands::decode::Args),
 }
 
 fn main() -> ExitCode {
-    match Cli::parse().command {
-        Command::Check { description } => check(&description),
-        Command::Dump { description, json } => dump(&description, json),
-        Command::Generate { description, out } => generate(description, out),
-    }
-}
-
-/// Checks a description, printing diagnostics to stderr; the device if valid.
-fn load(description: &std::path::Path) -> Option<drivegen::ir::Device> {
-    let checked = drivegen::check(description);
-    if !checked.diagnostics.is_empty() {
-        eprintln!("{}", checked.render());
-    }
-    checked.device
-}
-
-fn check(description: &std::path::Path) -> ExitCode {
-    match load(description) {
-        Some(device) => {
-            println!(
-                "{}: {} parameters, {} enums, {} flags types — ok",
-                device.device.name,
-                device.parameters.len(),
-                device.enums.len(),
-                device.flags.len()
-            );
-            ExitCode::SUCCESS
-        }
-        None => ExitCode::FAILURE,
-    }
-}
-
-fn dump(description: &std::path::Path, json: bool) -> ExitCode {
-    let Some(device) = load(description) else {
-        return ExitCode::FAILURE;
+    let result = match Cli::parse().command {
+        Command::Check(args) => commands::check::run(args),
+        Command::Dump(args) => commands::dump::run(args),
+        Command::Generate(args) => commands::generate::run(args),
+        Command::Sim(args) => commands::sim::run(args),
+        Command::Read(args) => commands::read::run(args),
+        Command::Write(args) => commands::write::run(args),
+        Command::Watch(args) => commands::watch::run(args),
+        Command::Decode(args) => commands::decode::run(args),
     };
-    if json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&device).expect("the IR serializes")
-        );
-    } else {
-        for p in &device.parameters {
-            println!(
-                "{:<32} {:<8} {}",
-                p.name,
-                p.data_type.name(),
-                p.unit.as_deref().unwrap_or("")
-            );
-        }
-    }
-    ExitCode::SUCCESS
-}
-
-fn generate(description: PathBuf, out: PathBuf) -> ExitCode {
-    if let Err(e) = std::fs::create_dir_all(&out) {
-        eprintln!("cannot create {}: {e}", out.display());
-        return ExitCode::FAILURE;
-    }
-    match drivegen::Builder::new(description)
-        .out_dir(&out)
-        .emit_rerun_if_changed(false)
-        .compile()
-    {
-        Ok(path) => {
-            println!("wrote {}", path.display());
-            ExitCode::SUCCESS
-        }
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("{e}");
+            eprintln!("error: {e}");
             ExitCode::FAILURE
         }
     }
