@@ -15,27 +15,28 @@ use crate::store::{ParamId, Store};
 /// Span a ramp time refers to when the description has no full-scale velocity value.
 const DEFAULT_FULL_SCALE: f64 = 3000.0;
 
-/// How the ramp is described.
+/// Lafert-style ramp: milliseconds from 0 to full scale.
 #[derive(Debug, Clone, Copy)]
-enum Ramp {
-    /// Milliseconds from 0 to full scale.
-    Times {
-        up: ParamId,
-        down: ParamId,
-        full_scale: Option<ParamId>,
-        enable: Option<ParamId>,
-    },
-    /// Speed units per second.
-    Rates { up: ParamId, down: ParamId },
-    /// No ramp.
-    None,
+struct RampTimes {
+    up: ParamId,
+    down: ParamId,
+    full_scale: Option<ParamId>,
+    enable: Option<ParamId>,
+}
+
+/// CiA 402 profile ramp: speed units per second.
+#[derive(Debug, Clone, Copy)]
+struct RampRates {
+    up: ParamId,
+    down: ParamId,
 }
 
 /// The motor model.
 #[derive(Debug)]
 pub struct Motor {
     actuals: Vec<ParamId>,
-    ramp: Ramp,
+    times: Option<RampTimes>,
+    rates: Option<RampRates>,
     speed: f64,
 }
 
@@ -50,64 +51,65 @@ impl Motor {
         if actuals.is_empty() {
             return None;
         }
-        let ramp = match (store.id("speed_ramp_up"), store.id("speed_ramp_down")) {
-            (Some(up), Some(down)) => Ramp::Times {
+        let times = store
+            .id("speed_ramp_up")
+            .zip(store.id("speed_ramp_down"))
+            .map(|(up, down)| RampTimes {
                 up,
                 down,
                 full_scale: store.id("full_scale_velocity"),
                 enable: store.id("ramp_enable"),
-            },
-            _ => match (object(store, 0x6083, 0), object(store, 0x6084, 0)) {
-                (Some(up), Some(down)) => Ramp::Rates { up, down },
-                _ => Ramp::None,
-            },
-        };
+            });
+        let rates = object(store, 0x6083, 0)
+            .zip(object(store, 0x6084, 0))
+            .map(|(up, down)| RampRates { up, down });
         Some(Self {
             actuals,
-            ramp,
+            times,
+            rates,
             speed: 0.0,
         })
     }
 
-    /// Speed change per second towards `target`; `None` = at once.
-    fn rate(&self, store: &Store, target: f64) -> Option<f64> {
+    /// Speed change per second towards `target` set in `setpoint`; `None` = at once. A CANopen
+    /// setpoint ramps with the profile rates, a Modbus one with the ramp times.
+    fn rate(&self, store: &Store, setpoint: ParamId, target: f64) -> Option<f64> {
         let speeding_up = target.abs() > self.speed.abs();
         let value = |id| store.int(id).unwrap_or(0) as f64;
-        match self.ramp {
-            Ramp::Times {
-                up,
-                down,
-                full_scale,
-                enable,
-            } => {
-                if enable.is_some_and(|id| value(id) == 0.0) {
-                    return None;
-                }
-                let ms = value(if speeding_up { up } else { down });
-                let span = full_scale
-                    .map(value)
-                    .filter(|v| *v > 0.0)
-                    .unwrap_or(DEFAULT_FULL_SCALE);
-                (ms > 0.0).then(|| span * 1000.0 / ms)
-            }
-            Ramp::Rates { up, down } => {
-                Some(value(if speeding_up { up } else { down })).filter(|r| *r > 0.0)
-            }
-            Ramp::None => None,
+        if store.parameter(setpoint).modbus.is_empty() {
+            let rates = self.rates?;
+            return Some(value(if speeding_up { rates.up } else { rates.down }))
+                .filter(|r| *r > 0.0);
         }
+        let times = self.times?;
+        if times.enable.is_some_and(|id| value(id) == 0.0) {
+            return None;
+        }
+        let ms = value(if speeding_up { times.up } else { times.down });
+        let span = times
+            .full_scale
+            .map(value)
+            .filter(|v| *v > 0.0)
+            .unwrap_or(DEFAULT_FULL_SCALE);
+        (ms > 0.0).then(|| span * 1000.0 / ms)
     }
 }
 
 impl Behaviour for Motor {
     fn tick(&mut self, store: &mut Store, shared: &mut Shared, dt: Duration) {
-        let target = match shared.motion {
-            Motion::Following(setpoint) => store.int(setpoint).unwrap_or(0) as f64,
+        let (setpoint, target) = match shared.motion {
+            Motion::Following(setpoint) => (setpoint, store.int(setpoint).unwrap_or(0) as f64),
             Motion::Disabled | Motion::QuickStop => {
                 self.speed = 0.0;
-                0.0
+                (0, 0.0)
             }
         };
-        self.speed = match self.rate(store, target) {
+        let rate = if target == self.speed {
+            None
+        } else {
+            self.rate(store, setpoint, target)
+        };
+        self.speed = match rate {
             Some(rate) => {
                 let step = rate * dt.as_secs_f64();
                 self.speed + (target - self.speed).clamp(-step, step)

@@ -113,9 +113,18 @@ impl Node {
 
     /// Runs the node on `bus` until the bus fails (e.g. the candump stream ends).
     pub fn run<B: CanBus>(&mut self, bus: &mut B) -> Result<(), BusError> {
+        self.run_while(bus, || true)
+    }
+
+    /// Runs the node on `bus` while `keep_running` says so (checked every 10 ms).
+    pub fn run_while<B: CanBus>(
+        &mut self,
+        bus: &mut B,
+        keep_running: impl Fn() -> bool,
+    ) -> Result<(), BusError> {
         let epoch = Instant::now();
         bus.send(&self.boot(epoch.elapsed()))?;
-        loop {
+        while keep_running() {
             let received = bus.recv(Duration::from_millis(10))?;
             let now = epoch.elapsed();
             if let Some(frame) = received {
@@ -127,5 +136,6 @@ impl Node {
                 bus.send(&heartbeat)?;
             }
         }
+        Ok(())
     }
 }

@@ -123,6 +123,7 @@ impl ModbusServer {
         }
         let gaps = self.caps.as_ref().is_some_and(|c| c.read_gaps);
         let mut values = Vec::with_capacity(count as usize);
+        let mut documented = false;
         for address in (0..count).map(|i| start.wrapping_add(i)) {
             let Some(cell) = self.map.cell(table, address) else {
                 if gaps {
@@ -134,7 +135,12 @@ impl ModbusServer {
             if !cell.access.read {
                 return Err(self.exception(Refusal::WriteOnly));
             }
+            documented = true;
             values.push(map::registers(drive.store(), cell)[(address - cell.first) as usize]);
+        }
+        if !documented {
+            // Gaps are tolerated inside a read, not as the whole of it.
+            return Err(self.exception(Refusal::NoSuchAddress));
         }
         Ok(values)
     }
