@@ -11,7 +11,8 @@ use drivebus::modbus::transport::{SerialConfig, SerialStream};
 use drivebus::modbus::UnitId;
 use drivesim::Simulator;
 
-const SETUP_HINT: &str = "run `tests/peers/setup.sh` at the workspace root (socat, pymodbus in .venv)";
+const SETUP_HINT: &str =
+    "run `tests/peers/setup.sh` at the workspace root (socat, pymodbus in .venv)";
 
 fn workspace_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
@@ -88,7 +89,10 @@ fn pty_pair() -> (Process, PathBuf, PathBuf) {
     let process = Process(child);
     let deadline = Instant::now() + Duration::from_secs(5);
     while !(a.exists() && b.exists()) {
-        assert!(Instant::now() < deadline, "socat did not create the pty links");
+        assert!(
+            Instant::now() < deadline,
+            "socat did not create the pty links"
+        );
         std::thread::sleep(Duration::from_millis(10));
     }
     (process, a, b)
@@ -98,7 +102,8 @@ fn pty_pair() -> (Process, PathBuf, PathBuf) {
 fn pymodbus_runs_the_lafert_sequence_over_rtu_on_a_pty() {
     let (_socat, client_end, server_end) = pty_pair();
     let sim = lafert();
-    let mut stream = SerialStream::open(server_end.to_str().unwrap(), &SerialConfig::new(19_200)).unwrap();
+    let mut stream =
+        SerialStream::open(server_end.to_str().unwrap(), &SerialConfig::new(19_200)).unwrap();
     // The server thread ends with an I/O error once socat is gone, after the test.
     std::thread::spawn(move || drivesim::modbus::rtu::serve(&sim, &mut stream, UnitId(1)));
     run_client("rtu", client_end.to_str().unwrap());
