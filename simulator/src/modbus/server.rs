@@ -103,7 +103,7 @@ impl ModbusServer {
     fn max_write(&self) -> u16 {
         self.caps
             .as_ref()
-            .map_or(pdu::MAX_WRITE_REGISTERS as u16, |c| c.max_write_registers)
+            .map_or(pdu::MAX_WRITE_REGISTERS, |c| c.max_write_registers)
     }
 
     fn exception(&self, refusal: Refusal) -> Exception {
@@ -158,7 +158,7 @@ impl ModbusServer {
             if !cell.access.write {
                 return Err(self.exception(Refusal::ReadOnly));
             }
-            if !writes.last().is_some_and(|(c, _)| c.id == cell.id) {
+            if writes.last().is_none_or(|(c, _)| c.id != cell.id) {
                 writes.push((cell, map::registers(drive.store(), cell)));
             }
             if let Some((_, regs)) = writes.last_mut() {
