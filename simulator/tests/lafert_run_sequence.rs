@@ -63,6 +63,17 @@ fn run_sequence_ramps_the_motor_and_stops_it() {
 }
 
 #[test]
+fn the_speed_setpoint_is_bounded_by_the_full_scale_velocity() {
+    let sim = lafert();
+    sim.preset("full_scale_velocity", 3000).unwrap();
+    sim.with(|drive| {
+        assert_eq!(write(drive, "speed_setpoint", 3001), Err(Refusal::TooHigh));
+        assert_eq!(write(drive, "speed_setpoint", -3001), Err(Refusal::TooLow));
+        write(drive, "speed_setpoint", -3000).unwrap();
+    });
+}
+
+#[test]
 fn control_word_outside_0_to_7_is_refused() {
     lafert().with(|drive| {
         assert_eq!(write(drive, "control_word", 8), Err(Refusal::TooHigh));

@@ -11,6 +11,7 @@
 use std::time::Duration;
 
 use super::{flag_bit, Behaviour, Motion, Shared};
+use crate::refusal::Refusal;
 use crate::store::{ParamId, Store};
 
 /// Raw operation mode value selecting torque mode (manual §4.2, line 1441).
@@ -42,6 +43,7 @@ pub struct LafertModbus {
     control_word: ParamId,
     drive_status: ParamId,
     speed_setpoint: Option<ParamId>,
+    full_scale_velocity: Option<ParamId>,
     operation_mode: Option<ParamId>,
     error_code: Option<ParamId>,
     bits: Bits,
@@ -68,6 +70,7 @@ impl LafertModbus {
             control_word,
             drive_status,
             speed_setpoint: store.id("speed_setpoint"),
+            full_scale_velocity: store.id("full_scale_velocity"),
             operation_mode: store.id("operation_mode"),
             error_code: store.id("error_code"),
             bits,
@@ -122,6 +125,22 @@ impl LafertModbus {
 }
 
 impl Behaviour for LafertModbus {
+    /// The speed setpoint is bounded by ± the full-scale velocity (holding 0x0003; manual §4.2,
+    /// line 1333) once the drive knows it (non-zero).
+    fn accept(&self, store: &Store, id: ParamId, bytes: &[u8]) -> Result<(), Refusal> {
+        if Some(id) != self.speed_setpoint {
+            return Ok(());
+        }
+        let full_scale = self.full_scale_velocity.and_then(|f| store.int(f)).unwrap_or(0);
+        let value = crate::raw::to_int(store.parameter(id).data_type, bytes).unwrap_or(0);
+        match value {
+            _ if full_scale == 0 => Ok(()),
+            v if v > full_scale => Err(Refusal::TooHigh),
+            v if v < -full_scale => Err(Refusal::TooLow),
+            _ => Ok(()),
+        }
+    }
+
     fn written(&mut self, store: &mut Store, shared: &mut Shared, id: ParamId) {
         if id != self.control_word {
             return;
@@ -160,6 +179,7 @@ mod tests {
             control_word: 0,
             drive_status: 1,
             speed_setpoint: None,
+            full_scale_velocity: None,
             operation_mode: None,
             error_code: None,
             bits: Bits {
