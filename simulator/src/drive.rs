@@ -76,6 +76,11 @@ impl Drive {
         self.tick(Duration::ZERO);
     }
 
+    /// The active fault code, if any.
+    pub fn fault(&self) -> Option<u16> {
+        self.shared.fault
+    }
+
     /// Reboots: values reload from non-volatile memory, state machines restart.
     pub fn reboot(&mut self) {
         self.store.reload();

@@ -206,3 +206,31 @@ fn cia402_reaches_operation_enabled_and_the_motor_follows() {
     let stopped = i32::from_le_bytes(upload(&mut sdo, 1, 0x606C, 0).unwrap().try_into().unwrap());
     assert_eq!(stopped, 0);
 }
+
+#[test]
+fn a_fault_sends_emcy_and_the_fault_reset_clears_it() {
+    let sim = Simulator::load(LAFERT).unwrap();
+    let (mut sdo, _node) = start_sim(sim.clone(), 1, None);
+    sim.with(|drive| drive.inject_fault(0x3210));
+    let emcy = |sdo: &mut BlockingSdo<InProcessEndpoint>| loop {
+        let frame = sdo
+            .bus_mut()
+            .recv(Duration::from_secs(1))
+            .unwrap()
+            .expect("an EMCY");
+        if let Some(emcy) = drivebus::canopen::emcy::Emcy::decode(&frame) {
+            return emcy;
+        }
+    };
+    let raised = emcy(&mut sdo);
+    assert_eq!((raised.node, raised.code), (NodeId(1), 0x3210));
+    let statusword =
+        u16::from_le_bytes(upload(&mut sdo, 1, 0x6041, 0).unwrap().try_into().unwrap());
+    assert_eq!(statusword & 0x4F, 0x08, "fault");
+    sdo.download(NodeId(1), 0x6040, 0, &0x80u16.to_le_bytes())
+        .unwrap();
+    assert!(
+        emcy(&mut sdo).is_reset(),
+        "error reset after the fault reset"
+    );
+}

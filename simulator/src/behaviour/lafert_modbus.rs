@@ -131,7 +131,10 @@ impl Behaviour for LafertModbus {
         if Some(id) != self.speed_setpoint {
             return Ok(());
         }
-        let full_scale = self.full_scale_velocity.and_then(|f| store.int(f)).unwrap_or(0);
+        let full_scale = self
+            .full_scale_velocity
+            .and_then(|f| store.int(f))
+            .unwrap_or(0);
         let value = crate::raw::to_int(store.parameter(id).data_type, bytes).unwrap_or(0);
         match value {
             _ if full_scale == 0 => Ok(()),

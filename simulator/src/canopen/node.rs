@@ -3,6 +3,7 @@
 
 use std::time::{Duration, Instant};
 
+use drivebus::canopen::emcy::{Emcy, ErrorRegister};
 use drivebus::canopen::frame::cob;
 use drivebus::canopen::nmt::{heartbeat_frame, NmtCommand, NmtState};
 use drivebus::canopen::sdo::server::SdoServer;
@@ -30,6 +31,7 @@ pub struct Node {
     sdo: SdoServer<Dictionary>,
     state: NmtState,
     next_heartbeat: Duration,
+    reported_fault: Option<u16>,
 }
 
 impl Node {
@@ -43,6 +45,7 @@ impl Node {
             sdo: SdoServer::new(config.node, dictionary),
             state: NmtState::Initializing,
             next_heartbeat: Duration::ZERO,
+            reported_fault: None,
         }
     }
 
@@ -101,6 +104,30 @@ impl Node {
         }
     }
 
+    /// An EMCY when the drive's fault changed: its code when one is raised, 0x0000 (error
+    /// reset) when it is cleared. Not sent while STOPPED or before boot-up.
+    pub fn poll_emcy(&mut self) -> Option<CanFrame> {
+        let fault = self.sim.with(|drive| drive.fault());
+        if fault == self.reported_fault
+            || matches!(self.state, NmtState::Stopped | NmtState::Initializing)
+        {
+            return None;
+        }
+        self.reported_fault = fault;
+        let register = if fault.is_some() {
+            ErrorRegister::GENERIC
+        } else {
+            ErrorRegister::empty()
+        };
+        let emcy = Emcy {
+            node: self.config.node,
+            code: fault.unwrap_or(0),
+            register,
+            manufacturer: [0; 5],
+        };
+        Some(emcy.encode())
+    }
+
     /// Frames due at time `now` (heartbeats).
     pub fn poll(&mut self, now: Duration) -> Option<CanFrame> {
         let period = self.heartbeat_period()?;
@@ -131,6 +158,9 @@ impl Node {
                 for reply in self.handle(&frame, now) {
                     bus.send(&reply)?;
                 }
+            }
+            if let Some(emcy) = self.poll_emcy() {
+                bus.send(&emcy)?;
             }
             if let Some(heartbeat) = self.poll(now) {
                 bus.send(&heartbeat)?;
