@@ -34,7 +34,15 @@ fn start(
     node: u8,
     heartbeat: Option<Duration>,
 ) -> (BlockingSdo<InProcessEndpoint>, Running) {
-    let sim = Simulator::load(description).unwrap();
+    start_sim(Simulator::load(description).unwrap(), node, heartbeat)
+}
+
+/// Runs a node for `sim` in a thread; returns an SDO client on the same in-process bus.
+fn start_sim(
+    sim: Simulator,
+    node: u8,
+    heartbeat: Option<Duration>,
+) -> (BlockingSdo<InProcessEndpoint>, Running) {
     let bus = InProcessBus::new();
     let client = bus.endpoint();
     let mut endpoint = bus.endpoint();
