@@ -302,3 +302,34 @@ fn decode_names_sdo_values_heartbeats_and_emcy() {
         "{text}"
     );
 }
+
+#[test]
+fn sim_is_a_canopen_node_on_slcan_over_tcp() {
+    use drivebus::canopen::backend::slcan::SlcanBus;
+    use drivebus::canopen::blocking::BlockingSdo;
+    use drivebus::canopen::{NodeId, SdoBus};
+
+    // The simulator connects to an SLCAN gateway; the test is the gateway and the master.
+    let listener = TcpListener::bind("127.0.0.1:0").unwrap();
+    let addr = listener.local_addr().unwrap();
+    let lafert = lafert_path();
+    let mut child = Command::new(BIN)
+        .args([
+            "sim",
+            lafert.to_str().unwrap(),
+            "--can",
+            &format!("slcan:{addr}"),
+        ])
+        .stdout(Stdio::null())
+        .spawn()
+        .unwrap();
+    let (stream, _) = listener.accept().unwrap();
+    let mut sdo =
+        BlockingSdo::new(SlcanBus::tcp(stream).unwrap()).with_timeout(Duration::from_secs(2));
+    let mut buf = [0u8; 2];
+    let result = sdo.upload(NodeId(1), 0x6041, 0, &mut buf);
+    child.kill().unwrap();
+    child.wait().unwrap();
+    assert_eq!(result, Ok(2));
+    assert_eq!(u16::from_le_bytes(buf) & 0x4F, 0x40, "switch on disabled");
+}

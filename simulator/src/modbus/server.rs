@@ -1,6 +1,6 @@
 //! The sans-I/O Modbus server: a request PDU in, a response PDU out.
 
-use drivebus::modbus::pdu::{self, ServerRequest, MAX_PDU};
+use drivebus::modbus::pdu::{self, ServerRequest};
 use drivebus::modbus::Table;
 use drivebus::BusError;
 use drivegen::ir::{Device, ModbusCaps};
@@ -33,8 +33,8 @@ impl ModbusServer {
         }
     }
 
-    /// Answers the request `request` (a PDU) into `out` (at least [`MAX_PDU`] bytes); returns
-    /// the length of the response PDU.
+    /// Answers the request `request` (a PDU) into `out` (at least
+    /// [`MAX_PDU`](drivebus::modbus::pdu::MAX_PDU) bytes); returns the length of the response PDU.
     pub fn handle(&self, drive: &mut Drive, request: &[u8], out: &mut [u8]) -> usize {
         let function = request.first().copied().unwrap_or(0);
         let answer = self.answer(drive, request, out);
@@ -181,6 +181,3 @@ impl ModbusServer {
         Ok(())
     }
 }
-
-/// Largest response PDU.
-pub const RESPONSE_CAPACITY: usize = MAX_PDU;
