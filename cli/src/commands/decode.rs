@@ -11,6 +11,7 @@ use drivegen::ir::Device;
 
 use crate::codec;
 use crate::error::CliError;
+use crate::pdo_mappings::PdoMappings;
 use crate::table;
 
 /// Arguments of `decode`.
@@ -40,13 +41,20 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let file = File::open(&args.capture)
         .map_err(|e| CliError::Io(format!("cannot open {}: {e}", args.capture.display())))?;
     let mut lines = Vec::new();
+    let mut mappings = PdoMappings::default();
     for record in CandumpReader::new(BufReader::new(file)) {
         let record =
             record.map_err(|e| CliError::Io(format!("{}: {e}", args.capture.display())))?;
         let time = record.timestamp_us.map_or(String::new(), |us| {
             format!("{}.{:06}", us / 1_000_000, us % 1_000_000)
         });
-        lines.push(decode(&device, Message::classify(&record.frame), time));
+        let message = Message::classify(&record.frame);
+        if let Message::SdoRequest { node, data } = message {
+            if let Some((index, subindex, value)) = expedited_download(&data) {
+                mappings.learn(node.0, index, subindex, value);
+            }
+        }
+        lines.push(decode(&device, &mappings, message, time));
     }
     if args.json {
         for l in &lines {
@@ -73,7 +81,21 @@ pub fn run(args: Args) -> Result<(), CliError> {
     Ok(())
 }
 
-fn decode(device: &Device, message: Message, time: String) -> Line {
+/// The object and value of an expedited download request.
+fn expedited_download(data: &[u8; 8]) -> Option<(u16, u8, &[u8])> {
+    if data[0] >> 5 != 1 || data[0] & 0b10 == 0 {
+        return None;
+    }
+    let (index, subindex) = mux(data);
+    let len = if data[0] & 1 != 0 {
+        4 - ((data[0] >> 2) & 3) as usize
+    } else {
+        4
+    };
+    Some((index, subindex, &data[4..4 + len]))
+}
+
+fn decode(device: &Device, mappings: &PdoMappings, message: Message, time: String) -> Line {
     let line = |node: String, kind, what: String, value: String| Line {
         time: time.clone(),
         node,
@@ -124,7 +146,9 @@ fn decode(device: &Device, message: Message, time: String) -> Line {
             node.0.to_string(),
             "pdo",
             format!("{kind:?}{number}"),
-            format!("{:02X?} (mapping not known from the capture)", frame.data()),
+            mappings
+                .decode(device, node.0, kind, number, frame.data())
+                .unwrap_or_else(|| format!("{:02X?} (mapping not in the capture)", frame.data())),
         ),
         Message::Time(frame) | Message::Other(frame) => line(
             String::new(),
