@@ -67,6 +67,8 @@ enum Link {
     Modbus {
         bus: Box<dyn RegisterBus + Send>,
         unit: UnitId,
+        /// Whether the device implements FC 0x10; without it values are written word by word.
+        write_multiple: bool,
     },
     CanOpen {
         sdo: BlockingSdo<DynCan>,
@@ -118,7 +120,7 @@ impl Session {
             let target = format!("Modbus TCP {addr} unit {}", args.unit);
             let bus = ModbusTcpClient::connect(addr.as_str(), &config)
                 .map_err(|e| connect_error(&target, e))?;
-            return Ok(Self::modbus(Box::new(bus), args.unit, target));
+            return Ok(Self::modbus(Box::new(bus), args.unit, device, target));
         }
         if let Some(path) = &args.serial {
             let config = SerialConfig {
@@ -134,7 +136,7 @@ impl Session {
             let target = format!("Modbus RTU {path} unit {}", args.unit);
             let bus =
                 SerialRtuClient::open(path, &config).map_err(|e| connect_error(&target, e))?;
-            return Ok(Self::modbus(Box::new(bus), args.unit, target));
+            return Ok(Self::modbus(Box::new(bus), args.unit, device, target));
         }
         if let Some(backend) = &args.can {
             let node = args
@@ -157,11 +159,16 @@ impl Session {
         ))
     }
 
-    fn modbus(bus: Box<dyn RegisterBus + Send>, unit: u8, target: String) -> Self {
+    fn modbus(bus: Box<dyn RegisterBus + Send>, unit: u8, device: &Device, target: String) -> Self {
+        const WRITE_MULTIPLE_REGISTERS: u8 = 0x10;
         Self {
             link: Link::Modbus {
                 bus,
                 unit: UnitId(unit),
+                write_multiple: device
+                    .modbus
+                    .as_ref()
+                    .is_none_or(|m| m.functions.contains(&WRITE_MULTIPLE_REGISTERS)),
             },
             target,
             relay: None,
@@ -184,7 +191,7 @@ impl Session {
     /// Reads the raw bytes of `parameter`.
     pub fn read(&mut self, parameter: &Parameter) -> Result<Vec<u8>, CliError> {
         let result = match &mut self.link {
-            Link::Modbus { bus, unit } => {
+            Link::Modbus { bus, unit, .. } => {
                 let address = modbus_address(parameter, true)?;
                 let mut regs = vec![0u16; address.words as usize];
                 bus.read_registers(*unit, table(address.table), address.address, &mut regs)
@@ -203,14 +210,21 @@ impl Session {
     /// Writes the raw bytes of `parameter`.
     pub fn write(&mut self, parameter: &Parameter, bytes: &[u8]) -> Result<(), CliError> {
         let result = match &mut self.link {
-            Link::Modbus { bus, unit } => {
+            Link::Modbus {
+                bus,
+                unit,
+                write_multiple,
+            } => {
                 let address = modbus_address(parameter, false)?;
                 let regs =
                     bytes_to_registers(parameter.data_type, bytes, address.words, order(address));
-                if regs.len() == 1 {
-                    bus.write_register(*unit, address.address, regs[0])
-                } else {
+                if regs.len() > 1 && *write_multiple {
                     bus.write_registers(*unit, address.address, &regs)
+                } else {
+                    // FC 0x06 per word, in address order.
+                    (0..).zip(&regs).try_for_each(|(i, &word)| {
+                        bus.write_register(*unit, address.address.wrapping_add(i), word)
+                    })
                 }
             }
             Link::CanOpen { sdo, node } => {

@@ -336,3 +336,20 @@ fn sim_is_a_canopen_node_on_slcan_over_tcp() {
     assert_eq!(result, Ok(2));
     assert_eq!(u16::from_le_bytes(buf) & 0x4F, 0x40, "switch on disabled");
 }
+
+#[test]
+fn two_word_values_are_written_word_by_word_without_fc16() {
+    // The Lafert implements FC 0x06 only (functions = [0x03, 0x04, 0x06]).
+    let (sim, _server, addr) = simulated_lafert();
+    let lafert = lafert_path();
+    let output = drivegen(&[
+        "write",
+        lafert.to_str().unwrap(),
+        "s_ramp_jerk_acceleration",
+        "raw:1000000",
+        "--modbus-tcp",
+        &addr,
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert_eq!(raw(&sim, "s_ramp_jerk_acceleration"), 1_000_000);
+}
