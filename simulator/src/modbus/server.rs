@@ -2,7 +2,6 @@
 
 use drivebus::modbus::pdu::{self, ServerRequest};
 use drivebus::modbus::Table;
-use drivebus::BusError;
 use drivegen::ir::{Device, ModbusCaps};
 
 use super::map::{self, Cell, RegisterMap};
@@ -13,6 +12,8 @@ use crate::refusal::Refusal;
 const ILLEGAL_FUNCTION: u8 = 0x01;
 /// Exception code of a malformed request or a count beyond the device's limits.
 const ILLEGAL_DATA_VALUE: u8 = 0x03;
+/// Function codes the request decoder knows.
+const IMPLEMENTED: [u8; 8] = [0x01, 0x02, 0x03, 0x04, 0x05, 0x06, 0x0F, 0x10];
 
 /// Answers Modbus requests for one drive.
 #[derive(Debug, Clone)]
@@ -55,9 +56,12 @@ impl ModbusServer {
         if !self.supports(function) {
             return Err(ILLEGAL_FUNCTION);
         }
-        let decoded = pdu::decode_request(request).map_err(|e| match e {
-            BusError::Unsupported(_) => ILLEGAL_FUNCTION,
-            _ => ILLEGAL_DATA_VALUE,
+        let decoded = pdu::decode_request(request).map_err(|_| {
+            if IMPLEMENTED.contains(&function) {
+                ILLEGAL_DATA_VALUE // A bad count, length or coil value.
+            } else {
+                ILLEGAL_FUNCTION
+            }
         })?;
         match decoded {
             ServerRequest::Read {
@@ -179,5 +183,55 @@ impl ModbusServer {
             drive.write(id, &bytes).map_err(|r| self.exception(r))?;
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn lafert() -> Drive {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../descriptions/lafert-smartris"
+        );
+        Drive::new(drivegen::check(std::path::Path::new(path)).device.unwrap())
+    }
+
+    fn answer(request: &[u8]) -> Vec<u8> {
+        let mut drive = lafert();
+        let server = ModbusServer::new(drive.store().device(), None);
+        let mut out = [0u8; pdu::MAX_PDU];
+        let len = server.handle(&mut drive, request, &mut out);
+        out[..len].to_vec()
+    }
+
+    #[test]
+    fn the_manuals_status_read_is_answered() {
+        // Input 0x0060 (drive status) after power-on: STANDBY.
+        assert_eq!(
+            answer(&[0x04, 0x00, 0x60, 0x00, 0x01]),
+            [0x04, 0x02, 0x00, 0x02]
+        );
+    }
+
+    #[test]
+    fn malformed_and_unknown_requests_get_exceptions() {
+        assert_eq!(answer(&[0x03, 0x00, 0x01]), [0x83, 0x03], "truncated");
+        assert_eq!(
+            answer(&[0x03, 0x00, 0x01, 0x00, 0x00]),
+            [0x83, 0x03],
+            "zero count"
+        );
+        assert_eq!(
+            answer(&[0x2B, 0x0E, 0x01, 0x00, 0x00]),
+            [0xAB, 0x01],
+            "FC 0x2B"
+        );
+        assert_eq!(
+            answer(&[0x06, 0x00, 0x01, 0x00, 0x08]),
+            [0x86, 0x03],
+            "control word 8"
+        );
     }
 }
