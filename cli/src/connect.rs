@@ -11,10 +11,10 @@ use drivebus::canopen::blocking::BlockingSdo;
 use drivebus::canopen::{CanBus, CanFrame, NodeId, SdoBus};
 use drivebus::modbus::rtu::{Parity, StopBits};
 use drivebus::modbus::transport::{ModbusTcpClient, SerialConfig, SerialRtuClient, TcpConfig};
-use drivebus::modbus::{le_to_registers, registers_to_le, RegisterBus, Table, UnitId, WordOrder};
+use drivebus::modbus::{RegisterBus, UnitId, WordOrder};
 use drivebus::BusError;
-use drivegen::ir::{self, DataType, Device, Parameter};
-use drivesim::raw;
+use drivegen::ir::{self, Device, Parameter};
+use drivesim::registers;
 
 use crate::error::CliError;
 
@@ -194,8 +194,21 @@ impl Session {
             Link::Modbus { bus, unit, .. } => {
                 let address = modbus_address(parameter, true)?;
                 let mut regs = vec![0u16; address.words as usize];
-                bus.read_registers(*unit, table(address.table), address.address, &mut regs)
-                    .map(|()| registers_to_bytes(parameter.data_type, &regs, order(address)))
+                bus.read_registers(
+                    *unit,
+                    registers::table(address.table),
+                    address.address,
+                    &mut regs,
+                )
+                .and_then(|()| {
+                    registers::from_registers(parameter.data_type, &regs, order(address)).map_err(
+                        |_| {
+                            BusError::Frame(
+                                "the registers hold a value outside the parameter's type",
+                            )
+                        },
+                    )
+                })
             }
             Link::CanOpen { sdo, node } => {
                 let address = object_address(parameter, true)?;
@@ -216,8 +229,12 @@ impl Session {
                 write_multiple,
             } => {
                 let address = modbus_address(parameter, false)?;
-                let regs =
-                    bytes_to_registers(parameter.data_type, bytes, address.words, order(address));
+                let regs = registers::to_registers(
+                    parameter.data_type,
+                    bytes,
+                    address.words,
+                    order(address),
+                );
                 if regs.len() > 1 && *write_multiple {
                     bus.write_registers(*unit, address.address, &regs)
                 } else {
@@ -292,80 +309,6 @@ fn object_address(parameter: &Parameter, read: bool) -> Result<&ir::ObjectAddres
         .ok_or_else(|| no_access(parameter, "CANopen", read))
 }
 
-fn table(table: ir::Table) -> Table {
-    match table {
-        ir::Table::Input => Table::Input,
-        ir::Table::Holding => Table::Holding,
-    }
-}
-
 fn order(address: &ir::ModbusAddress) -> WordOrder {
-    match address.word_order {
-        ir::WordOrder::HighFirst => WordOrder::HighFirst,
-        ir::WordOrder::LowFirst => WordOrder::LowFirst,
-    }
-}
-
-/// Registers (wire order) → the parameter's little-endian bytes.
-pub fn registers_to_bytes(data_type: DataType, regs: &[u16], order: WordOrder) -> Vec<u8> {
-    let mut wire = vec![0u8; 2 * regs.len()];
-    registers_to_le(regs, order, &mut wire);
-    let signed = matches!(data_type, DataType::Signed(_));
-    let wire_type = if signed {
-        DataType::Signed(wire.len() as u8)
-    } else {
-        DataType::Unsigned(wire.len() as u8)
-    };
-    match raw::to_int(wire_type, &wire).filter(|_| data_type.is_integer()) {
-        Some(value) => raw::from_int(data_type, value),
-        None => {
-            wire.truncate(data_type.bytes() as usize);
-            wire
-        }
-    }
-}
-
-/// The parameter's little-endian bytes → `words` registers (wire order), sign-extended.
-pub fn bytes_to_registers(
-    data_type: DataType,
-    bytes: &[u8],
-    words: u16,
-    order: WordOrder,
-) -> Vec<u16> {
-    let wire_len = 2 * words as usize;
-    let mut wire = match raw::to_int(data_type, bytes) {
-        Some(value) => value.to_le_bytes()[..wire_len.min(16)].to_vec(),
-        None => bytes.to_vec(),
-    };
-    wire.resize(wire_len, 0);
-    let mut regs = vec![0u16; words as usize];
-    le_to_registers(&wire, order, &mut regs);
-    regs
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn signed_values_fill_their_registers() {
-        let regs = bytes_to_registers(
-            DataType::Signed(2),
-            &(-3000i16).to_le_bytes(),
-            1,
-            WordOrder::LowFirst,
-        );
-        assert_eq!(regs, vec![0xF448]);
-        let pair = bytes_to_registers(
-            DataType::Unsigned(4),
-            &0x000F_4240u32.to_le_bytes(),
-            2,
-            WordOrder::LowFirst,
-        );
-        assert_eq!(pair, vec![0x4240, 0x000F]);
-        assert_eq!(
-            registers_to_bytes(DataType::Unsigned(4), &pair, WordOrder::LowFirst),
-            0x000F_4240u32.to_le_bytes().to_vec()
-        );
-    }
+    registers::word_order(address.word_order)
 }

@@ -32,6 +32,7 @@ pub mod drive;
 pub mod modbus;
 pub mod raw;
 pub mod refusal;
+pub mod registers;
 mod simulator;
 pub mod store;
 

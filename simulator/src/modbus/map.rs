@@ -2,11 +2,11 @@
 
 use std::collections::HashMap;
 
-use drivebus::modbus::{le_to_registers, registers_to_le, Table, WordOrder};
-use drivegen::ir::{self, Access, Device};
+use drivebus::modbus::{Table, WordOrder};
+use drivegen::ir::{Access, Device};
 
-use crate::raw;
 use crate::refusal::Refusal;
+use crate::registers::{self, table, word_order};
 use crate::store::{ParamId, Store};
 
 /// One register of a parameter.
@@ -64,54 +64,12 @@ impl RegisterMap {
 
 /// The registers holding the parameter of `cell`, in wire order.
 pub fn registers(store: &Store, cell: Cell) -> Vec<u16> {
-    let wire = 2 * cell.words as usize;
     let data_type = store.parameter(cell.id).data_type;
-    let mut bytes = match raw::to_int(data_type, store.bytes(cell.id)) {
-        Some(value) => value.to_le_bytes()[..wire.min(16)].to_vec(),
-        None => store.bytes(cell.id).to_vec(),
-    };
-    bytes.resize(wire, 0);
-    let mut out = vec![0u16; cell.words as usize];
-    le_to_registers(&bytes, cell.order, &mut out);
-    out
+    registers::to_registers(data_type, store.bytes(cell.id), cell.words, cell.order)
 }
 
 /// The parameter bytes the registers `regs` (wire order) stand for; integers that do not fit the
 /// parameter's type are refused.
 pub fn parameter_bytes(store: &Store, cell: Cell, regs: &[u16]) -> Result<Vec<u8>, Refusal> {
-    let parameter = store.parameter(cell.id);
-    let mut wire = vec![0u8; 2 * regs.len()];
-    registers_to_le(regs, cell.order, &mut wire);
-    let Some((min, max)) = parameter.data_type.integer_bounds() else {
-        wire.truncate(parameter.data_type.bytes() as usize);
-        return Ok(wire);
-    };
-    let signed = matches!(parameter.data_type, ir::DataType::Signed(_));
-    let wire_type = if signed {
-        ir::DataType::Signed(wire.len().min(16) as u8)
-    } else {
-        ir::DataType::Unsigned(wire.len().min(16) as u8)
-    };
-    let value = raw::to_int(wire_type, &wire).ok_or(Refusal::WrongLength)?;
-    if value > max {
-        return Err(Refusal::TooHigh);
-    }
-    if value < min {
-        return Err(Refusal::TooLow);
-    }
-    Ok(raw::from_int(parameter.data_type, value))
-}
-
-fn table(table: ir::Table) -> Table {
-    match table {
-        ir::Table::Input => Table::Input,
-        ir::Table::Holding => Table::Holding,
-    }
-}
-
-fn word_order(order: ir::WordOrder) -> WordOrder {
-    match order {
-        ir::WordOrder::HighFirst => WordOrder::HighFirst,
-        ir::WordOrder::LowFirst => WordOrder::LowFirst,
-    }
+    registers::from_registers(store.parameter(cell.id).data_type, regs, cell.order)
 }
