@@ -106,6 +106,11 @@ impl Store {
         Ok(())
     }
 
+    /// Puts a parameter back to its factory value.
+    pub fn reset_to_factory(&mut self, id: ParamId) {
+        self.values[id] = self.factory[id].clone();
+    }
+
     /// Copies the present values to the non-volatile copy.
     pub fn store(&mut self) {
         self.stored = self.values.clone();

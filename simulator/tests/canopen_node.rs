@@ -242,3 +242,35 @@ fn a_fault_sends_emcy_and_the_fault_reset_clears_it() {
         "error reset after the fault reset"
     );
 }
+
+#[test]
+fn saved_parameters_survive_an_nmt_reset() {
+    const SAVE: u32 = 0x6576_6173; // "save", CiA 301 1010h
+    let (mut sdo, _node) = start(LAFERT, 1, None);
+    let mode = |sdo: &mut BlockingSdo<InProcessEndpoint>| upload(sdo, 1, 0x6060, 0).unwrap()[0];
+    let reset = |sdo: &mut BlockingSdo<InProcessEndpoint>| {
+        sdo.bus_mut()
+            .send(&NmtCommand::ResetNode.frame(Some(NodeId(1))))
+            .unwrap();
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    sdo.download(NodeId(1), 0x6060, 0, &[3]).unwrap();
+    reset(&mut sdo);
+    assert_eq!(mode(&mut sdo), 0, "not saved: lost");
+    sdo.download(NodeId(1), 0x6060, 0, &[3]).unwrap();
+    assert_eq!(
+        abort(sdo.download(NodeId(1), 0x1010, 1, &1u32.to_le_bytes())),
+        0x0609_0030,
+        "not \"save\""
+    );
+    sdo.download(NodeId(1), 0x1010, 1, &SAVE.to_le_bytes())
+        .unwrap();
+    let capability = upload(&mut sdo, 1, 0x1010, 1).unwrap();
+    assert_ne!(
+        capability,
+        SAVE.to_le_bytes(),
+        "the trigger is not kept as a value"
+    );
+    reset(&mut sdo);
+    assert_eq!(mode(&mut sdo), 3, "saved: kept");
+}

@@ -25,8 +25,8 @@ pub struct Args {
     /// Serve Modbus RTU on a serial port or pty.
     #[arg(long, value_name = "PATH", group = "bus")]
     serial: Option<String>,
-    /// Be a CANopen node: `candump:stdio` (frames as candump lines on stdin/stdout) or
-    /// `slcan:HOST:PORT`.
+    /// Be a CANopen node: `candump:stdio` (frames as candump lines on stdin/stdout; the
+    /// `listening on` line goes to stderr) or `slcan:HOST:PORT` (connects to an SLCAN gateway).
     #[arg(long, value_name = "BACKEND", group = "bus")]
     can: Option<String>,
     /// Baud rate of --serial.

@@ -50,8 +50,14 @@ impl Behaviour for Commands {
         }
     }
 
+    /// Runs the command; the register itself reads back its described value afterwards (a
+    /// trigger is not a setting, e.g. CiA 301 1010h reads its storage capabilities).
     fn written(&mut self, store: &mut Store, shared: &mut Shared, id: ParamId) {
-        match self.command(id) {
+        let command = self.command(id);
+        if command.is_some() {
+            store.reset_to_factory(id);
+        }
+        match command {
             Some((CommandKind::Store, _)) => store.store(),
             Some((CommandKind::RestoreFactory, _)) => store.restore_factory(),
             Some((CommandKind::Reset, _)) => shared.reset_requested = true,
