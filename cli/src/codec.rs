@@ -1,0 +1,485 @@
+//! The dynamic codec: a parameter of the IR and a value as typed on the command line become raw
+//! bytes, and raw bytes become a value with its unit, enum name or flag names. It works from the
+//! description at run time, not from a generated crate.
+
+use std::fmt;
+
+use drivegen::ir::{DataType, Device, Parameter, Scale};
+use drivesim::raw;
+
+/// Why a value typed by the user was refused (nothing has been sent).
+#[derive(Debug, Clone, PartialEq)]
+pub enum CodecError {
+    /// The text is not a number, enum value or flag list.
+    Unparsable(String),
+    /// The unit given is not the parameter's.
+    WrongUnit {
+        /// The unit typed.
+        given: String,
+        /// The parameter's unit (`None`: the parameter has none).
+        expected: Option<String>,
+    },
+    /// Outside the described range or the type's bounds.
+    OutOfRange(String),
+    /// Not one of the allowed values.
+    NotAllowed(String),
+    /// Not a whole number of raw steps.
+    NotRepresentable(String),
+    /// The scale depends on other parameters; only raw values can be written.
+    RuntimeScale(String),
+}
+
+impl fmt::Display for CodecError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            CodecError::Unparsable(why) => write!(f, "{why}"),
+            CodecError::WrongUnit {
+                given,
+                expected: Some(unit),
+            } => {
+                write!(f, "wrong unit `{given}`: the parameter is in {unit}")
+            }
+            CodecError::WrongUnit {
+                given,
+                expected: None,
+            } => {
+                write!(f, "wrong unit `{given}`: the parameter has no unit")
+            }
+            CodecError::OutOfRange(why)
+            | CodecError::NotAllowed(why)
+            | CodecError::NotRepresentable(why)
+            | CodecError::RuntimeScale(why) => write!(f, "{why}"),
+        }
+    }
+}
+
+/// An exact affine scale: `value = raw × factor + offset`.
+#[derive(Debug, Clone, Copy)]
+struct Affine {
+    factor: f64,
+    offset: f64,
+    /// Decimal places that show one raw step.
+    decimals: usize,
+}
+
+fn affine(parameter: &Parameter) -> Option<Affine> {
+    match &parameter.scale {
+        None => Some(Affine {
+            factor: 1.0,
+            offset: 0.0,
+            decimals: 0,
+        }),
+        Some(Scale::Fixed {
+            numerator,
+            denominator,
+            offset,
+        }) => {
+            let factor = *numerator as f64 / *denominator as f64;
+            Some(Affine {
+                factor,
+                offset: offset.numerator as f64 / offset.denominator as f64,
+                decimals: decimals_of(factor),
+            })
+        }
+        Some(Scale::Runtime { .. }) => None,
+    }
+}
+
+/// Decimal places needed to show multiples of `step` (at most 6).
+fn decimals_of(step: f64) -> usize {
+    (0..=6)
+        .find(|d| {
+            let scaled = step * 10f64.powi(*d as i32);
+            (scaled - scaled.round()).abs() < 1e-9
+        })
+        .unwrap_or(6)
+}
+
+/// Parses `text` into the raw bytes of `parameter`, checking unit, range and allowed values.
+///
+/// Accepted: a number with or without the parameter's unit (`1500rpm`, `49.5 V`, `1500`), a raw
+/// integer (`raw:4950`, `0x1356`), an enum value name, flag names joined by `|`, `true`/`false`.
+pub fn parse(device: &Device, parameter: &Parameter, text: &str) -> Result<Vec<u8>, CodecError> {
+    let text = text.trim();
+    let data_type = parameter.data_type;
+    if let DataType::String(capacity) | DataType::Octets(capacity) = data_type {
+        if text.len() > capacity as usize {
+            return Err(CodecError::OutOfRange(format!(
+                "`{text}` is longer than {capacity} bytes"
+            )));
+        }
+        return Ok(text.as_bytes().to_vec());
+    }
+    let raw = match symbolic(device, parameter, text)? {
+        Some(raw) => raw,
+        None => numeric(parameter, text)?,
+    };
+    check(parameter, raw)?;
+    Ok(match data_type {
+        DataType::F32 => (raw as f32).to_le_bytes().to_vec(),
+        DataType::F64 => raw.to_le_bytes().to_vec(),
+        _ => raw::from_int(data_type, raw as i128),
+    })
+}
+
+/// An enum value name, flag names, a boolean word or an explicit raw integer.
+fn symbolic(device: &Device, parameter: &Parameter, text: &str) -> Result<Option<f64>, CodecError> {
+    if let Some(raw) = raw_integer(text) {
+        return raw.map(Some);
+    }
+    if parameter.data_type == DataType::Bool {
+        match text {
+            "true" | "on" => return Ok(Some(1.0)),
+            "false" | "off" => return Ok(Some(0.0)),
+            _ => {}
+        }
+    }
+    if let Some(e) = parameter
+        .enumeration
+        .as_deref()
+        .and_then(|e| device.enumeration(e))
+    {
+        if let Some(v) = e.values.iter().find(|v| v.name.eq_ignore_ascii_case(text)) {
+            return Ok(Some(v.value as f64));
+        }
+        if text.starts_with(|c: char| c.is_alphabetic()) {
+            let names: Vec<&str> = e.values.iter().map(|v| v.name.as_str()).collect();
+            return Err(CodecError::Unparsable(format!(
+                "`{text}` is not a value of {}; one of: {}",
+                e.name,
+                names.join(", ")
+            )));
+        }
+    }
+    if let Some(flags) = parameter
+        .flags
+        .as_deref()
+        .and_then(|f| device.flags_type(f))
+    {
+        if text.starts_with(|c: char| c.is_alphabetic()) {
+            let mut raw = 0u64;
+            for name in text.split(['|', '+', ',']).map(str::trim) {
+                let bit = flags
+                    .bits
+                    .iter()
+                    .find(|b| b.name.eq_ignore_ascii_case(name))
+                    .ok_or_else(|| {
+                        CodecError::Unparsable(format!("`{name}` is not a bit of {}", flags.name))
+                    })?;
+                raw |= 1 << bit.bit;
+            }
+            return Ok(Some(raw as f64));
+        }
+    }
+    Ok(None)
+}
+
+/// `raw:N`, `0xNN` or `0bNN`: a raw value, no scaling.
+fn raw_integer(text: &str) -> Option<Result<f64, CodecError>> {
+    let bad = || CodecError::Unparsable(format!("`{text}` is not a raw integer"));
+    let (digits, radix) = if let Some(rest) = text.strip_prefix("raw:") {
+        (rest.trim(), 10)
+    } else if let Some(hex) = text.strip_prefix("0x").or_else(|| text.strip_prefix("0X")) {
+        (hex, 16)
+    } else if let Some(bin) = text.strip_prefix("0b") {
+        (bin, 2)
+    } else {
+        return None;
+    };
+    let (negative, digits) = match digits.strip_prefix('-') {
+        Some(d) => (true, d),
+        None => (false, digits),
+    };
+    Some(
+        i128::from_str_radix(&digits.replace('_', ""), radix)
+            .map(|v| if negative { -v } else { v } as f64)
+            .map_err(|_| bad()),
+    )
+}
+
+/// A number in engineering units, with an optional unit that must be the parameter's.
+fn numeric(parameter: &Parameter, text: &str) -> Result<f64, CodecError> {
+    let split = text
+        .char_indices()
+        .find(|&(i, c)| !(c.is_ascii_digit() || c == '.' || ((c == '-' || c == '+') && i == 0)))
+        .map_or(text.len(), |(i, _)| i);
+    let (number, unit) = text.split_at(split);
+    let value: f64 = number.parse().map_err(|_| {
+        CodecError::Unparsable(format!(
+            "`{text}` is not a value: give a number (with its unit), an enum value or raw:N"
+        ))
+    })?;
+    check_unit(parameter, unit.trim())?;
+    let Some(scale) = affine(parameter) else {
+        return Err(CodecError::RuntimeScale(format!(
+            "the scale of {} is computed at run time from other parameters; give a raw value (raw:N)",
+            parameter.name
+        )));
+    };
+    let raw = (value - scale.offset) / scale.factor;
+    if (raw - raw.round()).abs() > 1e-6 {
+        return Err(CodecError::NotRepresentable(format!(
+            "{text} is not a multiple of the parameter's step {}{}",
+            scale.factor,
+            unit_suffix(parameter)
+        )));
+    }
+    Ok(raw.round())
+}
+
+fn check_unit(parameter: &Parameter, given: &str) -> Result<(), CodecError> {
+    if given.is_empty() {
+        return Ok(());
+    }
+    let normalize = |u: &str| u.trim_start_matches('°').to_ascii_lowercase();
+    match &parameter.unit {
+        Some(unit) if normalize(unit) == normalize(given) => Ok(()),
+        expected => Err(CodecError::WrongUnit {
+            given: given.to_string(),
+            expected: expected.clone(),
+        }),
+    }
+}
+
+fn unit_suffix(parameter: &Parameter) -> String {
+    parameter
+        .unit
+        .as_deref()
+        .map_or(String::new(), |u| format!(" {u}"))
+}
+
+/// Checks a raw value against the type's bounds, the range and the allowed values.
+fn check(parameter: &Parameter, raw: f64) -> Result<(), CodecError> {
+    let shown = |r: f64| show_number(parameter, r);
+    if let Some((min, max)) = parameter.data_type.integer_bounds() {
+        if raw < min as f64 || raw > max as f64 {
+            return Err(CodecError::OutOfRange(format!(
+                "{} does not fit {} ({}..={})",
+                shown(raw),
+                parameter.data_type.name(),
+                shown(min as f64),
+                shown(max as f64)
+            )));
+        }
+    }
+    if let Some(range) = &parameter.range {
+        let (min, max) = (range.min.as_f64(), range.max.as_f64());
+        if raw < min || raw > max {
+            return Err(CodecError::OutOfRange(format!(
+                "{} is outside the range of {}: {}..={}",
+                shown(raw),
+                parameter.name,
+                shown(min),
+                shown(max)
+            )));
+        }
+    }
+    if !parameter.allowed.is_empty() && !parameter.allowed.iter().any(|a| a.as_f64() == raw) {
+        let allowed: Vec<String> = parameter
+            .allowed
+            .iter()
+            .map(|a| shown(a.as_f64()))
+            .collect();
+        return Err(CodecError::NotAllowed(format!(
+            "{} is not allowed for {}; allowed: {}",
+            shown(raw),
+            parameter.name,
+            allowed.join(", ")
+        )));
+    }
+    Ok(())
+}
+
+/// A raw number in engineering units with the unit (raw when the scale is run-time).
+fn show_number(parameter: &Parameter, raw: f64) -> String {
+    match affine(parameter) {
+        Some(scale) => format!(
+            "{:.*}{}",
+            scale.decimals,
+            raw * scale.factor + scale.offset,
+            unit_suffix(parameter)
+        ),
+        None => format!("raw {raw}"),
+    }
+}
+
+/// A value read from the drive, ready to print.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Shown {
+    /// The value for people: with its unit, enum name or flag names.
+    pub text: String,
+    /// The raw value (an integer where the type is one).
+    pub raw: serde_json::Value,
+    /// The engineering value for scripts (a number, or the text of names and strings).
+    pub value: serde_json::Value,
+}
+
+/// Decodes the raw bytes of `parameter`.
+pub fn show(device: &Device, parameter: &Parameter, bytes: &[u8]) -> Shown {
+    let data_type = parameter.data_type;
+    if let DataType::String(_) | DataType::Octets(_) = data_type {
+        let text = String::from_utf8_lossy(bytes)
+            .trim_end_matches('\0')
+            .to_string();
+        return Shown {
+            raw: serde_json::Value::from(bytes.to_vec()),
+            value: serde_json::Value::from(text.clone()),
+            text,
+        };
+    }
+    let Some(raw) = raw::to_f64(data_type, bytes) else {
+        return Shown {
+            text: format!("{bytes:02X?}"),
+            raw: serde_json::Value::Null,
+            value: serde_json::Value::Null,
+        };
+    };
+    let raw_json = raw::to_int(data_type, bytes)
+        .and_then(|i| i64::try_from(i).ok())
+        .map_or(serde_json::Value::from(raw), serde_json::Value::from);
+    if let Some(name) = enum_name(device, parameter, raw) {
+        return Shown {
+            value: serde_json::Value::from(name.clone()),
+            text: name,
+            raw: raw_json,
+        };
+    }
+    if let Some(names) = flag_names(device, parameter, raw as u64) {
+        return Shown {
+            value: serde_json::Value::from(names.clone()),
+            text: names,
+            raw: raw_json,
+        };
+    }
+    let value = affine(parameter).map_or(serde_json::Value::Null, |s| {
+        serde_json::Value::from(raw * s.factor + s.offset)
+    });
+    Shown {
+        text: show_number(parameter, raw),
+        raw: raw_json,
+        value,
+    }
+}
+
+fn enum_name(device: &Device, parameter: &Parameter, raw: f64) -> Option<String> {
+    let e = device.enumeration(parameter.enumeration.as_deref()?)?;
+    Some(
+        e.values
+            .iter()
+            .find(|v| v.value as f64 == raw)
+            .map_or_else(|| format!("unknown ({raw})"), |v| v.name.clone()),
+    )
+}
+
+fn flag_names(device: &Device, parameter: &Parameter, raw: u64) -> Option<String> {
+    let flags = device.flags_type(parameter.flags.as_deref()?)?;
+    let mut names: Vec<String> = flags
+        .bits
+        .iter()
+        .filter(|b| raw & (1 << b.bit) != 0)
+        .map(|b| b.name.clone())
+        .collect();
+    let known = flags.bits.iter().fold(0u64, |m, b| m | 1 << b.bit);
+    if raw & !known != 0 {
+        names.push(format!("{:#x}", raw & !known));
+    }
+    Some(if names.is_empty() {
+        "(none)".to_string()
+    } else {
+        names.join("|")
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn lafert() -> Device {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../descriptions/lafert-smartris"
+        );
+        drivegen::check(std::path::Path::new(path)).device.unwrap()
+    }
+
+    fn parsed(name: &str, text: &str) -> Result<Vec<u8>, CodecError> {
+        let device = lafert();
+        let parameter = device.parameter(name).unwrap().clone();
+        parse(&device, &parameter, text)
+    }
+
+    #[test]
+    fn engineering_values_become_raw_bytes() {
+        assert_eq!(
+            parsed("speed_setpoint", "1500rpm"),
+            Ok(1500i16.to_le_bytes().to_vec())
+        );
+        assert_eq!(
+            parsed("speed_setpoint", "-3000 rpm"),
+            Ok((-3000i16).to_le_bytes().to_vec())
+        );
+        assert_eq!(
+            parsed("torque_setpoint", "2Arms"),
+            Ok(200i16.to_le_bytes().to_vec())
+        );
+        assert_eq!(
+            parsed("speed_setpoint", "raw:1000"),
+            Ok(1000i16.to_le_bytes().to_vec())
+        );
+    }
+
+    #[test]
+    fn names_become_raw_values() {
+        assert_eq!(
+            parsed("operation_mode", "velocity"),
+            Ok(2u16.to_le_bytes().to_vec())
+        );
+        assert_eq!(
+            parsed("control_word", "run|stop_disabled"),
+            Ok(3u16.to_le_bytes().to_vec())
+        );
+    }
+
+    #[test]
+    fn wrong_units_and_ranges_are_refused() {
+        assert!(matches!(
+            parsed("speed_setpoint", "1500V"),
+            Err(CodecError::WrongUnit { .. })
+        ));
+        assert!(matches!(
+            parsed("control_word", "8"),
+            Err(CodecError::OutOfRange(_))
+        ));
+        assert!(matches!(
+            parsed("speed_setpoint", "40000rpm"),
+            Err(CodecError::OutOfRange(_))
+        ));
+        assert!(matches!(
+            parsed("operation_mode", "none"),
+            Err(CodecError::NotAllowed(_))
+        ));
+        assert!(matches!(
+            parsed("torque_setpoint", "2.005Arms"),
+            Err(CodecError::NotRepresentable(_))
+        ));
+        assert!(matches!(
+            parsed("operation_mode", "fast"),
+            Err(CodecError::Unparsable(_))
+        ));
+    }
+
+    #[test]
+    fn raw_bytes_show_with_units_and_names() {
+        let device = lafert();
+        let dc = device.parameter("bus_dc_link").unwrap();
+        assert_eq!(show(&device, dc, &4950u16.to_le_bytes()).text, "49.50 V");
+        let status = device.parameter("drive_status").unwrap();
+        assert_eq!(
+            show(&device, status, &0x11u16.to_le_bytes()).text,
+            "run_velocity|alarm"
+        );
+        let mode = device.parameter("operation_mode").unwrap();
+        assert_eq!(show(&device, mode, &2u16.to_le_bytes()).text, "velocity");
+        assert_eq!(show(&device, mode, &9u16.to_le_bytes()).text, "unknown (9)");
+    }
+}

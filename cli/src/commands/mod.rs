@@ -1,0 +1,41 @@
+//! One file per subcommand, and what they share: loading a description, finding parameters.
+
+pub mod check;
+pub mod decode;
+pub mod dump;
+pub mod generate;
+pub mod read;
+pub mod sim;
+pub mod watch;
+pub mod write;
+
+use std::path::Path;
+
+use drivegen::ir::{Device, Parameter};
+
+use crate::error::CliError;
+use crate::suggest;
+
+/// Loads and validates a description; warnings go to stderr.
+pub fn load(description: &Path) -> Result<Device, CliError> {
+    let checked = drivegen::check(description);
+    if !checked.diagnostics.is_empty() {
+        eprintln!("{}", checked.render());
+    }
+    checked
+        .device
+        .ok_or_else(|| CliError::Invalid(format!("{} has errors", description.display())))
+}
+
+/// The parameter called `name`, or an error suggesting the closest names.
+pub fn parameter<'a>(device: &'a Device, name: &str) -> Result<&'a Parameter, CliError> {
+    device
+        .parameter(name)
+        .ok_or_else(|| CliError::UnknownParameter {
+            name: name.to_string(),
+            closest: suggest::closest(name, device.parameters.iter().map(|p| p.name.as_str()))
+                .into_iter()
+                .map(str::to_string)
+                .collect(),
+        })
+}

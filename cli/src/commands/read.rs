@@ -1,0 +1,79 @@
+//! `drivegen read`: parameters by name, in engineering units.
+
+use std::path::PathBuf;
+
+use drivegen::ir::{Device, Parameter};
+
+use crate::codec;
+use crate::connect::{BusArgs, Session};
+use crate::error::CliError;
+use crate::table;
+
+/// Arguments of `read`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Description file, or a folder with a device.toml.
+    description: PathBuf,
+    /// Parameter names.
+    #[arg(required = true)]
+    parameters: Vec<String>,
+    #[command(flatten)]
+    bus: BusArgs,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Reads each parameter once and prints a table (or JSON).
+pub fn run(args: Args) -> Result<(), CliError> {
+    let device = super::load(&args.description)?;
+    let parameters = resolve(&device, &args.parameters)?;
+    let mut session = Session::open(&args.bus, &device)?;
+    let values = read_all(&mut session, &device, &parameters)?;
+    if args.json {
+        let json: Vec<serde_json::Value> = parameters
+            .iter()
+            .zip(&values)
+            .map(|(p, shown)| to_json(p, shown))
+            .collect();
+        println!("{}", serde_json::Value::from(json));
+    } else {
+        let mut rows = vec![vec!["parameter".into(), "value".into(), "raw".into()]];
+        rows.extend(
+            parameters
+                .iter()
+                .zip(&values)
+                .map(|(p, s)| vec![p.name.clone(), s.text.clone(), s.raw.to_string()]),
+        );
+        print!("{}", table::render(&rows));
+    }
+    Ok(())
+}
+
+/// The parameters named, each checked to exist before anything is sent.
+pub fn resolve<'a>(device: &'a Device, names: &[String]) -> Result<Vec<&'a Parameter>, CliError> {
+    names.iter().map(|n| super::parameter(device, n)).collect()
+}
+
+/// Reads and decodes every parameter.
+pub fn read_all(
+    session: &mut Session,
+    device: &Device,
+    parameters: &[&Parameter],
+) -> Result<Vec<codec::Shown>, CliError> {
+    parameters
+        .iter()
+        .map(|p| Ok(codec::show(device, p, &session.read(p)?)))
+        .collect()
+}
+
+/// One value as a JSON object.
+pub fn to_json(parameter: &Parameter, shown: &codec::Shown) -> serde_json::Value {
+    serde_json::json!({
+        "parameter": parameter.name,
+        "value": shown.value,
+        "unit": parameter.unit,
+        "raw": shown.raw,
+        "text": shown.text,
+    })
+}

@@ -1,0 +1,49 @@
+//! `drivegen write`: one parameter by name, value in engineering units.
+
+use std::path::PathBuf;
+
+use crate::codec;
+use crate::connect::{BusArgs, Session};
+use crate::error::CliError;
+
+/// Arguments of `write`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Description file, or a folder with a device.toml.
+    description: PathBuf,
+    /// Parameter name.
+    parameter: String,
+    /// Value: `1500rpm`, `49.5V`, an enum value name, flag names joined by `|`, or `raw:N` / `0x..`.
+    #[arg(allow_hyphen_values = true)]
+    value: String,
+    #[command(flatten)]
+    bus: BusArgs,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Checks the value against the description, then writes it.
+pub fn run(args: Args) -> Result<(), CliError> {
+    let device = super::load(&args.description)?;
+    let parameter = super::parameter(&device, &args.parameter)?;
+    let bytes = codec::parse(&device, parameter, &args.value).map_err(|cause| CliError::Value {
+        parameter: parameter.name.clone(),
+        cause,
+    })?;
+    let mut session = Session::open(&args.bus, &device)?;
+    session.write(parameter, &bytes)?;
+    let shown = codec::show(&device, parameter, &bytes);
+    if args.json {
+        println!("{}", super::read::to_json(parameter, &shown));
+    } else {
+        println!(
+            "{} = {} (raw {}) written to {}",
+            parameter.name,
+            shown.text,
+            shown.raw,
+            session.target()
+        );
+    }
+    Ok(())
+}

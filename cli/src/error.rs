@@ -1,0 +1,80 @@
+//! The CLI's errors: each says what was wrong and, where it can, what to do.
+
+use std::fmt;
+
+use drivebus::BusError;
+
+use crate::codec::CodecError;
+
+/// A failed command.
+#[derive(Debug)]
+pub enum CliError {
+    /// The description has errors (already rendered).
+    Invalid(String),
+    /// No parameter of this name; the closest names.
+    UnknownParameter {
+        /// The name given.
+        name: String,
+        /// Suggestions.
+        closest: Vec<String>,
+    },
+    /// A value was refused before anything was sent.
+    Value {
+        /// Parameter.
+        parameter: String,
+        /// Why.
+        cause: CodecError,
+    },
+    /// The parameter has no address on the chosen protocol, or not with this access.
+    NoAccess(String),
+    /// The bus failed or the drive refused.
+    Bus {
+        /// Where: address and unit / node.
+        target: String,
+        /// Parameter accessed.
+        parameter: String,
+        /// What happened.
+        cause: BusError,
+    },
+    /// Wrong command-line usage.
+    Usage(String),
+    /// I/O on files or sockets.
+    Io(String),
+}
+
+impl fmt::Display for CliError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            CliError::Invalid(text) => write!(f, "{text}"),
+            CliError::UnknownParameter { name, closest } if closest.is_empty() => {
+                write!(f, "no parameter named `{name}`")
+            }
+            CliError::UnknownParameter { name, closest } => write!(
+                f,
+                "no parameter named `{name}`; did you mean {}?",
+                closest
+                    .iter()
+                    .map(|c| format!("`{c}`"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+            CliError::Value { parameter, cause } => {
+                write!(f, "{parameter}: {cause} (nothing was sent)")
+            }
+            CliError::NoAccess(why) => write!(f, "{why}"),
+            CliError::Bus {
+                target,
+                parameter,
+                cause: BusError::Timeout,
+            } => write!(f, "{parameter}: no answer from {target} (timeout)"),
+            CliError::Bus {
+                target,
+                parameter,
+                cause,
+            } => write!(f, "{parameter}: {target}: {cause}"),
+            CliError::Usage(text) | CliError::Io(text) => write!(f, "{text}"),
+        }
+    }
+}
+
+impl std::error::Error for CliError {}

@@ -1,0 +1,63 @@
+//! The `drivegen` command-line tool: validate and inspect descriptions, generate drive crates,
+//! simulate a drive, and read, write, watch or decode a drive's values by parameter name.
+#![deny(missing_docs)]
+
+mod codec;
+mod commands;
+mod connect;
+mod error;
+mod pdo_mappings;
+mod suggest;
+mod table;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// Typed Rust driver crates for industrial motor drives, from device descriptions.
+#[derive(Parser)]
+#[command(name = "drivegen", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Validate a description and print diagnostics (exit code 1 on errors).
+    Check(commands::check::Args),
+    /// Print the normalized device model (a table, or the IR JSON with --json).
+    Dump(commands::dump::Args),
+    /// Generate a standalone drive crate (Cargo.toml + src/lib.rs) into a folder.
+    Generate(commands::generate::Args),
+    /// Simulate the described drive on Modbus TCP, Modbus RTU or CANopen until interrupted.
+    Sim(commands::sim::Args),
+    /// Read parameters by name and print them in engineering units.
+    Read(commands::read::Args),
+    /// Write one parameter by name; the value is checked against the description first.
+    Write(commands::write::Args),
+    /// Poll parameters and show them live.
+    Watch(commands::watch::Args),
+    /// Decode a candump capture into named, typed values.
+    Decode(commands::decode::Args),
+}
+
+fn main() -> ExitCode {
+    let result = match Cli::parse().command {
+        Command::Check(args) => commands::check::run(args),
+        Command::Dump(args) => commands::dump::run(args),
+        Command::Generate(args) => commands::generate::run(args),
+        Command::Sim(args) => commands::sim::run(args),
+        Command::Read(args) => commands::read::run(args),
+        Command::Write(args) => commands::write::run(args),
+        Command::Watch(args) => commands::watch::run(args),
+        Command::Decode(args) => commands::decode::run(args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,113 @@
+//! PDO mappings learned from a capture: the SDO writes to the mapping objects (1600h.., 1A00h..)
+//! say which objects later PDO payloads carry.
+
+use std::collections::HashMap;
+
+use drivebus::canopen::pdo::{MappedObject, PdoKind};
+use drivegen::ir::Device;
+
+use crate::codec;
+
+/// First RPDO and TPDO mapping objects.
+const RPDO_MAPPING: u16 = 0x1600;
+const TPDO_MAPPING: u16 = 0x1A00;
+/// Mapping objects per direction.
+const MAPPINGS: u16 = 0x200;
+
+/// The mappings seen so far, per node, direction and PDO number.
+#[derive(Debug, Default)]
+pub struct PdoMappings {
+    maps: HashMap<(u8, bool, u16), Vec<MappedObject>>,
+}
+
+impl PdoMappings {
+    /// Learns from an SDO download of `data` to `index:subindex` of `node`; other objects are
+    /// ignored.
+    pub fn learn(&mut self, node: u8, index: u16, subindex: u8, data: &[u8]) {
+        let (transmit, number) = match index {
+            i if (TPDO_MAPPING..TPDO_MAPPING + MAPPINGS).contains(&i) => {
+                (true, i - TPDO_MAPPING + 1)
+            }
+            i if (RPDO_MAPPING..RPDO_MAPPING + MAPPINGS).contains(&i) => {
+                (false, i - RPDO_MAPPING + 1)
+            }
+            _ => return,
+        };
+        let mut bytes = [0u8; 4];
+        let n = data.len().min(4);
+        bytes[..n].copy_from_slice(&data[..n]);
+        let value = u32::from_le_bytes(bytes);
+        let entries = self.maps.entry((node, transmit, number)).or_default();
+        if subindex == 0 {
+            entries.truncate(value as usize);
+            return;
+        }
+        let slot = usize::from(subindex) - 1;
+        if entries.len() <= slot {
+            entries.resize(slot + 1, MappedObject::new(0, 0, 0));
+        }
+        entries[slot] = MappedObject::from_entry(value);
+    }
+
+    /// The named values of a PDO payload, if its mapping was seen and the payload holds it.
+    pub fn decode(
+        &self,
+        device: &Device,
+        node: u8,
+        kind: PdoKind,
+        number: u8,
+        payload: &[u8],
+    ) -> Option<String> {
+        let transmit = kind == PdoKind::Transmit;
+        let entries = self.maps.get(&(node, transmit, u16::from(number)))?;
+        let mut bit = 0usize;
+        let mut values = Vec::with_capacity(entries.len());
+        for entry in entries {
+            if bit % 8 != 0 || entry.bits % 8 != 0 {
+                return None; // Bit-packed mappings are left raw.
+            }
+            let bytes = payload.get(bit / 8..bit / 8 + usize::from(entry.bits) / 8)?;
+            bit += usize::from(entry.bits);
+            let parameter = device.parameters.iter().find(|p| {
+                p.canopen
+                    .iter()
+                    .any(|a| a.index == entry.index && a.subindex == entry.subindex)
+            });
+            values.push(match parameter {
+                Some(p) => format!("{}={}", p.name, codec::show(device, p, bytes).text),
+                None => format!("{:04X}:{:02X}={bytes:02X?}", entry.index, entry.subindex),
+            });
+        }
+        Some(values.join(", "))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_learned_mapping_names_the_payload() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../descriptions/lafert-smartris"
+        );
+        let device = drivegen::check(std::path::Path::new(path)).device.unwrap();
+        let mut maps = PdoMappings::default();
+        maps.learn(1, 0x1A00, 0, &[0]);
+        maps.learn(1, 0x1A00, 1, &0x6041_0010u32.to_le_bytes());
+        maps.learn(1, 0x1A00, 2, &0x606C_0020u32.to_le_bytes());
+        maps.learn(1, 0x1A00, 0, &[2]);
+        let payload = [0x37, 0x00, 0xE8, 0x03, 0x00, 0x00];
+        let text = maps
+            .decode(&device, 1, PdoKind::Transmit, 1, &payload)
+            .unwrap();
+        assert!(text.starts_with("statusword="), "{text}");
+        assert!(text.ends_with("velocity_actual_value=1000"), "{text}");
+        assert_eq!(
+            maps.decode(&device, 1, PdoKind::Transmit, 2, &payload),
+            None,
+            "not mapped"
+        );
+    }
+}

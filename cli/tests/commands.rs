@@ -1,0 +1,355 @@
+//! The `drivegen` binary end to end against the simulator: help, read/write/watch by name with
+//! units, refusals before anything is sent, a dead bus, `sim` and `decode`.
+
+use std::io::{BufRead, BufReader};
+use std::net::TcpListener;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+use drivebus::modbus::UnitId;
+use drivesim::modbus::tcp::TcpServer;
+use drivesim::Simulator;
+
+const BIN: &str = env!("CARGO_BIN_EXE_drivegen");
+
+fn lafert_path() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/lafert-smartris")
+}
+
+fn drivegen(args: &[&str]) -> Output {
+    Command::new(BIN).args(args).output().unwrap()
+}
+
+fn stdout(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stdout).into_owned()
+}
+
+fn stderr(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+fn simulated_lafert() -> (Simulator, TcpServer, String) {
+    let sim = Simulator::load(lafert_path()).unwrap();
+    sim.preset("operation_mode", 2).unwrap();
+    sim.preset("bus_dc_link", 4950).unwrap();
+    let server = sim.serve_modbus_tcp("127.0.0.1:0", UnitId(1)).unwrap();
+    let addr = server.local_addr().to_string();
+    (sim, server, addr)
+}
+
+fn raw(sim: &Simulator, name: &str) -> i128 {
+    sim.with(|drive| {
+        let store = drive.store();
+        store.int(store.id(name).unwrap()).unwrap()
+    })
+}
+
+#[test]
+fn every_subcommand_has_help() {
+    for command in [
+        "check", "dump", "generate", "sim", "read", "write", "watch", "decode",
+    ] {
+        let output = drivegen(&[command, "--help"]);
+        assert!(output.status.success(), "{command} --help");
+        assert!(
+            stdout(&output).contains("Usage: drivegen"),
+            "{command}: {}",
+            stdout(&output)
+        );
+    }
+}
+
+#[test]
+fn read_prints_values_with_units_and_names() {
+    let (_sim, _server, addr) = simulated_lafert();
+    let lafert = lafert_path();
+    let output = drivegen(&[
+        "read",
+        lafert.to_str().unwrap(),
+        "bus_dc_link",
+        "drive_status",
+        "operation_mode",
+        "--modbus-tcp",
+        &addr,
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = stdout(&output);
+    assert!(text.contains("bus_dc_link     49.50 V   4950"), "{text}");
+    assert!(text.contains("drive_status    standby   2"), "{text}");
+    assert!(text.contains("operation_mode  velocity  2"), "{text}");
+}
+
+#[test]
+fn read_json_is_machine_readable() {
+    let (_sim, _server, addr) = simulated_lafert();
+    let lafert = lafert_path();
+    let output = drivegen(&[
+        "read",
+        lafert.to_str().unwrap(),
+        "bus_dc_link",
+        "--modbus-tcp",
+        &addr,
+        "--json",
+    ]);
+    let json: serde_json::Value = serde_json::from_str(&stdout(&output)).unwrap();
+    assert_eq!(json[0]["parameter"], "bus_dc_link");
+    assert_eq!(json[0]["value"], 49.5);
+    assert_eq!(json[0]["raw"], 4950);
+    assert_eq!(json[0]["unit"], "V");
+}
+
+#[test]
+fn write_takes_engineering_units_and_names() {
+    let (sim, _server, addr) = simulated_lafert();
+    let lafert = lafert_path();
+    let lafert = lafert.to_str().unwrap();
+    let run = drivegen(&[
+        "write",
+        lafert,
+        "control_word",
+        "run|stop_disabled",
+        "--modbus-tcp",
+        &addr,
+    ]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    assert_eq!(raw(&sim, "drive_status"), 0x0001, "RUN after T2");
+    let speed = drivegen(&[
+        "write",
+        lafert,
+        "speed_setpoint",
+        "-1500rpm",
+        "--modbus-tcp",
+        &addr,
+    ]);
+    assert!(speed.status.success(), "{}", stderr(&speed));
+    assert_eq!(raw(&sim, "speed_setpoint"), -1500);
+}
+
+#[test]
+fn bad_values_are_refused_before_anything_is_sent() {
+    let (sim, _server, addr) = simulated_lafert();
+    let lafert = lafert_path();
+    let lafert = lafert.to_str().unwrap();
+    let cases = [
+        (
+            "speed_ramp_up",
+            "2V",
+            "wrong unit `V`: the parameter is in ms",
+        ),
+        (
+            "speed_ramp_up",
+            "40000ms",
+            "outside the range of speed_ramp_up: 0 ms..=32767 ms",
+        ),
+        (
+            "ramp_enable",
+            "2",
+            "not allowed for ramp_enable; allowed: 0, 1",
+        ),
+    ];
+    for (parameter, value, message) in cases {
+        let output = drivegen(&["write", lafert, parameter, value, "--modbus-tcp", &addr]);
+        assert!(!output.status.success());
+        assert!(
+            stderr(&output).contains(message),
+            "{parameter} {value}: {}",
+            stderr(&output)
+        );
+        assert!(stderr(&output).contains("nothing was sent"));
+    }
+    assert_eq!(raw(&sim, "speed_ramp_up"), 2000, "unchanged");
+    assert_eq!(raw(&sim, "ramp_enable"), 1, "unchanged");
+}
+
+#[test]
+fn unknown_names_suggest_the_closest() {
+    let lafert = lafert_path();
+    let output = drivegen(&[
+        "read",
+        lafert.to_str().unwrap(),
+        "bus_dc_lnk",
+        "--modbus-tcp",
+        "127.0.0.1:1",
+    ]);
+    assert!(!output.status.success());
+    assert!(
+        stderr(&output).contains("did you mean `bus_dc_link`"),
+        "{}",
+        stderr(&output)
+    );
+}
+
+#[test]
+fn a_dead_bus_times_out_naming_the_address() {
+    // Accepts the connection and never answers.
+    let listener = TcpListener::bind("127.0.0.1:0").unwrap();
+    let addr = listener.local_addr().unwrap().to_string();
+    let lafert = lafert_path();
+    let started = Instant::now();
+    let output = drivegen(&[
+        "read",
+        lafert.to_str().unwrap(),
+        "bus_dc_link",
+        "--modbus-tcp",
+        &addr,
+        "--timeout-ms",
+        "200",
+    ]);
+    assert!(!output.status.success());
+    let expected = format!("bus_dc_link: no answer from Modbus TCP {addr} unit 1 (timeout)");
+    assert!(stderr(&output).contains(&expected), "{}", stderr(&output));
+    assert!(started.elapsed() < Duration::from_secs(10), "no hang");
+    drop(listener);
+}
+
+#[test]
+fn watch_polls_until_the_count() {
+    let (_sim, _server, addr) = simulated_lafert();
+    let lafert = lafert_path();
+    let output = drivegen(&[
+        "watch",
+        lafert.to_str().unwrap(),
+        "drive_status",
+        "bus_dc_link",
+        "--modbus-tcp",
+        &addr,
+        "--count",
+        "3",
+        "--interval-ms",
+        "10",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = stdout(&output);
+    let polls = text
+        .lines()
+        .filter(|l| l.contains("standby") && l.contains("49.50 V"))
+        .count();
+    assert_eq!(polls, 3, "{text}");
+}
+
+#[test]
+fn sim_announces_its_real_port_and_serves_until_stopped() {
+    let lafert = lafert_path();
+    let mut child = Command::new(BIN)
+        .args([
+            "sim",
+            lafert.to_str().unwrap(),
+            "--modbus-tcp",
+            "127.0.0.1:0",
+            "--set",
+            "bus_dc_link=4950",
+        ])
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut line = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut line)
+        .unwrap();
+    let addr = line
+        .trim()
+        .strip_prefix("listening on modbus-tcp ")
+        .and_then(|rest| rest.split_whitespace().next())
+        .unwrap_or_else(|| panic!("announcement: {line}"))
+        .to_string();
+    assert!(!addr.ends_with(":0"), "the real port: {addr}");
+    let output = drivegen(&[
+        "read",
+        lafert.to_str().unwrap(),
+        "bus_dc_link",
+        "--modbus-tcp",
+        &addr,
+    ]);
+    child.kill().unwrap();
+    child.wait().unwrap();
+    assert!(stdout(&output).contains("49.50 V"), "{}", stderr(&output));
+}
+
+#[test]
+fn decode_names_sdo_values_heartbeats_and_emcy() {
+    let dir = std::env::temp_dir().join(format!("drivegen-decode-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let log = dir.join("capture.log");
+    std::fs::write(
+        &log,
+        "(1700000000.000100) can0 701#00\n\
+         (1700000000.000200) can0 601#2B40600006000000\n\
+         (1700000000.000300) can0 581#6040600000000000\n\
+         (1700000000.000400) can0 601#4041600000000000\n\
+         (1700000000.000500) can0 581#4B41600021020000\n\
+         (1700000000.000600) can0 081#1032010000000000\n\
+         (1700000000.000700) can0 581#8041600002000106\n\
+         (1700000000.000800) can0 601#23001A0110004160\n\
+         (1700000000.000900) can0 601#2F001A0001000000\n\
+         (1700000000.001000) can0 181#2702\n",
+    )
+    .unwrap();
+    let lafert = lafert_path();
+    let output = drivegen(&["decode", lafert.to_str().unwrap(), log.to_str().unwrap()]);
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = stdout(&output);
+    assert!(
+        text.contains("heartbeat") && text.contains("Initializing"),
+        "{text}"
+    );
+    assert!(text.contains("write controlword"), "{text}");
+    assert!(text.contains("statusword"), "{text}");
+    assert!(
+        text.contains("over_voltage"),
+        "EMCY 0x3210 named from the error code enum: {text}"
+    );
+    assert!(
+        text.contains("0x06010002 attempt to write a read only object"),
+        "{text}"
+    );
+}
+
+#[test]
+fn sim_is_a_canopen_node_on_slcan_over_tcp() {
+    use drivebus::canopen::backend::slcan::SlcanBus;
+    use drivebus::canopen::blocking::BlockingSdo;
+    use drivebus::canopen::{NodeId, SdoBus};
+
+    // The simulator connects to an SLCAN gateway; the test is the gateway and the master.
+    let listener = TcpListener::bind("127.0.0.1:0").unwrap();
+    let addr = listener.local_addr().unwrap();
+    let lafert = lafert_path();
+    let mut child = Command::new(BIN)
+        .args([
+            "sim",
+            lafert.to_str().unwrap(),
+            "--can",
+            &format!("slcan:{addr}"),
+        ])
+        .stdout(Stdio::null())
+        .spawn()
+        .unwrap();
+    let (stream, _) = listener.accept().unwrap();
+    let mut sdo =
+        BlockingSdo::new(SlcanBus::tcp(stream).unwrap()).with_timeout(Duration::from_secs(2));
+    let mut buf = [0u8; 2];
+    let result = sdo.upload(NodeId(1), 0x6041, 0, &mut buf);
+    child.kill().unwrap();
+    child.wait().unwrap();
+    assert_eq!(result, Ok(2));
+    assert_eq!(u16::from_le_bytes(buf) & 0x4F, 0x40, "switch on disabled");
+}
+
+#[test]
+fn two_word_values_are_written_word_by_word_without_fc16() {
+    // The Lafert implements FC 0x06 only (functions = [0x03, 0x04, 0x06]).
+    let (sim, _server, addr) = simulated_lafert();
+    let lafert = lafert_path();
+    let output = drivegen(&[
+        "write",
+        lafert.to_str().unwrap(),
+        "s_ramp_jerk_acceleration",
+        "raw:1000000",
+        "--modbus-tcp",
+        &addr,
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert_eq!(raw(&sim, "s_ramp_jerk_acceleration"), 1_000_000);
+}

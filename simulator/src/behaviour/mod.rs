@@ -1,0 +1,86 @@
+//! What the simulated drive does besides storing values: state machines, command registers and a
+//! motor. Each behaviour is chosen from the description (by the parameters and objects it has)
+//! and reacts to writes and to the passing of time through the [`Behaviour`] trait.
+
+use std::fmt::Debug;
+use std::time::Duration;
+
+use crate::refusal::Refusal;
+use crate::store::{ParamId, Store};
+
+pub mod cia402;
+pub mod commands;
+pub mod lafert_modbus;
+pub mod motor;
+
+/// What the power stage is doing, as the active state machine commands it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Motion {
+    /// Power stage off: the motor does not follow any setpoint.
+    #[default]
+    Disabled,
+    /// Following the speed setpoint held in this parameter.
+    Following(ParamId),
+    /// Stopping at once (quick stop, stop with maximum torque, fault).
+    QuickStop,
+}
+
+/// State behaviours share.
+#[derive(Debug, Clone, Default)]
+pub struct Shared {
+    /// What the motor does.
+    pub motion: Motion,
+    /// An active fault code, injected by a test or raised by the drive.
+    pub fault: Option<u16>,
+    /// Set by a reset command: the drive reboots after the current request.
+    pub reset_requested: bool,
+}
+
+/// One aspect of the drive's behaviour.
+pub trait Behaviour: Debug + Send {
+    /// Refuses a write the drive does not accept in its present state (checked after range).
+    fn accept(&self, _store: &Store, _id: ParamId, _bytes: &[u8]) -> Result<(), Refusal> {
+        Ok(())
+    }
+    /// Reacts to a value a client wrote (already stored).
+    fn written(&mut self, _store: &mut Store, _shared: &mut Shared, _id: ParamId) {}
+    /// Advances the drive by `dt`.
+    fn tick(&mut self, _store: &mut Store, _shared: &mut Shared, _dt: Duration) {}
+    /// Returns to the power-on state after a reboot (values already reloaded).
+    fn reset(&mut self, _store: &mut Store, _shared: &mut Shared) {}
+}
+
+/// The behaviours a description calls for, in the order they run: commands, state machines, the
+/// motor.
+pub fn for_device(store: &mut Store) -> Vec<Box<dyn Behaviour>> {
+    let mut behaviours: Vec<Box<dyn Behaviour>> = Vec::new();
+    if let Some(b) = commands::Commands::detect(store) {
+        behaviours.push(Box::new(b));
+    }
+    if let Some(b) = lafert_modbus::LafertModbus::detect(store) {
+        behaviours.push(Box::new(b));
+    }
+    if let Some(b) = cia402::Cia402::detect(store) {
+        behaviours.push(Box::new(b));
+    }
+    if let Some(b) = motor::Motor::detect(store) {
+        behaviours.push(Box::new(b));
+    }
+    behaviours
+}
+
+/// The parameter at CANopen `index:subindex`, if the description has one.
+pub(crate) fn object(store: &Store, index: u16, subindex: u8) -> Option<ParamId> {
+    store.device().parameters.iter().position(|p| {
+        p.canopen
+            .iter()
+            .any(|a| a.index == index && a.subindex == subindex)
+    })
+}
+
+/// The number of the bit named `bit` of the flags type of parameter `id`.
+pub(crate) fn flag_bit(store: &Store, id: ParamId, bit: &str) -> Option<u32> {
+    let flags = store.parameter(id).flags.as_deref()?;
+    let flags = store.device().flags_type(flags)?;
+    flags.bits.iter().find(|b| b.name == bit).map(|b| b.bit)
+}

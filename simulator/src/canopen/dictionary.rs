@@ -1,0 +1,79 @@
+//! The drive's parameters as a CANopen object dictionary, enforcing access, length and range.
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use drivebus::canopen::sdo::server::ObjectDictionary;
+use drivebus::canopen::sdo::AbortCode;
+use drivegen::ir::{Access, Device};
+
+use crate::refusal::Refusal;
+use crate::store::ParamId;
+use crate::Simulator;
+
+/// The objects of a device, served from a running [`Simulator`].
+#[derive(Debug, Clone)]
+pub struct Dictionary {
+    sim: Simulator,
+    objects: BTreeMap<(u16, u8), (ParamId, Access)>,
+    indices: BTreeSet<u16>,
+}
+
+impl Dictionary {
+    /// The objects of `device` in `variant` (`None`: the default configuration).
+    pub fn new(sim: Simulator, device: &Device, variant: Option<&str>) -> Self {
+        let mut objects = BTreeMap::new();
+        for (id, parameter) in device.parameters.iter().enumerate() {
+            for address in parameter
+                .canopen
+                .iter()
+                .filter(|a| a.variant.is_none() || a.variant.as_deref() == variant)
+            {
+                objects.insert((address.index, address.subindex), (id, address.access));
+            }
+        }
+        let indices = objects.keys().map(|(index, _)| *index).collect();
+        Self {
+            sim,
+            objects,
+            indices,
+        }
+    }
+
+    fn object(&self, index: u16, subindex: u8) -> Result<(ParamId, Access), Refusal> {
+        match self.objects.get(&(index, subindex)) {
+            Some(object) => Ok(*object),
+            None if self.indices.contains(&index) => Err(Refusal::NoSuchSubindex),
+            None => Err(Refusal::NoSuchAddress),
+        }
+    }
+
+    /// Highest subindex of a record or array whose subindex 0 is not described.
+    fn highest_subindex(&self, index: u16) -> u8 {
+        self.objects
+            .range((index, 0)..=(index, u8::MAX))
+            .map(|((_, sub), _)| *sub)
+            .max()
+            .unwrap_or(0)
+    }
+}
+
+impl ObjectDictionary for Dictionary {
+    fn read(&mut self, index: u16, subindex: u8) -> Result<Vec<u8>, AbortCode> {
+        match self.object(index, subindex) {
+            Ok((_, access)) if !access.read => Err(Refusal::WriteOnly.sdo_abort()),
+            Ok((id, _)) => Ok(self.sim.with(|drive| drive.store().bytes(id).to_vec())),
+            Err(Refusal::NoSuchSubindex) if subindex == 0 => Ok(vec![self.highest_subindex(index)]),
+            Err(refusal) => Err(refusal.sdo_abort()),
+        }
+    }
+
+    fn write(&mut self, index: u16, subindex: u8, data: &[u8]) -> Result<(), AbortCode> {
+        let (id, access) = self.object(index, subindex).map_err(Refusal::sdo_abort)?;
+        if !access.write {
+            return Err(Refusal::ReadOnly.sdo_abort());
+        }
+        self.sim
+            .with(|drive| drive.write(id, data))
+            .map_err(Refusal::sdo_abort)
+    }
+}

@@ -1,0 +1,171 @@
+//! A CANopen node: boot-up, NMT state, heartbeat producer and the SDO server, sans-I/O, plus a
+//! blocking loop over any CAN backend.
+
+use std::time::{Duration, Instant};
+
+use drivebus::canopen::emcy::{Emcy, ErrorRegister};
+use drivebus::canopen::frame::cob;
+use drivebus::canopen::nmt::{heartbeat_frame, NmtCommand, NmtState};
+use drivebus::canopen::sdo::server::SdoServer;
+use drivebus::canopen::{CanBus, CanFrame, NodeId};
+use drivebus::BusError;
+
+use super::Dictionary;
+use crate::behaviour::object;
+use crate::Simulator;
+
+/// Settings of a simulated node.
+#[derive(Debug, Clone, Copy)]
+pub struct NodeConfig {
+    /// Node id.
+    pub node: NodeId,
+    /// Heartbeat period when the description has no 1017h object (`None`: no heartbeat).
+    pub heartbeat: Option<Duration>,
+}
+
+/// A simulated CANopen node.
+#[derive(Debug)]
+pub struct Node {
+    config: NodeConfig,
+    sim: Simulator,
+    sdo: SdoServer<Dictionary>,
+    state: NmtState,
+    next_heartbeat: Duration,
+    reported_fault: Option<u16>,
+}
+
+impl Node {
+    /// A node serving `sim`'s drive; it is INITIALISING until [`Node::boot`].
+    pub fn new(sim: Simulator, config: NodeConfig, variant: Option<&str>) -> Self {
+        let dictionary =
+            sim.with(|drive| Dictionary::new(sim.clone(), drive.store().device(), variant));
+        Self {
+            config,
+            sim,
+            sdo: SdoServer::new(config.node, dictionary),
+            state: NmtState::Initializing,
+            next_heartbeat: Duration::ZERO,
+            reported_fault: None,
+        }
+    }
+
+    /// The NMT state.
+    pub fn state(&self) -> NmtState {
+        self.state
+    }
+
+    /// Ends initialisation: the boot-up message, then PRE-OPERATIONAL.
+    pub fn boot(&mut self, now: Duration) -> CanFrame {
+        self.state = NmtState::PreOperational;
+        self.next_heartbeat = now;
+        heartbeat_frame(self.config.node, NmtState::Initializing)
+    }
+
+    /// Handles a received frame at time `now`; returns the frames to send.
+    pub fn handle(&mut self, frame: &CanFrame, now: Duration) -> Vec<CanFrame> {
+        if let Some((command, target)) = NmtCommand::decode(frame) {
+            if target.is_none_or(|t| t == self.config.node) {
+                return self.nmt(command, now);
+            }
+            return Vec::new();
+        }
+        if frame.id() == cob::SDO_RX + u16::from(self.config.node.0)
+            && self.state != NmtState::Stopped
+        {
+            return self.sdo.handle(frame);
+        }
+        Vec::new()
+    }
+
+    fn nmt(&mut self, command: NmtCommand, now: Duration) -> Vec<CanFrame> {
+        match command {
+            NmtCommand::ResetNode => {
+                self.sim.with(|drive| drive.reboot());
+                vec![self.boot(now)]
+            }
+            NmtCommand::ResetCommunication => vec![self.boot(now)],
+            other => {
+                self.state = other.target_state();
+                Vec::new()
+            }
+        }
+    }
+
+    /// The heartbeat period: 1017h if described, else the configured one.
+    fn heartbeat_period(&self) -> Option<Duration> {
+        let described = self.sim.with(|drive| {
+            let store = drive.store();
+            object(store, 0x1017, 0).and_then(|id| store.int(id))
+        });
+        match described {
+            Some(ms) if ms > 0 => Some(Duration::from_millis(ms as u64)),
+            Some(_) => None,
+            None => self.config.heartbeat,
+        }
+    }
+
+    /// An EMCY when the drive's fault changed: its code when one is raised, 0x0000 (error
+    /// reset) when it is cleared. Not sent while STOPPED or before boot-up.
+    pub fn poll_emcy(&mut self) -> Option<CanFrame> {
+        let fault = self.sim.with(|drive| drive.fault());
+        if fault == self.reported_fault
+            || matches!(self.state, NmtState::Stopped | NmtState::Initializing)
+        {
+            return None;
+        }
+        self.reported_fault = fault;
+        let register = if fault.is_some() {
+            ErrorRegister::GENERIC
+        } else {
+            ErrorRegister::empty()
+        };
+        let emcy = Emcy {
+            node: self.config.node,
+            code: fault.unwrap_or(0),
+            register,
+            manufacturer: [0; 5],
+        };
+        Some(emcy.encode())
+    }
+
+    /// Frames due at time `now` (heartbeats).
+    pub fn poll(&mut self, now: Duration) -> Option<CanFrame> {
+        let period = self.heartbeat_period()?;
+        if self.state == NmtState::Initializing || now < self.next_heartbeat {
+            return None;
+        }
+        self.next_heartbeat = now + period;
+        Some(heartbeat_frame(self.config.node, self.state))
+    }
+
+    /// Runs the node on `bus` until the bus fails (e.g. the candump stream ends).
+    pub fn run<B: CanBus>(&mut self, bus: &mut B) -> Result<(), BusError> {
+        self.run_while(bus, || true)
+    }
+
+    /// Runs the node on `bus` while `keep_running` says so (checked every 10 ms).
+    pub fn run_while<B: CanBus>(
+        &mut self,
+        bus: &mut B,
+        keep_running: impl Fn() -> bool,
+    ) -> Result<(), BusError> {
+        let epoch = Instant::now();
+        bus.send(&self.boot(epoch.elapsed()))?;
+        while keep_running() {
+            let received = bus.recv(Duration::from_millis(10))?;
+            let now = epoch.elapsed();
+            if let Some(frame) = received {
+                for reply in self.handle(&frame, now) {
+                    bus.send(&reply)?;
+                }
+            }
+            if let Some(emcy) = self.poll_emcy() {
+                bus.send(&emcy)?;
+            }
+            if let Some(heartbeat) = self.poll(now) {
+                bus.send(&heartbeat)?;
+            }
+        }
+        Ok(())
+    }
+}

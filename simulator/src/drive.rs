@@ -1,0 +1,92 @@
+//! The simulated drive: its parameter store and behaviours, protocol independent.
+
+use std::time::Duration;
+
+use drivegen::ir::Device;
+
+use crate::behaviour::{self, Behaviour, Shared};
+use crate::refusal::Refusal;
+use crate::store::{ParamId, Store};
+
+/// A drive built from a description.
+#[derive(Debug)]
+pub struct Drive {
+    store: Store,
+    behaviours: Vec<Box<dyn Behaviour>>,
+    shared: Shared,
+}
+
+impl Drive {
+    /// A drive at power-on: described defaults, behaviours chosen from the description.
+    pub fn new(device: Device) -> Self {
+        let mut store = Store::new(device);
+        let behaviours = behaviour::for_device(&mut store);
+        Self {
+            store,
+            behaviours,
+            shared: Shared::default(),
+        }
+    }
+
+    /// The parameter values.
+    pub fn store(&self) -> &Store {
+        &self.store
+    }
+
+    /// Sets a value before clients connect, as the drive's own configuration or measurement
+    /// (no checks); it is also stored in non-volatile memory, and the drive restarts with it.
+    pub fn preset(&mut self, id: ParamId, value: i128) {
+        self.store.set_int(id, value);
+        self.store.store();
+        let (store, shared) = (&mut self.store, &mut self.shared);
+        for b in &mut self.behaviours {
+            b.reset(store, shared);
+        }
+    }
+
+    /// Writes a value as a client request does: checked against range and allowed values and
+    /// the drive's state, then the behaviours react (a reset command reboots the drive).
+    pub fn write(&mut self, id: ParamId, bytes: &[u8]) -> Result<(), Refusal> {
+        self.store.check(id, bytes)?;
+        for b in &self.behaviours {
+            b.accept(&self.store, id, bytes)?;
+        }
+        self.store.set_bytes(id, bytes);
+        let (store, shared) = (&mut self.store, &mut self.shared);
+        for b in &mut self.behaviours {
+            b.written(store, shared, id);
+        }
+        if std::mem::take(&mut self.shared.reset_requested) {
+            self.reboot();
+        }
+        Ok(())
+    }
+
+    /// Advances time by `dt`: ramps run, faults are taken.
+    pub fn tick(&mut self, dt: Duration) {
+        let (store, shared) = (&mut self.store, &mut self.shared);
+        for b in &mut self.behaviours {
+            b.tick(store, shared, dt);
+        }
+    }
+
+    /// Raises a fault with `code`; the state machines react at the next tick.
+    pub fn inject_fault(&mut self, code: u16) {
+        self.shared.fault = Some(code);
+        self.tick(Duration::ZERO);
+    }
+
+    /// The active fault code, if any.
+    pub fn fault(&self) -> Option<u16> {
+        self.shared.fault
+    }
+
+    /// Reboots: values reload from non-volatile memory, state machines restart.
+    pub fn reboot(&mut self) {
+        self.store.reload();
+        let (store, shared) = (&mut self.store, &mut self.shared);
+        for b in &mut self.behaviours {
+            b.reset(store, shared);
+        }
+    }
+}

@@ -1,0 +1,9 @@
+//! The Modbus side of the simulator: the register map, the sans-I/O server core, and blocking
+//! TCP and RTU (serial) loops around it.
+
+pub mod map;
+pub mod rtu;
+pub mod server;
+pub mod tcp;
+
+pub use server::ModbusServer;

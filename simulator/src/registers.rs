@@ -1,0 +1,113 @@
+//! Parameter values ↔ Modbus registers, for any IR type: integers are sign-extended into and
+//! range-checked out of their registers, other types are copied byte for byte.
+
+use drivebus::modbus::{le_to_registers, registers_to_le, Table, WordOrder};
+use drivegen::ir::{self, DataType};
+
+use crate::raw;
+use crate::refusal::Refusal;
+
+/// The `words` registers (wire order) holding the little-endian value `bytes` of `data_type`.
+pub fn to_registers(data_type: DataType, bytes: &[u8], words: u16, order: WordOrder) -> Vec<u16> {
+    let wire_len = 2 * words as usize;
+    let mut wire = match raw::to_int(data_type, bytes) {
+        Some(value) => value.to_le_bytes()[..wire_len.min(16)].to_vec(),
+        None => bytes.to_vec(),
+    };
+    wire.resize(wire_len, 0);
+    let mut regs = vec![0u16; words as usize];
+    le_to_registers(&wire, order, &mut regs);
+    regs
+}
+
+/// The little-endian value of `data_type` held in `regs` (wire order); an integer that does not
+/// fit the type is refused.
+pub fn from_registers(
+    data_type: DataType,
+    regs: &[u16],
+    order: WordOrder,
+) -> Result<Vec<u8>, Refusal> {
+    let mut wire = vec![0u8; 2 * regs.len()];
+    registers_to_le(regs, order, &mut wire);
+    let Some((min, max)) = data_type.integer_bounds() else {
+        wire.truncate(data_type.bytes() as usize);
+        return Ok(wire);
+    };
+    let width = wire.len().min(16) as u8;
+    let wire_type = match data_type {
+        DataType::Signed(_) => DataType::Signed(width),
+        _ => DataType::Unsigned(width),
+    };
+    let value = raw::to_int(wire_type, &wire).ok_or(Refusal::WrongLength)?;
+    if value > max {
+        return Err(Refusal::TooHigh);
+    }
+    if value < min {
+        return Err(Refusal::TooLow);
+    }
+    Ok(raw::from_int(data_type, value))
+}
+
+/// The register table of an IR address.
+pub fn table(table: ir::Table) -> Table {
+    match table {
+        ir::Table::Input => Table::Input,
+        ir::Table::Holding => Table::Holding,
+    }
+}
+
+/// The word order of an IR address.
+pub fn word_order(order: ir::WordOrder) -> WordOrder {
+    match order {
+        ir::WordOrder::HighFirst => WordOrder::HighFirst,
+        ir::WordOrder::LowFirst => WordOrder::LowFirst,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn signed_values_fill_their_registers() {
+        let i16_type = DataType::Signed(2);
+        assert_eq!(
+            to_registers(i16_type, &(-3000i16).to_le_bytes(), 1, WordOrder::LowFirst),
+            [0xF448]
+        );
+        assert_eq!(
+            from_registers(i16_type, &[0xF448], WordOrder::LowFirst),
+            Ok((-3000i16).to_le_bytes().to_vec())
+        );
+    }
+
+    #[test]
+    fn pairs_follow_the_word_order() {
+        let u32_type = DataType::Unsigned(4);
+        let bytes = 0x000F_4240u32.to_le_bytes();
+        assert_eq!(
+            to_registers(u32_type, &bytes, 2, WordOrder::LowFirst),
+            [0x4240, 0x000F]
+        );
+        assert_eq!(
+            to_registers(u32_type, &bytes, 2, WordOrder::HighFirst),
+            [0x000F, 0x4240]
+        );
+        assert_eq!(
+            from_registers(u32_type, &[0x000F, 0x4240], WordOrder::HighFirst),
+            Ok(bytes.to_vec())
+        );
+    }
+
+    #[test]
+    fn integers_that_do_not_fit_are_refused() {
+        assert_eq!(
+            from_registers(DataType::Unsigned(1), &[0x0100], WordOrder::LowFirst),
+            Err(Refusal::TooHigh)
+        );
+        assert_eq!(
+            from_registers(DataType::Signed(1), &[0xFF7F], WordOrder::LowFirst),
+            Err(Refusal::TooLow)
+        );
+    }
+}

@@ -1,0 +1,135 @@
+//! The parameter store: every parameter's raw value, its factory default and its stored copy.
+
+use std::collections::HashMap;
+
+use drivegen::ir::{DataType, Device, Parameter};
+
+use crate::raw;
+use crate::refusal::Refusal;
+
+/// Index of a parameter in [`Device::parameters`].
+pub type ParamId = usize;
+
+/// Raw values of every parameter of one device, as little-endian bytes of the parameter's type.
+#[derive(Debug, Clone)]
+pub struct Store {
+    device: Device,
+    by_name: HashMap<String, ParamId>,
+    values: Vec<Vec<u8>>,
+    factory: Vec<Vec<u8>>,
+    stored: Vec<Vec<u8>>,
+}
+
+impl Store {
+    /// A store holding the described defaults (0 where none is described).
+    pub fn new(device: Device) -> Self {
+        let factory: Vec<Vec<u8>> = device.parameters.iter().map(default_bytes).collect();
+        let by_name = device
+            .parameters
+            .iter()
+            .enumerate()
+            .map(|(id, p)| (p.name.clone(), id))
+            .collect();
+        Self {
+            device,
+            by_name,
+            values: factory.clone(),
+            stored: factory.clone(),
+            factory,
+        }
+    }
+
+    /// The device model.
+    pub fn device(&self) -> &Device {
+        &self.device
+    }
+
+    /// A parameter's id by name.
+    pub fn id(&self, name: &str) -> Option<ParamId> {
+        self.by_name.get(name).copied()
+    }
+
+    /// A parameter's description.
+    pub fn parameter(&self, id: ParamId) -> &Parameter {
+        &self.device.parameters[id]
+    }
+
+    /// A parameter's raw bytes.
+    pub fn bytes(&self, id: ParamId) -> &[u8] {
+        &self.values[id]
+    }
+
+    /// A parameter's value as an integer (`None` for non-integer types).
+    pub fn int(&self, id: ParamId) -> Option<i128> {
+        raw::to_int(self.parameter(id).data_type, &self.values[id])
+    }
+
+    /// Sets an integer parameter without checks (the drive's own doing, not a request).
+    pub fn set_int(&mut self, id: ParamId, value: i128) {
+        self.values[id] = raw::from_int(self.parameter(id).data_type, value);
+    }
+
+    /// Sets a parameter's bytes without checks; they are padded or cut to its width.
+    pub fn set_bytes(&mut self, id: ParamId, bytes: &[u8]) {
+        let width = self.parameter(id).data_type.bytes() as usize;
+        let mut value = bytes.to_vec();
+        value.resize(width, 0);
+        self.values[id] = value;
+    }
+
+    /// Checks a value a client wants to write against the parameter's type, range and allowed
+    /// values.
+    pub fn check(&self, id: ParamId, bytes: &[u8]) -> Result<(), Refusal> {
+        let parameter = self.parameter(id);
+        let width = parameter.data_type.bytes() as usize;
+        let text = matches!(
+            parameter.data_type,
+            DataType::String(_) | DataType::Octets(_)
+        );
+        if bytes.len() != width && !(text && bytes.len() <= width) {
+            return Err(Refusal::WrongLength);
+        }
+        let Some(value) = raw::to_f64(parameter.data_type, bytes) else {
+            return Ok(());
+        };
+        if let Some(range) = &parameter.range {
+            if value > range.max.as_f64() {
+                return Err(Refusal::TooHigh);
+            }
+            if value < range.min.as_f64() {
+                return Err(Refusal::TooLow);
+            }
+        }
+        if !parameter.allowed.is_empty() && !parameter.allowed.iter().any(|a| a.as_f64() == value) {
+            return Err(Refusal::InvalidValue);
+        }
+        Ok(())
+    }
+
+    /// Puts a parameter back to its factory value.
+    pub fn reset_to_factory(&mut self, id: ParamId) {
+        self.values[id] = self.factory[id].clone();
+    }
+
+    /// Copies the present values to the non-volatile copy.
+    pub fn store(&mut self) {
+        self.stored = self.values.clone();
+    }
+
+    /// Replaces the non-volatile copy by the factory defaults.
+    pub fn restore_factory(&mut self) {
+        self.stored = self.factory.clone();
+    }
+
+    /// Reloads the present values from the non-volatile copy, as a reboot does.
+    pub fn reload(&mut self) {
+        self.values = self.stored.clone();
+    }
+}
+
+fn default_bytes(parameter: &Parameter) -> Vec<u8> {
+    parameter.default.map_or_else(
+        || raw::zero(parameter.data_type),
+        |d| raw::from_number(parameter.data_type, d),
+    )
+}

@@ -1,0 +1,153 @@
+//! The Modbus server over TCP against drivebus's client: access, ranges, allowed values, unknown
+//! addresses, function codes and limits answered with the described exception codes.
+
+use drivebus::modbus::transport::{ModbusTcpClient, TcpConfig};
+use drivebus::modbus::{RegisterBus, Table, UnitId};
+use drivebus::BusError;
+use drivesim::Simulator;
+
+const UNIT: UnitId = UnitId(1);
+
+fn fixture() -> (Simulator, ModbusTcpClient, drivesim::modbus::tcp::TcpServer) {
+    let sim = Simulator::load(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/enforcement.toml"
+    ))
+    .unwrap();
+    let server = sim.serve_modbus_tcp("127.0.0.1:0", UNIT).unwrap();
+    let client = ModbusTcpClient::connect(server.local_addr(), &TcpConfig::default()).unwrap();
+    (sim, client, server)
+}
+
+fn exception(result: Result<(), BusError>) -> u8 {
+    match result {
+        Err(BusError::ModbusException { code, .. }) => code,
+        other => panic!("expected an exception, got {other:?}"),
+    }
+}
+
+#[test]
+fn starts_from_the_described_defaults() {
+    let (_sim, mut client, _server) = fixture();
+    let mut regs = [0u16; 3];
+    client
+        .read_registers(UNIT, Table::Holding, 0x0010, &mut regs[..1])
+        .unwrap();
+    assert_eq!(regs[0], 100);
+    client
+        .read_registers(UNIT, Table::Input, 0x0010, &mut regs[..1])
+        .unwrap();
+    assert_eq!(regs[0], 0, "no default: 0");
+}
+
+#[test]
+fn writes_are_checked_against_range_and_allowed_values() {
+    let (_sim, mut client, _server) = fixture();
+    client
+        .write_register(UNIT, 0x0010, (-3000i16) as u16)
+        .unwrap();
+    assert_eq!(exception(client.write_register(UNIT, 0x0010, 3001)), 0x03);
+    assert_eq!(
+        exception(client.write_register(UNIT, 0x0010, (-3001i16) as u16)),
+        0x03
+    );
+    assert_eq!(exception(client.write_register(UNIT, 0x0012, 2)), 0x03);
+    client.write_register(UNIT, 0x0012, 1).unwrap();
+    let mut regs = [0u16; 1];
+    client
+        .read_registers(UNIT, Table::Holding, 0x0010, &mut regs)
+        .unwrap();
+    assert_eq!(regs[0] as i16, -3000, "refused writes leave the value");
+}
+
+#[test]
+fn access_and_addresses_are_enforced() {
+    let (_sim, mut client, _server) = fixture();
+    let mut regs = [0u16; 1];
+    assert_eq!(
+        exception(client.read_registers(UNIT, Table::Holding, 0x0011, &mut regs)),
+        0x02,
+        "write-only"
+    );
+    assert_eq!(
+        exception(client.read_registers(UNIT, Table::Holding, 0x0099, &mut regs)),
+        0x02,
+        "unknown"
+    );
+    assert_eq!(
+        exception(client.write_register(UNIT, 0x0099, 1)),
+        0x02,
+        "unknown"
+    );
+    assert_eq!(
+        exception(client.read_registers(UNIT, Table::Holding, 0x0099, &mut regs)),
+        0x02,
+        "unknown"
+    );
+    assert_eq!(
+        exception(client.write_register(UNIT, 0x0099, 1)),
+        0x02,
+        "unknown"
+    );
+    // Input 0x0010 is read-only by nature; holding 0x0013 does not exist.
+    assert_eq!(exception(client.write_register(UNIT, 0x0013, 1)), 0x02);
+    client.write_register(UNIT, 0x0011, 7).unwrap();
+}
+
+#[test]
+fn reads_may_span_gaps_next_to_documented_registers() {
+    let (_sim, mut client, _server) = fixture();
+    let mut regs = [0xFFFFu16; 2];
+    client
+        .read_registers(UNIT, Table::Holding, 0x0012, &mut regs)
+        .unwrap();
+    assert_eq!(regs, [0, 0], "0x0013 is a gap; read_gaps defaults to true");
+}
+
+#[test]
+fn limits_and_function_codes_are_enforced() {
+    let (_sim, mut client, _server) = fixture();
+    let mut five = [0u16; 5];
+    assert_eq!(
+        exception(client.read_registers(UNIT, Table::Holding, 0x0010, &mut five)),
+        0x03
+    );
+    assert_eq!(
+        exception(client.write_registers(UNIT, 0x0010, &[1, 2, 3])),
+        0x03
+    );
+    let mut coils = [false; 1];
+    let refused = drivebus::modbus::BitBus::read_coils(&mut client, UNIT, 0, &mut coils);
+    assert_eq!(
+        exception(refused),
+        0x01,
+        "FC 0x01 is not among the device's functions"
+    );
+}
+
+#[test]
+fn two_word_values_follow_the_word_order() {
+    let (_sim, mut client, _server) = fixture();
+    client
+        .write_registers(UNIT, 0x0020, &[0x4240, 0x000F])
+        .unwrap();
+    let mut regs = [0u16; 2];
+    client
+        .read_registers(UNIT, Table::Holding, 0x0020, &mut regs)
+        .unwrap();
+    assert_eq!(regs, [0x4240, 0x000F]);
+}
+
+#[test]
+fn another_units_requests_get_no_answer() {
+    let (_sim, _client, server) = fixture();
+    let config = TcpConfig {
+        timeout: std::time::Duration::from_millis(200),
+        retry: drivebus::modbus::retry::RetryPolicy::reads(0),
+        ..TcpConfig::default()
+    };
+    let mut client = ModbusTcpClient::connect(server.local_addr(), &config).unwrap();
+    let mut regs = [0u16; 1];
+    let result = client.read_registers(UnitId(9), Table::Holding, 0x0010, &mut regs);
+    assert_eq!(result, Err(BusError::Timeout));
+}
