@@ -3,7 +3,10 @@
 
 use core::fmt;
 use std::thread;
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+/// The deadline type of the driver (re-exported so generated crates need no `std` import).
+pub use std::time::Instant;
 
 use super::cia402::{Blocker, Cia402Planner, Observation, State, Step, Target, Waiting};
 use super::machine::{Plan, TransitionDef, TransitionKind};
