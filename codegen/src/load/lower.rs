@@ -237,8 +237,18 @@ impl Lowering<'_> {
             .as_ref()
             .map(|m| self.state_machine(m, &raw.state, &raw.transition));
         if raw.state_machine.is_none() {
-            if let Some(stray) = raw.state.first().map(|s| self.span(s)).or(raw.transition.first().map(|t| self.span(t))) {
-                self.error_help(VALUE_RULE, stray, "`[[state]]` and `[[transition]]` need a `[state_machine]`", "add `[state_machine]` with `name`, `status` and `command`");
+            if let Some(stray) = raw
+                .state
+                .first()
+                .map(|s| self.span(s))
+                .or(raw.transition.first().map(|t| self.span(t)))
+            {
+                self.error_help(
+                    VALUE_RULE,
+                    stray,
+                    "`[[state]]` and `[[transition]]` need a `[state_machine]`",
+                    "add `[state_machine]` with `name`, `status` and `command`",
+                );
             }
         }
     }

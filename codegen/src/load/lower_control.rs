@@ -4,9 +4,9 @@
 use drivebus::control::Quirk;
 use toml::Spanned;
 
-use crate::load::raw::*;
 use super::{Lowering, VALUE_RULE};
 use crate::ir;
+use crate::load::raw::*;
 
 impl Lowering<'_> {
     pub(super) fn cia402(&mut self, raw: &Spanned<RawCia402>) -> ir::Cia402 {
@@ -34,7 +34,10 @@ impl Lowering<'_> {
         let sto_bit = c.sto_bit.as_ref().and_then(|s| {
             let bit = Spanned::new(s.span(), s.get_ref().bit);
             let bit = self.int_in::<u8>(&bit, "safe torque off bit")?;
-            Some(ir::StoBit { parameter: s.get_ref().parameter.clone(), bit })
+            Some(ir::StoBit {
+                parameter: s.get_ref().parameter.clone(),
+                bit,
+            })
         });
         ir::Cia402 {
             quirks,
@@ -58,7 +61,10 @@ impl Lowering<'_> {
             status: m.status.get_ref().clone(),
             command: m.command.get_ref().clone(),
             states: states.iter().map(|s| self.machine_state(s)).collect(),
-            transitions: transitions.iter().filter_map(|t| self.transition(t)).collect(),
+            transitions: transitions
+                .iter()
+                .filter_map(|t| self.transition(t))
+                .collect(),
             source: m.source.as_ref().and_then(|s| self.citation(s)),
             span: self.span(&m.name),
         }

@@ -51,13 +51,27 @@ fn vendor(device: &Device) -> Vec<Diagnostic> {
         return Vec::new();
     };
     let mut found = Vec::new();
-    found.extend(word_parameter(device, &m.status, "status register", &m.span));
-    found.extend(word_parameter(device, &m.command, "command register", &m.span));
+    found.extend(word_parameter(
+        device,
+        &m.status,
+        "status register",
+        &m.span,
+    ));
+    found.extend(word_parameter(
+        device,
+        &m.command,
+        "command register",
+        &m.span,
+    ));
     if m.states.is_empty() || m.states.len() > MAX_STATES {
         found.push(Diagnostic::error(
             RULE,
             m.span.clone(),
-            format!("a state machine has 1..={MAX_STATES} states, `{}` has {}", m.name, m.states.len()),
+            format!(
+                "a state machine has 1..={MAX_STATES} states, `{}` has {}",
+                m.name,
+                m.states.len()
+            ),
         ));
     }
     let mut names = BTreeSet::new();
@@ -77,7 +91,10 @@ fn vendor(device: &Device) -> Vec<Diagnostic> {
                     Diagnostic::error(
                         RULE,
                         t.span.clone(),
-                        format!("transition `{}` names state `{state}`, which is not declared", t.name),
+                        format!(
+                            "transition `{}` names state `{state}`, which is not declared",
+                            t.name
+                        ),
                     )
                     .help("declare it with `[[state]]` or fix the spelling"),
                 );

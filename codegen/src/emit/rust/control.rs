@@ -13,7 +13,10 @@ use crate::ir::{DataType, Device, Parameter, StateMachine, TransitionKind};
 /// The parameter at CANopen object `index`, subindex 0, of type `data_type`.
 fn object(device: &Device, index: u16, data_type: DataType) -> Option<&Parameter> {
     device.parameters.iter().find(|p| {
-        p.data_type == data_type && p.canopen.iter().any(|a| a.index == index && a.subindex == 0)
+        p.data_type == data_type
+            && p.canopen
+                .iter()
+                .any(|a| a.index == index && a.subindex == 0)
     })
 }
 
@@ -148,7 +151,11 @@ fn machine_data(m: &StateMachine) -> TokenStream {
         }
     });
     let index = |name: &str| {
-        let i = m.states.iter().position(|s| s.name == name).unwrap_or_default();
+        let i = m
+            .states
+            .iter()
+            .position(|s| s.name == name)
+            .unwrap_or_default();
         u8::try_from(i).unwrap_or(u8::MAX)
     };
     let transitions = m.transitions.iter().flat_map(|t| {
@@ -181,9 +188,16 @@ fn vendor(device: &Device, handle: &Ident) -> Option<TokenStream> {
     let status = marker(device.parameter(&m.status)?);
     let command = marker(device.parameter(&m.command)?);
     let module = ident(&names::snake(&m.name));
-    let variants: Vec<Ident> = m.states.iter().map(|s| ident(&names::camel(&s.name))).collect();
+    let variants: Vec<Ident> = m
+        .states
+        .iter()
+        .map(|s| ident(&names::camel(&s.name)))
+        .collect();
     let state_names = m.states.iter().map(|s| s.name.as_str());
-    let state_docs = m.states.iter().map(|s| doc_attrs(&doc::escape(s.doc.as_deref().unwrap_or(&s.name))));
+    let state_docs = m
+        .states
+        .iter()
+        .map(|s| doc_attrs(&doc::escape(s.doc.as_deref().unwrap_or(&s.name))));
     let module_doc = doc_attrs(&doc::escape(m.doc.as_deref().unwrap_or(&m.name)));
     let data = machine_data(m);
     let goto = format_ident!("goto_{}", module);

@@ -46,7 +46,10 @@ fn tokens(device: &Device) -> TokenStream {
     let params = device.parameters.iter().map(|p| parameter::emit(p, device));
     let handle = handle::emit(device);
     let control = (!device.device.is_profile).then(|| {
-        control::emit(device, &ident(&crate::emit::ident::camel(&device.device.handle)))
+        control::emit(
+            device,
+            &ident(&crate::emit::ident::camel(&device.device.handle)),
+        )
     });
     quote! {
         #variants
