@@ -266,3 +266,67 @@ pub fn emit(device: &Device, handle: &Ident) -> TokenStream {
     let vendor = vendor(device, handle);
     quote! { #cia402 #vendor }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::validate::test_support::HEADER;
+
+    /// The generated source of `HEADER + body`.
+    fn generated(name: &str, body: &str) -> String {
+        let dir =
+            std::env::temp_dir().join(format!("drivegen-control-{}-{name}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("device.toml");
+        std::fs::write(&path, format!("{HEADER}{body}")).unwrap();
+        let checked = crate::check(&path);
+        std::fs::remove_dir_all(&dir).unwrap();
+        let device = checked.device.expect("the description is valid");
+        crate::emit::rust::generate(&device, "test")
+    }
+
+    const OBJECTS: &str = r#"
+[[parameter]]
+name = "controlword"
+type = "u16"
+canopen = { index = 0x6040, access = "rw" }
+source = { doc = "m", line = 1 }
+
+[[parameter]]
+name = "statusword"
+type = "u16"
+canopen = { index = 0x6041, access = "ro" }
+source = { doc = "m", line = 2 }
+
+[[parameter]]
+name = "sto_status"
+type = "u16"
+canopen = { index = 0x6644, access = "ro" }
+source = { doc = "m", line = 3 }
+"#;
+
+    #[test]
+    fn declared_quirks_and_sto_bit_reach_the_generated_const() {
+        let code = generated("quirks", &format!(
+            "{OBJECTS}\n[cia402]\nquirks = [\"mode-change-needs-halt-clear\", \"honours-remote\"]\nfault_reset_hold_ms = 50\nsto_bit = {{ parameter = \"sto_status\", bit = 3 }}\nsource = {{ doc = \"m\", line = 4 }}\n"
+        ));
+        let flat: String = code.split_whitespace().collect();
+        assert!(flat.contains("fault_reset_hold_ms:50u32"), "{code}");
+        assert!(flat.contains(".with(::drivebus::control::Quirk::ModeChangeNeedsHaltClear).with(::drivebus::control::Quirk::HonoursRemote)"), "{code}");
+        assert!(
+            flat.contains("typeSafeTorqueOffWord=params::StoStatus;"),
+            "{code}"
+        );
+        assert!(
+            flat.contains("constSAFE_TORQUE_OFF_BIT:Option<u8>=Some(3u8);"),
+            "{code}"
+        );
+        assert!(code.contains("pub fn enable_operation"), "{code}");
+    }
+
+    #[test]
+    fn no_cia402_objects_no_control_methods() {
+        let code = generated("none", &OBJECTS.replace("0x6041", "0x2041"));
+        assert!(!code.contains("Cia402Objects"), "{code}");
+        assert!(!code.contains("enable_operation"), "{code}");
+    }
+}
