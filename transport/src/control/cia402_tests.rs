@@ -2,6 +2,7 @@
 //! drive walked from every state to every target.
 
 use super::*;
+use crate::control::device::Cia402Device;
 use crate::control::quirks::Quirk;
 
 /// A statusword showing each state (remote and voltage enabled set where CiA 402 allows).
@@ -354,66 +355,21 @@ fn safe_torque_off_keeps_the_drive_disabled_and_says_so() {
     );
 }
 
-/// A drive that follows CiA 402 to the letter: level-triggered commands, edge-triggered reset.
-struct Drive {
-    state: State,
-    controlword: u16,
-}
-
-impl Drive {
-    fn write(&mut self, controlword: u16) {
-        let rising_reset =
-            controlword & FAULT_RESET_BIT != 0 && self.controlword & FAULT_RESET_BIT == 0;
-        self.controlword = controlword;
-        let low = controlword & 0x0F;
-        let shutdown = low & 0x7 == 0x6;
-        let disable_voltage = low & 0x2 == 0;
-        let quick_stop = low & 0x6 == 0x2;
-        self.state = match self.state {
-            State::Fault if rising_reset => State::SwitchOnDisabled,
-            State::SwitchOnDisabled if shutdown => State::ReadyToSwitchOn,
-            State::ReadyToSwitchOn if low == 0x7 || low == 0xF => State::SwitchedOn,
-            State::ReadyToSwitchOn if disable_voltage || quick_stop => State::SwitchOnDisabled,
-            State::SwitchedOn if low == 0xF => State::OperationEnabled,
-            State::SwitchedOn if shutdown => State::ReadyToSwitchOn,
-            State::SwitchedOn if disable_voltage || quick_stop => State::SwitchOnDisabled,
-            State::OperationEnabled if low == 0x7 => State::SwitchedOn,
-            State::OperationEnabled if shutdown => State::ReadyToSwitchOn,
-            State::OperationEnabled if disable_voltage => State::SwitchOnDisabled,
-            State::OperationEnabled if quick_stop => State::QuickStopActive,
-            State::QuickStopActive if disable_voltage => State::SwitchOnDisabled,
-            other => other,
-        };
-    }
-
-    /// Automatic transitions 1 and 14.
-    fn tick(&mut self) {
-        self.state = match self.state {
-            State::NotReadyToSwitchOn => State::SwitchOnDisabled,
-            State::FaultReactionActive => State::Fault,
-            other => other,
-        };
-    }
-}
-
 #[test]
 fn a_simulated_drive_reaches_every_target_from_every_state() {
     for start in State::ALL {
         for target in Target::ALL {
-            let mut drive = Drive {
-                state: start,
-                controlword: 0x80,
-            };
+            let mut drive = Cia402Device::in_state(start).with_controlword(0x80);
             let mut planner = Cia402Planner::new(Quirks::STANDARD);
-            planner.sent(drive.controlword, Millis(0));
+            planner.sent(drive.controlword(), Millis(0));
             let mut steps = 0;
             loop {
                 steps += 1;
                 assert!(steps < 20, "{start:?} → {target:?} does not converge");
-                match planner.next(&seen(drive.state), target) {
+                match planner.next(&seen(drive.state()), target) {
                     Step::Done => break,
                     Step::Send { controlword, .. } => {
-                        drive.write(controlword);
+                        drive.write_controlword(controlword);
                         planner.sent(controlword, Millis(steps));
                     }
                     Step::Wait(_) => drive.tick(),
