@@ -172,12 +172,31 @@ where
     O::Statusword: Readable<L::Protocol>,
     O::SafeTorqueOffWord: Readable<L::Protocol>,
 {
+    drive_to_with::<O, L>(device, target, deadline, |device| {
+        device.read_raw::<O::Statusword>()
+    })
+}
+
+/// [`drive_to`] with the statusword taken from `statusword` instead of a read of 0x6041: for
+/// example the latest value of a TPDO the application receives.
+pub fn drive_to_with<O, L>(
+    device: &mut Device<L>,
+    target: Target,
+    deadline: Instant,
+    mut statusword: impl FnMut(&mut Device<L>) -> Result<u16, Error>,
+) -> Result<(), ControlError>
+where
+    O: Cia402Objects,
+    L: Link,
+    O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
+    O::SafeTorqueOffWord: Readable<L::Protocol>,
+{
     let clock = Clock(Instant::now());
     let mut planner = Cia402Planner::new(O::QUIRKS);
     planner.sent(device.read_raw::<O::Controlword>()?, clock.now());
     let mut commander = Commander { last: None };
     loop {
-        let seen = observe::<O, L>(device, &clock)?;
+        let seen = observe::<O, L>(device, &clock, &mut statusword)?;
         let stuck = |reason| ControlError::Stuck {
             target: target.state().name(),
             state: State::decode(seen.statusword).map(State::name),
@@ -212,14 +231,17 @@ where
     }
 }
 
-fn observe<O, L>(device: &mut Device<L>, clock: &Clock) -> Result<Observation, Error>
+fn observe<O, L>(
+    device: &mut Device<L>,
+    clock: &Clock,
+    statusword: &mut impl FnMut(&mut Device<L>) -> Result<u16, Error>,
+) -> Result<Observation, Error>
 where
     O: Cia402Objects,
     L: Link,
-    O::Statusword: Readable<L::Protocol>,
     O::SafeTorqueOffWord: Readable<L::Protocol>,
 {
-    let statusword = device.read_raw::<O::Statusword>()?;
+    let statusword = statusword(device)?;
     let safe_torque_off = match O::SAFE_TORQUE_OFF_BIT {
         None => false,
         Some(bit) => (device.read_raw::<O::SafeTorqueOffWord>()? >> bit) & 1 == 1,
