@@ -14,7 +14,7 @@ use drivebus::{Device, VariantId};
 #[path = "support/cia402_objects.rs"]
 mod objects;
 
-use objects::Standard;
+use objects::{HaltQuirk, Mode, Standard};
 
 /// A bus holding only the controlword and the STO word: reading 0x6041 over it would fail.
 fn device() -> Device<CanOpenLink<MemoryBus>> {
@@ -74,5 +74,51 @@ fn without_the_source_the_driver_reads_0x6041_and_reports_its_absence() {
     assert!(
         matches!(error, ControlError::Stuck { reason: StuckReason::NoResponse { transition, .. }, .. } if transition.name == "2"),
         "{error}"
+    );
+}
+
+/// A bus with halt set in the controlword and the display already showing `shown`.
+fn halted_device(shown: i8) -> Device<CanOpenLink<MemoryBus>> {
+    let mut device = device();
+    let bus = device.link_mut().bus_mut();
+    bus.set_object(0x6040, 0, &0x010Fu16.to_le_bytes())
+        .set_object(0x6060, 0, &[0])
+        .set_object(0x6061, 0, &shown.to_le_bytes());
+    device
+}
+
+fn controlword(device: &mut Device<CanOpenLink<MemoryBus>>) -> Option<Vec<u8>> {
+    device
+        .link_mut()
+        .bus_mut()
+        .object(0x6040, 0)
+        .map(<[u8]>::to_vec)
+}
+
+#[test]
+fn quirk_mode_change_needs_halt_clear_clears_halt_before_the_mode() {
+    let mut quirky = halted_device(3);
+    driver::set_mode::<HaltQuirk, _>(&mut quirky, Mode(3), soon()).unwrap();
+    assert_eq!(controlword(&mut quirky), Some(vec![0x0F, 0x00]));
+    let mut standard = halted_device(3);
+    driver::set_mode::<Standard, _>(&mut standard, Mode(3), soon()).unwrap();
+    assert_eq!(
+        controlword(&mut standard),
+        Some(vec![0x0F, 0x01]),
+        "halt left alone"
+    );
+}
+
+#[test]
+fn an_unconfirmed_mode_names_both_modes() {
+    let mut device = halted_device(1);
+    let deadline = Instant::now() + Duration::from_millis(20);
+    let error = driver::set_mode::<Standard, _>(&mut device, Mode(-3), deadline).unwrap_err();
+    assert_eq!(
+        error,
+        ControlError::ModeNotConfirmed {
+            requested: -3,
+            displayed: 1
+        }
     );
 }

@@ -98,3 +98,21 @@ impl<const HOLD_MS: u32, const STO: bool> Cia402Modes for Objects<HOLD_MS, STO> 
 
 /// A drive without quirks or STO word.
 pub type Standard = Objects<0, false>;
+
+/// A drive that only takes a mode change with halt clear.
+pub struct HaltQuirk;
+
+impl Cia402Objects for HaltQuirk {
+    type Controlword = Controlword;
+    type Statusword = Statusword;
+    type SafeTorqueOffWord = Statusword;
+    const SAFE_TORQUE_OFF_BIT: Option<u8> = None;
+    const QUIRKS: Quirks =
+        Quirks::STANDARD.with(drivebus::control::Quirk::ModeChangeNeedsHaltClear);
+}
+
+impl Cia402Modes for HaltQuirk {
+    type Mode = Mode;
+    type ModesOfOperation = ModesOfOperation;
+    type ModesOfOperationDisplay = ModesDisplay;
+}
