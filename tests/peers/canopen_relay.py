@@ -31,7 +31,8 @@ def compact(msg):
     return f"{msg.arbitration_id:03X}#{bytes(msg.data).hex().upper()}"
 
 
-def main():
+def main(install=None):
+    """Runs the relay; `install(node)` may add behaviour (write callbacks) to the LocalNode."""
     eds, node_id = sys.argv[1], int(sys.argv[2], 0)
     channel = f"drivegen-relay-{os.getpid()}"
     # The relay's own bus exists before anything is sent, so it sees the first boot-up.
@@ -55,6 +56,8 @@ def main():
             node.emcy.send(int.from_bytes(data, "little"), 0x01, b"\x01\x02\x03\x04\x05")
 
     node.add_write_callback(on_write)
+    if install is not None:
+        install(node)
     network.subscribe(0, on_nmt)
     out_lock = threading.Lock()
 

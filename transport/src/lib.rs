@@ -19,6 +19,7 @@ extern crate std;
 
 pub mod canopen;
 pub mod check;
+pub mod control;
 pub mod device;
 pub mod error;
 pub mod link;

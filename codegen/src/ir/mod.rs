@@ -41,6 +41,117 @@ pub struct Device {
     pub records: Vec<Record>,
     /// Parameters.
     pub parameters: Vec<Parameter>,
+    /// CiA 402 state machine quirks (`[cia402]`), if declared.
+    pub cia402: Option<Cia402>,
+    /// A vendor state machine (`[state_machine]`, `[[state]]`, `[[transition]]`), if declared.
+    pub state_machine: Option<StateMachine>,
+}
+
+/// How the drive deviates from the CiA 402 state machine.
+#[derive(Debug, Clone, Serialize)]
+pub struct Cia402 {
+    /// Quirk names, as `drivebus::control::Quirk::name` spells them.
+    pub quirks: Vec<String>,
+    /// Minimum time fault reset (controlword bit 7) is held high, in milliseconds.
+    pub fault_reset_hold_ms: u32,
+    /// Where safe torque off shows, if the drive reports it.
+    pub sto_bit: Option<StoBit>,
+    /// Citation.
+    pub source: Option<Citation>,
+    /// Where it is declared.
+    #[serde(skip)]
+    pub span: Span,
+}
+
+/// A bit of a 16-bit parameter that is set while safe torque off is active.
+#[derive(Debug, Clone, Serialize)]
+pub struct StoBit {
+    /// The parameter.
+    pub parameter: String,
+    /// The bit.
+    pub bit: u8,
+}
+
+/// A vendor state machine: states recognised from a status parameter, transitions commanded by
+/// writing a command parameter.
+#[derive(Debug, Clone, Serialize)]
+pub struct StateMachine {
+    /// snake_case name.
+    pub name: String,
+    /// Documentation.
+    pub doc: Option<String>,
+    /// The parameter states are recognised from.
+    pub status: String,
+    /// The parameter commands are written to.
+    pub command: String,
+    /// States, in recognition order (the first match wins).
+    pub states: Vec<MachineState>,
+    /// Transitions.
+    pub transitions: Vec<Transition>,
+    /// Citation.
+    pub source: Option<Citation>,
+    /// Where it is declared.
+    #[serde(skip)]
+    pub span: Span,
+}
+
+/// A state of a vendor state machine.
+#[derive(Debug, Clone, Serialize)]
+pub struct MachineState {
+    /// snake_case name.
+    pub name: String,
+    /// Documentation.
+    pub doc: Option<String>,
+    /// The state shows when `status & mask == value` for any pattern.
+    pub status: Vec<StatusPattern>,
+    /// Citation.
+    pub source: Option<Citation>,
+    /// Where it is declared.
+    #[serde(skip)]
+    pub span: Span,
+}
+
+/// One way a state shows in the status parameter.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct StatusPattern {
+    /// Bits that decide.
+    pub mask: u16,
+    /// Their values.
+    pub value: u16,
+}
+
+/// What causes a transition.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum TransitionKind {
+    /// Writing `command` to the command parameter.
+    Command,
+    /// The drive moves by itself.
+    Automatic,
+    /// An event outside the master's control (safety input, fault, reset input).
+    External,
+}
+
+/// A transition of a vendor state machine.
+#[derive(Debug, Clone, Serialize)]
+pub struct Transition {
+    /// Name as in the manual.
+    pub name: String,
+    /// Documentation.
+    pub doc: Option<String>,
+    /// States it leaves.
+    pub from: Vec<String>,
+    /// State it enters.
+    pub to: String,
+    /// What causes it.
+    pub kind: TransitionKind,
+    /// The value written to the command parameter (command transitions only).
+    pub command: Option<u16>,
+    /// Citation.
+    pub source: Option<Citation>,
+    /// Where it is declared.
+    #[serde(skip)]
+    pub span: Span,
 }
 
 /// Who the device is and where the description comes from.

@@ -4,6 +4,9 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
+#[path = "lower_control.rs"]
+mod control;
+
 use toml::Spanned;
 
 use super::exact::{float_ratio, parse_ratio};
@@ -187,6 +190,8 @@ impl Lowering<'_> {
             flags: Vec::new(),
             records: Vec::new(),
             parameters: Vec::new(),
+            cia402: None,
+            state_machine: None,
         })
     }
 
@@ -226,6 +231,26 @@ impl Lowering<'_> {
         device.modbus = raw.modbus.as_ref().map(|m| self.modbus_caps(m));
         device.canopen = raw.canopen.as_ref().map(|c| self.canopen_caps(c));
         device.variants = raw.variant.iter().map(|v| self.variant(v)).collect();
+        device.cia402 = raw.cia402.as_ref().map(|c| self.cia402(c));
+        device.state_machine = raw
+            .state_machine
+            .as_ref()
+            .map(|m| self.state_machine(m, &raw.state, &raw.transition));
+        if raw.state_machine.is_none() {
+            if let Some(stray) = raw
+                .state
+                .first()
+                .map(|s| self.span(s))
+                .or(raw.transition.first().map(|t| self.span(t)))
+            {
+                self.error_help(
+                    VALUE_RULE,
+                    stray,
+                    "`[[state]]` and `[[transition]]` need a `[state_machine]`",
+                    "add `[state_machine]` with `name`, `status` and `command`",
+                );
+            }
+        }
     }
 
     fn items(&mut self, raw: &RawFile, keep: &Filter, device: &mut ir::Device) {

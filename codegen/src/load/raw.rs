@@ -28,6 +28,12 @@ pub struct RawFile {
     pub record: Vec<RawRecord>,
     #[serde(default)]
     pub parameter: Vec<RawParameter>,
+    pub cia402: Option<Spanned<RawCia402>>,
+    pub state_machine: Option<Spanned<RawStateMachine>>,
+    #[serde(default)]
+    pub state: Vec<Spanned<RawState>>,
+    #[serde(default)]
+    pub transition: Vec<Spanned<RawTransition>>,
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -213,6 +219,13 @@ pub enum OneOrMany<T> {
 }
 
 impl<T> OneOrMany<T> {
+    pub fn iter(&self) -> std::slice::Iter<'_, T> {
+        match self {
+            Self::One(one) => std::slice::from_ref(one).iter(),
+            Self::Many(many) => many.iter(),
+        }
+    }
+
     pub fn into_vec(self) -> Vec<T> {
         match self {
             Self::One(one) => vec![one],
@@ -282,4 +295,62 @@ pub enum RawPdo {
 pub struct RawCommand {
     pub kind: Spanned<String>,
     pub value: Option<Spanned<i64>>,
+}
+
+/// `[cia402]`: how the drive deviates from the CiA 402 state machine.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawCia402 {
+    #[serde(default)]
+    pub quirks: Vec<Spanned<String>>,
+    pub fault_reset_hold_ms: Option<Spanned<i64>>,
+    pub sto_bit: Option<Spanned<RawStoBit>>,
+    pub source: Option<Spanned<RawCitation>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawStoBit {
+    pub parameter: String,
+    pub bit: i64,
+}
+
+/// `[state_machine]`: a vendor state machine; its states and transitions are `[[state]]` and
+/// `[[transition]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawStateMachine {
+    pub name: Spanned<String>,
+    pub doc: Option<String>,
+    pub status: Spanned<String>,
+    pub command: Spanned<String>,
+    pub source: Option<Spanned<RawCitation>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawState {
+    pub name: Spanned<String>,
+    pub doc: Option<String>,
+    pub status: OneOrMany<RawStatusPattern>,
+    pub source: Option<Spanned<RawCitation>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawStatusPattern {
+    pub mask: i64,
+    pub value: i64,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawTransition {
+    pub name: Spanned<String>,
+    pub doc: Option<String>,
+    pub from: OneOrMany<String>,
+    pub to: String,
+    pub command: Option<Spanned<i64>>,
+    pub kind: Option<Spanned<String>>,
+    pub source: Option<Spanned<RawCitation>>,
 }

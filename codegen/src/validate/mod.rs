@@ -15,6 +15,7 @@ mod records_hold_their_members;
 mod references_resolve;
 pub(crate) mod scale_inputs_exist;
 mod scale_is_representable;
+mod state_machines_resolve;
 mod strings_have_length;
 mod units_are_known;
 mod value_types_are_consistent;
@@ -52,6 +53,7 @@ pub const PASSES: &[(&str, Pass)] = &[
         "records_hold_their_members",
         records_hold_their_members::check,
     ),
+    ("state_machines_resolve", state_machines_resolve::check),
 ];
 
 /// Runs every pass.

@@ -35,10 +35,30 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
         .records
         .iter()
         .map(|r| ("record", &r.name, &r.span, &r.source));
+    let machine = device.state_machine.iter().flat_map(|m| {
+        let states = m
+            .states
+            .iter()
+            .map(|s| ("state", &s.name, &s.span, &s.source));
+        let transitions = m
+            .transitions
+            .iter()
+            .map(|t| ("transition", &t.name, &t.span, &t.source));
+        std::iter::once(("state machine", &m.name, &m.span, &m.source))
+            .chain(states)
+            .chain(transitions)
+    });
+    let cia402_name = String::from("cia402");
+    let cia402 = device
+        .cia402
+        .iter()
+        .map(|c| ("table", &cia402_name, &c.span, &c.source));
     parameters
         .chain(enums)
         .chain(flags)
         .chain(records)
+        .chain(machine)
+        .chain(cia402)
         .filter_map(|(kind, name, span, source)| uncited(kind, name, span, source))
         .collect()
 }

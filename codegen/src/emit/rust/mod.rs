@@ -3,6 +3,7 @@
 //! drive handle with one accessor per parameter.
 
 mod addresses;
+mod control;
 mod enums;
 mod flags;
 mod handle;
@@ -44,6 +45,12 @@ fn tokens(device: &Device) -> TokenStream {
     let flags = device.flags.iter().map(|f| flags::emit(f, device));
     let params = device.parameters.iter().map(|p| parameter::emit(p, device));
     let handle = handle::emit(device);
+    let control = (!device.device.is_profile).then(|| {
+        control::emit(
+            device,
+            &ident(&crate::emit::ident::camel(&device.device.handle)),
+        )
+    });
     quote! {
         #variants
 
@@ -61,5 +68,7 @@ fn tokens(device: &Device) -> TokenStream {
         }
 
         #handle
+
+        #control
     }
 }

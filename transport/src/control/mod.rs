@@ -1,0 +1,42 @@
+//! Drive control: pure state-machine planners and, with `std`, a blocking driver.
+//!
+//! The core is `no_std`, allocates nothing and reads no clock: the caller passes the decoded
+//! status word and the time, the planner answers with the next command to send, a reason to wait,
+//! or why the target cannot be reached.
+//!
+//! * [`machine`] — a state machine as data (states recognised from status bits, transitions caused
+//!   by command writes) and the planner that walks it. Vendor machines (Lafert Smartris Modbus mode)
+//!   are emitted by drivegen as such tables.
+//! * [`cia402`] — the CiA 402 power drive system machine as a [`machine::Machine`] table, plus the
+//!   rules tables cannot express: fault reset on a rising edge, halt, safe torque off, voltage and
+//!   remote bits.
+//! * [`quirks`] — how real drives deviate from CiA 402, declared in descriptions.
+//! * [`device`] — the device side of CiA 402, a drive double for tests and the simulator.
+//! * [`mode`] — changing the mode of operation (0x6060) and confirming it (0x6061).
+//! * [`objects`] — the traits generated crates implement to hand their parameters to the driver.
+//! * `driver` (std) — the blocking driver behind `drive.enable_operation(deadline)`.
+
+pub mod cia402;
+pub mod device;
+#[cfg(feature = "std")]
+pub mod driver;
+pub mod machine;
+pub mod mode;
+pub mod objects;
+pub mod quirks;
+
+pub use cia402::{Blocker, Cia402Planner, State, Step, Target, Waiting};
+pub use machine::{Machine, Plan, StateDef, StatePattern, TransitionDef, TransitionKind};
+pub use objects::{Cia402Modes, Cia402Objects, VendorMachine};
+pub use quirks::{Quirk, Quirks};
+
+/// A monotonic time in milliseconds, from any epoch the caller chooses; the core has no clock.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Default)]
+pub struct Millis(pub u64);
+
+impl Millis {
+    /// Milliseconds elapsed since `earlier` (0 if `earlier` is later).
+    pub fn since(self, earlier: Millis) -> u64 {
+        self.0.saturating_sub(earlier.0)
+    }
+}

@@ -1,0 +1,44 @@
+//! The traits a generated crate implements to hand its parameters to the control driver.
+//!
+//! drivegen emits the implementations only when a description has the objects: the handle type
+//! implements [`Cia402Objects`] when it has a controlword (0x6040) and statusword (0x6041),
+//! [`Cia402Modes`] when it also has the modes of operation (0x6060) and their display (0x6061), and
+//! [`VendorMachine`] when it describes a vendor state machine.
+
+use super::machine::Machine;
+use super::quirks::Quirks;
+use crate::parameter::{OpenEnum, Parameter};
+
+/// The CiA 402 state machine objects of a drive.
+pub trait Cia402Objects {
+    /// The controlword (0x6040).
+    type Controlword: Parameter<Raw = u16>;
+    /// The statusword (0x6041).
+    type Statusword: Parameter<Raw = u16>;
+    /// The 16-bit word holding the safe torque off bit; the statusword if the description has none.
+    type SafeTorqueOffWord: Parameter<Raw = u16>;
+    /// The bit of [`Self::SafeTorqueOffWord`] that is set while safe torque off is active.
+    const SAFE_TORQUE_OFF_BIT: Option<u8>;
+    /// The drive's deviations from CiA 402.
+    const QUIRKS: Quirks;
+}
+
+/// The modes of operation objects of a CiA 402 drive.
+pub trait Cia402Modes: Cia402Objects {
+    /// The description's open enum of modes.
+    type Mode: OpenEnum<Raw = i8>;
+    /// Modes of operation (0x6060).
+    type ModesOfOperation: Parameter<Raw = i8, Value = Self::Mode>;
+    /// Modes of operation display (0x6061).
+    type ModesOfOperationDisplay: Parameter<Raw = i8, Value = Self::Mode>;
+}
+
+/// A vendor state machine described as data (e.g. the Lafert Smartris Modbus run sequence).
+pub trait VendorMachine {
+    /// The register the states are recognised from.
+    type Status: Parameter<Raw = u16>;
+    /// The register transitions are commanded through.
+    type Command: Parameter<Raw = u16>;
+    /// States and transitions.
+    const MACHINE: Machine;
+}
