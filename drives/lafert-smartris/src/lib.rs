@@ -30,4 +30,17 @@
 #![no_std]
 #![deny(warnings, missing_docs)]
 
+#[cfg(feature = "std")]
+extern crate std;
+
 include!(concat!(env!("OUT_DIR"), "/drive.rs"));
+
+mod run_sequence;
+mod store;
+mod wait;
+
+pub use run_sequence::{ControlMode, RunError};
+pub use store::StoreResetError;
+#[cfg(feature = "std")]
+pub use wait::StdClock;
+pub use wait::{Clock, RebootWait};
