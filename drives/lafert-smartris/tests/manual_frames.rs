@@ -3,16 +3,17 @@
 //! independently (bit by bit). Modbus manual §1.2-1.3 (001_ad8624675505a5b5.txt lines 157-240);
 //! the user guide repeats the §1.2 frames (000_ac225e0ba9cf582c.txt lines 6662-6726).
 
+#[path = "support/fake_clock.rs"]
+mod fake_clock;
 #[path = "support/rtu_recorder.rs"]
 mod rtu_recorder;
-
-use core::time::Duration;
 
 use drivebus::modbus::pdu::Request;
 use drivebus::modbus::rtu::{encode_request, MAX_ADU};
 use drivebus::modbus::{ModbusLink, Table, UnitId};
+use fake_clock::FakeClock;
 use lafert_smartris::types::{BaudRate, ComSettings};
-use lafert_smartris::{params, Clock, RebootWait, Smartris};
+use lafert_smartris::{params, RebootWait, Smartris};
 use rtu_recorder::RtuRecorder;
 
 /// CRC-16/MODBUS (poly 0xA001 reflected, init 0xFFFF), written out bit by bit so it shares nothing
@@ -58,18 +59,6 @@ fn frames(drive: Smartris<ModbusLink<RtuRecorder>>) -> Vec<Vec<u8>> {
     drive.into_link().into_bus().frames
 }
 
-/// No real waiting: the drive in memory is back at once.
-struct InstantClock(Duration);
-
-impl Clock for InstantClock {
-    fn now(&mut self) -> Duration {
-        self.0
-    }
-    fn sleep(&mut self, duration: Duration) {
-        self.0 += duration;
-    }
-}
-
 const STORE: [u8; 6] = [0x01, 0x06, 0x00, 0x00, 0x00, 0x01];
 const RESET: [u8; 6] = [0x01, 0x06, 0xA5, 0xA5, 0x00, 0x01];
 const READ_STATUS: [u8; 6] = [0x01, 0x04, 0x00, 0x60, 0x00, 0x01];
@@ -93,7 +82,7 @@ fn change_address_sequence_1_2_1() {
         .write_store_reset::<params::ModbusAddress>(
             2,
             RebootWait::default(),
-            &mut InstantClock(Duration::ZERO),
+            &mut FakeClock::default(),
         )
         .unwrap();
     assert_eq!(
@@ -115,7 +104,7 @@ fn change_baud_rate_sequence_1_2_2() {
         .write_store_reset::<params::BaudRate>(
             BaudRate::B9600,
             RebootWait::default(),
-            &mut InstantClock(Duration::ZERO),
+            &mut FakeClock::default(),
         )
         .unwrap();
     let frames = frames(drive);
@@ -131,7 +120,7 @@ fn change_com_setting_sequence_1_2_3() {
         .write_store_reset::<params::ComSettings>(
             ComSettings::ODD_PARITY_1_STOP,
             RebootWait::default(),
-            &mut InstantClock(Duration::ZERO),
+            &mut FakeClock::default(),
         )
         .unwrap();
     let frames = frames(drive);
