@@ -118,5 +118,8 @@ fn every_described_register_is_in_a_manual_list() {
         .difference(&listed)
         .copied()
         .collect();
-    assert!(unlisted.is_empty(), "described but in no list: {unlisted:04X?}");
+    assert!(
+        unlisted.is_empty(),
+        "described but in no list: {unlisted:04X?}"
+    );
 }
