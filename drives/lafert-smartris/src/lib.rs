@@ -7,10 +7,12 @@ extern crate std;
 
 include!(concat!(env!("OUT_DIR"), "/drive.rs"));
 
+mod emcy;
 mod run_sequence;
 mod store;
 mod wait;
 
+pub use emcy::EmcyCodes;
 pub use run_sequence::{ControlMode, RunError};
 pub use store::StoreResetError;
 #[cfg(feature = "std")]
