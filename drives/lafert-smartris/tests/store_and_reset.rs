@@ -101,3 +101,15 @@ fn a_failed_store_does_not_reset() {
         "only the store was sent"
     );
 }
+
+#[test]
+fn a_reset_the_drive_does_not_answer_is_not_an_error_if_it_comes_back() {
+    let mut sim = SimulatedDrive::in_standby(2);
+    sim.reset_unanswered = true;
+    sim.silent_requests_after_reset = 1;
+    let mut drive = drive(sim);
+    let waited = drive
+        .store_and_reset(WAIT, &mut FakeClock::default())
+        .unwrap();
+    assert_eq!(waited, Duration::from_millis(500));
+}

@@ -31,6 +31,8 @@ pub struct SimulatedDrive {
     pub silent_requests_after_reset: u32,
     /// Whether the drive obeys run commands (a drive with the brake stuck does not).
     pub obeys_run: bool,
+    /// Whether the drive reboots before it answers the reset command.
+    pub reset_unanswered: bool,
     silent_left: u32,
 }
 
@@ -49,6 +51,7 @@ impl SimulatedDrive {
             memory,
             silent_requests_after_reset: 0,
             obeys_run: true,
+            reset_unanswered: false,
             silent_left: 0,
         }
     }
