@@ -12,7 +12,9 @@ Unit 1 holds a Lafert-like register map (non-shared tables, wire address 0 = fir
   coils   0..=31           True at even addresses
   discrete inputs 0..=15   True at addresses divisible by 3
 Anything else answers exception 0x02. Writing 0x0028 with a value outside 1..=247 answers
-exception 0x03 (illegal data value), as the drive documents.
+exception 0x03 (illegal data value), as the drive documents; so does writing the speed setpoint
+0x0042 beyond +-3000 rpm (the full-scale velocity of an L motor, holding 0x0003, which a client
+cannot know from the register's type).
 The process exits when stdin closes, so a test that dies cannot leave it behind.
 """
 
@@ -25,6 +27,8 @@ from pymodbus.server import ModbusSerialServer, ModbusTcpServer
 from pymodbus.simulator import DataType, SimData, SimDevice
 
 ADDRESS_REGISTER = 0x0028
+SPEED_SETPOINT = 0x0042
+FULL_SCALE_VELOCITY = 3000
 
 
 def holding():
@@ -40,11 +44,18 @@ def inputs():
     return [SimData(address=0x60, values=values, datatype=DataType.REGISTERS)]
 
 
+def signed(register):
+    """A register value as i16."""
+    return register - 0x10000 if register >= 0x8000 else register
+
+
 async def action(function_code, start_address, address, count, current_registers, set_values):
     """Enforces the drive address range on writes."""
     if function_code in (0x06, 0x10) and set_values is not None:
         for offset, value in enumerate(set_values):
             if address + offset == ADDRESS_REGISTER and not 1 <= int(value) <= 247:
+                return ExcCodes.ILLEGAL_VALUE
+            if address + offset == SPEED_SETPOINT and abs(signed(int(value))) > FULL_SCALE_VELOCITY:
                 return ExcCodes.ILLEGAL_VALUE
     return None
 

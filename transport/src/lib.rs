@@ -22,6 +22,7 @@ pub mod check;
 pub mod control;
 pub mod device;
 pub mod error;
+pub mod error_class;
 pub mod link;
 #[cfg(feature = "std")]
 pub mod memory;
@@ -34,6 +35,7 @@ pub mod value;
 
 pub use device::{Accessor, Device};
 pub use error::{BusError, Error, ValueError};
+pub use error_class::ErrorClass;
 pub use link::Link;
 pub use parameter::{Parameter, Readable, Writable};
 pub use scale::{Ratio, Scale};

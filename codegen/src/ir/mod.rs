@@ -278,9 +278,25 @@ pub struct EnumValue {
     pub value: i64,
     /// Documentation.
     pub doc: Option<String>,
+    /// For error codes: whether the value is a fault (the drive stops) or a warning.
+    pub class: Option<ValueClass>,
+    /// For error codes: the LED blink code, `[first, second]` (e.g. green, then yellow blinks).
+    pub led: Option<[u8; 2]>,
+    /// For error codes: what the value means and what to do, apart from its one-line `doc`.
+    pub meaning: Option<String>,
     /// Where it is declared.
     #[serde(skip)]
     pub span: Span,
+}
+
+/// Class of an error-code value.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ValueClass {
+    /// The drive stops and needs a fault reset.
+    Fault,
+    /// The drive keeps running and signals the condition.
+    Warning,
 }
 
 /// A bit-field word.

@@ -464,6 +464,12 @@ impl Lowering<'_> {
                     name: inner.name.get_ref().clone(),
                     value: *inner.value.get_ref(),
                     doc: inner.doc.clone(),
+                    class: inner.class.map(|class| match class {
+                        RawValueClass::Fault => ir::ValueClass::Fault,
+                        RawValueClass::Warning => ir::ValueClass::Warning,
+                    }),
+                    led: inner.led.as_ref().and_then(|led| self.led_code(led)),
+                    meaning: inner.meaning.clone(),
                     span: self.span(&inner.value),
                 }
             })
@@ -477,6 +483,22 @@ impl Lowering<'_> {
             erratum: raw.erratum.clone(),
             span: self.span(&raw.name),
         })
+    }
+
+    /// `led = [first, second]`: exactly two blink counts.
+    fn led_code(&mut self, led: &Spanned<Vec<u8>>) -> Option<[u8; 2]> {
+        match led.get_ref().as_slice() {
+            &[first, second] => Some([first, second]),
+            _ => {
+                let span = self.span(led);
+                self.error(
+                    VALUE_RULE,
+                    span,
+                    "an LED code is two blink counts, `[first, second]`",
+                );
+                None
+            }
+        }
     }
 
     fn flags(&mut self, raw: &RawFlags) -> Option<ir::Flags> {

@@ -129,6 +129,17 @@ pub struct RawEnumValue {
     pub name: Spanned<String>,
     pub value: Spanned<i64>,
     pub doc: Option<String>,
+    pub class: Option<RawValueClass>,
+    pub led: Option<Spanned<Vec<u8>>>,
+    pub meaning: Option<String>,
+}
+
+/// `class = "fault" | "warning"` of an error-code value.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum RawValueClass {
+    Fault,
+    Warning,
 }
 
 #[derive(Debug, Deserialize)]

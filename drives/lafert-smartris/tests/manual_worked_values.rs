@@ -1,10 +1,14 @@
-//! The Modbus manual's own worked values (001_ad8624675505a5b5.txt §2.2), decoded through the
-//! generated API over an in-memory register map.
+//! The Modbus manual's own worked values (001_ad8624675505a5b5.txt, every "i.e." example of §2-4),
+//! decoded or encoded through the generated API over an in-memory register map.
 
 use drivebus::memory::{MemoryBus, Request};
 use drivebus::modbus::{ModbusLink, Table, UnitId};
 use drivebus::units::{AmperesRms, Celsius, Rpm, Volts};
 use drivebus::{BusError, Error, ValueError};
+use lafert_smartris::types::{
+    AnalogOutputConfig, BaudRate, BrakeMode, BrakeType, DigitalInputs, DigitalOutputs, EncoderType,
+    MotorType, StoCheck,
+};
 use lafert_smartris::{params, types::DriveStatus, Smartris};
 
 fn drive_with(registers: &[(Table, u16, u16)]) -> Smartris<ModbusLink<MemoryBus>> {
@@ -128,4 +132,199 @@ fn read_many_returns_typed_values_in_order() {
         .unwrap();
     assert_eq!((volts, temperature), (Volts(49.5), Celsius(35.5)));
     assert!(status.contains(DriveStatus::STANDBY));
+}
+
+// ---------------------------------------------------------------------------------------------
+// The remaining "i.e." examples of the Modbus manual (001_ad8624675505a5b5.txt), one assertion
+// each, with the manual line. Frames are in manual_frames.rs, the run sequence examples in
+// run_sequence.rs.
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn input_register_examples_of_section_2_2() {
+    let mut drive = drive_with(&[
+        (Table::Input, 0x0042, 0x0064),
+        (Table::Input, 0x0047, 0x00C8),
+        (Table::Input, 0x005E, 0x000F),
+        (Table::Input, 0x005F, 0x0001),
+        (Table::Input, 0x0068, 0x01F4),
+        (Table::Input, 0x0069, 0x01F4),
+        (Table::Input, 0x006A, 0x0032),
+        (Table::Input, 0x006B, 0x4240),
+        (Table::Input, 0x006C, 0x000F),
+        (Table::Input, 0x006D, 0x1000),
+        (Table::Input, 0x006E, 0x03E8),
+    ]);
+    // Line 309: 0x0042 = 0x64 (100) → 100 rpm.
+    assert_eq!(drive.speed_setpoint().read(), Ok(Rpm(100.0)));
+    // Line 316: 0x0047 = 0xC8 (200) → 2 Arms.
+    assert_eq!(drive.torque_setpoint().read(), Ok(AmperesRms(2.0)));
+    // Line 329 table: 0x005E = 0x000F → all four inputs on.
+    assert_eq!(
+        drive.digital_inputs().read(),
+        Ok(DigitalInputs::DIGIN1
+            | DigitalInputs::DIGIN2
+            | DigitalInputs::DIGIN3
+            | DigitalInputs::DIGIN4)
+    );
+    // Line 359: 0x005F = 0x0001 → Drive OK on, no alarm.
+    assert_eq!(drive.digital_outputs().read(), Ok(DigitalOutputs::DRIVE_OK));
+    // Line 514: 0x0068 = 0x01F4 (500) → 500 rpm.
+    assert_eq!(drive.velocity_average().read(), Ok(Rpm(500.0)));
+    // Line 521: 0x0069 = 0x01F4 (500) → 5 Arms (ERRATA.md U1: 1/100 Arms).
+    assert_eq!(drive.torque_current().read(), Ok(AmperesRms(5.0)));
+    // Line 527: 0x006A = 0x0032 (50) → 50 % of rated current.
+    assert_eq!(drive.i2t_energy().read().map(|v| v.0), Ok(50.0));
+    // Lines 534-541: axis position 1000000 = 0x000F4240, 0x006B = 0x4240 (low), 0x006C = 0x000F.
+    assert_eq!(drive.axis_position().read_raw(), Ok(1_000_000));
+    // Line 556: 0x006D = 0x1000 → 4096 of 16384 pulses (90°).
+    assert_eq!(drive.impulses().read_raw(), Ok(4096));
+    // Line 564: 0x006E = 0x03E8 → 1000 rpm.
+    assert_eq!(drive.actual_velocity_user().read(), Ok(Rpm(1000.0)));
+}
+
+#[test]
+fn feedback_examples_of_section_2_2() {
+    let mut drive = drive_with(&[
+        (Table::Input, 0x0101, 0x4000),
+        (Table::Input, 0x0102, 0x7421),
+        (Table::Input, 0x0103, 0x0029),
+        (Table::Input, 0x0104, 0x7421),
+        (Table::Input, 0x0105, 0x0029),
+        (Table::Input, 0x0106, 0x0037),
+    ]);
+    // Line 585: 0x0101 = 4000h → 16384 per revolution.
+    assert_eq!(drive.feedback_resolution().read(), Ok(16384));
+    // Lines 591-615: pos = 0x297421, low word 0x7421, high word 0x0029 (ERRATA.md M8).
+    assert_eq!(drive.feedback_init_position().read_raw(), Ok(0x0029_7421));
+    assert_eq!(drive.feedback_actual_position().read_raw(), Ok(0x0029_7421));
+    // Line 621: 0x0106 = 0x37 → SinCos multi-turn.
+    assert_eq!(drive.encoder_type().read(), Ok(EncoderType::MULTITURN));
+}
+
+#[test]
+fn holding_register_examples_of_sections_3_2_and_4_2() {
+    let mut drive = drive_with(&[
+        (Table::Holding, 0x0028, 1),
+        (Table::Holding, 0x0035, 0x00C0),
+        (Table::Holding, 0x0036, 1000),
+        (Table::Holding, 0x003F, 1),
+        (Table::Holding, 0x0040, 0x03E8),
+        (Table::Holding, 0x0041, 0x03E8),
+        (Table::Holding, 0x0044, 0x0032),
+        (Table::Holding, 0x0045, 0x0032),
+        (Table::Holding, 0x0046, 0x01F4),
+        (Table::Holding, 0x004E, 1),
+        (Table::Holding, 0x004F, 1),
+        (Table::Holding, 0x0050, 1),
+        (Table::Holding, 0x0051, 1),
+        (Table::Holding, 0x0053, 1),
+        (Table::Holding, 0x0054, 4095),
+    ]);
+    // Lines 791 / 1246: 0x0028 = 1 → Modbus address 1.
+    assert_eq!(drive.modbus_address().read(), Ok(1));
+    // Lines 804 / 1269: 0x0035 = 0x00C0 (192) → 19200 baud.
+    assert_eq!(drive.baud_rate().read(), Ok(BaudRate::B19200));
+    // Line 1277: 0x0036 = 1000 → loss time 1000 ms (ERRATA.md M4: the hex 0x03B8 is wrong).
+    assert_eq!(
+        drive.communication_loss_time().read().map(|v| v.0),
+        Ok(1000.0)
+    );
+    // Lines 837 / 1308: 0x003F = 1 → ramp enabled.
+    assert_eq!(drive.ramp_enable().read(), Ok(1));
+    // Lines 845 / 1317 and 1324 (ERRATA.md M5): ramps of 0x03E8 = 1000 ms = 1 s.
+    assert_eq!(drive.speed_ramp_up().read().map(|v| v.0), Ok(1000.0));
+    assert_eq!(drive.speed_ramp_down().read().map(|v| v.0), Ok(1000.0));
+    // Lines 869-878 / 1357-1365: 0x0044 = 0x0045 = 0x0032 (50) → 50 % of rated current.
+    assert_eq!(drive.limit_torque_positive().read().map(|v| v.0), Ok(50.0));
+    assert_eq!(drive.limit_torque_negative().read().map(|v| v.0), Ok(50.0));
+    // Line 1373: 0x0046 = 0x01F4 (500) → rated current reached in 1000 / 500 = 2 s.
+    assert_eq!(drive.slope_ramp_torque().read(), Ok(500));
+    // Lines 891, 901, 908, 916: brake managed, manual brake mode, magnetic brake, standby CW.
+    assert_eq!(drive.brake_managed().read(), Ok(1));
+    assert_eq!(drive.brake_mode().read(), Ok(BrakeMode::MANUAL));
+    assert_eq!(drive.brake_type().read(), Ok(BrakeType::MAGNETIC));
+    assert_eq!(drive.move_to_standby_cw().read(), Ok(1));
+    // Lines 928 / 1424: 0x0053 = 1 → general purpose; lines 934 / 1430: 0x0054 = 4095 → 10 V.
+    assert_eq!(
+        drive.analog_output_config().read(),
+        Ok(AnalogOutputConfig::GENERAL_PURPOSE)
+    );
+    assert_eq!(drive.analog_output_value().read(), Ok(Volts(10.0)));
+}
+
+#[test]
+fn identity_examples_of_section_3_2() {
+    let mut drive = drive_with(&[
+        (Table::Holding, 0x01FF, 226),
+        (Table::Holding, 0x0201, 0x000B),
+        (Table::Holding, 0x0202, 0x0136),
+        (Table::Holding, 0x0203, 1),
+        (Table::Holding, 0x0204, 1),
+        (Table::Holding, 0x0208, 4),
+        (Table::Holding, 0x020A, 4500),
+    ]);
+    // Line 1023: firmware 226 → 2.2.6, decimal digits (ERRATA.md M6: the hex 0x00E1 is 225).
+    assert_eq!(drive.fw_release().read(), Ok(226));
+    // Line 1029: 0x000B (11) → hardware 1.1 (ERRATA.md M7); line 1035: 0x0136 (310) → 3.1.0.
+    assert_eq!(drive.hw_release().read(), Ok(11));
+    assert_eq!(drive.parameter_release().read(), Ok(310));
+    // Line 1045: 0x0203 = 1; the list says B40, the example "S" (ERRATA.md M9).
+    assert_eq!(drive.motor_type().read(), Ok(MotorType::B40));
+    // Line 1051: 0x0204 = 1 → STO present.
+    assert_eq!(drive.sto_check().read(), Ok(StoCheck::STO_PRESENT));
+    // Line 1076: 4 pole pairs; line 1091: 0x020A = 4500 → cannot run over 4500 rpm.
+    assert_eq!(drive.motor_pole_pairs().read(), Ok(4));
+    assert_eq!(drive.max_motor_speed().read(), Ok(Rpm(4500.0)));
+}
+
+#[test]
+fn setpoint_write_examples_of_section_4_2() {
+    let mut drive = drive_with(&[
+        (Table::Holding, 0x0042, 0),
+        (Table::Holding, 0x0047, 0),
+        (Table::Holding, 0x0052, 0),
+    ]);
+    // Line 1337: 0x0042 = 0x0BB8 → 3000 rpm; line 1382: 0x0047 = 0xFF38 → -2 Arms.
+    drive.speed_setpoint().write(Rpm(3000.0)).unwrap();
+    drive.torque_setpoint().write(AmperesRms(-2.0)).unwrap();
+    // Line 1414: 0x0052 = 1 → update of READ ENCODER STATUS.
+    drive
+        .set_cmd_req_feedback()
+        .write(lafert_smartris::types::SincosCommand::READ_ENCODER_STATUS)
+        .unwrap();
+    let bus = drive.into_link().into_bus();
+    assert_eq!(bus.register(Table::Holding, 0x0042), Some(0x0BB8));
+    assert_eq!(bus.register(Table::Holding, 0x0047), Some(0xFF38));
+    assert_eq!(bus.register(Table::Holding, 0x0052), Some(1));
+}
+
+#[test]
+fn error_codes_carry_the_table_2_class_led_code_and_meaning() {
+    use drivebus::ErrorClass;
+    use lafert_smartris::types::ErrorCode;
+    let mut drive = drive_with(&[(Table::Input, 0x0063, 0x7521)]);
+    // Line 458: 0x7521 Modbus communication lost, F, LED 9,1.
+    let code = drive.error_code().read().unwrap();
+    assert_eq!(code, ErrorCode::MODBUS_COMMUNICATION_LOST);
+    assert_eq!(code.class(), Some(ErrorClass::Fault));
+    assert_eq!(code.led_code(), Some((9, 1)));
+    assert!(code.meaning().unwrap().contains("Communication Loss Timer"));
+    // Line 406: 0x4301 warning, no LED code; line 395: no error has neither.
+    assert_eq!(
+        ErrorCode::WARNING_TEMPERATURE_DRIVE.class(),
+        Some(ErrorClass::Warning)
+    );
+    assert_eq!(ErrorCode::WARNING_TEMPERATURE_DRIVE.led_code(), None);
+    assert_eq!(ErrorCode::NO_ERROR.class(), None);
+    // Line 447: 0x7374 has no class in the table (ERRATA.md R17).
+    assert_eq!(ErrorCode::RESOLVER_INITIALIZATION.class(), None);
+    assert_eq!(ErrorCode::RESOLVER_INITIALIZATION.led_code(), Some((2, 4)));
+    // A code between the documented range end points stays readable, without attributes.
+    let inside_range = drive_with(&[(Table::Input, 0x0063, 0x5540)])
+        .error_code()
+        .read()
+        .unwrap();
+    assert!(!inside_range.is_known());
+    assert_eq!((inside_range.raw(), inside_range.class()), (0x5540, None));
 }

@@ -6,7 +6,7 @@ use quote::quote;
 
 use super::{doc_attrs, ident};
 use crate::emit::{doc, ident as names};
-use crate::ir::{DataType, Enum};
+use crate::ir::{DataType, Enum, EnumValue, ValueClass};
 
 /// An integer literal of the given type, so negative and wide values print exactly.
 pub fn int_literal(value: i128, ty: DataType) -> TokenStream {
@@ -40,11 +40,13 @@ pub fn emit(e: &Enum) -> TokenStream {
         .map(|v| int_literal(v.value as i128, e.data_type))
         .collect();
     let value_names = e.values.iter().map(|v| v.name.as_str());
+    let error_attributes = error_attributes(e);
     let const_docs = e.values.iter().map(|v| {
         let text = format!(
-            "{} = `{}`",
+            "{} = `{}`{}",
             doc::escape(v.doc.as_deref().unwrap_or(&v.name)),
-            v.value
+            v.value,
+            error_attribute_doc(v)
         );
         doc_attrs(&text)
     });
@@ -78,6 +80,7 @@ pub fn emit(e: &Enum) -> TokenStream {
             pub const fn is_known(self) -> bool {
                 self.name().is_some()
             }
+            #error_attributes
         }
 
         impl ::core::convert::TryFrom<#raw> for #name {
@@ -108,6 +111,90 @@ pub fn emit(e: &Enum) -> TokenStream {
             }
             fn name(self) -> Option<&'static str> {
                 #name::name(self)
+            }
+        }
+    }
+}
+
+/// `class()`, `led_code()` and `meaning()`, each only when some value of the enum carries that
+/// attribute, so plain enumerations keep a small API.
+fn error_attributes(e: &Enum) -> TokenStream {
+    let class = attribute_fn(
+        e,
+        quote! {
+            /// Whether the code is a fault (the drive stops) or a warning; `None` when the
+            /// description gives no class for the value (or does not list it).
+            pub const fn class(self) -> Option<::drivebus::ErrorClass>
+        },
+        |v| {
+            v.class.map(|class| match class {
+                ValueClass::Fault => quote! { ::drivebus::ErrorClass::Fault },
+                ValueClass::Warning => quote! { ::drivebus::ErrorClass::Warning },
+            })
+        },
+    );
+    let led = attribute_fn(
+        e,
+        quote! {
+            /// The LED blink code `(first, second)` the drive shows for this value; `None` when
+            /// the manual gives none.
+            pub const fn led_code(self) -> Option<(u8, u8)>
+        },
+        |v| v.led.map(|[first, second]| quote! { (#first, #second) }),
+    );
+    let meaning = attribute_fn(
+        e,
+        quote! {
+            /// What the value means and what to do about it, from the manual's table.
+            pub const fn meaning(self) -> Option<&'static str>
+        },
+        |v| v.meaning.as_deref().map(|text| quote! { #text }),
+    );
+    quote! { #class #led #meaning }
+}
+
+/// The error-code attributes of one value as rustdoc paragraphs; empty when it has none.
+fn error_attribute_doc(v: &EnumValue) -> String {
+    let mut text = String::new();
+    if let Some(meaning) = &v.meaning {
+        text += &format!("\n\n{}", doc::escape(meaning));
+    }
+    if let Some(class) = v.class {
+        let class = match class {
+            ValueClass::Fault => "fault",
+            ValueClass::Warning => "warning",
+        };
+        text += &format!("\n\nClass: {class}.");
+    }
+    if let Some([first, second]) = v.led {
+        text += &format!(" LED code: {first},{second}.");
+    }
+    text
+}
+
+/// A `const fn` mapping every value that has the attribute to `Some(attribute)`; nothing when no
+/// value has it.
+fn attribute_fn(
+    e: &Enum,
+    signature: TokenStream,
+    attribute: impl Fn(&EnumValue) -> Option<TokenStream>,
+) -> TokenStream {
+    let arms: Vec<_> = e
+        .values
+        .iter()
+        .filter_map(|v| {
+            let value = int_literal(v.value as i128, e.data_type);
+            attribute(v).map(|a| quote! { #value => Some(#a), })
+        })
+        .collect();
+    if arms.is_empty() {
+        return TokenStream::new();
+    }
+    quote! {
+        #signature {
+            match self.0 {
+                #( #arms )*
+                _ => None,
             }
         }
     }

@@ -1,0 +1,186 @@
+//! The Modbus-mode run sequence of the Modbus manual §4.2.1 (lines 1185-1222; user guide §7.6,
+//! lines 6545-6611) as typed steps on the drive handle: verify the operation mode, enable
+//! (T2/T5), set the speed or torque setpoint, and stop with the ramp, stop (T4) or go to standby
+//! (T3/T6). Each step checks the drive status and says what is wrong when it cannot go on.
+//!
+//! The manual reads the drive status with "func. 0x03" (ERRATA.md M12); it is input register
+//! 0x0060, read with FC 0x04, as the generated `drive_status` accessor does.
+
+use core::fmt;
+
+use drivebus::modbus::Modbus;
+use drivebus::units::{AmperesRms, Rpm};
+use drivebus::{Error, Link};
+
+use crate::types::{ControlWord, DriveStatus, ErrorCode, OperationMode};
+use crate::Smartris;
+
+/// The two Modbus control modes the drive runs in (holding 0x0207, changed only by a store and a
+/// reset: see [`Smartris::write_store_reset`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ControlMode {
+    /// The drive follows the torque setpoint (holding 0x0047).
+    Torque,
+    /// The drive follows the speed setpoint (holding 0x0042).
+    Velocity,
+}
+
+impl ControlMode {
+    /// The operation mode register value of this mode.
+    pub const fn operation_mode(self) -> OperationMode {
+        match self {
+            Self::Torque => OperationMode::TORQUE,
+            Self::Velocity => OperationMode::VELOCITY,
+        }
+    }
+
+    /// The drive status bit set while the drive runs in this mode.
+    pub const fn run_status(self) -> DriveStatus {
+        match self {
+            Self::Torque => DriveStatus::RUN_TORQUE,
+            Self::Velocity => DriveStatus::RUN_VELOCITY,
+        }
+    }
+}
+
+/// Why a run-sequence step could not be carried out.
+#[derive(Debug, Clone, PartialEq)]
+pub enum RunError {
+    /// A request failed (bus, exception, or a value the drive refuses).
+    Bus(Error),
+    /// The drive is in alarm (drive status bit 4); `code` is its error code (input 0x0063), with
+    /// `class()`, `led_code()` and `meaning()`.
+    InAlarm {
+        /// The active error code.
+        code: ErrorCode,
+    },
+    /// The drive is in the SAFE state: STO is active and it cannot be enabled over Modbus.
+    SafeTorqueOff,
+    /// The drive runs in another operation mode; changing it needs a store and a reset.
+    WrongMode {
+        /// The mode the step needs.
+        expected: OperationMode,
+        /// The mode the drive reports (holding 0x0207).
+        actual: OperationMode,
+    },
+    /// The drive is not in a state the step needs.
+    WrongState {
+        /// Any of these states would do.
+        expected: DriveStatus,
+        /// The drive status that was read.
+        status: DriveStatus,
+    },
+}
+
+impl From<Error> for RunError {
+    fn from(error: Error) -> Self {
+        Self::Bus(error)
+    }
+}
+
+impl fmt::Display for RunError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Bus(e) => write!(f, "request failed: {e}"),
+            Self::InAlarm { code } => {
+                write!(f, "drive in alarm, error code {:#06x} ({code:?})", code.raw())?;
+                if let Some(meaning) = code.meaning() {
+                    write!(f, ": {meaning}")?;
+                }
+                Ok(())
+            }
+            Self::SafeTorqueOff => write!(f, "drive in SAFE state (STO active)"),
+            Self::WrongMode { expected, actual } => write!(
+                f,
+                "drive is in operation mode {actual:?}, the step needs {expected:?} (store and reset to change it)"
+            ),
+            Self::WrongState { expected, status } => write!(
+                f,
+                "drive status {:#06x} ({status:?}), the step needs one of {expected:?}",
+                status.bits()
+            ),
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for RunError {}
+
+impl<L: Link<Protocol = Modbus>> Smartris<L> {
+    /// Step 3: the drive's operation mode (holding 0x0207) must be `mode`.
+    pub fn check_operation_mode(&mut self, mode: ControlMode) -> Result<(), RunError> {
+        let actual = self.operation_mode().read()?;
+        if actual == mode.operation_mode() {
+            Ok(())
+        } else {
+            Err(RunError::WrongMode {
+                expected: mode.operation_mode(),
+                actual,
+            })
+        }
+    }
+
+    /// Steps 3-6: checks the mode and that the drive is switched on (standby) or stopped without
+    /// an alarm, writes RUN + STOP disabled (control word 0x0003, T2 / T5), and checks that the
+    /// drive now runs in `mode`. Returns the drive status read last.
+    pub fn enable(&mut self, mode: ControlMode) -> Result<DriveStatus, RunError> {
+        self.check_operation_mode(mode)?;
+        self.status_in(DriveStatus::STANDBY | DriveStatus::STOP)?;
+        self.control_word()
+            .write(ControlWord::RUN | ControlWord::STOP_DISABLED)?;
+        self.status_in(mode.run_status())
+    }
+
+    /// Step 7, velocity mode: writes the speed setpoint (holding 0x0042) while the drive runs in
+    /// velocity mode. Range-checked against the description before anything is sent.
+    pub fn set_speed(&mut self, speed: Rpm) -> Result<(), RunError> {
+        self.status_in(DriveStatus::RUN_VELOCITY)?;
+        Ok(self.speed_setpoint().write(speed)?)
+    }
+
+    /// Step 7, torque mode: writes the torque setpoint (holding 0x0047) while the drive runs in
+    /// torque mode.
+    pub fn set_torque(&mut self, torque: AmperesRms) -> Result<(), RunError> {
+        self.status_in(DriveStatus::RUN_TORQUE)?;
+        Ok(self.torque_setpoint().write(torque)?)
+    }
+
+    /// Step 9, "stop the motor with ramp": speed setpoint 0 in velocity mode; the drive stays
+    /// enabled.
+    pub fn stop_with_ramp(&mut self) -> Result<(), RunError> {
+        self.set_speed(Rpm(0.0))
+    }
+
+    /// Step 9, stop command (T4): control word 0x0001 (RUN, STOP enabled); the drive stops at
+    /// once with maximum torque, like a quick stop, and must report STOP.
+    pub fn stop(&mut self) -> Result<DriveStatus, RunError> {
+        self.control_word().write(ControlWord::RUN)?;
+        self.status_in(DriveStatus::STOP)
+    }
+
+    /// Step 9, standby command (T3 from run, T6 from stop; the manual labels it T4, ERRATA.md
+    /// M14): control word 0x0002; the drive is disabled and must report STANDBY.
+    pub fn standby(&mut self) -> Result<DriveStatus, RunError> {
+        self.control_word().write(ControlWord::STOP_DISABLED)?;
+        self.status_in(DriveStatus::STANDBY)
+    }
+
+    /// Reads the drive status; fails with the decoded error code in alarm, on STO, or when none
+    /// of the `expected` states is set.
+    fn status_in(&mut self, expected: DriveStatus) -> Result<DriveStatus, RunError> {
+        let status = self.drive_status().read()?;
+        if status.contains(DriveStatus::ALARM) {
+            return Err(RunError::InAlarm {
+                code: self.error_code().read()?,
+            });
+        }
+        if status.contains(DriveStatus::SAFE) {
+            return Err(RunError::SafeTorqueOff);
+        }
+        if status.intersects(expected) {
+            Ok(status)
+        } else {
+            Err(RunError::WrongState { expected, status })
+        }
+    }
+}

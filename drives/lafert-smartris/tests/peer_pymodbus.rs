@@ -1,0 +1,175 @@
+//! The generated Lafert API against an independent Modbus implementation: pymodbus 3.16.1 serving
+//! a Lafert-like register map over Modbus TCP on 127.0.0.1 (tests/peers/modbus_server.py), reached
+//! with drivebus' TCP client. The test starts the server and stops it by PID.
+//!
+//! Python comes from `DRIVEGEN_PYTHON`, else `.venv/bin/python` at the workspace root, else
+//! `python3`. A missing peer fails the test with instructions; `tests/peers/setup.sh` installs it.
+
+use std::io::{BufRead, BufReader};
+use std::path::{Path, PathBuf};
+use std::process::{Child, ChildStdin, Command, Stdio};
+use std::time::Duration;
+
+use drivebus::modbus::transport::{ModbusTcpClient, TcpConfig};
+use drivebus::modbus::{ModbusLink, UnitId};
+use drivebus::units::{Rpm, Volts};
+use drivebus::BusError;
+use lafert_smartris::types::{ControlWord, DriveStatus, WarningCode};
+use lafert_smartris::{params, RebootWait, Smartris, StdClock, StoreResetError};
+
+const SETUP_HINT: &str = "run `bash tests/peers/setup.sh` at the workspace root";
+
+fn workspace_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn python() -> PathBuf {
+    if let Some(python) = std::env::var_os("DRIVEGEN_PYTHON") {
+        return python.into();
+    }
+    let venv = workspace_root().join(".venv/bin/python");
+    if venv.exists() {
+        venv
+    } else {
+        "python3".into()
+    }
+}
+
+/// The server process, killed by its PID and reaped when dropped; closing its stdin also ends it.
+struct Server {
+    child: Child,
+    _stdin: Option<ChildStdin>,
+    address: String,
+}
+
+impl Drop for Server {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// Starts `modbus_server.py tcp` and reads the port it prints once listening.
+fn start_server() -> Server {
+    let python = python();
+    let mut child = Command::new(&python)
+        .arg(workspace_root().join("tests/peers/modbus_server.py"))
+        .arg("tcp")
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::inherit())
+        .spawn()
+        .unwrap_or_else(|e| panic!("cannot start {} ({e}); {SETUP_HINT}", python.display()));
+    let stdin = child.stdin.take();
+    let stdout = child.stdout.take().expect("piped stdout");
+    let mut server = Server {
+        child,
+        _stdin: stdin,
+        address: String::new(),
+    };
+    let mut line = String::new();
+    BufReader::new(stdout)
+        .read_line(&mut line)
+        .expect("read the peer's stdout");
+    let port = line.trim().strip_prefix("PORT ").unwrap_or_else(|| {
+        panic!(
+            "the pymodbus peer did not start (output {line:?}; is pymodbus 3.16.1 installed for {}?); {SETUP_HINT}",
+            python.display()
+        )
+    });
+    server.address = format!("127.0.0.1:{port}");
+    server
+}
+
+fn connect(server: &Server) -> Smartris<ModbusLink<ModbusTcpClient>> {
+    let config = TcpConfig {
+        timeout: Duration::from_secs(2),
+        ..TcpConfig::default()
+    };
+    let client = ModbusTcpClient::connect(&server.address, &config).expect("connect to pymodbus");
+    Smartris::modbus(client, UnitId(1))
+}
+
+fn exception(function: u8, code: u8) -> Option<BusError> {
+    Some(BusError::ModbusException { function, code })
+}
+
+#[test]
+fn typed_reads_of_input_registers() {
+    let server = start_server();
+    let mut drive = connect(&server);
+    // The server's input registers hold 0x1000 + address.
+    let status = drive.drive_status().read().unwrap();
+    assert!(status.contains(DriveStatus::RUN_TORQUE | DriveStatus::INIT));
+    assert_eq!(status.bits(), 0x1060, "undocumented bits survive");
+    assert_eq!(drive.bus_dc_link().read(), Ok(Volts(41.96)));
+    // 32-bit LOW/HIGH pairs: AXIS POSITION 0x006B = 0x5678, 0x006C = 0x1234.
+    assert_eq!(drive.axis_position().read_raw(), Ok(0x1234_5678));
+    assert_eq!(
+        drive.warning_code().read().map(|w| w.bits()),
+        Ok(0x1062_1061)
+    );
+    let (status, warnings, error, volts) = drive
+        .read_many((
+            params::DriveStatus,
+            params::WarningCode,
+            params::ErrorCode,
+            params::BusDcLink,
+        ))
+        .unwrap();
+    assert_eq!(status.bits(), 0x1060);
+    // 0x1061 has bits 0, 5, 6 and 12 set: no temperature warning (bits 8-10).
+    assert_eq!(warnings.bits(), 0x1062_1061);
+    assert!(!warnings.intersects(
+        WarningCode::HEAT_SINK_TEMPERATURE
+            | WarningCode::LOGIC_BOARD_TEMPERATURE
+            | WarningCode::MOTOR_TEMPERATURE
+    ));
+    assert_eq!((error.raw(), error.is_known()), (0x1063, false));
+    assert_eq!(volts, Volts(41.96));
+}
+
+#[test]
+fn writes_and_reads_back_holding_registers() {
+    let server = start_server();
+    let mut drive = connect(&server);
+    assert_eq!(drive.modbus_address().read(), Ok(1));
+    drive.modbus_address().write(2).unwrap();
+    assert_eq!(drive.modbus_address().read(), Ok(2));
+    let run = ControlWord::RUN | ControlWord::STOP_DISABLED;
+    drive.control_word().write(run).unwrap();
+    assert_eq!(drive.control_word().read(), Ok(run));
+    drive.speed_setpoint().write(Rpm(3000.0)).unwrap();
+}
+
+#[test]
+fn an_unknown_register_is_exception_0x02() {
+    let server = start_server();
+    let mut drive = connect(&server);
+    // FEEDBACK TYPE, input 0x0100: the server has no input registers there.
+    let error = drive.feedback_type_actual().read().unwrap_err();
+    assert_eq!(error.bus().cloned(), exception(0x04, 0x02));
+}
+
+#[test]
+fn a_write_the_drive_refuses_is_exception_0x03() {
+    let server = start_server();
+    let mut drive = connect(&server);
+    // 3500 rpm fits the register, but not the full-scale velocity (3000 rpm) the server enforces.
+    let error = drive.speed_setpoint().write(Rpm(3500.0)).unwrap_err();
+    assert_eq!(error.bus().cloned(), exception(0x06, 0x03));
+}
+
+#[test]
+fn store_and_reset_reports_the_refused_reset() {
+    let server = start_server();
+    let mut drive = connect(&server);
+    // The server stores (holding 0x0000 exists) but has no 0xA5A5: the reset step fails typed.
+    let error = drive
+        .store_and_reset(RebootWait::default(), &mut StdClock::new())
+        .unwrap_err();
+    let StoreResetError::Reset(cause) = &error else {
+        panic!("expected the reset step to fail, got {error:?}");
+    };
+    assert_eq!(cause.bus().cloned(), exception(0x06, 0x02));
+}

@@ -1,0 +1,52 @@
+//! A `RegisterBus` that answers from a `MemoryBus` and records every request as the RTU frame
+//! (unit, PDU, CRC) `drivebus::modbus::rtu` encodes for it: what would go on the RS-485 wire.
+
+use drivebus::memory::MemoryBus;
+use drivebus::modbus::pdu::Request;
+use drivebus::modbus::rtu::{encode_request, MAX_ADU};
+use drivebus::modbus::{RegisterBus, Table, UnitId};
+use drivebus::BusError;
+
+/// Records RTU frames, answers from `memory`.
+#[derive(Debug, Default)]
+pub struct RtuRecorder {
+    pub memory: MemoryBus,
+    pub frames: Vec<Vec<u8>>,
+}
+
+impl RtuRecorder {
+    fn record(&mut self, unit: UnitId, request: &Request<'_>) -> Result<(), BusError> {
+        let mut frame = [0u8; MAX_ADU];
+        let len = encode_request(unit, request, &mut frame)?;
+        self.frames.push(frame[..len].to_vec());
+        Ok(())
+    }
+}
+
+impl RegisterBus for RtuRecorder {
+    fn read_registers(
+        &mut self,
+        unit: UnitId,
+        table: Table,
+        start: u16,
+        out: &mut [u16],
+    ) -> Result<(), BusError> {
+        let count = out.len() as u16;
+        let request = match table {
+            Table::Input => Request::ReadInputRegisters { start, count },
+            _ => Request::ReadHoldingRegisters { start, count },
+        };
+        self.record(unit, &request)?;
+        self.memory.read_registers(unit, table, start, out)
+    }
+
+    fn write_register(&mut self, unit: UnitId, address: u16, value: u16) -> Result<(), BusError> {
+        self.record(unit, &Request::WriteSingleRegister { address, value })?;
+        self.memory.write_register(unit, address, value)
+    }
+
+    /// The Smartris has no FC 0x10 (`max_write_registers = 1`); the link never sends one.
+    fn write_registers(&mut self, _: UnitId, _: u16, _: &[u16]) -> Result<(), BusError> {
+        Err(BusError::Unsupported("FC 0x10 on a Smartris"))
+    }
+}
