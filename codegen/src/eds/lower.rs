@@ -1,0 +1,361 @@
+//! EDS objects to IR records and parameters, with names derived from `ParameterName` and every
+//! value citing its EDS line.
+
+use std::collections::BTreeMap;
+
+use super::data_type::{from_code, Code, UNSIZED_CAPACITY};
+use super::dictionary::{Dictionary, ObjectKind, Text, Variable};
+use super::node_id::{parse_value, EdsValue};
+use crate::diagnostic::{Diagnostic, FileId, Files, Span};
+use crate::ir::{self, DataType, Number};
+
+/// The `[[source]]` id under which EDS-derived values cite the EDS file.
+pub const EDS_SOURCE_ID: &str = "eds";
+
+const RULE_VALUE: &str = "eds_values";
+const RULE_TYPE: &str = "eds_data_type";
+
+/// Why an entry has no usable type.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TypeProblem {
+    /// No `DataType` key (or an unreadable one, already reported).
+    Missing,
+    /// A reserved or unknown code.
+    Unsupported(u16),
+}
+
+/// One EDS variable, ready to become a parameter once its type is known.
+#[derive(Debug, Clone)]
+pub struct EdsEntry {
+    /// Object index.
+    pub index: u16,
+    /// The record it is a member of.
+    pub record: Option<String>,
+    /// snake_case name, unique among the EDS's names.
+    pub name: String,
+    /// The EDS variable.
+    pub variable: Variable,
+    /// Its type, unless the EDS does not give one.
+    pub data_type: Result<DataType, TypeProblem>,
+    /// The EDS line it comes from.
+    pub citation: ir::Citation,
+}
+
+/// Everything an EDS contributes to a device.
+#[derive(Debug, Clone)]
+pub struct EdsModel {
+    /// The EDS as a cited source.
+    pub source: ir::SourceDoc,
+    /// Identity read from `[DeviceInfo]` / `[DeviceComissioning]` / `[Comments]`.
+    pub device: super::dictionary::DeviceInfo,
+    /// ARRAY and RECORD objects.
+    pub records: Vec<ir::Record>,
+    /// Every variable.
+    pub entries: Vec<EdsEntry>,
+}
+
+/// Lowers a dictionary read from file `file`.
+pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
+    let path = files.path(file);
+    let file_name = path.display().to_string();
+    let source = ir::SourceDoc {
+        id: EDS_SOURCE_ID.into(),
+        file: file_name.clone(),
+        title: dictionary
+            .device
+            .product_name
+            .clone()
+            .map_or_else(|| "EDS".into(), |p| format!("{p} EDS")),
+    };
+    let cite = |span: &Span, section: String| ir::Citation {
+        doc: EDS_SOURCE_ID.into(),
+        file: file_name.clone(),
+        section: Some(section),
+        line: Some(files.line_col(span.file, span.range.start).0 as u32),
+        example: None,
+        span: span.clone(),
+    };
+    let mut records = Vec::new();
+    let mut entries = Vec::new();
+    for object in &dictionary.objects {
+        let record = match object.kind {
+            ObjectKind::Array | ObjectKind::Record => {
+                let kind = if object.kind == ObjectKind::Array {
+                    ir::RecordKind::Array
+                } else {
+                    ir::RecordKind::Record
+                };
+                records.push(ir::Record {
+                    name: snake_name(&object.name),
+                    kind,
+                    index: object.index,
+                    doc: Some(object.name.clone()),
+                    source: Some(cite(&object.span, format!("[{:04X}]", object.index))),
+                    span: object.span.clone(),
+                });
+                records.last().map(|r| r.name.clone())
+            }
+            ObjectKind::Var | ObjectKind::Domain => None,
+        };
+        for v in &object.variables {
+            let section = if record.is_some() {
+                format!("[{:04X}sub{:X}]", object.index, v.subindex)
+            } else {
+                format!("[{:04X}]", object.index)
+            };
+            entries.push(EdsEntry {
+                index: object.index,
+                record: record.clone(),
+                name: snake_name(&v.name),
+                data_type: entry_type(v, object.kind),
+                citation: cite(&v.span, section),
+                variable: v.clone(),
+            });
+        }
+    }
+    make_unique(&mut entries, &records);
+    EdsModel {
+        source,
+        device: dictionary.device,
+        records,
+        entries,
+    }
+}
+
+fn entry_type(v: &Variable, kind: ObjectKind) -> Result<DataType, TypeProblem> {
+    match (v.data_type, kind) {
+        (Some(code), _) => match from_code(code, UNSIZED_CAPACITY) {
+            Code::Type(t) => Ok(t),
+            Code::Unsupported => Err(TypeProblem::Unsupported(code)),
+        },
+        (None, ObjectKind::Domain) => Ok(DataType::Octets(UNSIZED_CAPACITY)),
+        (None, _) => Err(TypeProblem::Missing),
+    }
+}
+
+/// A snake_case identifier from an EDS name: ASCII letters, digits and single underscores.
+pub fn snake_name(text: &str) -> String {
+    let snake = heck::ToSnakeCase::to_snake_case(text);
+    let mut out = String::new();
+    for c in snake.chars() {
+        let c = if c.is_ascii_alphanumeric() {
+            c.to_ascii_lowercase()
+        } else {
+            '_'
+        };
+        if !(c == '_' && (out.is_empty() || out.ends_with('_'))) {
+            out.push(c);
+        }
+    }
+    let out = out.trim_end_matches('_').to_owned();
+    match out.chars().next() {
+        None => "object".into(),
+        Some(c) if c.is_ascii_digit() => format!("n{out}"),
+        Some(_) => out,
+    }
+}
+
+/// Members sharing a name get their record's name in front, then any remaining clash its address.
+fn make_unique(entries: &mut [EdsEntry], records: &[ir::Record]) {
+    let counts = |entries: &[EdsEntry]| {
+        let mut counts: BTreeMap<String, usize> = BTreeMap::new();
+        for name in entries
+            .iter()
+            .map(|e| &e.name)
+            .chain(records.iter().map(|r| &r.name))
+        {
+            *counts.entry(name.clone()).or_default() += 1;
+        }
+        counts
+    };
+    let first = counts(entries);
+    for e in entries.iter_mut() {
+        if let (Some(record), true) = (&e.record, first[&e.name] > 1) {
+            e.name = format!("{record}_{}", e.name);
+        }
+    }
+    let second = counts(entries);
+    for e in entries.iter_mut().filter(|e| second[&e.name] > 1) {
+        e.name = format!("{}_{:04x}_{}", e.name, e.index, e.variable.subindex);
+    }
+}
+
+impl EdsEntry {
+    /// The diagnostic for an entry whose type is unknown.
+    pub fn type_problem(&self, problem: TypeProblem) -> Diagnostic {
+        let (message, help) = match problem {
+            TypeProblem::Missing => (
+                format!("object {} has no DataType", self.address()),
+                "add `DataType=0x...` to the EDS, or give `type` in an overlay `[[parameter]]` with this `canopen` address",
+            ),
+            TypeProblem::Unsupported(code) => (
+                format!("object {} has DataType {code:#06X}, which CiA 301 reserves or does not define", self.address()),
+                "use a code of 0x0001..=0x001B, or give `type` in an overlay `[[parameter]]` with this `canopen` address",
+            ),
+        };
+        Diagnostic::error(RULE_TYPE, self.variable.span.clone(), message).help(help)
+    }
+
+    /// `0x1018 sub 1`.
+    pub fn address(&self) -> String {
+        format!("{:#06X} sub {}", self.index, self.variable.subindex)
+    }
+
+    /// The parameter this entry describes, with type `ty`.
+    pub fn parameter(&self, ty: DataType, diagnostics: &mut Vec<Diagnostic>) -> ir::Parameter {
+        let v = &self.variable;
+        let (access, constant, pdo) = self.access(diagnostics);
+        let value = |t: &Option<Text>, what: &str, d: &mut Vec<Diagnostic>| {
+            let t = t.as_ref()?;
+            match parse_value(&t.value, ty) {
+                Ok(value) => value.map(|x| (x, t.span.clone())),
+                Err(why) => {
+                    d.push(
+                        Diagnostic::error(RULE_VALUE, t.span.clone(), format!("{what}: {why}"))
+                            .warning()
+                            .label("ignored"),
+                    );
+                    None
+                }
+            }
+        };
+        let default = value(&v.default, "DefaultValue", diagnostics);
+        let parameter_value = value(&v.parameter_value, "ParameterValue", diagnostics);
+        let low = constant_limit(value(&v.low, "LowLimit", diagnostics), diagnostics);
+        let high = constant_limit(value(&v.high, "HighLimit", diagnostics), diagnostics);
+        let range = limits(ty, low.clone(), high.clone());
+        let (default, default_plus_node_id, default_span) = match default.or(parameter_value) {
+            Some((EdsValue::Number(n), span)) => (Some(n), false, Some(span)),
+            Some((EdsValue::NodeIdPlus(n), span)) => (Some(Number::Int(n)), true, Some(span)),
+            None => (None, false, None),
+        };
+        ir::Parameter {
+            name: self.name.clone(),
+            doc: Some(v.description.clone().unwrap_or_else(|| v.name.clone())),
+            data_type: ty,
+            unit: None,
+            scale: None,
+            default,
+            default_plus_node_id,
+            range,
+            allowed: Vec::new(),
+            enumeration: None,
+            flags: None,
+            record: self.record.clone(),
+            modbus: Vec::new(),
+            canopen: vec![ir::ObjectAddress {
+                index: self.index,
+                subindex: v.subindex,
+                access,
+                constant,
+                pdo,
+                variant: None,
+                span: v.span.clone(),
+            }],
+            rs232: Vec::new(),
+            effect: ir::Effect::Immediate,
+            command: None,
+            variants: Vec::new(),
+            source: Some(self.citation.clone()),
+            erratum: None,
+            spans: ir::ParameterSpans {
+                name: v.span.clone(),
+                data_type: v.span.clone(),
+                default: default_span,
+                range: low.or(high).map(|(_, s)| s),
+                ..Default::default()
+            },
+        }
+    }
+
+    fn access(&self, diagnostics: &mut Vec<Diagnostic>) -> (ir::Access, bool, ir::Pdo) {
+        let v = &self.variable;
+        let text = v.access.as_ref().map_or("", |t| t.value.as_str());
+        let (access, constant) = match text {
+            "ro" => (ir::Access::READ, false),
+            "wo" => (ir::Access::WRITE, false),
+            "rw" | "rwr" | "rww" => (ir::Access::READ_WRITE, false),
+            "const" => (ir::Access::READ, true),
+            other => {
+                let span = v.access.as_ref().map_or(v.span.clone(), |t| t.span.clone());
+                let message = if other.is_empty() {
+                    format!("object {} has no AccessType; read as `ro`", self.address())
+                } else {
+                    format!("unknown AccessType `{other}`; read as `ro`")
+                };
+                diagnostics.push(
+                    Diagnostic::error(RULE_VALUE, span, message)
+                        .warning()
+                        .help("CiA 306 access types: ro, wo, rw, rwr, rww, const"),
+                );
+                (ir::Access::READ, false)
+            }
+        };
+        let pdo = match (v.pdo_mapping, text) {
+            (false, _) => ir::Pdo::None,
+            (true, "rww" | "wo") => ir::Pdo::Rx,
+            (true, "rw") => ir::Pdo::Both,
+            (true, _) => ir::Pdo::Tx,
+        };
+        (access, constant, pdo)
+    }
+}
+
+/// Limits are constants: a `$NODEID` limit is dropped with a warning.
+fn constant_limit(
+    limit: Option<(EdsValue, Span)>,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> Option<(Number, Span)> {
+    match limit? {
+        (EdsValue::Number(n), span) => Some((n, span)),
+        (EdsValue::NodeIdPlus(_), span) => {
+            diagnostics.push(
+                Diagnostic::error(RULE_VALUE, span, "a limit relative to `$NODEID` is ignored")
+                    .warning(),
+            );
+            None
+        }
+    }
+}
+
+/// A range from one or both limits; a missing side is the type's bound.
+fn limits(
+    ty: DataType,
+    low: Option<(Number, Span)>,
+    high: Option<(Number, Span)>,
+) -> Option<ir::Range> {
+    if low.is_none() && high.is_none() {
+        return None;
+    }
+    let (min, max) = match ty.integer_bounds() {
+        Some((min, max)) => (
+            Number::Int(i64::try_from(min).unwrap_or(i64::MIN)),
+            Number::Int(i64::try_from(max).unwrap_or(i64::MAX)),
+        ),
+        None if ty == DataType::F32 => (
+            Number::Float(f32::MIN.into()),
+            Number::Float(f32::MAX.into()),
+        ),
+        None => (Number::Float(f64::MIN), Number::Float(f64::MAX)),
+    };
+    Some(ir::Range {
+        min: low.map_or(min, |(n, _)| n),
+        max: high.map_or(max, |(n, _)| n),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_become_snake_case_identifiers() {
+        assert_eq!(snake_name("Vendor-ID"), "vendor_id");
+        assert_eq!(
+            snake_name("Highest sub-index supported"),
+            "highest_sub_index_supported"
+        );
+        assert_eq!(snake_name("2nd Temp (°C)"), "n2nd_temp_c");
+        assert_eq!(snake_name("µ"), "object");
+    }
+}
