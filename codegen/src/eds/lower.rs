@@ -113,7 +113,7 @@ pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
             });
         }
     }
-    make_unique(&mut entries, &records);
+    make_unique(&mut entries, &mut records);
     EdsModel {
         source,
         device: dictionary.device,
@@ -155,28 +155,33 @@ pub fn snake_name(text: &str) -> String {
     }
 }
 
-/// Members sharing a name get their record's name in front, then any remaining clash its address.
-fn make_unique(entries: &mut [EdsEntry], records: &[ir::Record]) {
-    let counts = |entries: &[EdsEntry]| {
+/// Members sharing a name get their record's name in front, then any remaining clash its address;
+/// records sharing a name get their index appended.
+fn make_unique(entries: &mut [EdsEntry], records: &mut [ir::Record]) {
+    let counts = |names: &mut dyn Iterator<Item = &String>| {
         let mut counts: BTreeMap<String, usize> = BTreeMap::new();
-        for name in entries
-            .iter()
-            .map(|e| &e.name)
-            .chain(records.iter().map(|r| &r.name))
-        {
+        for name in names {
             *counts.entry(name.clone()).or_default() += 1;
         }
         counts
     };
-    let first = counts(entries);
+    let first = counts(&mut entries.iter().map(|e| &e.name));
     for e in entries.iter_mut() {
         if let (Some(record), true) = (&e.record, first[&e.name] > 1) {
             e.name = format!("{record}_{}", e.name);
         }
     }
-    let second = counts(entries);
+    let second = counts(&mut entries.iter().map(|e| &e.name));
     for e in entries.iter_mut().filter(|e| second[&e.name] > 1) {
         e.name = format!("{}_{:04x}_{}", e.name, e.index, e.variable.subindex);
+    }
+    let records_seen = counts(&mut records.iter().map(|r| &r.name));
+    for r in records.iter_mut().filter(|r| records_seen[&r.name] > 1) {
+        let renamed = format!("{}_{:04x}", r.name, r.index);
+        for e in entries.iter_mut().filter(|e| e.index == r.index) {
+            e.record = Some(renamed.clone());
+        }
+        r.name = renamed;
     }
 }
 
