@@ -11,7 +11,8 @@ use proptest::prelude::*;
 fn read_everything(bytes: &[u8]) {
     let mut files = Files::default();
     let mut diagnostics = Vec::new();
-    let model = drivegen::eds::read_bytes(Path::new("fuzz.eds"), bytes, &mut files, &mut diagnostics);
+    let model =
+        drivegen::eds::read_bytes(Path::new("fuzz.eds"), bytes, &mut files, &mut diagnostics);
     for d in &diagnostics {
         let _ = d.render(&files);
     }
@@ -19,7 +20,12 @@ fn read_everything(bytes: &[u8]) {
     device.parameters = drivegen::eds::typed_parameters(&model.entries, &mut diagnostics);
     let exported = drivegen::eds::export(&device);
     let mut again = Vec::new();
-    let _ = drivegen::eds::read_bytes(Path::new("again.eds"), exported.as_bytes(), &mut files, &mut again);
+    let _ = drivegen::eds::read_bytes(
+        Path::new("again.eds"),
+        exported.as_bytes(),
+        &mut files,
+        &mut again,
+    );
 }
 
 fn eds_line() -> impl Strategy<Value = String> {

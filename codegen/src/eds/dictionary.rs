@@ -3,6 +3,8 @@
 //! Values stay text here (their meaning depends on the data type); [`super::lower`] interprets
 //! them. Everything malformed is a warning and is skipped, except what makes an object unusable.
 
+use std::collections::BTreeMap;
+
 use super::parse::{Ini, Section};
 use crate::diagnostic::{Diagnostic, Span};
 
@@ -143,10 +145,16 @@ const IGNORED_SECTIONS: &[&str] = &[
 /// Reads the objects of `ini`.
 pub fn read(ini: &Ini, diagnostics: &mut Vec<Diagnostic>) -> Dictionary {
     let mut dictionary = Dictionary::default();
+    let mut subs = SubSections::new();
+    for section in &ini.sections {
+        if let SectionKind::Sub(index, sub) = classify(&section.name) {
+            subs.entry(index).or_default().push((sub, section));
+        }
+    }
     for section in &ini.sections {
         match classify(&section.name) {
             SectionKind::Object(index) => {
-                if let Some(object) = object(ini, section, index, diagnostics) {
+                if let Some(object) = object(ini, &subs, section, index, diagnostics) {
                     dictionary.objects.push(object);
                 }
             }
@@ -154,7 +162,7 @@ pub fn read(ini: &Ini, diagnostics: &mut Vec<Diagnostic>) -> Dictionary {
                 orphan_check(ini, section, index, diagnostics)
             }
             SectionKind::DeviceInfo => {
-                let text = |k: &str| section.get(k).map(|e| e.value.clone());
+                let text = |k: &str| section.get(k).map(|e| e.value.to_owned());
                 dictionary.device.vendor_name = text("vendorname");
                 dictionary.device.product_name = text("productname");
             }
@@ -173,6 +181,9 @@ pub fn read(ini: &Ini, diagnostics: &mut Vec<Diagnostic>) -> Dictionary {
     dictionary.objects.sort_by_key(|o| o.index);
     dictionary
 }
+
+/// `[XXXXsubN]` sections by index, in file order.
+type SubSections<'i> = BTreeMap<u16, Vec<(u8, &'i Section<'i>)>>;
 
 enum SectionKind {
     Object(u16),
@@ -244,6 +255,7 @@ fn orphan_check(ini: &Ini, section: &Section, index: u16, diagnostics: &mut Vec<
 
 fn object(
     ini: &Ini,
+    subs: &SubSections<'_>,
     section: &Section,
     index: u16,
     diagnostics: &mut Vec<Diagnostic>,
@@ -252,12 +264,12 @@ fn object(
     let name = parameter_name(section, diagnostics, &format!("Object {index:04X}h"));
     let variables = match kind {
         ObjectKind::Var | ObjectKind::Domain => {
-            warn_subs_of_variable(ini, index, diagnostics);
+            warn_subs_of_variable(subs, index, diagnostics);
             vec![variable(section, 0, &name, diagnostics)]
         }
         ObjectKind::Array | ObjectKind::Record => match compact_count(section, diagnostics) {
             Some(count) if count > 0 => compact(ini, section, index, &name, count, diagnostics),
-            _ => members(ini, section, index, diagnostics),
+            _ => members(subs, section, index, diagnostics),
         },
     };
     Some(Object {
@@ -273,7 +285,7 @@ fn object_kind(section: &Section, diagnostics: &mut Vec<Diagnostic>) -> Option<O
     let Some(entry) = section.get("objecttype") else {
         return Some(ObjectKind::Var);
     };
-    Some(match parse_small(&entry.value) {
+    Some(match parse_small(entry.value) {
         Some(0x2) => ObjectKind::Domain,
         Some(0x7) => ObjectKind::Var,
         Some(0x8) => ObjectKind::Array,
@@ -297,7 +309,7 @@ fn object_kind(section: &Section, diagnostics: &mut Vec<Diagnostic>) -> Option<O
 
 fn parameter_name(section: &Section, diagnostics: &mut Vec<Diagnostic>, fallback: &str) -> String {
     match section.get("parametername") {
-        Some(e) if !e.value.is_empty() => e.value.clone(),
+        Some(e) if !e.value.is_empty() => e.value.to_owned(),
         _ => {
             diagnostics.push(
                 Diagnostic::error(RULE_OBJECT, section.span.clone(), "no `ParameterName`")
@@ -309,9 +321,8 @@ fn parameter_name(section: &Section, diagnostics: &mut Vec<Diagnostic>, fallback
     }
 }
 
-fn warn_subs_of_variable(ini: &Ini, index: u16, diagnostics: &mut Vec<Diagnostic>) {
-    let prefix = format!("{index:04x}sub");
-    for s in ini.sections.iter().filter(|s| s.name.starts_with(&prefix)) {
+fn warn_subs_of_variable(subs: &SubSections<'_>, index: u16, diagnostics: &mut Vec<Diagnostic>) {
+    for (_, s) in subs.get(&index).into_iter().flatten() {
         diagnostics.push(
             Diagnostic::error(
                 RULE_OBJECT,
@@ -326,7 +337,7 @@ fn warn_subs_of_variable(ini: &Ini, index: u16, diagnostics: &mut Vec<Diagnostic
 
 fn compact_count(section: &Section, diagnostics: &mut Vec<Diagnostic>) -> Option<u8> {
     let entry = section.get("compactsubobj")?;
-    let count = parse_small(&entry.value).and_then(|n| u8::try_from(n).ok());
+    let count = parse_small(entry.value).and_then(|n| u8::try_from(n).ok());
     if count.is_none() {
         diagnostics.push(
             Diagnostic::error(
@@ -342,22 +353,19 @@ fn compact_count(section: &Section, diagnostics: &mut Vec<Diagnostic>) -> Option
 
 /// Sub-indices of an ARRAY / RECORD from their `[XXXXsubN]` sections.
 fn members(
-    ini: &Ini,
+    subs: &SubSections<'_>,
     section: &Section,
     index: u16,
     diagnostics: &mut Vec<Diagnostic>,
 ) -> Vec<Variable> {
-    let mut out: Vec<Variable> = ini
-        .sections
-        .iter()
-        .filter_map(|s| match classify(&s.name) {
-            SectionKind::Sub(i, sub) if i == index => Some((s, sub)),
-            _ => None,
-        })
-        .map(|(s, sub)| {
+    let mut out: Vec<Variable> = subs
+        .get(&index)
+        .into_iter()
+        .flatten()
+        .map(|&(sub, s)| {
             if let Some(ot) = s
                 .get("objecttype")
-                .filter(|e| parse_small(&e.value) != Some(0x7))
+                .filter(|e| parse_small(e.value) != Some(0x7))
             {
                 diagnostics.push(
                     Diagnostic::error(
@@ -375,7 +383,7 @@ fn members(
         .collect();
     out.sort_by_key(|v| v.subindex);
     if let Some(entry) = section.get("subnumber") {
-        if parse_small(&entry.value) != Some(out.len() as u64) {
+        if parse_small(entry.value) != Some(out.len() as u64) {
             diagnostics.push(
                 Diagnostic::error(
                     RULE_OBJECT,
@@ -431,10 +439,10 @@ fn compact(
         v.subindex = sub;
         v.name = names
             .and_then(|s| s.get(&key))
-            .map_or_else(|| format!("{name}{sub}"), |e| e.value.clone());
+            .map_or_else(|| format!("{name}{sub}"), |e| e.value.to_owned());
         if let Some(value) = values.and_then(|s| s.get(&key)) {
             v.parameter_value = Some(Text {
-                value: value.value.clone(),
+                value: value.value.to_owned(),
                 span: value.value_span.clone(),
             });
         }
@@ -452,7 +460,7 @@ fn variable(
     for e in section
         .entries
         .iter()
-        .filter(|e| !OBJECT_KEYS.contains(&e.key.as_str()))
+        .filter(|e| !OBJECT_KEYS.iter().any(|k| e.is(k)))
     {
         diagnostics.push(
             Diagnostic::error(RULE_KEY, e.key_span.clone(), "unknown key is ignored").warning(),
@@ -460,12 +468,12 @@ fn variable(
     }
     let text = |k: &str| {
         section.get(k).map(|e| Text {
-            value: e.value.clone(),
+            value: e.value.to_owned(),
             span: e.value_span.clone(),
         })
     };
     let data_type = section.get("datatype").and_then(|e| {
-        let code = parse_small(&e.value).and_then(|c| u16::try_from(c).ok());
+        let code = parse_small(e.value).and_then(|c| u16::try_from(c).ok());
         if code.is_none() {
             diagnostics.push(Diagnostic::error(
                 "eds_data_type",
@@ -476,7 +484,7 @@ fn variable(
         code
     });
     let pdo_mapping = section.get("pdomapping").is_some_and(|e| {
-        let on = parse_small(&e.value);
+        let on = parse_small(e.value);
         if !matches!(on, Some(0 | 1)) {
             diagnostics.push(
                 Diagnostic::error(
@@ -492,7 +500,7 @@ fn variable(
     Variable {
         subindex,
         name: name.to_owned(),
-        description: section.get("description").map(|e| e.value.clone()),
+        description: section.get("description").map(|e| e.value.to_owned()),
         span: section.span.clone(),
         data_type,
         access: text("accesstype").map(|mut t| {
@@ -511,14 +519,14 @@ fn commissioning(section: &Section, diagnostics: &mut Vec<Diagnostic>) -> Option
     for e in section
         .entries
         .iter()
-        .filter(|e| !COMMISSIONING_KEYS.contains(&e.key.as_str()))
+        .filter(|e| !COMMISSIONING_KEYS.iter().any(|k| e.is(k)))
     {
         diagnostics.push(
             Diagnostic::error(RULE_KEY, e.key_span.clone(), "unknown key is ignored").warning(),
         );
     }
     let entry = section.get("nodeid")?;
-    let id = parse_small(&entry.value)
+    let id = parse_small(entry.value)
         .and_then(|n| u8::try_from(n).ok())
         .filter(|n| (1..=127).contains(n));
     if id.is_none() {
@@ -537,11 +545,11 @@ fn commissioning(section: &Section, diagnostics: &mut Vec<Diagnostic>) -> Option
 fn comments(section: &Section) -> Vec<String> {
     let lines = section
         .get("lines")
-        .and_then(|e| parse_small(&e.value))
+        .and_then(|e| parse_small(e.value))
         .unwrap_or(0)
         .min(1000);
     (1..=lines)
-        .filter_map(|i| section.get(&format!("line{i}")).map(|e| e.value.clone()))
+        .filter_map(|i| section.get(&format!("line{i}")).map(|e| e.value.to_owned()))
         .collect()
 }
 
@@ -549,10 +557,11 @@ fn dummy_usage(section: &Section, diagnostics: &mut Vec<Diagnostic>) {
     for e in &section.entries {
         let known = e
             .key
-            .strip_prefix("dummy")
-            .and_then(|n| n.parse::<u8>().ok())
+            .get(..5)
+            .filter(|p| p.eq_ignore_ascii_case("dummy"))
+            .and_then(|_| e.key[5..].parse::<u8>().ok())
             .is_some_and(|n| (1..=0x1B).contains(&n));
-        if !known || !matches!(parse_small(&e.value), Some(0 | 1)) {
+        if !known || !matches!(parse_small(e.value), Some(0 | 1)) {
             diagnostics.push(
                 Diagnostic::error(
                     RULE_KEY,

@@ -1,7 +1,7 @@
 //! EDS objects to IR records and parameters, with names derived from `ParameterName` and every
 //! value citing its EDS line.
 
-use std::collections::BTreeMap;
+use fnv::FnvHashMap;
 
 use super::data_type::{from_code, Code, UNSIZED_CAPACITY};
 use super::dictionary::{Dictionary, ObjectKind, Text, Variable};
@@ -56,28 +56,29 @@ pub struct EdsModel {
 
 /// Lowers a dictionary read from file `file`.
 pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
+    let Dictionary { device, objects } = dictionary;
     let path = files.path(file);
     let file_name = path.display().to_string();
     let source = ir::SourceDoc {
         id: EDS_SOURCE_ID.into(),
         file: file_name.clone(),
-        title: dictionary
-            .device
+        title: device
             .product_name
             .clone()
             .map_or_else(|| "EDS".into(), |p| format!("{p} EDS")),
     };
+    let lines = LineStarts::of(files.text(file));
     let cite = |span: &Span, section: String| ir::Citation {
         doc: EDS_SOURCE_ID.into(),
         file: file_name.clone(),
         section: Some(section),
-        line: Some(files.line_col(span.file, span.range.start).0 as u32),
+        line: Some(lines.line(span.range.start)),
         example: None,
         span: span.clone(),
     };
     let mut records = Vec::new();
-    let mut entries = Vec::new();
-    for object in &dictionary.objects {
+    let mut entries = Vec::with_capacity(objects.iter().map(|o| o.variables.len()).sum());
+    for object in objects {
         let record = match object.kind {
             ObjectKind::Array | ObjectKind::Record => {
                 let kind = if object.kind == ObjectKind::Array {
@@ -97,7 +98,7 @@ pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
             }
             ObjectKind::Var | ObjectKind::Domain => None,
         };
-        for v in &object.variables {
+        for v in object.variables {
             let section = if record.is_some() {
                 format!("[{:04X}sub{:X}]", object.index, v.subindex)
             } else {
@@ -107,18 +108,33 @@ pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
                 index: object.index,
                 record: record.clone(),
                 name: snake_name(&v.name),
-                data_type: entry_type(v, object.kind),
+                data_type: entry_type(&v, object.kind),
                 citation: cite(&v.span, section),
-                variable: v.clone(),
+                variable: v,
             });
         }
     }
     make_unique(&mut entries, &mut records);
     EdsModel {
         source,
-        device: dictionary.device,
+        device,
         records,
         entries,
+    }
+}
+
+/// Byte offsets of line starts, for line numbers of thousands of citations in one pass.
+struct LineStarts(Vec<usize>);
+
+impl LineStarts {
+    fn of(text: &str) -> Self {
+        let starts = std::iter::once(0).chain(text.match_indices('\n').map(|(i, _)| i + 1));
+        LineStarts(starts.collect())
+    }
+
+    /// The 1-based line of a byte offset.
+    fn line(&self, offset: usize) -> u32 {
+        self.0.partition_point(|&start| start <= offset) as u32
     }
 }
 
@@ -133,21 +149,36 @@ fn entry_type(v: &Variable, kind: ObjectKind) -> Result<DataType, TypeProblem> {
     }
 }
 
-/// A snake_case identifier from an EDS name: ASCII letters, digits and single underscores.
+/// A snake_case identifier from an EDS name: ASCII letters, digits and single underscores; a word
+/// starts at every non-alphanumeric run, at a lower-case or digit to upper-case step, and at the
+/// last capital of an acronym followed by lower case (`VendorID` → `vendor_id`).
 pub fn snake_name(text: &str) -> String {
-    let snake = heck::ToSnakeCase::to_snake_case(text);
-    let mut out = String::new();
-    for c in snake.chars() {
-        let c = if c.is_ascii_alphanumeric() {
-            c.to_ascii_lowercase()
-        } else {
-            '_'
-        };
-        if !(c == '_' && (out.is_empty() || out.ends_with('_'))) {
-            out.push(c);
+    let mut out = String::with_capacity(text.len() + 2);
+    let mut chars = text.chars().peekable();
+    let mut prev: Option<char> = None;
+    while let Some(c) = chars.next() {
+        if !c.is_ascii_alphanumeric() {
+            prev = None;
+            if !out.is_empty() && !out.ends_with('_') {
+                out.push('_');
+            }
+            continue;
         }
+        let next_lower = chars.peek().is_some_and(char::is_ascii_lowercase);
+        let starts_word = c.is_ascii_uppercase()
+            && prev.is_some_and(|p| {
+                p.is_ascii_lowercase()
+                    || p.is_ascii_digit()
+                    || (p.is_ascii_uppercase() && next_lower)
+            });
+        if starts_word && !out.ends_with('_') {
+            out.push('_');
+        }
+        out.push(c.to_ascii_lowercase());
+        prev = Some(c);
     }
-    let out = out.trim_end_matches('_').to_owned();
+    let trimmed = out.trim_end_matches('_').len();
+    out.truncate(trimmed);
     match out.chars().next() {
         None => "object".into(),
         Some(c) if c.is_ascii_digit() => format!("n{out}"),
@@ -158,31 +189,37 @@ pub fn snake_name(text: &str) -> String {
 /// Members sharing a name get their record's name in front, then any remaining clash its address;
 /// records sharing a name get their index appended.
 fn make_unique(entries: &mut [EdsEntry], records: &mut [ir::Record]) {
-    let counts = |names: &mut dyn Iterator<Item = &String>| {
-        let mut counts: BTreeMap<String, usize> = BTreeMap::new();
-        for name in names {
-            *counts.entry(name.clone()).or_default() += 1;
-        }
-        counts
-    };
-    let first = counts(&mut entries.iter().map(|e| &e.name));
-    for e in entries.iter_mut() {
-        if let (Some(record), true) = (&e.record, first[&e.name] > 1) {
+    let first = repeated(entries.iter().map(|e| e.name.as_str()));
+    for (e, _) in entries.iter_mut().zip(first).filter(|(_, clash)| *clash) {
+        if let Some(record) = &e.record {
             e.name = format!("{record}_{}", e.name);
         }
     }
-    let second = counts(&mut entries.iter().map(|e| &e.name));
-    for e in entries.iter_mut().filter(|e| second[&e.name] > 1) {
+    let second = repeated(entries.iter().map(|e| e.name.as_str()));
+    for (e, _) in entries.iter_mut().zip(second).filter(|(_, clash)| *clash) {
         e.name = format!("{}_{:04x}_{}", e.name, e.index, e.variable.subindex);
     }
-    let records_seen = counts(&mut records.iter().map(|r| &r.name));
-    for r in records.iter_mut().filter(|r| records_seen[&r.name] > 1) {
+    let records_clash = repeated(records.iter().map(|r| r.name.as_str()));
+    for (r, _) in records
+        .iter_mut()
+        .zip(records_clash)
+        .filter(|(_, clash)| *clash)
+    {
         let renamed = format!("{}_{:04x}", r.name, r.index);
         for e in entries.iter_mut().filter(|e| e.index == r.index) {
             e.record = Some(renamed.clone());
         }
         r.name = renamed;
     }
+}
+
+/// For each name, whether another item has it too.
+fn repeated<'n>(names: impl Iterator<Item = &'n str> + Clone) -> Vec<bool> {
+    let mut counts: FnvHashMap<&str, usize> = FnvHashMap::default();
+    for name in names.clone() {
+        *counts.entry(name).or_default() += 1;
+    }
+    names.map(|n| counts[n] > 1).collect()
 }
 
 impl EdsEntry {
@@ -362,5 +399,8 @@ mod tests {
         );
         assert_eq!(snake_name("2nd Temp (°C)"), "n2nd_temp_c");
         assert_eq!(snake_name("µ"), "object");
+        assert_eq!(snake_name("VendorID"), "vendor_id");
+        assert_eq!(snake_name("TPDO1 COB-ID"), "tpdo1_cob_id");
+        assert_eq!(snake_name("Axis1Speed"), "axis1_speed");
     }
 }

@@ -49,13 +49,13 @@ fn parse_bool(text: &str) -> Result<i64, String> {
 
 /// `$NODEID` and integer terms joined by `+`; hex beyond a signed type's maximum is two's complement.
 fn parse_integer(text: &str, ty: DataType) -> Result<EdsValue, String> {
-    let compact: String = text.chars().filter(|c| !c.is_whitespace()).collect();
+    let compact = text.trim();
     if compact.is_empty() {
         return Err("the value is empty".into());
     }
     let mut node_terms = 0;
     let mut sum: i128 = 0;
-    for term in compact.split('+') {
+    for term in compact.split('+').map(str::trim) {
         if term.eq_ignore_ascii_case("$nodeid") {
             node_terms += 1;
             continue;

@@ -4,57 +4,68 @@
 //! start of a line, or after white space as python's `configparser` reads it), duplicate sections
 //! merge and duplicate keys keep the first value, both with a warning.
 
+use fnv::FnvHashMap;
+
 use crate::diagnostic::{Diagnostic, FileId, Span};
 
 const RULE: &str = "eds_syntax";
 
-/// One `key=value` line.
+/// One `key=value` line, borrowed from the file text.
 #[derive(Debug, Clone)]
-pub struct Entry {
-    /// The key, lower-case.
-    pub key: String,
+pub struct Entry<'t> {
+    /// The key as written (compare it with [`Entry::is`]).
+    pub key: &'t str,
     /// The key as written.
     pub key_span: Span,
     /// The value, trimmed, comment removed.
-    pub value: String,
+    pub value: &'t str,
     /// Where the value is written.
     pub value_span: Span,
 }
 
+impl Entry<'_> {
+    /// Whether the key is `lower` (a lower-case name), in any case.
+    pub fn is(&self, lower: &str) -> bool {
+        self.key.eq_ignore_ascii_case(lower)
+    }
+}
+
 /// One `[section]` with its entries.
 #[derive(Debug, Clone)]
-pub struct Section {
+pub struct Section<'t> {
     /// The name, lower-case.
     pub name: String,
     /// The header `[...]`.
     pub span: Span,
-    /// Entries in file order, keys unique.
-    pub entries: Vec<Entry>,
+    /// Entries in file order, keys unique regardless of case.
+    pub entries: Vec<Entry<'t>>,
 }
 
-impl Section {
+impl<'t> Section<'t> {
     /// The entry of a lower-case key.
-    pub fn get(&self, key: &str) -> Option<&Entry> {
-        self.entries.iter().find(|e| e.key == key)
+    pub fn get(&self, key: &str) -> Option<&Entry<'t>> {
+        self.entries.iter().find(|e| e.is(key))
     }
 }
 
 /// A whole file: sections in file order, names unique.
 #[derive(Debug, Default, Clone)]
-pub struct Ini {
+pub struct Ini<'t> {
     /// Sections.
-    pub sections: Vec<Section>,
+    pub sections: Vec<Section<'t>>,
+    /// Lower-case name → position in `sections` (vendor files have thousands of sections).
+    by_name: FnvHashMap<String, usize>,
 }
 
-impl Ini {
+impl<'t> Ini<'t> {
     /// The section of a lower-case name.
-    pub fn section(&self, name: &str) -> Option<&Section> {
-        self.sections.iter().find(|s| s.name == name)
+    pub fn section(&self, name: &str) -> Option<&Section<'t>> {
+        self.by_name.get(name).map(|&i| &self.sections[i])
     }
 }
 
 /// Splits `text` into sections; problems are warnings pushed to `diagnostics`.
-pub fn parse_ini(file: FileId, text: &str, diagnostics: &mut Vec<Diagnostic>) -> Ini {
+pub fn parse_ini<'t>(file: FileId, text: &'t str, diagnostics: &mut Vec<Diagnostic>) -> Ini<'t> {
     let mut ini = Ini::default();
     let mut current: Option<usize> = None;
     let mut offset = 0;
@@ -104,9 +115,14 @@ fn strip_comment(line: &str) -> &str {
         .map_or(line, |i| &line[..i])
 }
 
-fn open_section(ini: &mut Ini, name: &str, span: Span, diagnostics: &mut Vec<Diagnostic>) -> usize {
+fn open_section(
+    ini: &mut Ini<'_>,
+    name: &str,
+    span: Span,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> usize {
     let lower = name.to_ascii_lowercase();
-    if let Some(i) = ini.sections.iter().position(|s| s.name == lower) {
+    if let Some(&i) = ini.by_name.get(&lower) {
         diagnostics.push(
             Diagnostic::error(RULE, span, format!("section `[{name}]` appears twice"))
                 .warning()
@@ -115,30 +131,35 @@ fn open_section(ini: &mut Ini, name: &str, span: Span, diagnostics: &mut Vec<Dia
         );
         return i;
     }
+    ini.by_name.insert(lower.clone(), ini.sections.len());
     ini.sections.push(Section {
         name: lower,
         span,
-        entries: Vec::new(),
+        entries: Vec::with_capacity(8),
     });
     ini.sections.len() - 1
 }
 
-fn entry(file: FileId, line_start: usize, line: &str, eq: usize) -> Entry {
+fn entry(file: FileId, line_start: usize, line: &str, eq: usize) -> Entry<'_> {
     let key = &line[..eq];
     let key_trimmed = key.trim_end();
     let value_raw = &line[eq + 1..];
     let value = value_raw.trim();
     let value_start = line_start + eq + 1 + (value_raw.len() - value_raw.trim_start().len());
     Entry {
-        key: key_trimmed.to_ascii_lowercase(),
+        key: key_trimmed,
         key_span: Span::new(file, line_start..line_start + key_trimmed.len()),
-        value: value.to_owned(),
+        value,
         value_span: Span::new(file, value_start..value_start + value.len()),
     }
 }
 
-fn add_entry(section: &mut Section, entry: Entry, diagnostics: &mut Vec<Diagnostic>) {
-    if section.get(&entry.key).is_some() {
+fn add_entry<'t>(section: &mut Section<'t>, entry: Entry<'t>, diagnostics: &mut Vec<Diagnostic>) {
+    if section
+        .entries
+        .iter()
+        .any(|e| e.key.eq_ignore_ascii_case(entry.key))
+    {
         diagnostics.push(
             Diagnostic::error(RULE, entry.key_span, "key appears twice in its section")
                 .warning()
