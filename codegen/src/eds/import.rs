@@ -68,7 +68,6 @@ fn skeleton(model: &EdsModel, file_name: &str) -> String {
         .filter(|n| !n.trim().is_empty())
         .unwrap_or_else(|| file_name.trim_end_matches(".eds").to_owned());
     let mut out = String::new();
-    let _ = writeln!(out, "#:schema ../../docs/description.schema.json");
     let _ = writeln!(out, "# Overlay of {file_name}, written by `drivegen eds import`. Every object of the EDS is listed;");
     let _ = writeln!(
         out,
