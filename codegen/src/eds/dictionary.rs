@@ -146,9 +146,14 @@ const IGNORED_SECTIONS: &[&str] = &[
 pub fn read(ini: &Ini, diagnostics: &mut Vec<Diagnostic>) -> Dictionary {
     let mut dictionary = Dictionary::default();
     let mut subs = SubSections::new();
+    let mut parents: BTreeMap<u16, usize> = BTreeMap::new();
     for section in &ini.sections {
-        if let SectionKind::Sub(index, sub) = classify(&section.name) {
-            subs.entry(index).or_default().push((sub, section));
+        match classify(&section.name) {
+            SectionKind::Sub(index, sub) => subs.entry(index).or_default().push((sub, section)),
+            SectionKind::Object(index) => {
+                parents.insert(index, section.span.range.start);
+            }
+            _ => {}
         }
     }
     for section in &ini.sections {
@@ -159,7 +164,7 @@ pub fn read(ini: &Ini, diagnostics: &mut Vec<Diagnostic>) -> Dictionary {
                 }
             }
             SectionKind::Sub(index, _) | SectionKind::Names(index) | SectionKind::Values(index) => {
-                orphan_check(ini, section, index, diagnostics)
+                orphan_check(parents.get(&index).copied(), section, index, diagnostics)
             }
             SectionKind::DeviceInfo => {
                 let text = |k: &str| section.get(k).map(|e| e.value.to_owned());
@@ -228,9 +233,14 @@ fn classify(name: &str) -> SectionKind {
     }
 }
 
-/// Sub-sections are read through their parent; one without a parent is reported.
-fn orphan_check(ini: &Ini, section: &Section, index: u16, diagnostics: &mut Vec<Diagnostic>) {
-    let parent = ini.section(&format!("{index:04x}"));
+/// Sub-sections are read through their parent (whose header starts at `parent`); one without a
+/// parent is reported.
+fn orphan_check(
+    parent: Option<usize>,
+    section: &Section,
+    index: u16,
+    diagnostics: &mut Vec<Diagnostic>,
+) {
     match parent {
         None => diagnostics.push(
             Diagnostic::error(
@@ -240,7 +250,7 @@ fn orphan_check(ini: &Ini, section: &Section, index: u16, diagnostics: &mut Vec<
             )
             .warning(),
         ),
-        Some(p) if p.span.range.start > section.span.range.start => diagnostics.push(
+        Some(start) if start > section.span.range.start => diagnostics.push(
             Diagnostic::error(
                 RULE_OBJECT,
                 section.span.clone(),

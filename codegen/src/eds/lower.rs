@@ -1,6 +1,8 @@
 //! EDS objects to IR records and parameters, with names derived from `ParameterName` and every
 //! value citing its EDS line.
 
+use std::sync::Arc;
+
 use fnv::FnvHashMap;
 
 use super::data_type::{from_code, Code, UNSIZED_CAPACITY};
@@ -37,8 +39,10 @@ pub struct EdsEntry {
     pub variable: Variable,
     /// Its type, unless the EDS does not give one.
     pub data_type: Result<DataType, TypeProblem>,
-    /// The EDS line it comes from.
-    pub citation: ir::Citation,
+    /// The EDS file, shared by every entry.
+    pub file: Arc<str>,
+    /// The line of its section header.
+    pub line: u32,
 }
 
 /// Everything an EDS contributes to a device.
@@ -68,6 +72,7 @@ pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
             .map_or_else(|| "EDS".into(), |p| format!("{p} EDS")),
     };
     let lines = LineStarts::of(files.text(file));
+    let shared_file: Arc<str> = Arc::from(file_name.as_str());
     let cite = |span: &Span, section: String| ir::Citation {
         doc: EDS_SOURCE_ID.into(),
         file: file_name.clone(),
@@ -99,17 +104,13 @@ pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
             ObjectKind::Var | ObjectKind::Domain => None,
         };
         for v in object.variables {
-            let section = if record.is_some() {
-                format!("[{:04X}sub{:X}]", object.index, v.subindex)
-            } else {
-                format!("[{:04X}]", object.index)
-            };
             entries.push(EdsEntry {
                 index: object.index,
                 record: record.clone(),
                 name: snake_name(&v.name),
                 data_type: entry_type(&v, object.kind),
-                citation: cite(&v.span, section),
+                file: Arc::clone(&shared_file),
+                line: lines.line(v.span.range.start),
                 variable: v,
             });
         }
@@ -223,6 +224,26 @@ fn repeated<'n>(names: impl Iterator<Item = &'n str> + Clone) -> Vec<bool> {
 }
 
 impl EdsEntry {
+    /// The EDS section it is written in: `[1018sub1]`, or `[1000]` for a VAR.
+    pub fn section(&self) -> String {
+        match self.record {
+            Some(_) => format!("[{:04X}sub{:X}]", self.index, self.variable.subindex),
+            None => format!("[{:04X}]", self.index),
+        }
+    }
+
+    /// The citation of its EDS line.
+    pub fn citation(&self) -> ir::Citation {
+        ir::Citation {
+            doc: EDS_SOURCE_ID.into(),
+            file: self.file.to_string(),
+            section: Some(self.section()),
+            line: Some(self.line),
+            example: None,
+            span: self.variable.span.clone(),
+        }
+    }
+
     /// The diagnostic for an entry whose type is unknown.
     pub fn type_problem(&self, problem: TypeProblem) -> Diagnostic {
         let (message, help) = match problem {
@@ -298,7 +319,7 @@ impl EdsEntry {
             effect: ir::Effect::Immediate,
             command: None,
             variants: Vec::new(),
-            source: Some(self.citation.clone()),
+            source: Some(self.citation()),
             erratum: None,
             spans: ir::ParameterSpans {
                 name: v.span.clone(),

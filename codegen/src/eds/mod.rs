@@ -149,14 +149,13 @@ pub fn typed_parameters(
     entries: &[EdsEntry],
     diagnostics: &mut Vec<Diagnostic>,
 ) -> Vec<ir::Parameter> {
-    entries
-        .iter()
-        .filter_map(|e| match e.data_type {
-            Ok(ty) => Some(e.parameter(ty, diagnostics)),
-            Err(problem) => {
-                diagnostics.push(e.type_problem(problem));
-                None
-            }
-        })
-        .collect()
+    // Sized up front: parameters are large, and growing a vector of thousands moves megabytes.
+    let mut parameters = Vec::with_capacity(entries.len());
+    for e in entries {
+        match e.data_type {
+            Ok(ty) => parameters.push(e.parameter(ty, diagnostics)),
+            Err(problem) => diagnostics.push(e.type_problem(problem)),
+        }
+    }
+    parameters
 }

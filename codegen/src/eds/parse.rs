@@ -66,7 +66,11 @@ impl<'t> Ini<'t> {
 
 /// Splits `text` into sections; problems are warnings pushed to `diagnostics`.
 pub fn parse_ini<'t>(file: FileId, text: &'t str, diagnostics: &mut Vec<Diagnostic>) -> Ini<'t> {
-    let mut ini = Ini::default();
+    let headers = text.bytes().filter(|&b| b == b'[').count();
+    let mut ini = Ini {
+        sections: Vec::with_capacity(headers),
+        by_name: FnvHashMap::with_capacity_and_hasher(headers, Default::default()),
+    };
     let mut current: Option<usize> = None;
     let mut offset = 0;
     for raw_line in text.split_inclusive('\n') {
