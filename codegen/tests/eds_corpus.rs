@@ -58,3 +58,33 @@ fn every_eds_has_its_expected_ir_or_diagnostics() {
         failures.join("\n")
     );
 }
+
+#[test]
+fn hostile_eds_text_cannot_inject_code() {
+    let checked = drivegen::check(Path::new("tests/eds/hostile_names.eds"));
+    let device = checked
+        .device
+        .expect("names are sanitized, so the EDS is valid");
+    let code = drivegen::emit::rust::generate(&device, "hostile");
+    assert!(
+        code.contains("![no_std]"),
+        "the hostile description is kept, as documentation"
+    );
+    for line in code
+        .lines()
+        .filter(|l| l.contains("process::exit") || l.contains("![no_std]"))
+    {
+        let trimmed = line.trim_start();
+        assert!(
+            trimmed.starts_with("///")
+                || trimmed.starts_with("//!")
+                || trimmed.starts_with("#[doc"),
+            "description text escaped into code: {line}"
+        );
+    }
+    let exported = drivegen::eds::export(&device);
+    assert!(
+        exported.lines().all(|l| !l.starts_with("fn main")),
+        "{exported}"
+    );
+}

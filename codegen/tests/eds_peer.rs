@@ -30,7 +30,9 @@ fn exported_eds_loads_in_python_canopen_with_the_ir_objects() {
     let scratch = Scratch::new("eds-peer");
     let script = workspace_root().join("tests/peers/eds_import_check.py");
     let mut failures = Vec::new();
-    for description in canopen_descriptions() {
+    // The overlay fixture adds a `$NODEID`-relative COB-ID default, resolved by python with NODE_ID.
+    let overlay = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/overlay");
+    for description in canopen_descriptions().into_iter().chain([overlay]) {
         let device = device(&description);
         let name = short_name(&description);
         let eds = scratch.0.join(format!("{name}.eds"));

@@ -55,7 +55,7 @@ impl Drop for Scratch {
     }
 }
 
-/// A short name of a description path (`lafert-smartris`, `cia301`).
+/// A short name of a description path (`lafert-smartris`, `cia301`, `overlay`).
 pub fn short_name(path: &Path) -> String {
     path.file_stem().unwrap().to_string_lossy().into_owned()
 }
