@@ -6,6 +6,7 @@
 use std::collections::BTreeMap;
 
 use super::parse::{Ini, Section};
+use super::short_text::ShortText;
 use crate::diagnostic::{Diagnostic, Span};
 
 const RULE_KEY: &str = "eds_unknown_key";
@@ -28,7 +29,7 @@ pub enum ObjectKind {
 #[derive(Debug, Clone)]
 pub struct Text {
     /// The value.
-    pub value: String,
+    pub value: ShortText,
     /// Its location.
     pub span: Span,
 }
@@ -39,14 +40,14 @@ pub struct Variable {
     /// Sub-index (0 for a VAR).
     pub subindex: u8,
     /// `ParameterName`.
-    pub name: String,
+    pub name: ShortText,
     /// `Description` (a common non-standard key).
     pub description: Option<String>,
     /// The section header (or the parent's, for compact sub-objects).
     pub span: Span,
     /// `DataType`, parsed; `None` when missing or unreadable (reported).
     pub data_type: Option<u16>,
-    /// `AccessType`, lower-case.
+    /// `AccessType` as written.
     pub access: Option<Text>,
     /// `PDOMapping`.
     pub pdo_mapping: bool,
@@ -424,16 +425,16 @@ fn compact(
     let values = ini.section(&format!("{index:04x}value"));
     let template = variable(section, 1, name, diagnostics);
     let count_text = Text {
-        value: count.to_string(),
+        value: ShortText::from(count.to_string().as_str()),
         span: section.span.clone(),
     };
     let mut out = vec![Variable {
         subindex: 0,
-        name: "Number of entries".into(),
+        name: ShortText::from("Number of entries"),
         description: None,
         data_type: Some(0x0005),
         access: Some(Text {
-            value: "ro".into(),
+            value: ShortText::from("ro"),
             span: section.span.clone(),
         }),
         pdo_mapping: false,
@@ -447,12 +448,13 @@ fn compact(
         let key = sub.to_string();
         let mut v = template.clone();
         v.subindex = sub;
-        v.name = names
-            .and_then(|s| s.get(&key))
-            .map_or_else(|| format!("{name}{sub}"), |e| e.value.to_owned());
+        v.name = names.and_then(|s| s.get(&key)).map_or_else(
+            || ShortText::from(format!("{name}{sub}").as_str()),
+            |e| ShortText::from(e.value),
+        );
         if let Some(value) = values.and_then(|s| s.get(&key)) {
             v.parameter_value = Some(Text {
-                value: value.value.to_owned(),
+                value: ShortText::from(value.value),
                 span: value.value_span.clone(),
             });
         }
@@ -478,7 +480,7 @@ fn variable(
     }
     let text = |k: &str| {
         section.get(k).map(|e| Text {
-            value: e.value.to_owned(),
+            value: ShortText::from(e.value),
             span: e.value_span.clone(),
         })
     };
@@ -509,14 +511,11 @@ fn variable(
     });
     Variable {
         subindex,
-        name: name.to_owned(),
+        name: ShortText::from(name),
         description: section.get("description").map(|e| e.value.to_owned()),
         span: section.span.clone(),
         data_type,
-        access: text("accesstype").map(|mut t| {
-            t.value.make_ascii_lowercase();
-            t
-        }),
+        access: text("accesstype"),
         pdo_mapping,
         low: text("lowlimit"),
         high: text("highlimit"),

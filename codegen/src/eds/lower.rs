@@ -294,7 +294,7 @@ impl EdsEntry {
         };
         ir::Parameter {
             name: self.name.clone(),
-            doc: Some(v.description.clone().unwrap_or_else(|| v.name.clone())),
+            doc: Some(v.description.clone().unwrap_or_else(|| v.name.to_string())),
             data_type: ty,
             unit: None,
             scale: None,
@@ -333,18 +333,19 @@ impl EdsEntry {
 
     fn access(&self, diagnostics: &mut Vec<Diagnostic>) -> (ir::Access, bool, ir::Pdo) {
         let v = &self.variable;
-        let text = v.access.as_ref().map_or("", |t| t.value.as_str());
+        let written = v.access.as_ref().map_or("", |t| &*t.value);
+        let text = canonical_access(written);
         let (access, constant) = match text {
             "ro" => (ir::Access::READ, false),
             "wo" => (ir::Access::WRITE, false),
             "rw" | "rwr" | "rww" => (ir::Access::READ_WRITE, false),
             "const" => (ir::Access::READ, true),
-            other => {
+            _ => {
                 let span = v.access.as_ref().map_or(v.span.clone(), |t| t.span.clone());
-                let message = if other.is_empty() {
+                let message = if written.is_empty() {
                     format!("object {} has no AccessType; read as `ro`", self.address())
                 } else {
-                    format!("unknown AccessType `{other}`; read as `ro`")
+                    format!("unknown AccessType `{written}`; read as `ro`")
                 };
                 diagnostics.push(
                     Diagnostic::error(RULE_VALUE, span, message)
@@ -362,6 +363,14 @@ impl EdsEntry {
         };
         (access, constant, pdo)
     }
+}
+
+/// The lower-case CiA 306 spelling of an access type written in any case; `""` when unknown.
+fn canonical_access(written: &str) -> &'static str {
+    ["ro", "wo", "rw", "rwr", "rww", "const"]
+        .into_iter()
+        .find(|a| written.eq_ignore_ascii_case(a))
+        .unwrap_or("")
 }
 
 /// Limits are constants: a `$NODEID` limit is dropped with a warning.

@@ -16,6 +16,7 @@ mod import;
 mod lower;
 mod node_id;
 mod parse;
+mod short_text;
 
 use std::path::Path;
 
@@ -30,6 +31,7 @@ pub use import::{import_overlay, ImportError};
 pub use lower::{snake_name, EdsEntry, EdsModel, TypeProblem, EDS_SOURCE_ID};
 pub use node_id::{parse_value, EdsValue};
 pub use parse::{parse_ini, Ini};
+pub use short_text::ShortText;
 
 /// True for paths ending `.eds` or `.dcf` (any case).
 pub fn is_eds_path(path: &Path) -> bool {
