@@ -6,11 +6,13 @@
 //!   lowers them to the [`ir`], reporting malformed values;
 //! * [`validate`] runs one pass per rule over the IR;
 //! * [`emit`] turns a valid IR into Rust source;
+//! * [`eds`] reads CiA 306 EDS / DCF files (alone or under a TOML overlay) and writes EDS files;
 //! * [`Builder`] is the `build.rs` entry point of drive crates.
 #![deny(missing_docs)]
 
 mod builder;
 pub mod diagnostic;
+pub mod eds;
 pub mod emit;
 pub mod ir;
 pub mod load;
@@ -43,12 +45,32 @@ impl Checked {
     }
 }
 
-/// Loads, lowers and validates a description file or folder.
+/// Loads, lowers and validates a description file or folder. A `.eds` / `.dcf` path is read as an
+/// EDS alone ([`eds::check_eds`]); a TOML file with `eds = "..."` is an overlay of that EDS.
 pub fn check(path: &Path) -> Checked {
+    if eds::is_eds_path(path) {
+        return eds::check_eds(path);
+    }
     let mut files = Files::default();
     let mut diagnostics = Vec::new();
     let loaded = load::read_files(path, &mut files, &mut diagnostics);
-    let device = load::lower(loaded, &files, &mut diagnostics);
+    let overlay_of = loaded.first().and_then(|root| {
+        let eds = root.raw.eds.as_ref()?;
+        let span = diagnostic::Span::new(root.id, eds.span());
+        Some((files.path(root.id).with_file_name(eds.get_ref()), span))
+    });
+    let eds = overlay_of
+        .and_then(|(eds, span)| eds::read(&eds, Some(span), &mut files, &mut diagnostics));
+    let device = load::lower(loaded, &files, eds.as_ref(), &mut diagnostics);
+    finish_check(files, diagnostics, device)
+}
+
+/// Validates a lowered device unless lowering already failed.
+pub(crate) fn finish_check(
+    files: Files,
+    mut diagnostics: Vec<Diagnostic>,
+    device: Option<ir::Device>,
+) -> Checked {
     if let Some(device) = &device {
         if !diagnostic::has_errors(&diagnostics) {
             diagnostics.extend(validate::validate(device));

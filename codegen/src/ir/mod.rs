@@ -561,6 +561,9 @@ pub struct Parameter {
     pub scale: Option<Scale>,
     /// Raw default.
     pub default: Option<Number>,
+    /// The default is `node id + default` (a CiA 306 `$NODEID+...` value, e.g. a COB-ID): it differs
+    /// on every node, so it is kept symbolic.
+    pub default_plus_node_id: bool,
     /// Raw range.
     pub range: Option<Range>,
     /// Allowed raw values.

@@ -10,16 +10,21 @@ mod control;
 use toml::Spanned;
 
 use super::exact::{float_ratio, parse_ratio};
+use super::overlay::Overlay;
 use super::raw::*;
 use super::LoadedFile;
 use crate::diagnostic::{Diagnostic, FileId, Files, Span};
+use crate::eds::EdsModel;
 use crate::ir::{self, DataType, Expr, Number};
 
 /// Turns loaded files into one device model. Returns `None` if the root file has neither
-/// `[device]` nor `[profile]`.
+/// `[device]` nor `[profile]`. With `eds`, the root file is an overlay of that EDS: its
+/// `[[parameter]]` entries with a `canopen` address refine the EDS object at that address, and the
+/// objects it does not mention are added as the EDS describes them.
 pub fn lower(
     loaded: Vec<LoadedFile>,
     files: &Files,
+    eds: Option<&EdsModel>,
     diagnostics: &mut Vec<Diagnostic>,
 ) -> Option<ir::Device> {
     let mut files_iter = loaded.into_iter();
@@ -28,8 +33,14 @@ pub fn lower(
         diagnostics,
         sources: BTreeMap::new(),
         file: root.id,
+        overlay: eds.map(|m| Overlay::new(m, root.id)),
     };
     let mut device = cx.device(&root.raw, files)?;
+    if let Some(model) = eds {
+        cx.sources
+            .insert(model.source.id.clone(), model.source.file.clone());
+        device.sources.push(model.source.clone());
+    }
     let included: Vec<LoadedFile> = files_iter.collect();
     for file in std::iter::once(&root).chain(&included) {
         cx.file = file.id;
@@ -43,14 +54,19 @@ pub fn lower(
         }
         cx.items(&file.raw, &keep, &mut device);
     }
+    if let Some(overlay) = cx.overlay.take() {
+        overlay.finish(&mut device, cx.diagnostics);
+    }
     Some(device)
 }
 
-struct Lowering<'d> {
-    diagnostics: &'d mut Vec<Diagnostic>,
+pub(super) struct Lowering<'d> {
+    pub(super) diagnostics: &'d mut Vec<Diagnostic>,
     /// Source id → file name.
     sources: BTreeMap<String, String>,
-    file: FileId,
+    pub(super) file: FileId,
+    /// The EDS the root file is an overlay of.
+    pub(super) overlay: Option<Overlay<'d>>,
 }
 
 /// Which items of an included file are kept (`only`), including what kept items refer to.
@@ -115,7 +131,7 @@ impl Filter {
 const VALUE_RULE: &str = "values_are_well_formed";
 
 impl Lowering<'_> {
-    fn span<T>(&self, s: &Spanned<T>) -> Span {
+    pub(super) fn span<T>(&self, s: &Spanned<T>) -> Span {
         Span::new(self.file, s.span())
     }
 
@@ -420,7 +436,7 @@ impl Lowering<'_> {
         }
     }
 
-    fn data_type(
+    pub(super) fn data_type(
         &mut self,
         ty: &Spanned<String>,
         length: Option<&Spanned<i64>>,
@@ -816,7 +832,8 @@ impl Lowering<'_> {
         raw: &RawParameter,
         modbus_order: ir::WordOrder,
     ) -> Option<ir::Parameter> {
-        let data_type = self.data_type(&raw.ty, raw.length.as_ref())?;
+        let matched = self.overlay_match(raw)?;
+        let data_type = self.parameter_type(raw, matched)?;
         let mut ok = true;
         let addresses = |list: &Option<Spanned<OneOrMany<RawCanOpenAddress>>>,
                          me: &mut Self,
@@ -886,7 +903,10 @@ impl Lowering<'_> {
         };
         let spans = ir::ParameterSpans {
             name: self.span(&raw.name),
-            data_type: self.span(&raw.ty),
+            data_type: raw
+                .ty
+                .as_ref()
+                .map_or_else(|| self.span(&raw.name), |t| self.span(t)),
             default: raw.default.as_ref().map(|d| self.span(d)),
             range: raw.range.as_ref().map(|r| self.span(r)),
             allowed: raw.allowed.as_ref().map(|a| self.span(a)),
@@ -903,13 +923,14 @@ impl Lowering<'_> {
                 .collect(),
         };
         let source = raw.source.as_ref().and_then(|c| self.citation(c));
-        ok.then(|| ir::Parameter {
+        let parameter = ok.then(|| ir::Parameter {
             name: raw.name.get_ref().clone(),
             doc: raw.doc.clone(),
             data_type,
             unit: raw.unit.as_ref().map(|u| u.get_ref().clone()),
             scale,
             default,
+            default_plus_node_id: false,
             range,
             allowed,
             enumeration: raw.enumeration.as_ref().map(|e| e.get_ref().clone()),
@@ -929,6 +950,10 @@ impl Lowering<'_> {
             source,
             erratum: raw.erratum.clone(),
             spans,
+        })?;
+        Some(match matched {
+            Some(entry) => self.overlay_merge(entry, parameter, raw),
+            None => parameter,
         })
     }
 }

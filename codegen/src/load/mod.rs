@@ -2,6 +2,7 @@
 
 pub mod exact;
 mod lower;
+mod overlay;
 mod raw;
 
 use std::path::{Path, PathBuf};

@@ -10,6 +10,8 @@ use toml::Spanned;
 #[serde(deny_unknown_fields)]
 pub struct RawFile {
     pub format: Spanned<i64>,
+    /// An EDS this file is an overlay of (root file only).
+    pub eds: Option<Spanned<String>>,
     #[serde(default)]
     pub include: Vec<Spanned<RawInclude>>,
     pub device: Option<RawDevice>,
@@ -250,8 +252,9 @@ impl<T> OneOrMany<T> {
 pub struct RawParameter {
     pub name: Spanned<String>,
     pub doc: Option<String>,
+    /// Required, except in an overlay entry that matches an EDS object with a `DataType`.
     #[serde(rename = "type")]
-    pub ty: Spanned<String>,
+    pub ty: Option<Spanned<String>>,
     pub length: Option<Spanned<i64>>,
     pub unit: Option<Spanned<String>>,
     pub scale: Option<Spanned<RawScale>>,

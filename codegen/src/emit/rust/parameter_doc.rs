@@ -117,8 +117,14 @@ pub fn text(p: &Parameter, device: &Device) -> String {
                 .join(", "),
         );
     }
-    if let Some(d) = p.default {
-        row(&mut out, "Default (raw)", number(d));
+    match p.default {
+        Some(d) if p.default_plus_node_id => row(
+            &mut out,
+            "Default (raw)",
+            format!("node id + {}", number(d)),
+        ),
+        Some(d) => row(&mut out, "Default (raw)", number(d)),
+        None => {}
     }
     match p.effect {
         Effect::Immediate => {}

@@ -1,0 +1,593 @@
+//! The object dictionary an EDS / DCF describes, read from its INI sections.
+//!
+//! Values stay text here (their meaning depends on the data type); [`super::lower`] interprets
+//! them. Everything malformed is a warning and is skipped, except what makes an object unusable.
+
+use std::collections::BTreeMap;
+
+use super::parse::{Ini, Section};
+use super::short_text::ShortText;
+use crate::diagnostic::{Diagnostic, Span};
+
+const RULE_KEY: &str = "eds_unknown_key";
+const RULE_OBJECT: &str = "eds_objects";
+
+/// CiA 306 object codes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ObjectKind {
+    /// 0x2 DOMAIN: a variable of type DOMAIN.
+    Domain,
+    /// 0x7 VAR (also when `ObjectType` is missing).
+    Var,
+    /// 0x8 ARRAY.
+    Array,
+    /// 0x9 RECORD.
+    Record,
+}
+
+/// A text value and where it is written.
+#[derive(Debug, Clone)]
+pub struct Text {
+    /// The value.
+    pub value: ShortText,
+    /// Its location.
+    pub span: Span,
+}
+
+/// One variable: a whole VAR / DOMAIN, or one sub-index of an ARRAY / RECORD.
+#[derive(Debug, Clone)]
+pub struct Variable {
+    /// Sub-index (0 for a VAR).
+    pub subindex: u8,
+    /// `ParameterName`.
+    pub name: ShortText,
+    /// `Description` (a common non-standard key).
+    pub description: Option<String>,
+    /// The section header (or the parent's, for compact sub-objects).
+    pub span: Span,
+    /// `DataType`, parsed; `None` when missing or unreadable (reported).
+    pub data_type: Option<u16>,
+    /// `AccessType` as written.
+    pub access: Option<Text>,
+    /// `PDOMapping`.
+    pub pdo_mapping: bool,
+    /// `LowLimit`.
+    pub low: Option<Text>,
+    /// `HighLimit`.
+    pub high: Option<Text>,
+    /// `DefaultValue`.
+    pub default: Option<Text>,
+    /// `ParameterValue` (DCF).
+    pub parameter_value: Option<Text>,
+}
+
+/// One object (index).
+#[derive(Debug, Clone)]
+pub struct Object {
+    /// Index.
+    pub index: u16,
+    /// `ParameterName`.
+    pub name: String,
+    /// Object code.
+    pub kind: ObjectKind,
+    /// The section header.
+    pub span: Span,
+    /// The variable of a VAR / DOMAIN, or the sub-indices of an ARRAY / RECORD.
+    pub variables: Vec<Variable>,
+}
+
+/// `[DeviceInfo]`, `[DeviceComissioning]` and `[Comments]`.
+#[derive(Debug, Clone, Default)]
+pub struct DeviceInfo {
+    /// `VendorName`.
+    pub vendor_name: Option<String>,
+    /// `ProductName`.
+    pub product_name: Option<String>,
+    /// `NodeID` of a DCF.
+    pub node_id: Option<u8>,
+    /// `[Comments]` lines.
+    pub comments: Vec<String>,
+}
+
+/// A whole EDS: identity and objects, ordered by index.
+#[derive(Debug, Clone, Default)]
+pub struct Dictionary {
+    /// Identity.
+    pub device: DeviceInfo,
+    /// Objects by ascending index.
+    pub objects: Vec<Object>,
+}
+
+/// Keys of an object or sub-index section.
+const OBJECT_KEYS: &[&str] = &[
+    "parametername",
+    "objecttype",
+    "datatype",
+    "accesstype",
+    "pdomapping",
+    "lowlimit",
+    "highlimit",
+    "defaultvalue",
+    "parametervalue",
+    "subnumber",
+    "compactsubobj",
+    "objflags",
+    "storagelocation",
+    "denotation",
+    "uploadfile",
+    "downloadfile",
+    "description",
+    "unit",
+    "factor",
+];
+
+const COMMISSIONING_KEYS: &[&str] = &[
+    "nodeid",
+    "nodename",
+    "baudrate",
+    "netnumber",
+    "networkname",
+    "canopenmanager",
+    "lssserialnumber",
+];
+
+/// Sections whose content drivegen does not need.
+const IGNORED_SECTIONS: &[&str] = &[
+    "fileinfo",
+    "mandatoryobjects",
+    "optionalobjects",
+    "manufacturerobjects",
+    "tools",
+    "dynamicchannels",
+    "supportedmodules",
+    "connectedmodules",
+];
+
+/// Reads the objects of `ini`.
+pub fn read(ini: &Ini, diagnostics: &mut Vec<Diagnostic>) -> Dictionary {
+    let mut dictionary = Dictionary::default();
+    let mut subs = SubSections::new();
+    let mut parents: BTreeMap<u16, usize> = BTreeMap::new();
+    for section in &ini.sections {
+        match classify(&section.name) {
+            SectionKind::Sub(index, sub) => subs.entry(index).or_default().push((sub, section)),
+            SectionKind::Object(index) => {
+                parents.insert(index, section.span.range.start);
+            }
+            _ => {}
+        }
+    }
+    for section in &ini.sections {
+        match classify(&section.name) {
+            SectionKind::Object(index) => {
+                if let Some(object) = object(ini, &subs, section, index, diagnostics) {
+                    dictionary.objects.push(object);
+                }
+            }
+            SectionKind::Sub(index, _) | SectionKind::Names(index) | SectionKind::Values(index) => {
+                orphan_check(parents.get(&index).copied(), section, index, diagnostics)
+            }
+            SectionKind::DeviceInfo => {
+                let text = |k: &str| section.get(k).map(|e| e.value.to_owned());
+                dictionary.device.vendor_name = text("vendorname");
+                dictionary.device.product_name = text("productname");
+            }
+            SectionKind::Commissioning => {
+                dictionary.device.node_id = commissioning(section, diagnostics)
+            }
+            SectionKind::Comments => dictionary.device.comments = comments(section),
+            SectionKind::DummyUsage => dummy_usage(section, diagnostics),
+            SectionKind::Ignored => {}
+            SectionKind::Unknown => diagnostics.push(
+                Diagnostic::error(RULE_KEY, section.span.clone(), "unknown section is ignored")
+                    .warning(),
+            ),
+        }
+    }
+    dictionary.objects.sort_by_key(|o| o.index);
+    dictionary
+}
+
+/// `[XXXXsubN]` sections by index, in file order.
+type SubSections<'i> = BTreeMap<u16, Vec<(u8, &'i Section<'i>)>>;
+
+enum SectionKind {
+    Object(u16),
+    Sub(u16, u8),
+    Names(u16),
+    Values(u16),
+    DeviceInfo,
+    Commissioning,
+    Comments,
+    DummyUsage,
+    Ignored,
+    Unknown,
+}
+
+fn classify(name: &str) -> SectionKind {
+    let index = name
+        .get(..4)
+        .filter(|h| h.bytes().all(|b| b.is_ascii_hexdigit()))
+        .and_then(|h| u16::from_str_radix(h, 16).ok());
+    match (index, name.get(4..)) {
+        (Some(i), Some("")) => return SectionKind::Object(i),
+        (Some(i), Some("name")) => return SectionKind::Names(i),
+        (Some(i), Some("value")) => return SectionKind::Values(i),
+        (Some(i), Some(rest)) => {
+            if let Some(sub) = rest
+                .strip_prefix("sub")
+                .filter(|s| !s.is_empty() && s.len() <= 2)
+                .and_then(|s| u8::from_str_radix(s, 16).ok())
+            {
+                return SectionKind::Sub(i, sub);
+            }
+        }
+        _ => {}
+    }
+    match name {
+        "deviceinfo" => SectionKind::DeviceInfo,
+        "devicecomissioning" | "devicecommissioning" => SectionKind::Commissioning,
+        "comments" => SectionKind::Comments,
+        "dummyusage" => SectionKind::DummyUsage,
+        n if IGNORED_SECTIONS.contains(&n) || n.starts_with("tool") => SectionKind::Ignored,
+        _ => SectionKind::Unknown,
+    }
+}
+
+/// Sub-sections are read through their parent (whose header starts at `parent`); one without a
+/// parent is reported.
+fn orphan_check(
+    parent: Option<usize>,
+    section: &Section,
+    index: u16,
+    diagnostics: &mut Vec<Diagnostic>,
+) {
+    match parent {
+        None => diagnostics.push(
+            Diagnostic::error(
+                RULE_OBJECT,
+                section.span.clone(),
+                format!("section has no parent object `[{index:04X}]`; ignored"),
+            )
+            .warning(),
+        ),
+        Some(start) if start > section.span.range.start => diagnostics.push(
+            Diagnostic::error(
+                RULE_OBJECT,
+                section.span.clone(),
+                format!("section comes before its parent `[{index:04X}]`"),
+            )
+            .warning()
+            .help("drivegen reads it, but other CANopen tools (python canopen) refuse this order"),
+        ),
+        Some(_) => {}
+    }
+}
+
+fn object(
+    ini: &Ini,
+    subs: &SubSections<'_>,
+    section: &Section,
+    index: u16,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> Option<Object> {
+    let kind = object_kind(section, diagnostics)?;
+    let name = parameter_name(section, diagnostics, &format!("Object {index:04X}h"));
+    let variables = match kind {
+        ObjectKind::Var | ObjectKind::Domain => {
+            warn_subs_of_variable(subs, index, diagnostics);
+            vec![variable(section, 0, &name, diagnostics)]
+        }
+        ObjectKind::Array | ObjectKind::Record => match compact_count(section, diagnostics) {
+            Some(count) if count > 0 => compact(ini, section, index, &name, count, diagnostics),
+            _ => members(subs, section, index, diagnostics),
+        },
+    };
+    Some(Object {
+        index,
+        name,
+        kind,
+        span: section.span.clone(),
+        variables,
+    })
+}
+
+fn object_kind(section: &Section, diagnostics: &mut Vec<Diagnostic>) -> Option<ObjectKind> {
+    let Some(entry) = section.get("objecttype") else {
+        return Some(ObjectKind::Var);
+    };
+    Some(match parse_small(entry.value) {
+        Some(0x2) => ObjectKind::Domain,
+        Some(0x7) => ObjectKind::Var,
+        Some(0x8) => ObjectKind::Array,
+        Some(0x9) => ObjectKind::Record,
+        // DEFTYPE / DEFSTRUCT define data types, not values a driver reads.
+        Some(0x5 | 0x6) => return None,
+        _ => {
+            diagnostics.push(
+                Diagnostic::error(
+                    RULE_OBJECT,
+                    entry.value_span.clone(),
+                    format!("unknown ObjectType `{}`; the object is ignored", entry.value),
+                )
+                .warning()
+                .help("CiA 306 object types: 0x2 DOMAIN, 0x5 DEFTYPE, 0x6 DEFSTRUCT, 0x7 VAR, 0x8 ARRAY, 0x9 RECORD"),
+            );
+            return None;
+        }
+    })
+}
+
+fn parameter_name(section: &Section, diagnostics: &mut Vec<Diagnostic>, fallback: &str) -> String {
+    match section.get("parametername") {
+        Some(e) if !e.value.is_empty() => e.value.to_owned(),
+        _ => {
+            diagnostics.push(
+                Diagnostic::error(RULE_OBJECT, section.span.clone(), "no `ParameterName`")
+                    .warning()
+                    .label(format!("named `{fallback}`")),
+            );
+            fallback.to_owned()
+        }
+    }
+}
+
+fn warn_subs_of_variable(subs: &SubSections<'_>, index: u16, diagnostics: &mut Vec<Diagnostic>) {
+    for (_, s) in subs.get(&index).into_iter().flatten() {
+        diagnostics.push(
+            Diagnostic::error(
+                RULE_OBJECT,
+                s.span.clone(),
+                "sub-section of a VAR object is ignored",
+            )
+            .warning()
+            .help("give the parent `ObjectType=0x8` (ARRAY) or `0x9` (RECORD)"),
+        );
+    }
+}
+
+fn compact_count(section: &Section, diagnostics: &mut Vec<Diagnostic>) -> Option<u8> {
+    let entry = section.get("compactsubobj")?;
+    let count = parse_small(entry.value).and_then(|n| u8::try_from(n).ok());
+    if count.is_none() {
+        diagnostics.push(
+            Diagnostic::error(
+                RULE_OBJECT,
+                entry.value_span.clone(),
+                "CompactSubObj is not a number of 0..=254 entries; ignored",
+            )
+            .warning(),
+        );
+    }
+    count.filter(|&c| c < 255)
+}
+
+/// Sub-indices of an ARRAY / RECORD from their `[XXXXsubN]` sections.
+fn members(
+    subs: &SubSections<'_>,
+    section: &Section,
+    index: u16,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> Vec<Variable> {
+    let mut out: Vec<Variable> = subs
+        .get(&index)
+        .into_iter()
+        .flatten()
+        .map(|&(sub, s)| {
+            if let Some(ot) = s
+                .get("objecttype")
+                .filter(|e| parse_small(e.value) != Some(0x7))
+            {
+                diagnostics.push(
+                    Diagnostic::error(
+                        RULE_OBJECT,
+                        ot.key_span.clone(),
+                        "a sub-index is always a VAR; its ObjectType is ignored",
+                    )
+                    .warning(),
+                );
+            }
+            let fallback = format!("Sub {sub}");
+            let name = parameter_name(s, diagnostics, &fallback);
+            variable(s, sub, &name, diagnostics)
+        })
+        .collect();
+    out.sort_by_key(|v| v.subindex);
+    if let Some(entry) = section.get("subnumber") {
+        if parse_small(entry.value) != Some(out.len() as u64) {
+            diagnostics.push(
+                Diagnostic::error(
+                    RULE_OBJECT,
+                    entry.value_span.clone(),
+                    format!(
+                        "SubNumber says {} but {} sub-sections follow",
+                        entry.value,
+                        out.len()
+                    ),
+                )
+                .warning(),
+            );
+        }
+    }
+    out
+}
+
+/// `CompactSubObj=N`: sub 0 holds N, subs 1..=N share the object's own description.
+fn compact(
+    ini: &Ini,
+    section: &Section,
+    index: u16,
+    name: &str,
+    count: u8,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> Vec<Variable> {
+    let names = ini.section(&format!("{index:04x}name"));
+    let values = ini.section(&format!("{index:04x}value"));
+    let template = variable(section, 1, name, diagnostics);
+    let count_text = Text {
+        value: ShortText::from(count.to_string().as_str()),
+        span: section.span.clone(),
+    };
+    let mut out = vec![Variable {
+        subindex: 0,
+        name: ShortText::from("Number of entries"),
+        description: None,
+        data_type: Some(0x0005),
+        access: Some(Text {
+            value: ShortText::from("ro"),
+            span: section.span.clone(),
+        }),
+        pdo_mapping: false,
+        low: None,
+        high: None,
+        default: Some(count_text),
+        parameter_value: None,
+        span: section.span.clone(),
+    }];
+    for sub in 1..=count {
+        let key = sub.to_string();
+        let mut v = template.clone();
+        v.subindex = sub;
+        v.name = names.and_then(|s| s.get(&key)).map_or_else(
+            || ShortText::from(format!("{name}{sub}").as_str()),
+            |e| ShortText::from(e.value),
+        );
+        if let Some(value) = values.and_then(|s| s.get(&key)) {
+            v.parameter_value = Some(Text {
+                value: ShortText::from(value.value),
+                span: value.value_span.clone(),
+            });
+        }
+        out.push(v);
+    }
+    out
+}
+
+fn variable(
+    section: &Section,
+    subindex: u8,
+    name: &str,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> Variable {
+    for e in section
+        .entries
+        .iter()
+        .filter(|e| !OBJECT_KEYS.iter().any(|k| e.is(k)))
+    {
+        diagnostics.push(
+            Diagnostic::error(RULE_KEY, e.key_span.clone(), "unknown key is ignored").warning(),
+        );
+    }
+    let text = |k: &str| {
+        section.get(k).map(|e| Text {
+            value: ShortText::from(e.value),
+            span: e.value_span.clone(),
+        })
+    };
+    let data_type = section.get("datatype").and_then(|e| {
+        let code = parse_small(e.value).and_then(|c| u16::try_from(c).ok());
+        if code.is_none() {
+            diagnostics.push(Diagnostic::error(
+                "eds_data_type",
+                e.value_span.clone(),
+                format!("DataType `{}` is not a number", e.value),
+            ));
+        }
+        code
+    });
+    let pdo_mapping = section.get("pdomapping").is_some_and(|e| {
+        let on = parse_small(e.value);
+        if !matches!(on, Some(0 | 1)) {
+            diagnostics.push(
+                Diagnostic::error(
+                    RULE_OBJECT,
+                    e.value_span.clone(),
+                    "PDOMapping is 0 or 1; read as 0",
+                )
+                .warning(),
+            );
+        }
+        on == Some(1)
+    });
+    Variable {
+        subindex,
+        name: ShortText::from(name),
+        description: section.get("description").map(|e| e.value.to_owned()),
+        span: section.span.clone(),
+        data_type,
+        access: text("accesstype"),
+        pdo_mapping,
+        low: text("lowlimit"),
+        high: text("highlimit"),
+        default: text("defaultvalue"),
+        parameter_value: text("parametervalue"),
+    }
+}
+
+fn commissioning(section: &Section, diagnostics: &mut Vec<Diagnostic>) -> Option<u8> {
+    for e in section
+        .entries
+        .iter()
+        .filter(|e| !COMMISSIONING_KEYS.iter().any(|k| e.is(k)))
+    {
+        diagnostics.push(
+            Diagnostic::error(RULE_KEY, e.key_span.clone(), "unknown key is ignored").warning(),
+        );
+    }
+    let entry = section.get("nodeid")?;
+    let id = parse_small(entry.value)
+        .and_then(|n| u8::try_from(n).ok())
+        .filter(|n| (1..=127).contains(n));
+    if id.is_none() {
+        diagnostics.push(
+            Diagnostic::error(
+                RULE_OBJECT,
+                entry.value_span.clone(),
+                "NodeID is not 1..=127; ignored",
+            )
+            .warning(),
+        );
+    }
+    id
+}
+
+fn comments(section: &Section) -> Vec<String> {
+    let lines = section
+        .get("lines")
+        .and_then(|e| parse_small(e.value))
+        .unwrap_or(0)
+        .min(1000);
+    (1..=lines)
+        .filter_map(|i| section.get(&format!("line{i}")).map(|e| e.value.to_owned()))
+        .collect()
+}
+
+fn dummy_usage(section: &Section, diagnostics: &mut Vec<Diagnostic>) {
+    for e in &section.entries {
+        let known = e
+            .key
+            .get(..5)
+            .filter(|p| p.eq_ignore_ascii_case("dummy"))
+            .and_then(|_| e.key[5..].parse::<u8>().ok())
+            .is_some_and(|n| (1..=0x1B).contains(&n));
+        if !known || !matches!(parse_small(e.value), Some(0 | 1)) {
+            diagnostics.push(
+                Diagnostic::error(
+                    RULE_KEY,
+                    e.key_span.clone(),
+                    "not a `DummyNNNN=0|1` entry; ignored",
+                )
+                .warning(),
+            );
+        }
+    }
+}
+
+/// A small unsigned number in decimal or `0x` hex.
+pub fn parse_small(text: &str) -> Option<u64> {
+    let t = text.trim();
+    match t.strip_prefix("0x").or_else(|| t.strip_prefix("0X")) {
+        Some(hex) => u64::from_str_radix(hex, 16).ok(),
+        None => t.parse().ok(),
+    }
+}

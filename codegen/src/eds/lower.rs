@@ -1,0 +1,436 @@
+//! EDS objects to IR records and parameters, with names derived from `ParameterName` and every
+//! value citing its EDS line.
+
+use std::sync::Arc;
+
+use fnv::FnvHashMap;
+
+use super::data_type::{from_code, Code, UNSIZED_CAPACITY};
+use super::dictionary::{Dictionary, ObjectKind, Text, Variable};
+use super::node_id::{parse_value, EdsValue};
+use crate::diagnostic::{Diagnostic, FileId, Files, Span};
+use crate::ir::{self, DataType, Number};
+
+/// The `[[source]]` id under which EDS-derived values cite the EDS file.
+pub const EDS_SOURCE_ID: &str = "eds";
+
+const RULE_VALUE: &str = "eds_values";
+const RULE_TYPE: &str = "eds_data_type";
+
+/// Why an entry has no usable type.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TypeProblem {
+    /// No `DataType` key (or an unreadable one, already reported).
+    Missing,
+    /// A reserved or unknown code.
+    Unsupported(u16),
+}
+
+/// One EDS variable, ready to become a parameter once its type is known.
+#[derive(Debug, Clone)]
+pub struct EdsEntry {
+    /// Object index.
+    pub index: u16,
+    /// The record it is a member of.
+    pub record: Option<String>,
+    /// snake_case name, unique among the EDS's names.
+    pub name: String,
+    /// The EDS variable.
+    pub variable: Variable,
+    /// Its type, unless the EDS does not give one.
+    pub data_type: Result<DataType, TypeProblem>,
+    /// The EDS file, shared by every entry.
+    pub file: Arc<str>,
+    /// The line of its section header.
+    pub line: u32,
+}
+
+/// Everything an EDS contributes to a device.
+#[derive(Debug, Clone)]
+pub struct EdsModel {
+    /// The EDS as a cited source.
+    pub source: ir::SourceDoc,
+    /// Identity read from `[DeviceInfo]` / `[DeviceComissioning]` / `[Comments]`.
+    pub device: super::dictionary::DeviceInfo,
+    /// ARRAY and RECORD objects.
+    pub records: Vec<ir::Record>,
+    /// Every variable.
+    pub entries: Vec<EdsEntry>,
+}
+
+/// Lowers a dictionary read from file `file`.
+pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
+    let Dictionary { device, objects } = dictionary;
+    let path = files.path(file);
+    let file_name = path.display().to_string();
+    let source = ir::SourceDoc {
+        id: EDS_SOURCE_ID.into(),
+        file: file_name.clone(),
+        title: device
+            .product_name
+            .clone()
+            .map_or_else(|| "EDS".into(), |p| format!("{p} EDS")),
+    };
+    let lines = LineStarts::of(files.text(file));
+    let shared_file: Arc<str> = Arc::from(file_name.as_str());
+    let cite = |span: &Span, section: String| ir::Citation {
+        doc: EDS_SOURCE_ID.into(),
+        file: file_name.clone(),
+        section: Some(section),
+        line: Some(lines.line(span.range.start)),
+        example: None,
+        span: span.clone(),
+    };
+    let mut records = Vec::new();
+    let mut entries = Vec::with_capacity(objects.iter().map(|o| o.variables.len()).sum());
+    for object in objects {
+        let record = match object.kind {
+            ObjectKind::Array | ObjectKind::Record => {
+                let kind = if object.kind == ObjectKind::Array {
+                    ir::RecordKind::Array
+                } else {
+                    ir::RecordKind::Record
+                };
+                records.push(ir::Record {
+                    name: snake_name(&object.name),
+                    kind,
+                    index: object.index,
+                    doc: Some(object.name.clone()),
+                    source: Some(cite(&object.span, format!("[{:04X}]", object.index))),
+                    span: object.span.clone(),
+                });
+                records.last().map(|r| r.name.clone())
+            }
+            ObjectKind::Var | ObjectKind::Domain => None,
+        };
+        for v in object.variables {
+            entries.push(EdsEntry {
+                index: object.index,
+                record: record.clone(),
+                name: snake_name(&v.name),
+                data_type: entry_type(&v, object.kind),
+                file: Arc::clone(&shared_file),
+                line: lines.line(v.span.range.start),
+                variable: v,
+            });
+        }
+    }
+    make_unique(&mut entries, &mut records);
+    EdsModel {
+        source,
+        device,
+        records,
+        entries,
+    }
+}
+
+/// Byte offsets of line starts, for line numbers of thousands of citations in one pass.
+struct LineStarts(Vec<usize>);
+
+impl LineStarts {
+    fn of(text: &str) -> Self {
+        let starts = std::iter::once(0).chain(text.match_indices('\n').map(|(i, _)| i + 1));
+        LineStarts(starts.collect())
+    }
+
+    /// The 1-based line of a byte offset.
+    fn line(&self, offset: usize) -> u32 {
+        self.0.partition_point(|&start| start <= offset) as u32
+    }
+}
+
+fn entry_type(v: &Variable, kind: ObjectKind) -> Result<DataType, TypeProblem> {
+    match (v.data_type, kind) {
+        (Some(code), _) => match from_code(code, UNSIZED_CAPACITY) {
+            Code::Type(t) => Ok(t),
+            Code::Unsupported => Err(TypeProblem::Unsupported(code)),
+        },
+        (None, ObjectKind::Domain) => Ok(DataType::Octets(UNSIZED_CAPACITY)),
+        (None, _) => Err(TypeProblem::Missing),
+    }
+}
+
+/// A snake_case identifier from an EDS name: ASCII letters, digits and single underscores; a word
+/// starts at every non-alphanumeric run, at a lower-case or digit to upper-case step, and at the
+/// last capital of an acronym followed by lower case (`VendorID` → `vendor_id`).
+pub fn snake_name(text: &str) -> String {
+    let mut out = String::with_capacity(text.len() + 2);
+    let mut chars = text.chars().peekable();
+    let mut prev: Option<char> = None;
+    while let Some(c) = chars.next() {
+        if !c.is_ascii_alphanumeric() {
+            prev = None;
+            if !out.is_empty() && !out.ends_with('_') {
+                out.push('_');
+            }
+            continue;
+        }
+        let next_lower = chars.peek().is_some_and(char::is_ascii_lowercase);
+        let starts_word = c.is_ascii_uppercase()
+            && prev.is_some_and(|p| {
+                p.is_ascii_lowercase()
+                    || p.is_ascii_digit()
+                    || (p.is_ascii_uppercase() && next_lower)
+            });
+        if starts_word && !out.ends_with('_') {
+            out.push('_');
+        }
+        out.push(c.to_ascii_lowercase());
+        prev = Some(c);
+    }
+    let trimmed = out.trim_end_matches('_').len();
+    out.truncate(trimmed);
+    match out.chars().next() {
+        None => "object".into(),
+        Some(c) if c.is_ascii_digit() => format!("n{out}"),
+        Some(_) => out,
+    }
+}
+
+/// Members sharing a name get their record's name in front, then any remaining clash its address;
+/// records sharing a name get their index appended.
+fn make_unique(entries: &mut [EdsEntry], records: &mut [ir::Record]) {
+    let first = repeated(entries.iter().map(|e| e.name.as_str()));
+    for (e, _) in entries.iter_mut().zip(first).filter(|(_, clash)| *clash) {
+        if let Some(record) = &e.record {
+            e.name = format!("{record}_{}", e.name);
+        }
+    }
+    let second = repeated(entries.iter().map(|e| e.name.as_str()));
+    for (e, _) in entries.iter_mut().zip(second).filter(|(_, clash)| *clash) {
+        e.name = format!("{}_{:04x}_{}", e.name, e.index, e.variable.subindex);
+    }
+    let records_clash = repeated(records.iter().map(|r| r.name.as_str()));
+    for (r, _) in records
+        .iter_mut()
+        .zip(records_clash)
+        .filter(|(_, clash)| *clash)
+    {
+        let renamed = format!("{}_{:04x}", r.name, r.index);
+        for e in entries.iter_mut().filter(|e| e.index == r.index) {
+            e.record = Some(renamed.clone());
+        }
+        r.name = renamed;
+    }
+}
+
+/// For each name, whether another item has it too.
+fn repeated<'n>(names: impl Iterator<Item = &'n str> + Clone) -> Vec<bool> {
+    let mut counts: FnvHashMap<&str, usize> = FnvHashMap::default();
+    for name in names.clone() {
+        *counts.entry(name).or_default() += 1;
+    }
+    names.map(|n| counts[n] > 1).collect()
+}
+
+impl EdsEntry {
+    /// The EDS section it is written in: `[1018sub1]`, or `[1000]` for a VAR.
+    pub fn section(&self) -> String {
+        match self.record {
+            Some(_) => format!("[{:04X}sub{:X}]", self.index, self.variable.subindex),
+            None => format!("[{:04X}]", self.index),
+        }
+    }
+
+    /// The citation of its EDS line.
+    pub fn citation(&self) -> ir::Citation {
+        ir::Citation {
+            doc: EDS_SOURCE_ID.into(),
+            file: self.file.to_string(),
+            section: Some(self.section()),
+            line: Some(self.line),
+            example: None,
+            span: self.variable.span.clone(),
+        }
+    }
+
+    /// The diagnostic for an entry whose type is unknown.
+    pub fn type_problem(&self, problem: TypeProblem) -> Diagnostic {
+        let (message, help) = match problem {
+            TypeProblem::Missing => (
+                format!("object {} has no DataType", self.address()),
+                "add `DataType=0x...` to the EDS, or give `type` in an overlay `[[parameter]]` with this `canopen` address",
+            ),
+            TypeProblem::Unsupported(code) => (
+                format!("object {} has DataType {code:#06X}, which CiA 301 reserves or does not define", self.address()),
+                "use a code of 0x0001..=0x001B, or give `type` in an overlay `[[parameter]]` with this `canopen` address",
+            ),
+        };
+        Diagnostic::error(RULE_TYPE, self.variable.span.clone(), message).help(help)
+    }
+
+    /// `0x1018 sub 1`.
+    pub fn address(&self) -> String {
+        format!("{:#06X} sub {}", self.index, self.variable.subindex)
+    }
+
+    /// The parameter this entry describes, with type `ty`.
+    pub fn parameter(&self, ty: DataType, diagnostics: &mut Vec<Diagnostic>) -> ir::Parameter {
+        let v = &self.variable;
+        let (access, constant, pdo) = self.access(diagnostics);
+        let value = |t: &Option<Text>, what: &str, d: &mut Vec<Diagnostic>| {
+            let t = t.as_ref()?;
+            match parse_value(&t.value, ty) {
+                Ok(value) => value.map(|x| (x, t.span.clone())),
+                Err(why) => {
+                    d.push(
+                        Diagnostic::error(RULE_VALUE, t.span.clone(), format!("{what}: {why}"))
+                            .warning()
+                            .label("ignored"),
+                    );
+                    None
+                }
+            }
+        };
+        let default = value(&v.default, "DefaultValue", diagnostics);
+        let parameter_value = value(&v.parameter_value, "ParameterValue", diagnostics);
+        let low = constant_limit(value(&v.low, "LowLimit", diagnostics), diagnostics);
+        let high = constant_limit(value(&v.high, "HighLimit", diagnostics), diagnostics);
+        let range = limits(ty, low.clone(), high.clone());
+        let (default, default_plus_node_id, default_span) = match default.or(parameter_value) {
+            Some((EdsValue::Number(n), span)) => (Some(n), false, Some(span)),
+            Some((EdsValue::NodeIdPlus(n), span)) => (Some(Number::Int(n)), true, Some(span)),
+            None => (None, false, None),
+        };
+        ir::Parameter {
+            name: self.name.clone(),
+            doc: Some(v.description.clone().unwrap_or_else(|| v.name.to_string())),
+            data_type: ty,
+            unit: None,
+            scale: None,
+            default,
+            default_plus_node_id,
+            range,
+            allowed: Vec::new(),
+            enumeration: None,
+            flags: None,
+            record: self.record.clone(),
+            modbus: Vec::new(),
+            canopen: vec![ir::ObjectAddress {
+                index: self.index,
+                subindex: v.subindex,
+                access,
+                constant,
+                pdo,
+                variant: None,
+                span: v.span.clone(),
+            }],
+            rs232: Vec::new(),
+            effect: ir::Effect::Immediate,
+            command: None,
+            variants: Vec::new(),
+            source: Some(self.citation()),
+            erratum: None,
+            spans: ir::ParameterSpans {
+                name: v.span.clone(),
+                data_type: v.span.clone(),
+                default: default_span,
+                range: low.or(high).map(|(_, s)| s),
+                ..Default::default()
+            },
+        }
+    }
+
+    fn access(&self, diagnostics: &mut Vec<Diagnostic>) -> (ir::Access, bool, ir::Pdo) {
+        let v = &self.variable;
+        let written = v.access.as_ref().map_or("", |t| &*t.value);
+        let text = canonical_access(written);
+        let (access, constant) = match text {
+            "ro" => (ir::Access::READ, false),
+            "wo" => (ir::Access::WRITE, false),
+            "rw" | "rwr" | "rww" => (ir::Access::READ_WRITE, false),
+            "const" => (ir::Access::READ, true),
+            _ => {
+                let span = v.access.as_ref().map_or(v.span.clone(), |t| t.span.clone());
+                let message = if written.is_empty() {
+                    format!("object {} has no AccessType; read as `ro`", self.address())
+                } else {
+                    format!("unknown AccessType `{written}`; read as `ro`")
+                };
+                diagnostics.push(
+                    Diagnostic::error(RULE_VALUE, span, message)
+                        .warning()
+                        .help("CiA 306 access types: ro, wo, rw, rwr, rww, const"),
+                );
+                (ir::Access::READ, false)
+            }
+        };
+        let pdo = match (v.pdo_mapping, text) {
+            (false, _) => ir::Pdo::None,
+            (true, "rww" | "wo") => ir::Pdo::Rx,
+            (true, "rw") => ir::Pdo::Both,
+            (true, _) => ir::Pdo::Tx,
+        };
+        (access, constant, pdo)
+    }
+}
+
+/// The lower-case CiA 306 spelling of an access type written in any case; `""` when unknown.
+fn canonical_access(written: &str) -> &'static str {
+    ["ro", "wo", "rw", "rwr", "rww", "const"]
+        .into_iter()
+        .find(|a| written.eq_ignore_ascii_case(a))
+        .unwrap_or("")
+}
+
+/// Limits are constants: a `$NODEID` limit is dropped with a warning.
+fn constant_limit(
+    limit: Option<(EdsValue, Span)>,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> Option<(Number, Span)> {
+    match limit? {
+        (EdsValue::Number(n), span) => Some((n, span)),
+        (EdsValue::NodeIdPlus(_), span) => {
+            diagnostics.push(
+                Diagnostic::error(RULE_VALUE, span, "a limit relative to `$NODEID` is ignored")
+                    .warning(),
+            );
+            None
+        }
+    }
+}
+
+/// A range from one or both limits; a missing side is the type's bound.
+fn limits(
+    ty: DataType,
+    low: Option<(Number, Span)>,
+    high: Option<(Number, Span)>,
+) -> Option<ir::Range> {
+    if low.is_none() && high.is_none() {
+        return None;
+    }
+    let (min, max) = match ty.integer_bounds() {
+        Some((min, max)) => (
+            Number::Int(i64::try_from(min).unwrap_or(i64::MIN)),
+            Number::Int(i64::try_from(max).unwrap_or(i64::MAX)),
+        ),
+        None if ty == DataType::F32 => (
+            Number::Float(f32::MIN.into()),
+            Number::Float(f32::MAX.into()),
+        ),
+        None => (Number::Float(f64::MIN), Number::Float(f64::MAX)),
+    };
+    Some(ir::Range {
+        min: low.map_or(min, |(n, _)| n),
+        max: high.map_or(max, |(n, _)| n),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_become_snake_case_identifiers() {
+        assert_eq!(snake_name("Vendor-ID"), "vendor_id");
+        assert_eq!(
+            snake_name("Highest sub-index supported"),
+            "highest_sub_index_supported"
+        );
+        assert_eq!(snake_name("2nd Temp (°C)"), "n2nd_temp_c");
+        assert_eq!(snake_name("µ"), "object");
+        assert_eq!(snake_name("VendorID"), "vendor_id");
+        assert_eq!(snake_name("TPDO1 COB-ID"), "tpdo1_cob_id");
+        assert_eq!(snake_name("Axis1Speed"), "axis1_speed");
+    }
+}

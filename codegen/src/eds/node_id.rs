@@ -1,0 +1,178 @@
+//! Numeric EDS values: decimal, hex, negative hex, floats, and `$NODEID` terms kept symbolic.
+//!
+//! `$NODEID+0x180`, `0x180+$NODEID` and `$NodeID + 0x200` all mean "the node id plus 384"; the
+//! value stays a function of the node id (a COB-ID default differs on every node).
+
+use crate::ir::{DataType, Number};
+
+/// A value of `DefaultValue`, `LowLimit`, `HighLimit` or `ParameterValue`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum EdsValue {
+    /// A constant.
+    Number(Number),
+    /// The node id plus this offset.
+    NodeIdPlus(i64),
+}
+
+/// Parses `text` as a value of type `ty`. `Ok(None)` for types whose values the IR does not keep
+/// (strings, octets); `Err` says what is wrong.
+pub fn parse_value(text: &str, ty: DataType) -> Result<Option<EdsValue>, String> {
+    match ty {
+        DataType::String(_) | DataType::Octets(_) => Ok(None),
+        DataType::F32 | DataType::F64 => parse_float(text).map(|f| Some(EdsValue::Number(f))),
+        DataType::Bool => parse_bool(text).map(|b| Some(EdsValue::Number(Number::Int(b)))),
+        DataType::Unsigned(_) | DataType::Signed(_) => parse_integer(text, ty).map(Some),
+    }
+}
+
+fn parse_float(text: &str) -> Result<Number, String> {
+    let t = text.trim();
+    if let Ok(f) = t.parse::<f64>() {
+        if f.is_finite() {
+            return Ok(Number::Float(f));
+        }
+    }
+    let (int, _) = parse_int(t).ok_or_else(|| format!("`{t}` is not a number"))?;
+    Ok(Number::Float(int as f64))
+}
+
+fn parse_bool(text: &str) -> Result<i64, String> {
+    match text.trim().to_ascii_lowercase().as_str() {
+        "true" => Ok(1),
+        "false" => Ok(0),
+        t => match parse_int(t) {
+            Some((v @ (0 | 1), _)) => Ok(v as i64),
+            _ => Err(format!("`{t}` is not a boolean (0 or 1)")),
+        },
+    }
+}
+
+/// `$NODEID` and integer terms joined by `+`; hex beyond a signed type's maximum is two's complement.
+fn parse_integer(text: &str, ty: DataType) -> Result<EdsValue, String> {
+    let compact = text.trim();
+    if compact.is_empty() {
+        return Err("the value is empty".into());
+    }
+    let mut node_terms = 0;
+    let mut sum: i128 = 0;
+    for term in compact.split('+').map(str::trim) {
+        if term.eq_ignore_ascii_case("$nodeid") {
+            node_terms += 1;
+            continue;
+        }
+        let (value, hex) = parse_int(term).ok_or_else(|| match term {
+            "" => format!("`{compact}` has an empty term"),
+            t if t.starts_with('$') => format!("`{t}` is not `$NODEID`"),
+            t => format!("`{t}` is not an integer"),
+        })?;
+        sum += wrap_signed_hex(value, hex, ty);
+    }
+    if node_terms > 1 {
+        return Err(format!("`{compact}` names `$NODEID` more than once"));
+    }
+    let (min, max) = ty.integer_bounds().unwrap_or((i128::MIN, i128::MAX));
+    let lowest = if node_terms == 1 { sum + 1 } else { sum };
+    if lowest < min || sum > max {
+        return Err(format!("{sum} does not fit {}", ty.name()));
+    }
+    let value = i64::try_from(sum).map_err(|_| format!("{sum} does not fit {}", ty.name()))?;
+    Ok(if node_terms == 1 {
+        EdsValue::NodeIdPlus(value)
+    } else {
+        EdsValue::Number(Number::Int(value))
+    })
+}
+
+/// An integer term: decimal or `0x` hex, either with a leading `-`. Returns the value and whether
+/// it was written in hex.
+fn parse_int(term: &str) -> Option<(i128, bool)> {
+    let (negative, digits) = match term.strip_prefix('-') {
+        Some(rest) => (true, rest),
+        None => (false, term.strip_prefix('+').unwrap_or(term)),
+    };
+    let (magnitude, hex) = match digits
+        .strip_prefix("0x")
+        .or_else(|| digits.strip_prefix("0X"))
+    {
+        Some(hex) if !hex.is_empty() && hex.len() <= 16 => {
+            (i128::from_str_radix(hex, 16).ok()?, true)
+        }
+        Some(_) => return None,
+        None if !digits.is_empty()
+            && digits.len() <= 20
+            && digits.bytes().all(|b| b.is_ascii_digit()) =>
+        {
+            (digits.parse::<i128>().ok()?, false)
+        }
+        None => return None,
+    };
+    Some((if negative { -magnitude } else { magnitude }, hex))
+}
+
+/// `0xFFFF` for an INTEGER16 is the bit pattern of -1, as CANopen tools write it.
+fn wrap_signed_hex(value: i128, hex: bool, ty: DataType) -> i128 {
+    match ty {
+        DataType::Signed(bytes) if hex && value > 0 => {
+            let bits = u32::from(bytes) * 8;
+            let half = 1i128 << (bits - 1);
+            if value >= half && value < 2 * half {
+                value - 2 * half
+            } else {
+                value
+            }
+        }
+        _ => value,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const U32: DataType = DataType::Unsigned(4);
+
+    fn int(text: &str, ty: DataType) -> EdsValue {
+        parse_value(text, ty).unwrap().unwrap()
+    }
+
+    #[test]
+    fn node_id_terms_in_every_order_and_spelling() {
+        for text in [
+            "$NODEID+0x180",
+            "0x180+$NODEID",
+            "$NodeID + 0x180",
+            " 384 + $nodeid ",
+        ] {
+            assert_eq!(int(text, U32), EdsValue::NodeIdPlus(0x180), "{text}");
+        }
+        assert_eq!(int("$NODEID", U32), EdsValue::NodeIdPlus(0));
+        assert!(parse_value("$NODEID+$NODEID", U32).is_err());
+        assert!(parse_value("$NODE+1", U32).is_err());
+    }
+
+    #[test]
+    fn decimal_hex_and_negative_hex() {
+        let i16_ = DataType::Signed(2);
+        assert_eq!(int("-0x10", i16_), EdsValue::Number(Number::Int(-16)));
+        assert_eq!(int("0xFFFF", i16_), EdsValue::Number(Number::Int(-1)));
+        assert_eq!(int("-200", i16_), EdsValue::Number(Number::Int(-200)));
+        assert_eq!(int("0X1f", U32), EdsValue::Number(Number::Int(31)));
+        assert!(parse_value("0x1FFFF", i16_).is_err());
+        assert!(parse_value("-1", U32).is_err());
+        assert!(parse_value("12abc", U32).is_err());
+    }
+
+    #[test]
+    fn floats_bools_and_strings() {
+        assert_eq!(
+            int("1.5", DataType::F32),
+            EdsValue::Number(Number::Float(1.5))
+        );
+        assert_eq!(
+            int("TRUE", DataType::Bool),
+            EdsValue::Number(Number::Int(1))
+        );
+        assert!(parse_value("2", DataType::Bool).is_err());
+        assert_eq!(parse_value("hello", DataType::String(8)), Ok(None));
+    }
+}

@@ -1,0 +1,73 @@
+//! Short texts kept without a heap allocation: an EDS has thousands of values like `0x1000`,
+//! `rw` or `$NODEID+0x180`, and allocating each one dominated reading large files.
+
+use std::fmt;
+use std::ops::Deref;
+
+/// Bytes stored inline; longer texts go to the heap.
+const INLINE: usize = 30;
+
+/// An immutable string, inline up to 30 bytes.
+#[derive(Clone)]
+pub enum ShortText {
+    /// Up to [`INLINE`] bytes of UTF-8 and their length.
+    Inline([u8; INLINE], u8),
+    /// A longer text.
+    Heap(Box<str>),
+}
+
+impl From<&str> for ShortText {
+    fn from(text: &str) -> Self {
+        if text.len() <= INLINE {
+            let mut bytes = [0; INLINE];
+            bytes[..text.len()].copy_from_slice(text.as_bytes());
+            ShortText::Inline(bytes, text.len() as u8)
+        } else {
+            ShortText::Heap(text.into())
+        }
+    }
+}
+
+impl Deref for ShortText {
+    type Target = str;
+
+    fn deref(&self) -> &str {
+        match self {
+            // The bytes were copied from a `&str` whole, so they are valid UTF-8.
+            ShortText::Inline(bytes, len) => {
+                std::str::from_utf8(&bytes[..usize::from(*len)]).unwrap_or_default()
+            }
+            ShortText::Heap(text) => text,
+        }
+    }
+}
+
+impl fmt::Debug for ShortText {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        fmt::Debug::fmt(&**self, f)
+    }
+}
+
+impl fmt::Display for ShortText {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn short_and_long_texts_read_back() {
+        let long = "a name longer than thirty bytes, with µ";
+        assert_eq!(&*ShortText::from("rw"), "rw");
+        assert_eq!(&*ShortText::from(""), "");
+        assert_eq!(&*ShortText::from("µ".repeat(15).as_str()), "µ".repeat(15));
+        assert_eq!(&*ShortText::from(long), long);
+        assert!(matches!(
+            ShortText::from("$NODEID+0x180"),
+            ShortText::Inline(..)
+        ));
+    }
+}

@@ -1,0 +1,116 @@
+//! An EDS plus a TOML overlay: the overlay's entries refine the EDS objects they address, the rest
+//! of the EDS is kept as written, and `import_overlay` writes an overlay that checks as is.
+
+mod support;
+
+use std::path::Path;
+
+use drivegen::ir::{Access, Number, Pdo};
+use support::{device, Scratch};
+
+#[test]
+fn overlay_entries_refine_their_eds_objects() {
+    let d = device(Path::new("tests/fixtures/overlay"));
+    let controlword = d.parameter("controlword").unwrap();
+    assert_eq!(controlword.flags.as_deref(), Some("controlword"));
+    assert_eq!(controlword.data_type.name(), "u16", "type from the EDS");
+    assert_eq!(
+        controlword.canopen[0].pdo,
+        Pdo::Rx,
+        "rww + PDOMapping from the EDS"
+    );
+    let speed = d.parameter("speed_limit").unwrap();
+    assert_eq!(speed.data_type.name(), "u16", "type from the overlay");
+    assert_eq!(speed.unit.as_deref(), Some("rpm"));
+    assert_eq!(speed.default, Some(Number::Int(10)), "default from the EDS");
+    assert_eq!(speed.source.as_ref().unwrap().doc, "manual");
+    let vendor_id = d.parameter("vendor_id").unwrap();
+    assert_eq!(
+        vendor_id.record.as_deref(),
+        Some("identity"),
+        "record renamed by the overlay"
+    );
+    assert_eq!(
+        vendor_id.source.as_ref().unwrap().doc,
+        "eds",
+        "citation from the EDS"
+    );
+    assert_eq!(vendor_id.canopen[0].access, Access::READ);
+}
+
+#[test]
+fn objects_the_overlay_does_not_mention_keep_their_eds_names() {
+    let d = device(Path::new("tests/fixtures/overlay"));
+    let torque = d.parameter("vendor_torque").unwrap();
+    assert_eq!(torque.data_type.name(), "i16");
+    assert_eq!(torque.canopen[0].pdo, Pdo::Tx);
+    let cob_id = d.parameter("cob_id_used_by_tpdo").unwrap();
+    assert_eq!(
+        (cob_id.default, cob_id.default_plus_node_id),
+        (Some(Number::Int(0x180)), true)
+    );
+    assert_eq!(
+        d.parameter("identity_object_highest_sub_index_supported")
+            .and_then(|p| p.record.as_deref()),
+        Some("identity")
+    );
+    assert_eq!(d.records.len(), 2);
+}
+
+#[test]
+fn node_relative_defaults_are_generated_as_a_function_of_the_node_id() {
+    let d = device(Path::new("tests/fixtures/overlay"));
+    let code = drivegen::emit::rust::generate(&d, "overlay");
+    assert!(code.contains("node id + 384"), "{code}");
+    assert!(!code.contains("| 389"), "never baked in for one node");
+}
+
+/// Copies an EDS into a scratch directory, imports it, and checks the overlay beside it.
+fn import_and_check(eds: &Path, scratch: &Scratch) -> drivegen::Checked {
+    let copy = scratch.0.join(eds.file_name().unwrap());
+    std::fs::copy(eds, &copy).unwrap();
+    let overlay = drivegen::eds::import_overlay(&copy).unwrap_or_else(|e| panic!("{e}"));
+    let path = scratch.0.join(format!(
+        "{}.toml",
+        eds.file_stem().unwrap().to_string_lossy()
+    ));
+    std::fs::write(&path, overlay).unwrap();
+    drivegen::check(&path)
+}
+
+#[test]
+fn imported_overlays_check_as_written_and_keep_every_object() {
+    let scratch = Scratch::new("eds-import");
+    let mut imported = 0;
+    for entry in std::fs::read_dir("tests/eds").unwrap() {
+        let eds = entry.unwrap().path();
+        if !drivegen::eds::is_eds_path(&eds) || drivegen::check(&eds).device.is_none() {
+            continue;
+        }
+        let alone = drivegen::check(&eds).device.unwrap();
+        let checked = import_and_check(&eds, &scratch);
+        let rendered = checked.render();
+        let overlaid = checked
+            .device
+            .unwrap_or_else(|| panic!("{}:\n{rendered}", eds.display()));
+        let names = |d: &drivegen::ir::Device| {
+            let mut v: Vec<_> = d
+                .parameters
+                .iter()
+                .map(|p| (p.name.clone(), p.canopen[0].index, p.canopen[0].subindex))
+                .collect();
+            v.sort();
+            v
+        };
+        assert_eq!(names(&overlaid), names(&alone), "{}", eds.display());
+        imported += 1;
+    }
+    assert!(imported >= 20, "only {imported} corpus files imported");
+}
+
+#[test]
+fn an_eds_with_errors_is_not_imported() {
+    let error = drivegen::eds::import_overlay(Path::new("tests/eds/data_type_missing.eds"));
+    let text = error.expect_err("no DataType").to_string();
+    assert!(text.contains("has no DataType"), "{text}");
+}
