@@ -40,6 +40,8 @@ enum Command {
     Watch(commands::watch::Args),
     /// Decode a candump capture into named, typed values.
     Decode(commands::decode::Args),
+    /// Export a description as a CiA 306 EDS, or import a vendor EDS as a TOML overlay.
+    Eds(commands::eds::Args),
 }
 
 fn main() -> ExitCode {
@@ -52,6 +54,7 @@ fn main() -> ExitCode {
         Command::Write(args) => commands::write::run(args),
         Command::Watch(args) => commands::watch::run(args),
         Command::Decode(args) => commands::decode::run(args),
+        Command::Eds(args) => commands::eds::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

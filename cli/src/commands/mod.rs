@@ -3,6 +3,7 @@
 pub mod check;
 pub mod decode;
 pub mod dump;
+pub mod eds;
 pub mod generate;
 pub mod read;
 pub mod sim;

@@ -143,6 +143,8 @@ pub fn empty_device(name: &str, model: &EdsModel) -> ir::Device {
         flags: Vec::new(),
         records: model.records.clone(),
         parameters: Vec::new(),
+        cia402: None,
+        state_machine: None,
     }
 }
 

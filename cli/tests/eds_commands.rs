@@ -1,0 +1,65 @@
+//! `drivegen eds export|import` end to end: a shipped description exported as EDS, the EDS
+//! imported as an overlay skeleton, and the skeleton valid as it is.
+
+use std::path::Path;
+use std::process::Command;
+
+const BIN: &str = env!("CARGO_BIN_EXE_drivegen");
+
+fn run(args: &[&str]) -> std::process::Output {
+    Command::new(BIN)
+        .args(args)
+        .current_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join(".."))
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn export_then_import_gives_a_valid_overlay_with_every_object() {
+    let dir = std::env::temp_dir().join(format!("drivegen-eds-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let eds = dir.join("lafert.eds");
+    let overlay = dir.join("overlay.toml");
+    let export = run(&[
+        "eds",
+        "export",
+        "descriptions/lafert-smartris",
+        "-o",
+        eds.to_str().unwrap(),
+    ]);
+    assert!(
+        export.status.success(),
+        "{}",
+        String::from_utf8_lossy(&export.stderr)
+    );
+    let text = std::fs::read_to_string(&eds).unwrap();
+    assert!(text.contains("[6041]"), "the statusword is exported");
+    let import = run(&[
+        "eds",
+        "import",
+        eds.to_str().unwrap(),
+        "-o",
+        overlay.to_str().unwrap(),
+    ]);
+    assert!(
+        import.status.success(),
+        "{}",
+        String::from_utf8_lossy(&import.stderr)
+    );
+    let check = run(&["check", overlay.to_str().unwrap()]);
+    let stdout = String::from_utf8_lossy(&check.stdout);
+    assert!(
+        check.status.success(),
+        "{}",
+        String::from_utf8_lossy(&check.stderr)
+    );
+    assert!(stdout.contains("57 parameters"), "{stdout}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn exporting_a_modbus_only_description_is_refused() {
+    let export = run(&["eds", "export", "descriptions/lenze-smd", "-o", "/dev/null"]);
+    assert!(!export.status.success());
+    assert!(String::from_utf8_lossy(&export.stderr).contains("no CANopen objects"));
+}
