@@ -10,7 +10,7 @@ const INLINE: usize = 30;
 /// An immutable string, inline up to 30 bytes.
 #[derive(Clone)]
 pub enum ShortText {
-    /// Up to [`INLINE`] bytes of UTF-8 and their length.
+    /// Up to 30 bytes of UTF-8 (`INLINE`) and their length.
     Inline([u8; INLINE], u8),
     /// A longer text.
     Heap(Box<str>),
