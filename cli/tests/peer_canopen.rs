@@ -2,25 +2,10 @@
 //! simulator, reached through a candump stdio relay (`tests/peers/canopen_master.py`). A missing
 //! peer fails the test: run `tests/peers/setup.sh`.
 
-use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-fn workspace_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
-
-fn python() -> PathBuf {
-    if let Some(python) = std::env::var_os("DRIVEGEN_PYTHON") {
-        return python.into();
-    }
-    let venv = workspace_root().join(".venv/bin/python");
-    if venv.exists() {
-        venv
-    } else {
-        "python3".into()
-    }
-}
+use peer_support::{python, workspace_root};
 
 #[test]
 fn python_canopen_drives_the_simulated_lafert_to_operation_enabled() {

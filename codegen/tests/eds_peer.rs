@@ -4,26 +4,13 @@
 
 mod support;
 
-use std::path::PathBuf;
 use std::process::Command;
 
+use peer_support::python;
 use support::{canopen_descriptions, device, short_name, workspace_root, Scratch};
 
 /// Node id the relative defaults are resolved with.
 const NODE_ID: u8 = 5;
-
-/// `DRIVEGEN_PYTHON`, else the workspace's `.venv`, else `python3`.
-fn python() -> PathBuf {
-    if let Some(python) = std::env::var_os("DRIVEGEN_PYTHON") {
-        return python.into();
-    }
-    let venv = workspace_root().join(".venv").join("bin").join("python");
-    if venv.exists() {
-        venv
-    } else {
-        PathBuf::from("python3")
-    }
-}
 
 #[test]
 fn exported_eds_loads_in_python_canopen_with_the_ir_objects() {

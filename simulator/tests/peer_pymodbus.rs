@@ -2,43 +2,12 @@
 //! over a socat pty pair. Each test starts its peers and stops them by PID; a missing peer fails
 //! the test (run `tests/peers/setup.sh`).
 
-use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::time::{Duration, Instant};
+use std::process::{Command, Stdio};
 
 use drivebus::modbus::transport::{SerialConfig, SerialStream};
 use drivebus::modbus::UnitId;
 use drivesim::Simulator;
-
-const SETUP_HINT: &str =
-    "run `tests/peers/setup.sh` at the workspace root (socat, pymodbus in .venv)";
-
-fn workspace_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
-
-fn python() -> PathBuf {
-    if let Some(python) = std::env::var_os("DRIVEGEN_PYTHON") {
-        return python.into();
-    }
-    let venv = workspace_root().join(".venv/bin/python");
-    if venv.exists() {
-        venv
-    } else {
-        "python3".into()
-    }
-}
-
-/// A child process killed by its PID and reaped when dropped.
-struct Process(Child);
-
-impl Drop for Process {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
+use peer_support::{pty_pair, python, workspace_root, SETUP_HINT};
 
 fn lafert() -> Simulator {
     let sim = Simulator::load(workspace_root().join("descriptions/lafert-smartris")).unwrap();
@@ -70,37 +39,10 @@ fn pymodbus_runs_the_lafert_sequence_over_tcp() {
     run_client("tcp", &server.local_addr().to_string());
 }
 
-/// A socat pty pair; returns the process and the two link paths.
-fn pty_pair() -> (Process, PathBuf, PathBuf) {
-    static NEXT: AtomicUsize = AtomicUsize::new(0);
-    let dir = std::env::temp_dir().join(format!(
-        "drivesim-pty-{}-{}",
-        std::process::id(),
-        NEXT.fetch_add(1, Ordering::Relaxed)
-    ));
-    std::fs::create_dir_all(&dir).unwrap();
-    let (a, b) = (dir.join("client"), dir.join("server"));
-    let child = Command::new("socat")
-        .arg(format!("pty,raw,echo=0,link={}", a.display()))
-        .arg(format!("pty,raw,echo=0,link={}", b.display()))
-        .stdin(Stdio::null())
-        .spawn()
-        .unwrap_or_else(|e| panic!("cannot start socat ({e}); {SETUP_HINT}"));
-    let process = Process(child);
-    let deadline = Instant::now() + Duration::from_secs(5);
-    while !(a.exists() && b.exists()) {
-        assert!(
-            Instant::now() < deadline,
-            "socat did not create the pty links"
-        );
-        std::thread::sleep(Duration::from_millis(10));
-    }
-    (process, a, b)
-}
-
 #[test]
 fn pymodbus_runs_the_lafert_sequence_over_rtu_on_a_pty() {
-    let (_socat, client_end, server_end) = pty_pair();
+    let pty = pty_pair();
+    let (client_end, server_end) = (&pty.client, &pty.server);
     let sim = lafert();
     let mut stream =
         SerialStream::open(server_end.to_str().unwrap(), &SerialConfig::new(19_200)).unwrap();

@@ -6,9 +6,7 @@
 #![cfg(feature = "modbus")]
 
 use std::io::{BufRead, BufReader};
-use std::path::{Path, PathBuf};
-use std::process::{Child, ChildStdin, Command, Stdio};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use drivebus::link::ReadRequest;
@@ -21,39 +19,9 @@ use drivebus::modbus::{
     WordOrder,
 };
 use drivebus::{BusError, Link};
+use peer_support::{pty_pair, python, workspace_root, Process, SETUP_HINT};
 
 const UNIT: UnitId = UnitId(1);
-const SETUP_HINT: &str = "run `bash tests/peers/setup.sh` at the workspace root";
-
-fn workspace_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
-
-fn python() -> PathBuf {
-    if let Some(python) = std::env::var_os("DRIVEGEN_PYTHON") {
-        return python.into();
-    }
-    let venv = workspace_root().join(".venv/bin/python");
-    if venv.exists() {
-        venv
-    } else {
-        "python3".into()
-    }
-}
-
-/// A child process killed (by its PID) and reaped when dropped.
-struct Process {
-    child: Child,
-    _stdin: Option<ChildStdin>,
-}
-
-impl Drop for Process {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
-}
-
 /// Starts the pymodbus server in `mode` and waits for its first stdout line.
 fn start_server(args: &[&str]) -> (Process, String) {
     let python = python();
@@ -66,12 +34,8 @@ fn start_server(args: &[&str]) -> (Process, String) {
         .stderr(Stdio::inherit())
         .spawn()
         .unwrap_or_else(|e| panic!("cannot start {} ({e}); {SETUP_HINT}", python.display()));
-    let stdin = child.stdin.take();
     let stdout = child.stdout.take().expect("piped stdout");
-    let process = Process {
-        child,
-        _stdin: stdin,
-    };
+    let process = Process::new(child);
     let mut line = String::new();
     BufReader::new(stdout)
         .read_line(&mut line)
@@ -90,53 +54,6 @@ fn tcp_server(mode: &str) -> (Process, String) {
         .strip_prefix("PORT ")
         .unwrap_or_else(|| panic!("unexpected peer output {line:?}"));
     (process, format!("127.0.0.1:{port}"))
-}
-
-/// A socat pty pair: the process and the directory holding its links, both removed when dropped.
-struct PtyPair {
-    _socat: Process,
-    dir: PathBuf,
-}
-
-impl Drop for PtyPair {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.dir);
-    }
-}
-
-/// A socat pty pair; returns its guard and the two link paths.
-fn pty_pair() -> (PtyPair, PathBuf, PathBuf) {
-    static NEXT: AtomicUsize = AtomicUsize::new(0);
-    let dir = std::env::temp_dir().join(format!(
-        "drivegen-pty-{}-{}",
-        std::process::id(),
-        NEXT.fetch_add(1, Ordering::Relaxed)
-    ));
-    std::fs::create_dir_all(&dir).unwrap();
-    let (a, b) = (dir.join("client"), dir.join("server"));
-    let child = Command::new("socat")
-        .arg(format!("pty,raw,echo=0,link={}", a.display()))
-        .arg(format!("pty,raw,echo=0,link={}", b.display()))
-        .stdin(Stdio::null())
-        .spawn()
-        .unwrap_or_else(|e| panic!("cannot start socat ({e}); {SETUP_HINT}"));
-    let pair = PtyPair {
-        _socat: Process {
-            child,
-            _stdin: None,
-        },
-        dir,
-    };
-    // socat creates the links asynchronously.
-    let deadline = Instant::now() + Duration::from_secs(5);
-    while !(a.exists() && b.exists()) {
-        assert!(
-            Instant::now() < deadline,
-            "socat did not create the pty links"
-        );
-        std::thread::sleep(Duration::from_millis(10));
-    }
-    (pair, a, b)
 }
 
 fn tcp_config() -> TcpConfig {
@@ -307,7 +224,8 @@ fn serial_config() -> SerialConfig {
 
 #[test]
 fn rtu_on_a_pty_against_pymodbus() {
-    let (_socat, client_end, server_end) = pty_pair();
+    let pty = pty_pair();
+    let (client_end, server_end) = (pty.client.clone(), pty.server.clone());
     let (_server, ready) = start_server(&["rtu", server_end.to_str().unwrap()]);
     assert_eq!(ready, "READY");
     let mut client = SerialRtuClient::open(client_end.to_str().unwrap(), &serial_config()).unwrap();
@@ -317,7 +235,8 @@ fn rtu_on_a_pty_against_pymodbus() {
 
 #[test]
 fn silence_on_a_pty_ends_in_a_timeout() {
-    let (_socat, client_end, _nobody) = pty_pair();
+    let pty = pty_pair();
+    let client_end = pty.client.clone();
     let config = SerialConfig {
         timeout: Duration::from_millis(200),
         retry: RetryPolicy::reads(1),

@@ -6,7 +6,6 @@
 //! `python3`. A missing peer fails the test with instructions; `tests/peers/setup.sh` installs it.
 
 use std::io::{BufRead, BufReader};
-use std::path::{Path, PathBuf};
 use std::process::{Child, ChildStdin, Command, Stdio};
 use std::time::Duration;
 
@@ -16,24 +15,7 @@ use drivebus::units::{Rpm, Volts};
 use drivebus::BusError;
 use lafert_smartris::types::{ControlWord, DriveStatus, WarningCode};
 use lafert_smartris::{params, RebootWait, Smartris, StdClock, StoreResetError};
-
-const SETUP_HINT: &str = "run `bash tests/peers/setup.sh` at the workspace root";
-
-fn workspace_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn python() -> PathBuf {
-    if let Some(python) = std::env::var_os("DRIVEGEN_PYTHON") {
-        return python.into();
-    }
-    let venv = workspace_root().join(".venv/bin/python");
-    if venv.exists() {
-        venv
-    } else {
-        "python3".into()
-    }
-}
+use peer_support::{python, workspace_root, SETUP_HINT};
 
 /// The server process, killed by its PID and reaped when dropped; closing its stdin also ends it.
 struct Server {

@@ -2,38 +2,14 @@
 #![allow(dead_code)] // Each test file uses part of this module.
 
 use std::io::Read;
-use std::path::PathBuf;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
 use drivebus::canopen::{CanBus, CanFrame};
+pub use peer_support::{peers_dir, python};
 
 /// Node id of the peers' LocalNode.
 pub const NODE: u8 = 5;
-
-pub fn workspace_root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .expect("transport/ lives in the workspace")
-        .to_path_buf()
-}
-
-pub fn peers_dir() -> PathBuf {
-    workspace_root().join("tests").join("peers")
-}
-
-/// `DRIVEGEN_PYTHON`, else the workspace's `.venv`, else `python3`.
-pub fn python() -> PathBuf {
-    if let Some(python) = std::env::var_os("DRIVEGEN_PYTHON") {
-        return python.into();
-    }
-    let venv = workspace_root().join(".venv").join("bin").join("python");
-    if venv.exists() {
-        venv
-    } else {
-        PathBuf::from("python3")
-    }
-}
 
 const SETUP_HINT: &str = "the python CANopen peer is required: run tests/peers/setup-canopen.sh \
      (creates .venv with canopen==2.4.1 and python-can==4.6.1) or set DRIVEGEN_PYTHON";
