@@ -113,9 +113,21 @@ fn rust_width(bytes: u8) -> u32 {
     }
 }
 
+/// Serialized as a map meant to be flattened into its owner: `"type": "u16"`, and for strings and
+/// octets also `"length": N` (their capacity in bytes).
 impl Serialize for DataType {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        serializer.serialize_str(&self.name())
+        use serde::ser::SerializeMap;
+        let length = match self {
+            DataType::String(n) | DataType::Octets(n) => Some(*n),
+            _ => None,
+        };
+        let mut map = serializer.serialize_map(Some(1 + length.is_some() as usize))?;
+        map.serialize_entry("type", &self.name())?;
+        if let Some(n) = length {
+            map.serialize_entry("length", &n)?;
+        }
+        map.end()
     }
 }
 
@@ -131,6 +143,21 @@ mod tests {
         assert_eq!(DataType::parse("u128", 0), None);
         assert_eq!(DataType::parse("uint", 0), None);
         assert_eq!(DataType::Unsigned(3).rust_type(), "u32");
+    }
+
+    #[test]
+    fn strings_serialize_their_capacity_beside_the_type() {
+        #[derive(Serialize)]
+        struct Owner {
+            #[serde(flatten)]
+            data_type: DataType,
+        }
+        let json = |data_type| serde_json::to_string(&Owner { data_type }).unwrap();
+        assert_eq!(
+            json(DataType::String(16)),
+            r#"{"type":"string","length":16}"#
+        );
+        assert_eq!(json(DataType::Unsigned(2)), r#"{"type":"u16"}"#);
     }
 
     #[test]

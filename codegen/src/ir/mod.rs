@@ -254,7 +254,8 @@ pub struct Enum {
     /// snake_case name.
     pub name: String,
     /// Integer type.
-    #[serde(rename = "type")]
+    /// Serialized as `type`, plus `length` for strings and octets.
+    #[serde(flatten)]
     pub data_type: DataType,
     /// Documentation.
     pub doc: Option<String>,
@@ -305,7 +306,8 @@ pub struct Flags {
     /// snake_case name.
     pub name: String,
     /// Unsigned integer type.
-    #[serde(rename = "type")]
+    /// Serialized as `type`, plus `length` for strings and octets.
+    #[serde(flatten)]
     pub data_type: DataType,
     /// Documentation.
     pub doc: Option<String>,
@@ -553,7 +555,8 @@ pub struct Parameter {
     /// Documentation.
     pub doc: Option<String>,
     /// Data type.
-    #[serde(rename = "type")]
+    /// Serialized as `type`, plus `length` for strings and octets.
+    #[serde(flatten)]
     pub data_type: DataType,
     /// Unit symbol.
     pub unit: Option<String>,

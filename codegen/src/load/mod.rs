@@ -100,7 +100,7 @@ fn read_recursive(
     for (include, range) in includes {
         let (target, only) = match include {
             RawInclude::Path(p) => (p, None),
-            RawInclude::Table { path, only } => (path, only),
+            RawInclude::Table(table) => (table.path, table.only),
         };
         let span = Span::new(id, range);
         read_recursive(
@@ -116,8 +116,34 @@ fn read_recursive(
     chain.pop();
 }
 
+/// serde names the Rust type of a value that can take several shapes; say what is expected instead.
+const SHAPES: &[(&str, &str)] = &[
+    (
+        "RawInclude",
+        "an include is a path string or `{ path, only = [names] }`",
+    ),
+    (
+        "OneOrMany",
+        "expected one address table or an array of them, with only the documented keys",
+    ),
+    (
+        "RawScalar",
+        "expected a number or a fraction string (\"1/100\")",
+    ),
+    (
+        "RawScale",
+        "a scale is a number, a fraction string (\"1/100\"), `{ factor, offset }` or `{ expr }`",
+    ),
+    ("RawNumber", "expected a number"),
+    ("RawPdo", "`pdo` is false, \"rx\", \"tx\" or \"both\""),
+];
+
 fn syntax_error(id: FileId, error: &toml::de::Error) -> Diagnostic {
     let span = Span::new(id, error.span().unwrap_or(0..0));
-    let message = error.message().trim_end().to_owned();
+    let raw = error.message().trim_end();
+    let message = SHAPES
+        .iter()
+        .find(|(ty, _)| raw.contains(&format!("untagged enum {ty}")))
+        .map_or_else(|| raw.to_owned(), |(_, text)| (*text).to_owned());
     Diagnostic::error("syntax", span, message)
 }

@@ -42,10 +42,15 @@ pub struct RawFile {
 #[serde(untagged)]
 pub enum RawInclude {
     Path(String),
-    Table {
-        path: String,
-        only: Option<Vec<String>>,
-    },
+    Table(RawIncludeTable),
+}
+
+/// `{ path, only }`: a struct of its own so a misspelt key is an error, not a silent full include.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawIncludeTable {
+    pub path: String,
+    pub only: Option<Vec<String>>,
 }
 
 #[derive(Debug, Deserialize)]
