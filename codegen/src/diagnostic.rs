@@ -159,7 +159,7 @@ fn render_snippet(out: &mut String, files: &Files, span: &Span, label: &str) -> 
     pad
 }
 
-/// The outcome of a step that collects diagnostics: a value if no error was found.
+/// Whether any of `diagnostics` is an error (warnings do not stop generation).
 pub fn has_errors(diagnostics: &[Diagnostic]) -> bool {
     diagnostics.iter().any(|d| d.severity == Severity::Error)
 }
