@@ -185,6 +185,27 @@ impl Upload<'_> {
     }
 }
 
+/// The `Transfer` methods every transfer answers from its channel alone.
+macro_rules! channel_methods {
+    () => {
+        fn handle_timeout(&mut self, now: Duration) -> Progress {
+            self.ch.handle_timeout(now)
+        }
+
+        fn deadline(&self) -> Option<Duration> {
+            self.ch.deadline()
+        }
+
+        fn object(&self) -> (u16, u8) {
+            (self.ch.index, self.ch.subindex)
+        }
+
+        fn response_cob(&self) -> u16 {
+            self.ch.response_cob()
+        }
+    };
+}
+
 impl Transfer for Upload<'_> {
     fn poll_transmit(&mut self) -> Option<CanFrame> {
         self.ch.take_outbox()
@@ -210,21 +231,7 @@ impl Transfer for Upload<'_> {
         }
     }
 
-    fn handle_timeout(&mut self, now: Duration) -> Progress {
-        self.ch.handle_timeout(now)
-    }
-
-    fn deadline(&self) -> Option<Duration> {
-        self.ch.deadline()
-    }
-
-    fn object(&self) -> (u16, u8) {
-        (self.ch.index, self.ch.subindex)
-    }
-
-    fn response_cob(&self) -> u16 {
-        self.ch.response_cob()
-    }
+    channel_methods!();
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -325,19 +332,5 @@ impl Transfer for Download<'_> {
         }
     }
 
-    fn handle_timeout(&mut self, now: Duration) -> Progress {
-        self.ch.handle_timeout(now)
-    }
-
-    fn deadline(&self) -> Option<Duration> {
-        self.ch.deadline()
-    }
-
-    fn object(&self) -> (u16, u8) {
-        (self.ch.index, self.ch.subindex)
-    }
-
-    fn response_cob(&self) -> u16 {
-        self.ch.response_cob()
-    }
+    channel_methods!();
 }
