@@ -2,8 +2,13 @@
 //! must generate code that compiles, defines nothing but what the description declares, and has no
 //! doctest to run.
 
+mod support;
+
 use std::path::Path;
-use std::process::Command;
+
+use proc_macro2::{TokenStream, TokenTree};
+use quote::ToTokens;
+use support::crate_build::build_and_doctest;
 
 fn generate(path: &str) -> String {
     let checked = drivegen::check(Path::new(path));
@@ -31,45 +36,60 @@ fn hostile_names_and_docs_cannot_inject_items() {
         "no free functions are generated: {fn_names:?}"
     );
     assert!(!source.contains("fn injected"), "a doc or name became code");
-    assert!(
-        !source.contains("\n```"),
-        "a doc line opens a code block (doctest)"
-    );
-    assert!(
-        !source.contains("///     "),
-        "an indented doc line would be a doctest"
-    );
+    for doc in doc_texts(&source) {
+        for line in doc.lines() {
+            assert!(
+                !line.trim_start().starts_with("```"),
+                "a doc line opens a code block (doctest): {line:?}"
+            );
+            assert!(
+                !line.starts_with("     "),
+                "an indented doc line would be a doctest: {line:?}"
+            );
+        }
+    }
+}
+
+/// Every `#[doc = "..."]` text of the generated code (doc comments included), unescaped.
+fn doc_texts(source: &str) -> Vec<String> {
+    fn walk(tokens: TokenStream, out: &mut Vec<String>) {
+        let tokens: Vec<TokenTree> = tokens.into_iter().collect();
+        for window in tokens.windows(3) {
+            if let [TokenTree::Ident(key), TokenTree::Punct(eq), TokenTree::Literal(text)] = window
+            {
+                if key == "doc" && eq.as_char() == '=' {
+                    let lit: syn::LitStr = syn::parse2(text.to_token_stream()).unwrap();
+                    out.push(lit.value());
+                }
+            }
+        }
+        for token in tokens {
+            if let TokenTree::Group(group) = token {
+                walk(group.stream(), out);
+            }
+        }
+    }
+    let mut out = Vec::new();
+    walk(source.parse().expect("generated code lexes"), &mut out);
+    assert!(!out.is_empty(), "the generated code has docs");
+    out
 }
 
 /// Builds the generated code in a scratch crate with `#![deny(warnings)]` and runs its doctests.
 #[test]
 fn hostile_description_compiles_without_warnings_and_without_doctests() {
     let source = generate("tests/fixtures/hostile.toml");
-    let workspace = Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap();
-    let dir = workspace.join("target/fixtures/hostile");
-    std::fs::create_dir_all(dir.join("src")).unwrap();
-    let manifest = format!(
-        "[package]\nname = \"hostile\"\nversion = \"0.0.0\"\nedition = \"2021\"\n[dependencies]\ndrivebus = {{ path = {:?} }}\n[workspace]\n",
-        workspace.join("transport")
-    );
-    std::fs::write(dir.join("Cargo.toml"), manifest).unwrap();
     let lib =
-        format!("//! Hostile fixture.\n#![no_std]\n#![deny(warnings, missing_docs)]\n{source}");
-    std::fs::write(dir.join("src/lib.rs"), lib).unwrap();
-    let output = Command::new(env!("CARGO"))
-        .args(["test", "--offline", "--doc", "--manifest-path"])
-        .arg(dir.join("Cargo.toml"))
-        .env("CARGO_TARGET_DIR", workspace.join("target/fixtures/target"))
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    let stderr = String::from_utf8_lossy(&output.stderr);
+        format!("//! Hostile fixture.\n#![no_std]\n#![deny(warnings, missing_docs)]\n#[cfg(feature = \"std\")]\nextern crate std;\n{source}");
+    let built = build_and_doctest("hostile", &lib);
     assert!(
-        output.status.success(),
-        "generated code does not build:\n{stderr}"
+        built.success,
+        "generated code does not build:\n{}",
+        built.stderr
     );
     assert!(
-        stdout.contains("running 0 tests"),
-        "a description doc became a doctest:\n{stdout}"
+        built.stdout.contains("running 0 tests"),
+        "a description doc became a doctest:\n{}",
+        built.stdout
     );
 }

@@ -2,8 +2,9 @@
 //!
 //! The crate is layered so that the generated API stays protocol independent:
 //!
-//! * [`parameter`] — the traits a generated parameter marker implements: identity, value codec and
+//! * [`parameter`](mod@parameter) — the traits a generated parameter marker implements: identity, value codec and
 //!   per-protocol read/write capabilities (a missing capability is a compile error).
+//! * [`codec`] — the conversions between raw and engineering values parameters name.
 //! * [`value`] — raw wire types and their little-endian codecs.
 //! * [`scale`] / [`units`] — exact rational scaling and the unit newtypes values are returned in.
 //! * [`link`] — the one trait a protocol binding implements; [`device`] drives it.
@@ -19,6 +20,7 @@ extern crate std;
 
 pub mod canopen;
 pub mod check;
+pub mod codec;
 pub mod control;
 pub mod device;
 pub mod error;
@@ -27,7 +29,9 @@ pub mod link;
 #[cfg(feature = "std")]
 pub mod memory;
 pub mod modbus;
+mod open_enum_macro;
 pub mod parameter;
+mod parameter_macro;
 pub mod read_set;
 pub mod scale;
 pub mod units;
@@ -37,7 +41,7 @@ pub use device::{Accessor, Device};
 pub use error::{BusError, Error, ValueError};
 pub use error_class::ErrorClass;
 pub use link::Link;
-pub use parameter::{Parameter, Readable, Writable};
+pub use parameter::{Parameter, Placement, Readable, ValueOf, Writable};
 pub use scale::{Ratio, Scale};
 
 /// Re-exported so generated crates need no direct `bitflags` dependency.

@@ -4,6 +4,7 @@
 //! [`Readable`] and [`Writable`] are implemented once per protocol the description allows the access
 //! on. A missing implementation is a compile error that reads in plain English.
 
+use crate::codec::Codec;
 use crate::device::Device;
 use crate::error::{Error, ValueError};
 use crate::link::Link;
@@ -22,14 +23,42 @@ pub trait Parameter: 'static {
     type Raw: WireValue;
     /// The engineering type users read and write (a unit newtype, enum, flags or the raw type).
     type Value;
+    /// How raw and engineering values convert (see [`crate::codec`]).
+    type Codec: Codec<Self::Raw, Self::Value>;
 
     /// Raw → engineering value.
-    fn decode(raw: Self::Raw, scale: Scale) -> Result<Self::Value, ValueError>;
+    #[inline]
+    fn decode(raw: Self::Raw, scale: Scale) -> Result<Self::Value, ValueError> {
+        Self::Codec::decode(raw, scale)
+    }
     /// Engineering → raw value; fails instead of rounding or truncating.
-    fn encode(value: Self::Value, scale: Scale) -> Result<Self::Raw, ValueError>;
+    #[inline]
+    fn encode(value: Self::Value, scale: Scale) -> Result<Self::Raw, ValueError> {
+        Self::Codec::encode(Self::NAME, value, scale)
+    }
     /// Checks a raw value against the description's range and allowed values.
     fn check(_raw: &Self::Raw) -> Result<(), ValueError> {
         Ok(())
+    }
+}
+
+/// Where a parameter is reached on one protocol, per firmware or configuration variant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Placement<A: 'static> {
+    /// The same address in every variant.
+    Everywhere(A),
+    /// The address in each variant, indexed by [`VariantId`]; `None` where the parameter is absent.
+    PerVariant(&'static [Option<A>]),
+}
+
+impl<A: Copy> Placement<A> {
+    /// The address in `variant`, or `None` if the parameter is absent there.
+    #[inline]
+    pub fn get(&self, variant: VariantId) -> Option<A> {
+        match self {
+            Placement::Everywhere(address) => Some(*address),
+            Placement::PerVariant(table) => table.get(usize::from(variant.0)).copied().flatten(),
+        }
     }
 }
 
@@ -40,8 +69,13 @@ pub trait Parameter: 'static {
     note = "its description gives it no readable address for this protocol (write-only, or another protocol only)"
 )]
 pub trait Readable<P: Protocol>: Parameter {
+    /// Where the parameter is read from.
+    const READ_AT: Placement<P::Address>;
     /// The address to read from in the given variant, or `None` if absent there.
-    fn read_address(variant: VariantId) -> Option<P::Address>;
+    #[inline]
+    fn read_address(variant: VariantId) -> Option<P::Address> {
+        Self::READ_AT.get(variant)
+    }
     /// The scale in force; reads the factor's inputs for run-time scaled parameters.
     fn read_scale<L: Link<Protocol = P>>(_device: &mut Device<L>) -> Result<Scale, Error> {
         Ok(Self::SCALE)
@@ -55,19 +89,31 @@ pub trait Readable<P: Protocol>: Parameter {
     note = "its description makes it read-only, or gives it no address for this protocol"
 )]
 pub trait Writable<P: Protocol>: Parameter {
+    /// Where the parameter is written to.
+    const WRITE_AT: Placement<P::Address>;
     /// The address to write to in the given variant, or `None` if absent there.
-    fn write_address(variant: VariantId) -> Option<P::Address>;
+    #[inline]
+    fn write_address(variant: VariantId) -> Option<P::Address> {
+        Self::WRITE_AT.get(variant)
+    }
     /// The scale in force; reads the factor's inputs for run-time scaled parameters.
     fn write_scale<L: Link<Protocol = P>>(_device: &mut Device<L>) -> Result<Scale, Error> {
         Ok(Self::SCALE)
     }
 }
 
+/// Proof that a raw value came off the wire; only `drivebus` can make one.
+#[derive(Debug, Clone, Copy)]
+pub struct FromWire(pub(crate) ());
+
 /// Implemented by generated open enumerations: any raw value survives a read, but building one from
 /// a number goes through the fallible `TryFrom`.
 pub trait OpenEnum: Copy + 'static {
     /// The raw integer type.
     type Raw: Copy;
+    /// Wraps any raw value, documented or not: what a read returns. Only `drivebus` holds the
+    /// [`FromWire`] it takes, so users build values through the fallible `TryFrom`.
+    fn from_raw(raw: Self::Raw, proof: FromWire) -> Self;
     /// The raw value.
     fn raw(self) -> Self::Raw;
     /// The name of the value in the description, or `None` if the drive sent an undocumented one.
@@ -76,15 +122,18 @@ pub trait OpenEnum: Copy + 'static {
 
 /// A value that can be written to parameter `P`: exactly its engineering type `P::Value`.
 ///
-/// Generated code implements it once per parameter (a blanket impl would turn a wrong unit into
-/// an unreadable type-projection error); passing volts where rpm are expected then reads as an
-/// error about the parameter.
+/// Generated code implements it once per parameter with an empty body (a blanket impl would turn
+/// a wrong unit into an unreadable type-projection error); passing volts where rpm are expected then
+/// reads as an error about the parameter.
 #[diagnostic::on_unimplemented(
     message = "`{Self}` is not a value of the parameter `{P}`",
     label = "not the parameter's value type",
     note = "the value type of a parameter is its unit newtype, enum, flags or raw integer type; see its docs"
 )]
-pub trait ValueOf<P: Parameter> {
+pub trait ValueOf<P: Parameter>: Into<P::Value> {
     /// The value as the parameter's engineering type.
-    fn into_value(self) -> P::Value;
+    #[inline]
+    fn into_value(self) -> P::Value {
+        self.into()
+    }
 }

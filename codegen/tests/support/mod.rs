@@ -1,5 +1,7 @@
-//! Shared helpers of the EDS integration tests.
+//! Shared helpers of the integration tests.
 #![allow(dead_code)] // Each test file uses part of this module.
+
+pub mod crate_build;
 
 use std::path::{Path, PathBuf};
 
@@ -21,6 +23,20 @@ pub fn canopen_descriptions() -> Vec<PathBuf> {
         d.join("profiles").join("cia301.toml"),
         d.join("profiles").join("cia402.toml"),
     ]
+}
+
+/// Every shipped description: each drive family and each profile.
+pub fn shipped_descriptions() -> Vec<PathBuf> {
+    let d = workspace_root().join("descriptions");
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(&d)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.join("device.toml").is_file())
+        .collect();
+    paths.sort();
+    paths.push(d.join("profiles").join("cia301.toml"));
+    paths.push(d.join("profiles").join("cia402.toml"));
+    paths
 }
 
 /// The valid device model of a description; panics with its diagnostics otherwise.

@@ -22,6 +22,17 @@ pub struct ObjectAddress {
     pub bytes: u16,
 }
 
+impl ObjectAddress {
+    /// Entry `index`:`subindex`, `bytes` long on the wire (0 = variable).
+    pub const fn new(index: u16, subindex: u8, bytes: u16) -> Self {
+        Self {
+            index,
+            subindex,
+            bytes,
+        }
+    }
+}
+
 /// A CANopen node id (1..=127).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct NodeId(pub u8);

@@ -31,6 +31,28 @@ pub struct ModbusAddress {
     pub word_order: WordOrder,
 }
 
+impl ModbusAddress {
+    /// A value in the input registers.
+    pub const fn input(address: u16, words: u16, word_order: WordOrder) -> Self {
+        Self {
+            table: Table::Input,
+            address,
+            words,
+            word_order,
+        }
+    }
+
+    /// A value in the holding registers.
+    pub const fn holding(address: u16, words: u16, word_order: WordOrder) -> Self {
+        Self {
+            table: Table::Holding,
+            address,
+            words,
+            word_order,
+        }
+    }
+}
+
 /// A Modbus unit (slave) id.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct UnitId(pub u8);

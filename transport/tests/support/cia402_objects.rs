@@ -4,9 +4,10 @@
 #![allow(dead_code)] // Each test file uses part of this module.
 
 use drivebus::canopen::{CanOpen, ObjectAddress};
+use drivebus::codec::{Enumerated, Plain};
 use drivebus::control::{Cia402Modes, Cia402Objects, Quirks};
-use drivebus::parameter::OpenEnum;
-use drivebus::{Parameter, Readable, Scale, ValueError, VariantId, Writable};
+use drivebus::parameter::{FromWire, OpenEnum};
+use drivebus::{Parameter, Placement, Readable, Writable};
 
 /// A mode of operation as the test's own open enum.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -14,6 +15,9 @@ pub struct Mode(pub i8);
 
 impl OpenEnum for Mode {
     type Raw = i8;
+    fn from_raw(raw: i8, _: FromWire) -> Self {
+        Mode(raw)
+    }
     fn raw(self) -> i8 {
         self.0
     }
@@ -24,47 +28,37 @@ impl OpenEnum for Mode {
 
 /// A parameter marker at object `$index`:0 of raw type `$raw`, engineering type `$value`.
 macro_rules! object {
-    ($marker:ident, $name:literal, $index:literal, $raw:ty, $value:ty, $wrap:expr, $unwrap:expr) => {
+    ($marker:ident, $name:literal, $index:literal, $raw:ty, $value:ty, $codec:ty) => {
         pub struct $marker;
         impl Parameter for $marker {
             const NAME: &'static str = $name;
             type Raw = $raw;
             type Value = $value;
-            fn decode(raw: $raw, _: Scale) -> Result<$value, ValueError> {
-                Ok($wrap(raw))
-            }
-            fn encode(value: $value, _: Scale) -> Result<$raw, ValueError> {
-                Ok($unwrap(value))
-            }
+            type Codec = $codec;
         }
         impl Readable<CanOpen> for $marker {
-            fn read_address(_: VariantId) -> Option<ObjectAddress> {
-                Some(ObjectAddress {
-                    index: $index,
-                    subindex: 0,
-                    bytes: core::mem::size_of::<$raw>() as u16,
-                })
-            }
+            const READ_AT: Placement<ObjectAddress> = Placement::Everywhere(ObjectAddress {
+                index: $index,
+                subindex: 0,
+                bytes: core::mem::size_of::<$raw>() as u16,
+            });
         }
         impl Writable<CanOpen> for $marker {
-            fn write_address(_: VariantId) -> Option<ObjectAddress> {
-                Self::read_address(VariantId::default())
-            }
+            const WRITE_AT: Placement<ObjectAddress> = Self::READ_AT;
         }
     };
 }
 
-object!(Controlword, "controlword", 0x6040, u16, u16, |r| r, |v| v);
-object!(Statusword, "statusword", 0x6041, u16, u16, |r| r, |v| v);
-object!(StoStatus, "sto_status", 0x2003, u16, u16, |r| r, |v| v);
+object!(Controlword, "controlword", 0x6040, u16, u16, Plain);
+object!(Statusword, "statusword", 0x6041, u16, u16, Plain);
+object!(StoStatus, "sto_status", 0x2003, u16, u16, Plain);
 object!(
     ModesOfOperation,
     "modes_of_operation",
     0x6060,
     i8,
     Mode,
-    Mode,
-    |m: Mode| m.0
+    Enumerated
 );
 object!(
     ModesDisplay,
@@ -72,8 +66,7 @@ object!(
     0x6061,
     i8,
     Mode,
-    Mode,
-    |m: Mode| m.0
+    Enumerated
 );
 
 /// The peer's objects, with a fault reset hold of `HOLD_MS` and, if `STO`, the STO status word.

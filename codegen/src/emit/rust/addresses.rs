@@ -1,9 +1,8 @@
-//! Per-protocol address functions: which address a parameter is read or written at, per variant.
+//! Per-protocol placements: which address a parameter is read or written at, per variant.
 
-use proc_macro2::TokenStream;
+use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
-use super::variants;
 use crate::ir::{Access, Device, ModbusAddress, ObjectAddress, Parameter, Table, WordOrder};
 
 /// Read or write.
@@ -22,34 +21,38 @@ impl Direction {
     }
 }
 
-pub fn modbus_tokens(a: &ModbusAddress) -> TokenStream {
+/// A hexadecimal literal, as the manuals write addresses.
+fn hex(value: u16) -> Literal {
+    format!("0x{value:04X}")
+        .parse()
+        .expect("a hexadecimal integer is a literal")
+}
+
+/// `(input 0x0064 1 LowFirst)` in `drivebus::parameter!` syntax.
+fn modbus_tokens(a: &ModbusAddress) -> TokenStream {
     let table = match a.table {
-        Table::Input => quote! { Input },
-        Table::Holding => quote! { Holding },
+        Table::Input => quote! { input },
+        Table::Holding => quote! { holding },
     };
     let order = match a.word_order {
         WordOrder::HighFirst => quote! { HighFirst },
         WordOrder::LowFirst => quote! { LowFirst },
     };
-    let (address, words) = (a.address, a.words);
-    quote! {
-        ::drivebus::modbus::ModbusAddress {
-            table: ::drivebus::modbus::Table::#table,
-            address: #address,
-            words: #words,
-            word_order: ::drivebus::modbus::WordOrder::#order,
-        }
-    }
+    let (address, words) = (hex(a.address), Literal::u16_unsuffixed(a.words));
+    quote! { (#table #address #words #order) }
 }
 
-pub fn object_tokens(a: &ObjectAddress, bytes: u16) -> TokenStream {
-    let (index, subindex) = (a.index, a.subindex);
-    quote! { ::drivebus::canopen::ObjectAddress { index: #index, subindex: #subindex, bytes: #bytes } }
+/// `(0x6040 0 2)`: index, subindex and size in bytes, in `drivebus::parameter!` syntax.
+fn object_tokens(a: &ObjectAddress, bytes: u16) -> TokenStream {
+    let (index, subindex) = (hex(a.index), Literal::u8_unsuffixed(a.subindex));
+    let bytes = Literal::u16_unsuffixed(bytes);
+    quote! { (#index #subindex #bytes) }
 }
 
-/// The body of `fn read_address(variant)` / `fn write_address(variant)`, or `None` if no address
-/// allows the direction (then the capability trait is not implemented at all).
-fn body<A>(
+/// Where a parameter is for one direction, in `drivebus::parameter!` syntax: one address
+/// everywhere, or a list with a slot per variant (`_` where absent). `None` if no address allows
+/// the direction (then the capability trait is not implemented at all).
+fn placement<A>(
     p: &Parameter,
     device: &Device,
     addresses: &[A],
@@ -71,36 +74,23 @@ fn body<A>(
         p.variants.is_empty() && usable.iter().all(|a| variant(a).is_none()),
     ) {
         let address = tokens(a);
-        return Some(quote! { Some(#address) });
+        return Some(address);
     }
-    let specific = usable.iter().filter_map(|a| {
-        let index = variants::index(device, variant(a).as_deref()?);
-        let address = tokens(a);
-        Some(quote! { #index => Some(#address), })
+    let per_variant = device.variants.iter().map(|v| {
+        let specific = usable
+            .iter()
+            .find(|a| variant(a).as_deref() == Some(v.name.as_str()));
+        let general = everywhere.filter(|_| p.variants.is_empty() || p.variants.contains(&v.name));
+        specific
+            .or(general)
+            .map_or_else(|| quote! { _ }, |a| tokens(a))
     });
-    let fallback = match everywhere {
-        Some(a) if p.variants.is_empty() => {
-            let address = tokens(a);
-            quote! { _ => Some(#address), }
-        }
-        Some(a) => {
-            let address = tokens(a);
-            let ids = p.variants.iter().map(|v| variants::index(device, v));
-            quote! { #( #ids )|* => Some(#address), _ => None, }
-        }
-        None => quote! { _ => None, },
-    };
-    Some(quote! {
-        match variant.0 {
-            #( #specific )*
-            #fallback
-        }
-    })
+    Some(quote! { [#( #per_variant ),*] })
 }
 
-/// `read_address` / `write_address` body for Modbus.
+/// The Modbus placement for reads or writes.
 pub fn modbus(p: &Parameter, device: &Device, direction: Direction) -> Option<TokenStream> {
-    body(
+    placement(
         p,
         device,
         &p.modbus,
@@ -111,10 +101,10 @@ pub fn modbus(p: &Parameter, device: &Device, direction: Direction) -> Option<To
     )
 }
 
-/// `read_address` / `write_address` body for CANopen.
+/// The CANopen placement for reads or writes.
 pub fn canopen(p: &Parameter, device: &Device, direction: Direction) -> Option<TokenStream> {
     let bytes = p.data_type.bytes();
-    body(
+    placement(
         p,
         device,
         &p.canopen,

@@ -1,10 +1,11 @@
 //! Open enumerations: a newtype over the raw integer with one associated constant per documented
-//! value. Unknown values survive a read; building one from a number goes through `TryFrom`.
+//! value. Unknown values survive a read; building one from a number goes through `TryFrom`. The
+//! impls every enumeration shares come from `drivebus::open_enum!`.
 
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
-use super::{doc_attrs, ident};
+use super::{doc_attrs, ident, raw_type};
 use crate::emit::{doc, ident as names};
 use crate::ir::{DataType, Enum, EnumValue, ValueClass};
 
@@ -26,7 +27,7 @@ pub fn int_literal(value: i128, ty: DataType) -> TokenStream {
 
 pub fn emit(e: &Enum) -> TokenStream {
     let name = ident(&names::camel(&e.name));
-    let raw = syn::parse_str::<syn::Type>(&e.data_type.rust_type()).expect("integer type");
+    let raw = raw_type(e.data_type);
     let intro = doc::escape(e.doc.as_deref().unwrap_or(&e.name));
     let docs = doc_attrs(&format!("{intro}\n\nOpen enumeration over `{}`: values the description does not list survive reads.", e.data_type.name()));
     let consts: Vec<_> = e
@@ -60,15 +61,6 @@ pub fn emit(e: &Enum) -> TokenStream {
             /// Every documented value.
             pub const VALUES: &'static [Self] = &[#( Self::#consts ),*];
 
-            /// Wraps any raw value; only reads use this, users go through `TryFrom`.
-            #[allow(dead_code)]
-            pub(crate) const fn from_raw(raw: #raw) -> Self {
-                Self(raw)
-            }
-            /// The raw value.
-            pub const fn raw(self) -> #raw {
-                self.0
-            }
             /// The description's name for the value, `None` for an undocumented value.
             pub const fn name(self) -> Option<&'static str> {
                 match self.0 {
@@ -76,43 +68,10 @@ pub fn emit(e: &Enum) -> TokenStream {
                     _ => None,
                 }
             }
-            /// Whether the description documents this value.
-            pub const fn is_known(self) -> bool {
-                self.name().is_some()
-            }
             #error_attributes
         }
 
-        impl ::core::convert::TryFrom<#raw> for #name {
-            type Error = ::drivebus::ValueError;
-            fn try_from(raw: #raw) -> Result<Self, Self::Error> {
-                let value = Self(raw);
-                if value.is_known() {
-                    Ok(value)
-                } else {
-                    Err(::drivebus::ValueError::NotAllowed { parameter: stringify!(#name), raw: raw as i128 })
-                }
-            }
-        }
-
-        impl ::core::fmt::Debug for #name {
-            fn fmt(&self, f: &mut ::core::fmt::Formatter<'_>) -> ::core::fmt::Result {
-                match self.name() {
-                    Some(name) => f.write_str(name),
-                    None => write!(f, "{}({})", stringify!(#name), self.0),
-                }
-            }
-        }
-
-        impl ::drivebus::parameter::OpenEnum for #name {
-            type Raw = #raw;
-            fn raw(self) -> #raw {
-                self.0
-            }
-            fn name(self) -> Option<&'static str> {
-                #name::name(self)
-            }
-        }
+        ::drivebus::open_enum!(#name: #raw);
     }
 }
 

@@ -3,13 +3,13 @@
 use proc_macro2::TokenStream;
 use quote::quote;
 
-use super::{doc_attrs, ident};
+use super::{doc_attrs, ident, raw_type};
 use crate::emit::{doc, ident as names};
 use crate::ir::{Device, Flags};
 
 pub fn emit(f: &Flags, device: &Device) -> TokenStream {
     let name = ident(&names::camel(&f.name));
-    let raw = syn::parse_str::<syn::Type>(&f.data_type.rust_type()).expect("integer type");
+    let raw = raw_type(f.data_type);
     let docs = doc_attrs(&format!(
         "{}\n\nBit-field word over `{}`; bits the description does not name are kept.",
         doc::escape(f.doc.as_deref().unwrap_or(&f.name)),
@@ -33,7 +33,7 @@ pub fn emit(f: &Flags, device: &Device) -> TokenStream {
         match field.enumeration.as_deref().and_then(|e| device.enumeration(e)) {
             Some(e) => {
                 let ty = ident(&names::camel(&e.name));
-                let e_raw = syn::parse_str::<syn::Type>(&e.data_type.rust_type()).expect("integer type");
+                let e_raw = raw_type(e.data_type);
                 quote! { #d pub const fn #method(&self) -> #ty { #ty::from_raw(((self.bits() >> #lsb) & #mask) as #e_raw) } }
             }
             None => quote! { #d pub const fn #method(&self) -> #raw { (self.bits() >> #lsb) & #mask } },

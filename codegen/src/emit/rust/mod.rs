@@ -11,20 +11,36 @@ mod parameter;
 mod parameter_doc;
 mod variants;
 
-use proc_macro2::{Ident, Span, TokenStream};
+use proc_macro2::{Delimiter, Group, Ident, Literal, Span, TokenStream, TokenTree};
 use quote::quote;
 
-use crate::ir::Device;
+use crate::ir::{DataType, Device};
 
 /// An identifier token from an already-sanitized string.
 pub(crate) fn ident(name: &str) -> Ident {
     Ident::new(name, Span::call_site())
 }
 
-/// `#[doc = "..."]` lines from escaped text.
+/// The Rust type of a raw value, built as tokens (no string parsing on the hot path).
+pub(crate) fn raw_type(data_type: DataType) -> TokenStream {
+    match data_type {
+        DataType::String(n) | DataType::Octets(n) => {
+            let n = Literal::usize_unsuffixed(n as usize);
+            quote! { ::drivebus::value::Text<#n> }
+        }
+        scalar => {
+            let name = ident(&scalar.rust_type());
+            quote! { #name }
+        }
+    }
+}
+
+/// One `#[doc = "..."]` attribute from escaped text: a single attribute instead of one per line
+/// keeps the token stream (and so the generator's parse time) small.
 pub(crate) fn doc_attrs(text: &str) -> TokenStream {
-    let lines = text.lines().map(|l| format!(" {l}"));
-    quote! { #( #[doc = #lines] )* }
+    let doc: String = text.lines().map(|l| format!(" {l}\n")).collect();
+    let doc = doc.strip_suffix('\n').unwrap_or_default();
+    quote! { #[doc = #doc] }
 }
 
 /// Generates the Rust source of a drive crate's items. `origin` names the description in the
@@ -39,36 +55,59 @@ pub fn generate(device: &Device, origin: &str) -> String {
     header + &prettyplease::unparse(&file)
 }
 
-fn tokens(device: &Device) -> TokenStream {
-    let variants = variants::emit(device);
-    let enums = device.enums.iter().map(enums::emit);
-    let flags = device.flags.iter().map(|f| flags::emit(f, device));
-    let params = device.parameters.iter().map(|p| parameter::emit(p, device));
-    let handle = handle::emit(device);
+/// The generated items as tokens, before parsing and printing (public for the stage benchmark).
+#[doc(hidden)]
+pub fn tokens(device: &Device) -> TokenStream {
+    let types = concat(
+        device
+            .enums
+            .iter()
+            .map(enums::emit)
+            .chain(device.flags.iter().map(|f| flags::emit(f, device))),
+    );
+    let params = concat(
+        std::iter::once(quote! {
+            #[allow(unused_imports)]
+            use super::types;
+            // Lower-case, so it cannot collide with a (camel-case) parameter marker.
+            #[allow(unused_imports)]
+            use ::drivebus as db;
+        })
+        .chain(device.parameters.iter().map(|p| parameter::emit(p, device))),
+    );
     let control = (!device.device.is_profile).then(|| {
         control::emit(
             device,
             &ident(&crate::emit::ident::camel(&device.device.handle)),
         )
     });
-    quote! {
-        #variants
+    concat([
+        variants::emit(device),
+        quote! {
+            /// Enumerations and bit-field words shared by the parameters.
+            pub mod types
+        },
+        braced(types),
+        quote! {
+            /// One marker type per parameter, implementing its value codec and per-protocol access.
+            pub mod params
+        },
+        braced(params),
+        handle::emit(device),
+        control.unwrap_or_default(),
+    ])
+}
 
-        /// Enumerations and bit-field words shared by the parameters.
-        pub mod types {
-            #( #enums )*
-            #( #flags )*
-        }
+/// Concatenates token streams by moving them. Interpolating with `#stream` clones every token, and
+/// cloning an identifier allocates; for thousands of parameters that copying dominated the
+/// generator's time.
+pub(crate) fn concat(parts: impl IntoIterator<Item = TokenStream>) -> TokenStream {
+    let mut out = TokenStream::new();
+    out.extend(parts);
+    out
+}
 
-        /// One marker type per parameter, implementing its value codec and per-protocol access.
-        pub mod params {
-            #[allow(unused_imports)]
-            use super::types;
-            #( #params )*
-        }
-
-        #handle
-
-        #control
-    }
+/// `{ body }` as one token, built by moving `body`.
+pub(crate) fn braced(body: TokenStream) -> TokenStream {
+    TokenTree::Group(Group::new(Delimiter::Brace, body)).into()
 }

@@ -7,15 +7,6 @@ use super::{doc_attrs, ident};
 use crate::emit::{doc, ident as names};
 use crate::ir::Device;
 
-/// The variant index of a name (0 when the device has no variants).
-pub fn index(device: &Device, name: &str) -> u16 {
-    device
-        .variants
-        .iter()
-        .position(|v| v.name == name)
-        .unwrap_or(0) as u16
-}
-
 pub fn emit(device: &Device) -> TokenStream {
     if device.variants.is_empty() {
         return quote! {};

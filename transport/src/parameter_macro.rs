@@ -1,0 +1,100 @@
+//! `parameter!`: the trait impls of one generated parameter marker, from a one-line declaration.
+//!
+//! Generated crates declare each marker struct themselves (with its docs) and then invoke this
+//! macro for its `Parameter`, `ValueOf` and capability impls. Writing the impls once here instead of
+//! in every generated crate keeps those crates small to generate and to compile.
+
+/// Implements [`Parameter`](crate::Parameter), [`ValueOf`](crate::ValueOf) and the
+/// [`Readable`](crate::Readable) / [`Writable`](crate::Writable) capabilities for a marker type.
+///
+/// ```
+/// # use drivebus::parameter;
+/// /// DC link voltage.
+/// pub struct BusDcLink;
+/// parameter!(BusDcLink = "bus_dc_link": u16 => drivebus::units::Volts, InUnit, scale(1, 100, 0, 1);
+///     read modbus (input 0x64 1 LowFirst));
+/// ```
+///
+/// After the name, raw type, value type and [`codec`](crate::codec) come optional clauses:
+/// `scale(numerator, denominator, offset numerator, offset denominator)`, `range(min, max)` and
+/// `one_of[values]` (raw values). Then one clause per capability: `read` or `write`, the protocol
+/// (`modbus` or `canopen`), and the placement — one address, `(input|holding address words order)`
+/// or `(index subindex bytes)`, or a list with one slot per variant, `_` where absent. A trailing
+/// `runtime` makes the capability take its scale from the marker's inherent `runtime_scale`.
+#[macro_export]
+macro_rules! parameter {
+    (
+        $name:ident = $param_name:literal : $raw:ty => $value:ty, $codec:ident
+        $(, scale($num:expr, $den:expr, $off_num:expr, $off_den:expr))?
+        $(, range($min:expr, $max:expr))?
+        $(, one_of[$($allowed:expr),*])?
+        $(; $direction:ident $protocol:ident $placement:tt $($runtime:ident)?)*
+        $(;)?
+    ) => {
+        impl $crate::Parameter for $name {
+            const NAME: &'static str = $param_name;
+            $(const SCALE: $crate::Scale = $crate::Scale::fixed($num, $den, $off_num, $off_den);)?
+            type Raw = $raw;
+            type Value = $value;
+            type Codec = $crate::codec::$codec;
+            #[allow(unused_variables)]
+            fn check(raw: &$raw) -> Result<(), $crate::ValueError> {
+                $($crate::check::in_range(Self::NAME, *raw, $min, $max)?;)?
+                $($crate::check::one_of(Self::NAME, *raw, &[$($allowed),*])?;)?
+                Ok(())
+            }
+        }
+
+        #[diagnostic::do_not_recommend]
+        impl $crate::ValueOf<$name> for $value {}
+
+        $($crate::parameter!(@capability $name $direction $protocol $placement $($runtime)?);)*
+    };
+
+    (@capability $name:ident read $protocol:ident $placement:tt $($runtime:ident)?) => {
+        // Listing the other parameters that do have the capability would drown the message.
+        #[diagnostic::do_not_recommend]
+        impl $crate::Readable<$crate::parameter!(@protocol $protocol)> for $name {
+            const READ_AT: $crate::Placement<$crate::parameter!(@address_type $protocol)> =
+                $crate::parameter!(@placement $protocol $placement);
+            $($crate::parameter!(@runtime $runtime read_scale $protocol);)?
+        }
+    };
+    (@capability $name:ident write $protocol:ident $placement:tt $($runtime:ident)?) => {
+        #[diagnostic::do_not_recommend]
+        impl $crate::Writable<$crate::parameter!(@protocol $protocol)> for $name {
+            const WRITE_AT: $crate::Placement<$crate::parameter!(@address_type $protocol)> =
+                $crate::parameter!(@placement $protocol $placement);
+            $($crate::parameter!(@runtime $runtime write_scale $protocol);)?
+        }
+    };
+
+    (@runtime runtime $scale_fn:ident $protocol:ident) => {
+        fn $scale_fn<L: $crate::Link<Protocol = $crate::parameter!(@protocol $protocol)>>(
+            device: &mut $crate::Device<L>,
+        ) -> Result<$crate::Scale, $crate::Error> {
+            Self::runtime_scale(device)
+        }
+    };
+
+    (@protocol modbus) => { $crate::modbus::Modbus };
+    (@protocol canopen) => { $crate::canopen::CanOpen };
+    (@address_type modbus) => { $crate::modbus::ModbusAddress };
+    (@address_type canopen) => { $crate::canopen::ObjectAddress };
+
+    (@placement $protocol:ident [$($slot:tt),* $(,)?]) => {
+        $crate::Placement::PerVariant(&[$($crate::parameter!(@slot $protocol $slot)),*])
+    };
+    (@placement $protocol:ident $address:tt) => {
+        $crate::Placement::Everywhere($crate::parameter!(@address $protocol $address))
+    };
+    (@slot $protocol:ident _) => { None };
+    (@slot $protocol:ident $address:tt) => { Some($crate::parameter!(@address $protocol $address)) };
+
+    (@address modbus ($table:ident $address:literal $words:literal $order:ident)) => {
+        $crate::modbus::ModbusAddress::$table($address, $words, $crate::modbus::WordOrder::$order)
+    };
+    (@address canopen ($index:literal $subindex:literal $bytes:literal)) => {
+        $crate::canopen::ObjectAddress::new($index, $subindex, $bytes)
+    };
+}
