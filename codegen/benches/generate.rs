@@ -1,5 +1,6 @@
 //! Generator speed: load + validate + emit every shipped description (target: under 50 ms for all
-//! together in release). Reported with the load+validate step alone as the baseline ratio.
+//! together in release). Reported with the load+validate step alone as the baseline ratio, and
+//! the emit stages (tokens, `syn` parse, prettyplease) each on their own.
 
 use std::path::{Path, PathBuf};
 
@@ -41,9 +42,50 @@ fn generate_all(c: &mut Criterion) {
     });
 }
 
+/// The three emit stages alone, over already-checked models: where the emit time goes.
+fn stages(c: &mut Criterion) {
+    let devices: Vec<_> = shipped()
+        .iter()
+        .map(|p| {
+            drivegen::check(p)
+                .device
+                .expect("shipped descriptions are valid")
+        })
+        .collect();
+    let tokens: Vec<_> = devices.iter().map(drivegen::emit::rust::tokens).collect();
+    let files: Vec<syn::File> = tokens
+        .iter()
+        .map(|t| syn::parse2(t.clone()).unwrap())
+        .collect();
+    c.bench_function("stage: build tokens", |b| {
+        b.iter(|| {
+            devices
+                .iter()
+                .map(|d| drivegen::emit::rust::tokens(d).is_empty() as usize)
+                .sum::<usize>()
+        })
+    });
+    c.bench_function("stage: syn parse", |b| {
+        b.iter(|| {
+            tokens
+                .iter()
+                .map(|t| syn::parse2::<syn::File>(t.clone()).unwrap().items.len())
+                .sum::<usize>()
+        })
+    });
+    c.bench_function("stage: prettyplease", |b| {
+        b.iter(|| {
+            files
+                .iter()
+                .map(|f| prettyplease::unparse(f).len())
+                .sum::<usize>()
+        })
+    });
+}
+
 criterion_group! {
     name = benches;
     config = Criterion::default().sample_size(20).measurement_time(std::time::Duration::from_secs(3));
-    targets = generate_all
+    targets = generate_all, stages
 }
 criterion_main!(benches);
