@@ -681,20 +681,51 @@ impl Lowering<'_> {
         }
     }
 
-    fn access(
+    /// A Modbus address's access: `r`, `w` or `rw` (the default depends on the table).
+    fn modbus_access(
         &mut self,
         text: Option<&str>,
         span: &Span,
         default: ir::Access,
-    ) -> Option<(ir::Access, bool)> {
+    ) -> Option<ir::Access> {
         Some(match text {
-            None => (default, false),
+            None => default,
+            Some("r") => ir::Access::READ,
+            Some("w") => ir::Access::WRITE,
+            Some("rw") => ir::Access::READ_WRITE,
+            Some(other) => {
+                let help = if matches!(other, "ro" | "wo" | "rwr" | "rww" | "const") {
+                    format!("`{other}` is a CANopen access type; a Modbus address takes \"r\", \"w\" or \"rw\"")
+                } else {
+                    "use \"r\", \"w\" or \"rw\"".to_owned()
+                };
+                self.error_help(
+                    VALUE_RULE,
+                    span.clone(),
+                    format!("unknown Modbus access `{other}`"),
+                    &help,
+                );
+                return None;
+            }
+        })
+    }
+
+    /// A CANopen (or RS-232) object's access, and whether it is `const`: the CiA 306 spellings
+    /// plus `r` / `w`.
+    fn object_access(&mut self, text: Option<&str>, span: &Span) -> Option<(ir::Access, bool)> {
+        Some(match text {
+            None => (ir::Access::READ_WRITE, false),
             Some("r" | "ro") => (ir::Access::READ, false),
             Some("w" | "wo") => (ir::Access::WRITE, false),
             Some("rw" | "rwr" | "rww") => (ir::Access::READ_WRITE, false),
             Some("const") => (ir::Access::READ, true),
             Some(other) => {
-                self.error_help(VALUE_RULE, span.clone(), format!("unknown access `{other}`"), "use \"r\", \"w\" or \"rw\" (CANopen also \"ro\", \"wo\", \"rwr\", \"rww\", \"const\")");
+                self.error_help(
+                    VALUE_RULE,
+                    span.clone(),
+                    format!("unknown access `{other}`"),
+                    "use \"ro\", \"wo\", \"rw\", \"rwr\", \"rww\" or \"const\" (or \"r\", \"w\")",
+                );
                 return None;
             }
         })
@@ -734,7 +765,7 @@ impl Lowering<'_> {
         } else {
             ir::Access::READ_WRITE
         };
-        let (access, _) = self.access(raw.access.as_deref(), span, default_access)?;
+        let access = self.modbus_access(raw.access.as_deref(), span, default_access)?;
         Some(ir::ModbusAddress {
             table,
             address,
@@ -754,8 +785,7 @@ impl Lowering<'_> {
         let spanned = |v: i64| Spanned::new(span.range.clone(), v);
         let index = self.int_in::<u16>(&spanned(raw.index), "object index")?;
         let subindex = self.int_in::<u8>(&spanned(raw.subindex.unwrap_or(0)), "subindex")?;
-        let (access, constant) =
-            self.access(raw.access.as_deref(), span, ir::Access::READ_WRITE)?;
+        let (access, constant) = self.object_access(raw.access.as_deref(), span)?;
         let pdo = match &raw.pdo {
             None | Some(RawPdo::Flag(false)) => ir::Pdo::None,
             Some(RawPdo::Flag(true)) => ir::Pdo::Both,
