@@ -40,6 +40,8 @@ pub enum CliError {
     Usage(String),
     /// I/O on files or sockets.
     Io(String),
+    /// `diff` found changes that break code written against the old description.
+    Breaking(usize),
 }
 
 impl fmt::Display for CliError {
@@ -73,6 +75,10 @@ impl fmt::Display for CliError {
                 cause,
             } => write!(f, "{parameter}: {target}: {cause}"),
             CliError::Usage(text) | CliError::Io(text) => write!(f, "{text}"),
+            CliError::Breaking(count) => write!(
+                f,
+                "{count} breaking change(s): code written against the old description may not compile"
+            ),
         }
     }
 }

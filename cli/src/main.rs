@@ -28,6 +28,8 @@ enum Command {
     Check(commands::check::Args),
     /// Print the normalized device model (a table, or the IR JSON with --json).
     Dump(commands::dump::Args),
+    /// Compare two descriptions: what changed, and whether it breaks code (exit code 1 if so).
+    Diff(commands::diff::Args),
     /// Generate a standalone drive crate (Cargo.toml + src/lib.rs) into a folder.
     Generate(commands::generate::Args),
     /// Simulate the described drive on Modbus TCP, Modbus RTU or CANopen until interrupted.
@@ -48,6 +50,7 @@ fn main() -> ExitCode {
     let result = match Cli::parse().command {
         Command::Check(args) => commands::check::run(args),
         Command::Dump(args) => commands::dump::run(args),
+        Command::Diff(args) => commands::diff::run(args),
         Command::Generate(args) => commands::generate::run(args),
         Command::Sim(args) => commands::sim::run(args),
         Command::Read(args) => commands::read::run(args),

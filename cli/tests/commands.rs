@@ -353,3 +353,39 @@ fn two_word_values_are_written_word_by_word_without_fc16() {
     assert!(output.status.success(), "{}", stderr(&output));
     assert_eq!(raw(&sim, "s_ramp_jerk_acceleration"), 1_000_000);
 }
+
+#[test]
+fn diff_classifies_changes_and_fails_only_on_breaking_ones() {
+    let lafert = lafert_path();
+    let lafert = lafert.to_str().unwrap();
+    let same = drivegen(&["diff", lafert, lafert]);
+    assert!(same.status.success(), "{}", stderr(&same));
+    assert_eq!(stdout(&same), "no changes\n");
+
+    let original = std::fs::read_to_string(lafert_path().join("device.toml")).unwrap();
+    let profiles = lafert_path().join("../profiles/");
+    let changed = original
+        .replace("\"../profiles/", &format!("\"{}/", profiles.display()))
+        .replace(
+            "unit = \"V\"\nscale = \"1/100\"\nmodbus = { table = \"input\", address = 0x0064",
+            "unit = \"mV\"\nscale = \"10\"\nmodbus = { table = \"input\", address = 0x0064",
+        );
+    assert_ne!(changed, original, "the edit applies to bus_dc_link");
+    let dir = std::env::temp_dir().join(format!("drivegen-diff-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("device.toml"), changed).unwrap();
+    let output = drivegen(&["diff", lafert, dir.to_str().unwrap()]);
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert_eq!(output.status.code(), Some(1), "{}", stderr(&output));
+    assert_eq!(
+        stdout(&output),
+        "breaking (1):\n  parameter `bus_dc_link`: value type `Volts` → `Millivolts`\n\
+         behaviour (1):\n  parameter `bus_dc_link`: scale 1/100 → 10\n\
+         2 change(s), 1 breaking\n"
+    );
+    assert!(
+        stderr(&output).contains("1 breaking change(s)"),
+        "{}",
+        stderr(&output)
+    );
+}

@@ -6,12 +6,14 @@
 //!   lowers them to the [`ir`], reporting malformed values;
 //! * [`validate`] runs one pass per rule over the IR;
 //! * [`emit`] turns a valid IR into Rust source;
+//! * [`diff`] compares two descriptions and classifies each change by its impact on user code;
 //! * [`eds`] reads CiA 306 EDS / DCF files (alone or under a TOML overlay) and writes EDS files;
 //! * [`Builder`] is the `build.rs` entry point of drive crates.
 #![deny(missing_docs)]
 
 mod builder;
 pub mod diagnostic;
+pub mod diff;
 pub mod eds;
 pub mod emit;
 pub mod ir;

@@ -2,6 +2,7 @@
 
 pub mod check;
 pub mod decode;
+pub mod diff;
 pub mod dump;
 pub mod eds;
 pub mod generate;

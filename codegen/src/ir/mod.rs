@@ -6,10 +6,12 @@
 mod data_type;
 mod expr;
 mod number;
+mod value_type;
 
 pub use data_type::DataType;
 pub use expr::{Expr, ExprError, Op};
 pub use number::Number;
+pub use value_type::ValueType;
 
 use serde::Serialize;
 

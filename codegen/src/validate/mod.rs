@@ -78,23 +78,34 @@ file = "manual.txt"
 title = "Manual"
 "#;
 
-    /// Diagnostics of `HEADER + body`, keeping only those of `rule`.
-    pub fn diagnostics(rule: &str, body: &str) -> Vec<Diagnostic> {
-        let dir = std::env::temp_dir().join(format!(
-            "drivegen-test-{}-{rule}-{}",
-            std::process::id(),
-            unique()
-        ));
+    /// The whole check of `HEADER + body`.
+    pub fn checked(body: &str) -> crate::Checked {
+        let dir =
+            std::env::temp_dir().join(format!("drivegen-test-{}-{}", std::process::id(), unique()));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("device.toml");
         std::fs::write(&path, format!("{HEADER}{body}")).unwrap();
         let checked = crate::check(&path);
         std::fs::remove_dir_all(&dir).unwrap();
         checked
+    }
+
+    /// Diagnostics of `HEADER + body`, keeping only those of `rule`.
+    pub fn diagnostics(rule: &str, body: &str) -> Vec<Diagnostic> {
+        checked(body)
             .diagnostics
             .into_iter()
             .filter(|d| d.rule == rule)
             .collect()
+    }
+
+    /// The device model of `HEADER + body`, which must be valid.
+    pub fn device(body: &str) -> crate::ir::Device {
+        let checked = checked(body);
+        match checked.device {
+            Some(device) => device,
+            None => panic!("invalid test description:\n{}", checked.render()),
+        }
     }
 
     fn unique() -> u64 {

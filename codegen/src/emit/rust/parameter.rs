@@ -11,7 +11,7 @@ use super::addresses::{self, Direction};
 use super::enums::int_literal;
 use super::{concat, doc_attrs, ident, parameter_doc, raw_type};
 use crate::emit::ident as names;
-use crate::ir::{Device, Expr, Number, Op, Parameter, Scale};
+use crate::ir::{Device, Expr, Number, Op, Parameter, Scale, ValueType};
 use crate::validate::scale_inputs_exist::{inputs_readable, readable_canopen, readable_modbus};
 
 fn number(n: Number, p: &Parameter) -> TokenStream {
@@ -44,23 +44,21 @@ impl ValueCodec {
 }
 
 fn value_codec(p: &Parameter) -> ValueCodec {
-    if let Some(e) = &p.enumeration {
-        let ty = ident(&names::camel(e));
-        return ValueCodec::new(quote! { types::#ty }, "Enumerated");
-    }
-    if let Some(f) = &p.flags {
-        let ty = ident(&names::camel(f));
-        return ValueCodec::new(quote! { types::#ty }, "Flags");
-    }
-    let unit = p
-        .unit
-        .as_deref()
-        .and_then(drivebus::units::type_name)
-        .map(ident);
-    match (unit, p.scale.is_some()) {
-        (Some(unit), _) => ValueCodec::new(quote! { db::units::#unit }, "InUnit"),
-        (None, true) => ValueCodec::new(quote! { f64 }, "Scaled"),
-        (None, false) => ValueCodec::new(raw_type(p.data_type), "Plain"),
+    match p.value_type() {
+        ValueType::Enum(e) => {
+            let ty = ident(&names::camel(e));
+            ValueCodec::new(quote! { types::#ty }, "Enumerated")
+        }
+        ValueType::Flags(f) => {
+            let ty = ident(&names::camel(f));
+            ValueCodec::new(quote! { types::#ty }, "Flags")
+        }
+        ValueType::Unit(unit) => {
+            let unit = ident(unit);
+            ValueCodec::new(quote! { db::units::#unit }, "InUnit")
+        }
+        ValueType::Scaled => ValueCodec::new(quote! { f64 }, "Scaled"),
+        ValueType::Raw(data_type) => ValueCodec::new(raw_type(data_type), "Plain"),
     }
 }
 
