@@ -23,6 +23,7 @@
 use super::address::NodeId;
 use super::link::SdoBus;
 use crate::error::{BusError, ValueError};
+use crate::parameter::Parameter;
 
 /// One mapped object: which entry, and how many bits of the payload it takes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -138,6 +139,16 @@ impl PdoValue for f32 {
     }
     fn to_raw(self) -> u64 {
         u64::from(self.to_bits())
+    }
+}
+
+impl PdoValue for f64 {
+    const BITS: u8 = 64;
+    fn from_raw(raw: u64, _bits: u8) -> Self {
+        f64::from_bits(raw)
+    }
+    fn to_raw(self) -> u64 {
+        self.to_bits()
     }
 }
 
@@ -269,6 +280,57 @@ impl<const N: usize> PdoLayout<N> {
         word |= (raw & mask(bits)) << offset;
         *payload = word.to_le_bytes();
         Ok(())
+    }
+}
+
+/// Entry `i` of `payload` as parameter `P`'s engineering value, through its fixed scale.
+/// Generated PDO structs decode their fields with this.
+pub fn decode_entry<P: Parameter, const N: usize>(
+    layout: &PdoLayout<N>,
+    payload: &[u8],
+    i: usize,
+) -> Result<P::Value, ValueError>
+where
+    P::Raw: PdoValue,
+{
+    P::decode(layout.get(payload, i)?, P::SCALE)
+}
+
+/// Sets entry `i` of `payload` to parameter `P`'s engineering value, refusing what the
+/// parameter's range or the entry's width would not hold.
+pub fn encode_entry<P: Parameter, const N: usize>(
+    layout: &PdoLayout<N>,
+    payload: &mut [u8; 8],
+    i: usize,
+    value: P::Value,
+) -> Result<(), ValueError>
+where
+    P::Raw: PdoValue,
+{
+    let raw = P::encode(value, P::SCALE)?;
+    P::check(&raw)?;
+    layout.set(payload, i, raw)
+}
+
+/// The bytes of one PDO: up to 8, as many as its mapping covers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Payload {
+    bytes: [u8; 8],
+    len: u8,
+}
+
+impl Payload {
+    /// The first `len` bytes of `bytes` (at most 8).
+    pub const fn new(bytes: [u8; 8], len: usize) -> Self {
+        Self {
+            bytes,
+            len: if len > 8 { 8 } else { len as u8 },
+        }
+    }
+
+    /// The payload, ready for a CAN frame.
+    pub fn as_bytes(&self) -> &[u8] {
+        &self.bytes[..usize::from(self.len)]
     }
 }
 
