@@ -114,3 +114,56 @@ fn an_eds_with_errors_is_not_imported() {
     let text = error.expect_err("no DataType").to_string();
     assert!(text.contains("has no DataType"), "{text}");
 }
+
+#[test]
+fn an_overlay_adds_pdo_layouts_over_eds_objects() {
+    let d = device(Path::new("tests/fixtures/overlay"));
+    let layouts: Vec<_> = d
+        .pdos
+        .iter()
+        .map(|m| {
+            (
+                m.name.as_str(),
+                m.cob_id.value,
+                m.cob_id.plus_node_id,
+                m.entries.clone(),
+            )
+        })
+        .collect();
+    assert_eq!(
+        layouts,
+        [
+            ("tpdo1", 0x180, true, vec!["vendor_torque".to_owned()]),
+            ("rpdo1", 0x200, true, vec!["controlword".to_owned()]),
+        ]
+    );
+    let code = drivegen::emit::rust::generate(&d, "overlay");
+    assert!(code.contains("pub struct Tpdo1"), "{code}");
+    assert!(code.contains("MappedObject::new(0x2001, 0, 16)"), "{code}");
+}
+
+#[test]
+fn an_overlay_pdo_entry_naming_no_eds_object_points_at_the_overlay() {
+    let scratch = Scratch::new("eds-overlay-pdo");
+    let fixture = Path::new("tests/fixtures/overlay");
+    std::fs::copy(fixture.join("drive.eds"), scratch.0.join("drive.eds")).unwrap();
+    let overlay = std::fs::read_to_string(fixture.join("device.toml"))
+        .unwrap()
+        .replace(
+            "entries = [\"vendor_torque\"]",
+            "entries = [\"vendor_torq\"]",
+        );
+    std::fs::write(scratch.0.join("device.toml"), overlay).unwrap();
+    let checked = drivegen::check(&scratch.0);
+    assert!(checked.device.is_none());
+    let text = checked.render();
+    assert!(
+        text.contains("error[pdo_entries_are_mappable]: PDO `tpdo1` maps `vendor_torq`, which is not a parameter"),
+        "{text}"
+    );
+    assert!(
+        text.contains("device.toml:"),
+        "points at the overlay: {text}"
+    );
+    assert!(text.contains("entries = [\"vendor_torq\"]"), "{text}");
+}

@@ -7,6 +7,7 @@
 //! *compatible* for pure additions.
 
 mod parameters;
+mod pdos;
 #[cfg(test)]
 mod tests;
 mod types;
@@ -53,6 +54,7 @@ pub fn diff(old: &Device, new: &Device) -> Vec<Change> {
     let mut changes = Vec::new();
     types::device(old, new, &mut changes);
     parameters::compare(&old.parameters, &new.parameters, &mut changes);
+    pdos::compare(&old.pdos, &new.pdos, &mut changes);
     types::enums(&old.enums, &new.enums, &mut changes);
     types::flags(&old.flags, &new.flags, &mut changes);
     changes.sort_by(|a, b| (a.impact, &a.subject).cmp(&(b.impact, &b.subject)));

@@ -149,3 +149,26 @@ fn enum_values_removed_break_added_are_compatible_renumbered_are_behaviour() {
     );
     assert!(text.ends_with("3 change(s), 1 breaking\n"), "{text}");
 }
+
+#[test]
+fn pdo_entries_changed_break_and_a_new_cob_id_is_behaviour() {
+    let status = "[[parameter]]\nname = \"status\"\ntype = \"u16\"\ncanopen = { index = 0x6041, pdo = \"tx\" }\nsource = { doc = \"m\", line = 1 }\n[[parameter]]\nname = \"position\"\ntype = \"i32\"\ncanopen = { index = 0x6064, pdo = \"tx\" }\nsource = { doc = \"m\", line = 2 }\n";
+    let pdo = |entries: &str, cob: &str| {
+        format!("{status}[[pdo]]\nname = \"tpdo1\"\ndirection = \"tx\"\nnumber = 1\ncob_id = \"{cob}\"\nentries = {entries}\nsource = {{ doc = \"m\", line = 3 }}\n")
+    };
+    let old = pdo("[\"status\"]", "$NODEID+0x180");
+    assert_eq!(
+        changes(&old, &pdo("[\"status\", \"position\"]", "$NODEID+0x180")),
+        [(
+            Impact::Breaking,
+            "PDO `tpdo1`: entries status → status, position".into()
+        )]
+    );
+    let moved = changes(&old, &pdo("[\"status\"]", "$NODEID+0x280"));
+    assert_eq!(moved.len(), 1, "{moved:?}");
+    assert_eq!(moved[0].0, Impact::Behaviour);
+    assert!(
+        moved[0].1.contains("COB-ID 0x180 + node id") && moved[0].1.contains("0x280"),
+        "{moved:?}"
+    );
+}

@@ -14,7 +14,7 @@ mod encoding;
 mod export;
 mod import;
 mod lower;
-mod node_id;
+pub(crate) mod node_id;
 mod parse;
 mod short_text;
 
@@ -145,6 +145,7 @@ pub fn empty_device(name: &str, model: &EdsModel) -> ir::Device {
         parameters: Vec::new(),
         cia402: None,
         state_machine: None,
+        pdos: Vec::new(),
     }
 }
 

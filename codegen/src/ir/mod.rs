@@ -6,11 +6,13 @@
 mod data_type;
 mod expr;
 mod number;
+mod pdo;
 mod value_type;
 
 pub use data_type::DataType;
 pub use expr::{Expr, ExprError, Op};
 pub use number::Number;
+pub use pdo::{pdo_bits, CobId, PdoDirection, PdoMapping};
 pub use value_type::ValueType;
 
 use serde::Serialize;
@@ -47,6 +49,9 @@ pub struct Device {
     pub cia402: Option<Cia402>,
     /// A vendor state machine (`[state_machine]`, `[[state]]`, `[[transition]]`), if declared.
     pub state_machine: Option<StateMachine>,
+    /// Declared PDO mappings (left out of the JSON when there are none).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub pdos: Vec<PdoMapping>,
 }
 
 /// How the drive deviates from the CiA 402 state machine.

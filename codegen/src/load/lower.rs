@@ -6,6 +6,8 @@ use std::collections::{BTreeMap, BTreeSet};
 
 #[path = "lower_control.rs"]
 mod control;
+#[path = "lower_pdo.rs"]
+mod pdo;
 
 use toml::Spanned;
 
@@ -51,6 +53,8 @@ pub fn lower(
         let keep = Filter::new(file, &mut cx);
         if i == 0 {
             cx.root_items(&file.raw, &mut device);
+        } else {
+            cx.refuse_included_pdos(&file.raw);
         }
         cx.items(&file.raw, &keep, &mut device);
     }
@@ -208,6 +212,7 @@ impl Lowering<'_> {
             parameters: Vec::new(),
             cia402: None,
             state_machine: None,
+            pdos: Vec::new(),
         })
     }
 
@@ -236,7 +241,7 @@ impl Lowering<'_> {
         }
     }
 
-    /// Identity citation, capabilities and variants come from the root file only.
+    /// Identity citation, capabilities, variants, control and PDO mappings come from the root file only.
     fn root_items(&mut self, raw: &RawFile, device: &mut ir::Device) {
         device.device.source = raw
             .device
@@ -248,6 +253,7 @@ impl Lowering<'_> {
         device.canopen = raw.canopen.as_ref().map(|c| self.canopen_caps(c));
         device.variants = raw.variant.iter().map(|v| self.variant(v)).collect();
         device.cia402 = raw.cia402.as_ref().map(|c| self.cia402(c));
+        device.pdos = raw.pdo.iter().filter_map(|p| self.pdo_mapping(p)).collect();
         device.state_machine = raw
             .state_machine
             .as_ref()

@@ -36,6 +36,8 @@ pub struct RawFile {
     pub state: Vec<Spanned<RawState>>,
     #[serde(default)]
     pub transition: Vec<Spanned<RawTransition>>,
+    #[serde(default)]
+    pub pdo: Vec<RawPdoMapping>,
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -372,4 +374,26 @@ pub struct RawTransition {
     pub command: Option<Spanned<i64>>,
     pub kind: Option<Spanned<String>>,
     pub source: Option<Spanned<RawCitation>>,
+}
+
+/// `[[pdo]]`: a PDO mapping.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawPdoMapping {
+    pub name: Spanned<String>,
+    pub doc: Option<String>,
+    pub direction: Spanned<String>,
+    pub number: Spanned<i64>,
+    pub cob_id: Spanned<RawCobId>,
+    pub transmission_type: Option<Spanned<i64>>,
+    pub entries: Spanned<Vec<String>>,
+    pub source: Option<Spanned<RawCitation>>,
+}
+
+/// A COB-ID: a number, or a text such as `"$NODEID+0x180"`.
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub enum RawCobId {
+    Number(i64),
+    Text(String),
 }

@@ -10,6 +10,9 @@ mod defaults_within_range;
 mod enum_values_fit_type;
 mod names_are_unique;
 mod parameters_have_addresses;
+mod pdo_entries_are_mappable;
+mod pdo_mappings_fit_eight_bytes;
+mod pdo_numbers_are_unique;
 mod ranges_fit_type;
 mod records_hold_their_members;
 mod references_resolve;
@@ -54,6 +57,12 @@ pub const PASSES: &[(&str, Pass)] = &[
         records_hold_their_members::check,
     ),
     ("state_machines_resolve", state_machines_resolve::check),
+    ("pdo_entries_are_mappable", pdo_entries_are_mappable::check),
+    (
+        "pdo_mappings_fit_eight_bytes",
+        pdo_mappings_fit_eight_bytes::check,
+    ),
+    ("pdo_numbers_are_unique", pdo_numbers_are_unique::check),
 ];
 
 /// Runs every pass.

@@ -1,4 +1,5 @@
-//! Every parameter, enum, flags type and record cites the manual line it comes from.
+//! Every parameter, PDO mapping, enum, flags type, record and control table cites the manual line
+//! it comes from.
 
 use crate::diagnostic::{Diagnostic, Span};
 use crate::ir::{Citation, Device};
@@ -53,7 +54,12 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
         .cia402
         .iter()
         .map(|c| ("table", &cia402_name, &c.span, &c.source));
+    let pdos = device
+        .pdos
+        .iter()
+        .map(|m| ("PDO", &m.name, &m.span, &m.source));
     parameters
+        .chain(pdos)
         .chain(enums)
         .chain(flags)
         .chain(records)

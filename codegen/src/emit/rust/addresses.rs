@@ -22,7 +22,7 @@ impl Direction {
 }
 
 /// A hexadecimal literal, as the manuals write addresses.
-fn hex(value: u16) -> Literal {
+pub(super) fn hex(value: u16) -> Literal {
     format!("0x{value:04X}")
         .parse()
         .expect("a hexadecimal integer is a literal")

@@ -9,6 +9,7 @@ mod flags;
 mod handle;
 mod parameter;
 mod parameter_doc;
+mod pdo;
 mod variants;
 
 use proc_macro2::{Delimiter, Group, Ident, Literal, Span, TokenStream, TokenTree};
@@ -94,6 +95,7 @@ pub fn tokens(device: &Device) -> TokenStream {
         },
         braced(params),
         handle::emit(device),
+        pdo::emit(device),
         control.unwrap_or_default(),
     ])
 }

@@ -28,38 +28,32 @@ fn number(n: Number, p: &Parameter) -> TokenStream {
     }
 }
 
-/// What users read and write, and the `drivebus::codec` marker that converts it.
-struct ValueCodec {
-    value_type: TokenStream,
-    codec: Ident,
-}
-
-impl ValueCodec {
-    fn new(value_type: TokenStream, codec: &str) -> Self {
-        Self {
-            value_type,
-            codec: ident(codec),
-        }
-    }
-}
-
-fn value_codec(p: &Parameter) -> ValueCodec {
+/// The Rust type of a parameter's value, naming generated enums and flags through `types` (the
+/// path of the generated `types` module from where the type is written).
+pub(super) fn value_type(p: &Parameter, types: &TokenStream) -> TokenStream {
     match p.value_type() {
-        ValueType::Enum(e) => {
-            let ty = ident(&names::camel(e));
-            ValueCodec::new(quote! { types::#ty }, "Enumerated")
-        }
-        ValueType::Flags(f) => {
-            let ty = ident(&names::camel(f));
-            ValueCodec::new(quote! { types::#ty }, "Flags")
+        ValueType::Enum(name) | ValueType::Flags(name) => {
+            let ty = ident(&names::camel(name));
+            quote! { #types::#ty }
         }
         ValueType::Unit(unit) => {
             let unit = ident(unit);
-            ValueCodec::new(quote! { db::units::#unit }, "InUnit")
+            quote! { ::drivebus::units::#unit }
         }
-        ValueType::Scaled => ValueCodec::new(quote! { f64 }, "Scaled"),
-        ValueType::Raw(data_type) => ValueCodec::new(raw_type(data_type), "Plain"),
+        ValueType::Scaled => quote! { f64 },
+        ValueType::Raw(data_type) => raw_type(data_type),
     }
+}
+
+/// The `drivebus::codec` marker that converts a parameter's raw and engineering values.
+fn codec(p: &Parameter) -> Ident {
+    ident(match p.value_type() {
+        ValueType::Enum(_) => "Enumerated",
+        ValueType::Flags(_) => "Flags",
+        ValueType::Unit(_) => "InUnit",
+        ValueType::Scaled => "Scaled",
+        ValueType::Raw(_) => "Plain",
+    })
 }
 
 /// The optional clauses of the declaration: fixed scale, range and allowed raw values.
@@ -170,7 +164,7 @@ pub fn emit(p: &Parameter, device: &Device) -> TokenStream {
     let docs = doc_attrs(&parameter_doc::text(p, device));
     let param_name = p.name.as_str();
     let raw = raw_type(p.data_type);
-    let ValueCodec { value_type, codec } = value_codec(p);
+    let (value_type, codec) = (value_type(p, &quote! { types }), codec(p));
     let clauses = clauses(p);
     // A run-time factor that cannot be read over a protocol leaves the parameter out of it.
     let on_modbus = inputs_readable(p, device, readable_modbus);

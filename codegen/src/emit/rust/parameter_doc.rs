@@ -3,7 +3,7 @@
 use std::fmt::Write as _;
 
 use crate::emit::doc;
-use crate::ir::{Access, Device, Effect, Number, Parameter, Scale};
+use crate::ir::{Access, Citation, Device, Effect, Number, Parameter, Scale};
 
 fn access(a: Access) -> &'static str {
     match (a.read, a.write) {
@@ -142,19 +142,7 @@ pub fn text(p: &Parameter, device: &Device) -> String {
         row(&mut out, "Variants", p.variants.join(", "));
     }
     if let Some(c) = &p.source {
-        let title = device
-            .sources
-            .iter()
-            .find(|s| s.id == c.doc)
-            .map_or(c.file.as_str(), |s| s.title.as_str());
-        let mut cite = format!("{} (`{}`)", doc::escape(title), doc::escape(&c.file));
-        if let Some(section) = &c.section {
-            let _ = write!(cite, " §{}", doc::escape(section));
-        }
-        if let Some(line) = c.line {
-            let _ = write!(cite, ", line {line}");
-        }
-        row(&mut out, "Source", cite);
+        row(&mut out, "Source", citation(c, device));
         if let Some(example) = &c.example {
             row(&mut out, "Manual example", doc::escape(example));
         }
@@ -163,4 +151,21 @@ pub fn text(p: &Parameter, device: &Device) -> String {
         row(&mut out, "Erratum", doc::escape(e).replace('\n', " "));
     }
     out
+}
+
+/// A citation as doc text (escaped): the manual's title and file, section and line.
+pub fn citation(c: &Citation, device: &Device) -> String {
+    let title = device
+        .sources
+        .iter()
+        .find(|s| s.id == c.doc)
+        .map_or(c.file.as_str(), |s| s.title.as_str());
+    let mut cite = format!("{} (`{}`)", doc::escape(title), doc::escape(&c.file));
+    if let Some(section) = &c.section {
+        let _ = write!(cite, " §{}", doc::escape(section));
+    }
+    if let Some(line) = c.line {
+        let _ = write!(cite, ", line {line}");
+    }
+    cite
 }
