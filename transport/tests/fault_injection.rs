@@ -62,6 +62,7 @@ struct FaultyDevice {
     inbound: VecDeque<(Instant, Vec<u8>)>,
     previous_answer: Vec<u8>,
     writes_executed: usize,
+    flushes: usize,
 }
 
 impl FaultyDevice {
@@ -74,6 +75,7 @@ impl FaultyDevice {
             inbound: VecDeque::new(),
             previous_answer: Vec::new(),
             writes_executed: 0,
+            flushes: 0,
         }
     }
 
@@ -215,6 +217,7 @@ impl ByteStream for FaultyDevice {
     }
 
     fn discard_input(&mut self) -> Result<(), BusError> {
+        self.flushes += 1;
         // What has arrived is dropped; what is still in flight arrives later, as on a real line.
         let now = Instant::now();
         self.inbound.retain(|(at, _)| *at > now);
@@ -402,6 +405,30 @@ fn duplicates_and_late_answers_are_not_taken_for_the_next_answer() {
         by: Duration::from_millis(30),
     });
     assert_eq!(client.read(Table::Holding, 5, 1).unwrap(), [77]);
+}
+
+#[test]
+fn stale_input_is_flushed_before_every_rtu_request_and_after_an_unsettled_tcp_exchange() {
+    let mut rtu = AnyClient::new(Kind::Rtu, 0);
+    for _ in 0..3 {
+        rtu.read(Table::Holding, 5, 1).unwrap();
+    }
+    assert_eq!(rtu.device().flushes, 3);
+
+    // TCP answers carry their transaction id: after a clean exchange nothing stale can pass, so
+    // only the first request and the one after a timeout flush.
+    let mut tcp = AnyClient::new(Kind::Tcp, 0);
+    for _ in 0..3 {
+        tcp.read(Table::Holding, 5, 1).unwrap();
+    }
+    assert_eq!(tcp.device().flushes, 1);
+    tcp.device().faults.push_back(Fault::Delay {
+        by: TIMEOUT + Duration::from_millis(20),
+    });
+    assert_eq!(tcp.read(Table::Holding, 5, 1), Err(BusError::Timeout));
+    tcp.device().holding[5] = 78;
+    assert_eq!(tcp.read(Table::Holding, 5, 1).unwrap(), [78]);
+    assert_eq!(tcp.device().flushes, 2);
 }
 
 #[test]
