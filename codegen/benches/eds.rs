@@ -48,12 +48,7 @@ fn read(path: &Path, bytes: &[u8]) -> usize {
     let mut files = Files::default();
     let mut diagnostics = Vec::new();
     let model = drivegen::eds::read_bytes(path, bytes, &mut files, &mut diagnostics);
-    let t = std::time::Instant::now();
-    let n = drivegen::eds::typed_parameters(&model.entries, &mut diagnostics).len();
-    if std::env::var_os("EDS_T").is_some() {
-        eprintln!("typed {:?}", t.elapsed());
-    }
-    n
+    drivegen::eds::typed_parameters(&model.entries, &mut diagnostics).len()
 }
 
 fn python() -> PathBuf {

@@ -5,7 +5,7 @@
 
 use std::collections::BTreeMap;
 
-use super::parse::{Ini, Section};
+use super::parse::{Entry, Ini, Section};
 use super::short_text::ShortText;
 use crate::diagnostic::{Diagnostic, Span};
 
@@ -98,28 +98,93 @@ pub struct Dictionary {
     pub objects: Vec<Object>,
 }
 
-/// Keys of an object or sub-index section.
-const OBJECT_KEYS: &[&str] = &[
-    "parametername",
-    "objecttype",
-    "datatype",
-    "accesstype",
-    "pdomapping",
-    "lowlimit",
-    "highlimit",
-    "defaultvalue",
-    "parametervalue",
-    "subnumber",
-    "compactsubobj",
-    "objflags",
-    "storagelocation",
-    "denotation",
-    "uploadfile",
-    "downloadfile",
-    "description",
-    "unit",
-    "factor",
-];
+/// A key of an object or sub-index section that drivegen reads.
+#[derive(Clone, Copy)]
+enum Key {
+    ParameterName,
+    ObjectType,
+    DataType,
+    AccessType,
+    PdoMapping,
+    LowLimit,
+    HighLimit,
+    DefaultValue,
+    ParameterValue,
+    SubNumber,
+    CompactSubObj,
+    Description,
+    /// Known to CiA 306 (or common) but not needed.
+    Ignored,
+}
+
+/// The key an entry name stands for, in any case; `None` for an unknown key. One match per
+/// entry instead of a case-insensitive comparison with every known key.
+fn key_of(name: &str) -> Option<Key> {
+    let mut buf = [0u8; 16];
+    let lower = buf.get_mut(..name.len())?;
+    lower.copy_from_slice(name.as_bytes());
+    lower.make_ascii_lowercase();
+    Some(match &*lower {
+        b"parametername" => Key::ParameterName,
+        b"objecttype" => Key::ObjectType,
+        b"datatype" => Key::DataType,
+        b"accesstype" => Key::AccessType,
+        b"pdomapping" => Key::PdoMapping,
+        b"lowlimit" => Key::LowLimit,
+        b"highlimit" => Key::HighLimit,
+        b"defaultvalue" => Key::DefaultValue,
+        b"parametervalue" => Key::ParameterValue,
+        b"subnumber" => Key::SubNumber,
+        b"compactsubobj" => Key::CompactSubObj,
+        b"description" => Key::Description,
+        b"objflags" | b"storagelocation" | b"denotation" | b"uploadfile" | b"downloadfile"
+        | b"unit" | b"factor" => Key::Ignored,
+        _ => return None,
+    })
+}
+
+/// The entries of an object or sub-index section by key, found in one pass.
+#[derive(Default)]
+struct ObjectKeys<'s, 't> {
+    parameter_name: Option<&'s Entry<'t>>,
+    object_type: Option<&'s Entry<'t>>,
+    data_type: Option<&'s Entry<'t>>,
+    access_type: Option<&'s Entry<'t>>,
+    pdo_mapping: Option<&'s Entry<'t>>,
+    low_limit: Option<&'s Entry<'t>>,
+    high_limit: Option<&'s Entry<'t>>,
+    default_value: Option<&'s Entry<'t>>,
+    parameter_value: Option<&'s Entry<'t>>,
+    sub_number: Option<&'s Entry<'t>>,
+    compact_sub_obj: Option<&'s Entry<'t>>,
+    description: Option<&'s Entry<'t>>,
+}
+
+impl<'s, 't> ObjectKeys<'s, 't> {
+    fn of(section: &'s Section<'t>) -> Self {
+        let mut keys = Self::default();
+        for entry in &section.entries {
+            let slot = match key_of(entry.key) {
+                Some(Key::ParameterName) => &mut keys.parameter_name,
+                Some(Key::ObjectType) => &mut keys.object_type,
+                Some(Key::DataType) => &mut keys.data_type,
+                Some(Key::AccessType) => &mut keys.access_type,
+                Some(Key::PdoMapping) => &mut keys.pdo_mapping,
+                Some(Key::LowLimit) => &mut keys.low_limit,
+                Some(Key::HighLimit) => &mut keys.high_limit,
+                Some(Key::DefaultValue) => &mut keys.default_value,
+                Some(Key::ParameterValue) => &mut keys.parameter_value,
+                Some(Key::SubNumber) => &mut keys.sub_number,
+                Some(Key::CompactSubObj) => &mut keys.compact_sub_obj,
+                Some(Key::Description) => &mut keys.description,
+                Some(Key::Ignored) | None => continue,
+            };
+            // The first occurrence wins, as with `Section::get`.
+            slot.get_or_insert(entry);
+        }
+        keys
+    }
+}
 
 const COMMISSIONING_KEYS: &[&str] = &[
     "nodeid",
@@ -271,16 +336,21 @@ fn object(
     index: u16,
     diagnostics: &mut Vec<Diagnostic>,
 ) -> Option<Object> {
-    let kind = object_kind(section, diagnostics)?;
-    let name = parameter_name(section, diagnostics, &format!("Object {index:04X}h"));
+    let keys = ObjectKeys::of(section);
+    let kind = object_kind(&keys, diagnostics)?;
+    let name = parameter_name(section, &keys, diagnostics, || {
+        format!("Object {index:04X}h")
+    });
     let variables = match kind {
         ObjectKind::Var | ObjectKind::Domain => {
             warn_subs_of_variable(subs, index, diagnostics);
-            vec![variable(section, 0, &name, diagnostics)]
+            vec![variable(section, &keys, 0, &name, diagnostics)]
         }
-        ObjectKind::Array | ObjectKind::Record => match compact_count(section, diagnostics) {
-            Some(count) if count > 0 => compact(ini, section, index, &name, count, diagnostics),
-            _ => members(subs, section, index, diagnostics),
+        ObjectKind::Array | ObjectKind::Record => match compact_count(&keys, diagnostics) {
+            Some(count) if count > 0 => {
+                compact(ini, section, &keys, index, &name, count, diagnostics)
+            }
+            _ => members(subs, &keys, index, diagnostics),
         },
     };
     Some(Object {
@@ -292,8 +362,8 @@ fn object(
     })
 }
 
-fn object_kind(section: &Section, diagnostics: &mut Vec<Diagnostic>) -> Option<ObjectKind> {
-    let Some(entry) = section.get("objecttype") else {
+fn object_kind(keys: &ObjectKeys, diagnostics: &mut Vec<Diagnostic>) -> Option<ObjectKind> {
+    let Some(entry) = keys.object_type else {
         return Some(ObjectKind::Var);
     };
     Some(match parse_small(entry.value) {
@@ -318,10 +388,17 @@ fn object_kind(section: &Section, diagnostics: &mut Vec<Diagnostic>) -> Option<O
     })
 }
 
-fn parameter_name(section: &Section, diagnostics: &mut Vec<Diagnostic>, fallback: &str) -> String {
-    match section.get("parametername") {
+/// `ParameterName`, or (with a warning) the name `fallback` makes.
+fn parameter_name(
+    section: &Section,
+    keys: &ObjectKeys,
+    diagnostics: &mut Vec<Diagnostic>,
+    fallback: impl FnOnce() -> String,
+) -> String {
+    match keys.parameter_name {
         Some(e) if !e.value.is_empty() => e.value.to_owned(),
         _ => {
+            let fallback = fallback();
             diagnostics.push(
                 Diagnostic::error(RULE_OBJECT, section.span.clone(), "no `ParameterName`")
                     .warning()
@@ -346,8 +423,8 @@ fn warn_subs_of_variable(subs: &SubSections<'_>, index: u16, diagnostics: &mut V
     }
 }
 
-fn compact_count(section: &Section, diagnostics: &mut Vec<Diagnostic>) -> Option<u8> {
-    let entry = section.get("compactsubobj")?;
+fn compact_count(keys: &ObjectKeys, diagnostics: &mut Vec<Diagnostic>) -> Option<u8> {
+    let entry = keys.compact_sub_obj?;
     let count = parse_small(entry.value).and_then(|n| u8::try_from(n).ok());
     if count.is_none() {
         diagnostics.push(
@@ -365,7 +442,7 @@ fn compact_count(section: &Section, diagnostics: &mut Vec<Diagnostic>) -> Option
 /// Sub-indices of an ARRAY / RECORD from their `[XXXXsubN]` sections.
 fn members(
     subs: &SubSections<'_>,
-    section: &Section,
+    parent: &ObjectKeys,
     index: u16,
     diagnostics: &mut Vec<Diagnostic>,
 ) -> Vec<Variable> {
@@ -374,8 +451,9 @@ fn members(
         .into_iter()
         .flatten()
         .map(|&(sub, s)| {
-            if let Some(ot) = s
-                .get("objecttype")
+            let keys = ObjectKeys::of(s);
+            if let Some(ot) = keys
+                .object_type
                 .filter(|e| parse_small(e.value) != Some(0x7))
             {
                 diagnostics.push(
@@ -387,13 +465,12 @@ fn members(
                     .warning(),
                 );
             }
-            let fallback = format!("Sub {sub}");
-            let name = parameter_name(s, diagnostics, &fallback);
-            variable(s, sub, &name, diagnostics)
+            let name = parameter_name(s, &keys, diagnostics, || format!("Sub {sub}"));
+            variable(s, &keys, sub, &name, diagnostics)
         })
         .collect();
     out.sort_by_key(|v| v.subindex);
-    if let Some(entry) = section.get("subnumber") {
+    if let Some(entry) = parent.sub_number {
         if parse_small(entry.value) != Some(out.len() as u64) {
             diagnostics.push(
                 Diagnostic::error(
@@ -416,6 +493,7 @@ fn members(
 fn compact(
     ini: &Ini,
     section: &Section,
+    keys: &ObjectKeys,
     index: u16,
     name: &str,
     count: u8,
@@ -423,7 +501,7 @@ fn compact(
 ) -> Vec<Variable> {
     let names = ini.section(&format!("{index:04x}name"));
     let values = ini.section(&format!("{index:04x}value"));
-    let template = variable(section, 1, name, diagnostics);
+    let template = variable(section, keys, 1, name, diagnostics);
     let count_text = Text {
         value: ShortText::from(count.to_string().as_str()),
         span: section.span.clone(),
@@ -465,26 +543,23 @@ fn compact(
 
 fn variable(
     section: &Section,
+    keys: &ObjectKeys,
     subindex: u8,
     name: &str,
     diagnostics: &mut Vec<Diagnostic>,
 ) -> Variable {
-    for e in section
-        .entries
-        .iter()
-        .filter(|e| !OBJECT_KEYS.iter().any(|k| e.is(k)))
-    {
+    for e in section.entries.iter().filter(|e| key_of(e.key).is_none()) {
         diagnostics.push(
             Diagnostic::error(RULE_KEY, e.key_span.clone(), "unknown key is ignored").warning(),
         );
     }
-    let text = |k: &str| {
-        section.get(k).map(|e| Text {
+    let text = |entry: Option<&Entry>| {
+        entry.map(|e| Text {
             value: ShortText::from(e.value),
             span: e.value_span.clone(),
         })
     };
-    let data_type = section.get("datatype").and_then(|e| {
+    let data_type = keys.data_type.and_then(|e| {
         let code = parse_small(e.value).and_then(|c| u16::try_from(c).ok());
         if code.is_none() {
             diagnostics.push(Diagnostic::error(
@@ -495,7 +570,7 @@ fn variable(
         }
         code
     });
-    let pdo_mapping = section.get("pdomapping").is_some_and(|e| {
+    let pdo_mapping = keys.pdo_mapping.is_some_and(|e| {
         let on = parse_small(e.value);
         if !matches!(on, Some(0 | 1)) {
             diagnostics.push(
@@ -512,15 +587,15 @@ fn variable(
     Variable {
         subindex,
         name: ShortText::from(name),
-        description: section.get("description").map(|e| e.value.to_owned()),
+        description: keys.description.map(|e| e.value.to_owned()),
         span: section.span.clone(),
         data_type,
-        access: text("accesstype"),
+        access: text(keys.access_type),
         pdo_mapping,
-        low: text("lowlimit"),
-        high: text("highlimit"),
-        default: text("defaultvalue"),
-        parameter_value: text("parametervalue"),
+        low: text(keys.low_limit),
+        high: text(keys.high_limit),
+        default: text(keys.default_value),
+        parameter_value: text(keys.parameter_value),
     }
 }
 
