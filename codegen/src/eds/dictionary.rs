@@ -3,8 +3,6 @@
 //! Values stay text here (their meaning depends on the data type); [`super::lower`] interprets
 //! them. Everything malformed is a warning and is skipped, except what makes an object unusable.
 
-use std::collections::BTreeMap;
-
 use super::parse::{Entry, Ini, Section};
 use super::short_text::ShortText;
 use crate::diagnostic::{Diagnostic, Span};
@@ -45,6 +43,8 @@ pub struct Variable {
     pub description: Option<String>,
     /// The section header (or the parent's, for compact sub-objects).
     pub span: Span,
+    /// The 1-based line of that header.
+    pub line: u32,
     /// `DataType`, parsed; `None` when missing or unreadable (reported).
     pub data_type: Option<u16>,
     /// `AccessType` as written.
@@ -72,6 +72,8 @@ pub struct Object {
     pub kind: ObjectKind,
     /// The section header.
     pub span: Span,
+    /// The 1-based line of the header.
+    pub line: u32,
     /// The variable of a VAR / DOMAIN, or the sub-indices of an ARRAY / RECORD.
     pub variables: Vec<Variable>,
 }
@@ -117,28 +119,29 @@ enum Key {
     Ignored,
 }
 
-/// The key an entry name stands for, in any case; `None` for an unknown key. One match per
-/// entry instead of a case-insensitive comparison with every known key.
+/// The key an entry name stands for, in any case; `None` for an unknown key. Dispatching on the
+/// length first leaves one or two case-insensitive comparisons per entry.
 fn key_of(name: &str) -> Option<Key> {
-    let mut buf = [0u8; 16];
-    let lower = buf.get_mut(..name.len())?;
-    lower.copy_from_slice(name.as_bytes());
-    lower.make_ascii_lowercase();
-    Some(match &*lower {
-        b"parametername" => Key::ParameterName,
-        b"objecttype" => Key::ObjectType,
-        b"datatype" => Key::DataType,
-        b"accesstype" => Key::AccessType,
-        b"pdomapping" => Key::PdoMapping,
-        b"lowlimit" => Key::LowLimit,
-        b"highlimit" => Key::HighLimit,
-        b"defaultvalue" => Key::DefaultValue,
-        b"parametervalue" => Key::ParameterValue,
-        b"subnumber" => Key::SubNumber,
-        b"compactsubobj" => Key::CompactSubObj,
-        b"description" => Key::Description,
-        b"objflags" | b"storagelocation" | b"denotation" | b"uploadfile" | b"downloadfile"
-        | b"unit" | b"factor" => Key::Ignored,
+    let is = |known: &str| name.eq_ignore_ascii_case(known);
+    Some(match name.len() {
+        4 if is("unit") => Key::Ignored,
+        6 if is("factor") => Key::Ignored,
+        8 if is("datatype") => Key::DataType,
+        8 if is("lowlimit") => Key::LowLimit,
+        8 if is("objflags") => Key::Ignored,
+        9 if is("highlimit") => Key::HighLimit,
+        9 if is("subnumber") => Key::SubNumber,
+        10 if is("objecttype") => Key::ObjectType,
+        10 if is("accesstype") => Key::AccessType,
+        10 if is("pdomapping") => Key::PdoMapping,
+        10 if is("denotation") || is("uploadfile") => Key::Ignored,
+        11 if is("description") => Key::Description,
+        12 if is("defaultvalue") => Key::DefaultValue,
+        12 if is("downloadfile") => Key::Ignored,
+        13 if is("parametername") => Key::ParameterName,
+        13 if is("compactsubobj") => Key::CompactSubObj,
+        14 if is("parametervalue") => Key::ParameterValue,
+        15 if is("storagelocation") => Key::Ignored,
         _ => return None,
     })
 }
@@ -158,12 +161,14 @@ struct ObjectKeys<'s, 't> {
     sub_number: Option<&'s Entry<'t>>,
     compact_sub_obj: Option<&'s Entry<'t>>,
     description: Option<&'s Entry<'t>>,
+    /// Whether some key is none of the known ones (reported once per section).
+    has_unknown: bool,
 }
 
 impl<'s, 't> ObjectKeys<'s, 't> {
-    fn of(section: &'s Section<'t>) -> Self {
+    fn of(section: &Section<'s, 't>) -> Self {
         let mut keys = Self::default();
-        for entry in &section.entries {
+        for entry in section.entries {
             let slot = match key_of(entry.key) {
                 Some(Key::ParameterName) => &mut keys.parameter_name,
                 Some(Key::ObjectType) => &mut keys.object_type,
@@ -177,7 +182,11 @@ impl<'s, 't> ObjectKeys<'s, 't> {
                 Some(Key::SubNumber) => &mut keys.sub_number,
                 Some(Key::CompactSubObj) => &mut keys.compact_sub_obj,
                 Some(Key::Description) => &mut keys.description,
-                Some(Key::Ignored) | None => continue,
+                Some(Key::Ignored) => continue,
+                None => {
+                    keys.has_unknown = true;
+                    continue;
+                }
             };
             // The first occurrence wins, as with `Section::get`.
             slot.get_or_insert(entry);
@@ -211,26 +220,19 @@ const IGNORED_SECTIONS: &[&str] = &[
 /// Reads the objects of `ini`.
 pub fn read(ini: &Ini, diagnostics: &mut Vec<Diagnostic>) -> Dictionary {
     let mut dictionary = Dictionary::default();
-    let mut subs = SubSections::new();
-    let mut parents: BTreeMap<u16, usize> = BTreeMap::new();
-    for section in &ini.sections {
-        match classify(&section.name) {
-            SectionKind::Sub(index, sub) => subs.entry(index).or_default().push((sub, section)),
-            SectionKind::Object(index) => {
-                parents.insert(index, section.span.range.start);
-            }
-            _ => {}
-        }
-    }
-    for section in &ini.sections {
-        match classify(&section.name) {
+    let sections: Vec<Section> = ini.sections().collect();
+    let kinds: Vec<SectionKind> = sections.iter().map(|s| classify(s.name)).collect();
+    let subs = SubSections::of(&sections, &kinds);
+    let parents = Parents::of(&sections, &kinds);
+    for (section, kind) in sections.iter().zip(kinds) {
+        match kind {
             SectionKind::Object(index) => {
                 if let Some(object) = object(ini, &subs, section, index, diagnostics) {
                     dictionary.objects.push(object);
                 }
             }
             SectionKind::Sub(index, _) | SectionKind::Names(index) | SectionKind::Values(index) => {
-                orphan_check(parents.get(&index).copied(), section, index, diagnostics)
+                orphan_check(parents.header_of(index), section, index, diagnostics)
             }
             SectionKind::DeviceInfo => {
                 let text = |k: &str| section.get(k).map(|e| e.value.to_owned());
@@ -253,9 +255,63 @@ pub fn read(ini: &Ini, diagnostics: &mut Vec<Diagnostic>) -> Dictionary {
     dictionary
 }
 
-/// `[XXXXsubN]` sections by index, in file order.
-type SubSections<'i> = BTreeMap<u16, Vec<(u8, &'i Section<'i>)>>;
+/// `[XXXXsubN]` sections sorted by index, each index's in file order: one vector for all,
+/// searched by binary search.
+struct SubSections<'i>(Vec<(u16, u8, &'i Section<'i, 'i>)>);
 
+impl<'i> SubSections<'i> {
+    fn of(sections: &'i [Section<'i, 'i>], kinds: &[SectionKind]) -> Self {
+        let mut subs: Vec<_> = sections
+            .iter()
+            .zip(kinds)
+            .filter_map(|(section, kind)| match *kind {
+                SectionKind::Sub(index, sub) => Some((index, sub, section)),
+                _ => None,
+            })
+            .collect();
+        // Stable: sub-sections of one index keep their file order.
+        subs.sort_by_key(|&(index, ..)| index);
+        SubSections(subs)
+    }
+
+    /// The sub-sections of object `index`: sub-index and section.
+    fn of_object(&self, index: u16) -> impl Iterator<Item = (u8, &'i Section<'i, 'i>)> + '_ {
+        let start = self.0.partition_point(|&(i, ..)| i < index);
+        self.0[start..]
+            .iter()
+            .take_while(move |&&(i, ..)| i == index)
+            .map(|&(_, sub, section)| (sub, section))
+    }
+}
+
+/// Where each object's header starts, sorted by index.
+struct Parents(Vec<(u16, usize)>);
+
+impl Parents {
+    fn of(sections: &[Section], kinds: &[SectionKind]) -> Self {
+        let mut parents: Vec<_> = sections
+            .iter()
+            .zip(kinds)
+            .filter_map(|(section, kind)| match *kind {
+                SectionKind::Object(index) => Some((index, section.span.range.start)),
+                _ => None,
+            })
+            .collect();
+        parents.sort_unstable();
+        Parents(parents)
+    }
+
+    /// Where the header of object `index` starts, if there is one.
+    fn header_of(&self, index: u16) -> Option<usize> {
+        let at = self.0.partition_point(|&(i, _)| i < index);
+        self.0
+            .get(at)
+            .filter(|&&(i, _)| i == index)
+            .map(|&(_, start)| start)
+    }
+}
+
+#[derive(Clone, Copy)]
 enum SectionKind {
     Object(u16),
     Sub(u16, u8),
@@ -358,6 +414,7 @@ fn object(
         name,
         kind,
         span: section.span.clone(),
+        line: section.line,
         variables,
     })
 }
@@ -377,7 +434,7 @@ fn object_kind(keys: &ObjectKeys, diagnostics: &mut Vec<Diagnostic>) -> Option<O
             diagnostics.push(
                 Diagnostic::error(
                     RULE_OBJECT,
-                    entry.value_span.clone(),
+                    entry.value_span(),
                     format!("unknown ObjectType `{}`; the object is ignored", entry.value),
                 )
                 .warning()
@@ -410,7 +467,7 @@ fn parameter_name(
 }
 
 fn warn_subs_of_variable(subs: &SubSections<'_>, index: u16, diagnostics: &mut Vec<Diagnostic>) {
-    for (_, s) in subs.get(&index).into_iter().flatten() {
+    for (_, s) in subs.of_object(index) {
         diagnostics.push(
             Diagnostic::error(
                 RULE_OBJECT,
@@ -430,7 +487,7 @@ fn compact_count(keys: &ObjectKeys, diagnostics: &mut Vec<Diagnostic>) -> Option
         diagnostics.push(
             Diagnostic::error(
                 RULE_OBJECT,
-                entry.value_span.clone(),
+                entry.value_span(),
                 "CompactSubObj is not a number of 0..=254 entries; ignored",
             )
             .warning(),
@@ -447,10 +504,8 @@ fn members(
     diagnostics: &mut Vec<Diagnostic>,
 ) -> Vec<Variable> {
     let mut out: Vec<Variable> = subs
-        .get(&index)
-        .into_iter()
-        .flatten()
-        .map(|&(sub, s)| {
+        .of_object(index)
+        .map(|(sub, s)| {
             let keys = ObjectKeys::of(s);
             if let Some(ot) = keys
                 .object_type
@@ -459,7 +514,7 @@ fn members(
                 diagnostics.push(
                     Diagnostic::error(
                         RULE_OBJECT,
-                        ot.key_span.clone(),
+                        ot.key_span(),
                         "a sub-index is always a VAR; its ObjectType is ignored",
                     )
                     .warning(),
@@ -475,7 +530,7 @@ fn members(
             diagnostics.push(
                 Diagnostic::error(
                     RULE_OBJECT,
-                    entry.value_span.clone(),
+                    entry.value_span(),
                     format!(
                         "SubNumber says {} but {} sub-sections follow",
                         entry.value,
@@ -521,6 +576,7 @@ fn compact(
         default: Some(count_text),
         parameter_value: None,
         span: section.span.clone(),
+        line: section.line,
     }];
     for sub in 1..=count {
         let key = sub.to_string();
@@ -533,7 +589,7 @@ fn compact(
         if let Some(value) = values.and_then(|s| s.get(&key)) {
             v.parameter_value = Some(Text {
                 value: ShortText::from(value.value),
-                span: value.value_span.clone(),
+                span: value.value_span(),
             });
         }
         out.push(v);
@@ -548,15 +604,17 @@ fn variable(
     name: &str,
     diagnostics: &mut Vec<Diagnostic>,
 ) -> Variable {
-    for e in section.entries.iter().filter(|e| key_of(e.key).is_none()) {
-        diagnostics.push(
-            Diagnostic::error(RULE_KEY, e.key_span.clone(), "unknown key is ignored").warning(),
-        );
+    if keys.has_unknown {
+        for e in section.entries.iter().filter(|e| key_of(e.key).is_none()) {
+            diagnostics.push(
+                Diagnostic::error(RULE_KEY, e.key_span(), "unknown key is ignored").warning(),
+            );
+        }
     }
     let text = |entry: Option<&Entry>| {
         entry.map(|e| Text {
             value: ShortText::from(e.value),
-            span: e.value_span.clone(),
+            span: e.value_span(),
         })
     };
     let data_type = keys.data_type.and_then(|e| {
@@ -564,7 +622,7 @@ fn variable(
         if code.is_none() {
             diagnostics.push(Diagnostic::error(
                 "eds_data_type",
-                e.value_span.clone(),
+                e.value_span(),
                 format!("DataType `{}` is not a number", e.value),
             ));
         }
@@ -576,7 +634,7 @@ fn variable(
             diagnostics.push(
                 Diagnostic::error(
                     RULE_OBJECT,
-                    e.value_span.clone(),
+                    e.value_span(),
                     "PDOMapping is 0 or 1; read as 0",
                 )
                 .warning(),
@@ -589,6 +647,7 @@ fn variable(
         name: ShortText::from(name),
         description: keys.description.map(|e| e.value.to_owned()),
         span: section.span.clone(),
+        line: section.line,
         data_type,
         access: text(keys.access_type),
         pdo_mapping,
@@ -605,9 +664,8 @@ fn commissioning(section: &Section, diagnostics: &mut Vec<Diagnostic>) -> Option
         .iter()
         .filter(|e| !COMMISSIONING_KEYS.iter().any(|k| e.is(k)))
     {
-        diagnostics.push(
-            Diagnostic::error(RULE_KEY, e.key_span.clone(), "unknown key is ignored").warning(),
-        );
+        diagnostics
+            .push(Diagnostic::error(RULE_KEY, e.key_span(), "unknown key is ignored").warning());
     }
     let entry = section.get("nodeid")?;
     let id = parse_small(entry.value)
@@ -617,7 +675,7 @@ fn commissioning(section: &Section, diagnostics: &mut Vec<Diagnostic>) -> Option
         diagnostics.push(
             Diagnostic::error(
                 RULE_OBJECT,
-                entry.value_span.clone(),
+                entry.value_span(),
                 "NodeID is not 1..=127; ignored",
             )
             .warning(),
@@ -638,7 +696,7 @@ fn comments(section: &Section) -> Vec<String> {
 }
 
 fn dummy_usage(section: &Section, diagnostics: &mut Vec<Diagnostic>) {
-    for e in &section.entries {
+    for e in section.entries {
         let known = e
             .key
             .get(..5)
@@ -649,7 +707,7 @@ fn dummy_usage(section: &Section, diagnostics: &mut Vec<Diagnostic>) {
             diagnostics.push(
                 Diagnostic::error(
                     RULE_KEY,
-                    e.key_span.clone(),
+                    e.key_span(),
                     "not a `DummyNNNN=0|1` entry; ignored",
                 )
                 .warning(),

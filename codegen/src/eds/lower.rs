@@ -1,6 +1,7 @@
 //! EDS objects to IR records and parameters, with names derived from `ParameterName` and every
 //! value citing its EDS line.
 
+use std::collections::hash_map::Entry;
 use std::sync::Arc;
 
 use fnv::FnvHashMap;
@@ -39,6 +40,8 @@ pub struct EdsEntry {
     pub variable: Variable,
     /// Its type, unless the EDS does not give one.
     pub data_type: Result<DataType, TypeProblem>,
+    /// The EDS's source id ([`EDS_SOURCE_ID`]), shared by every entry.
+    pub source_id: Arc<str>,
     /// The EDS file, shared by every entry.
     pub file: Arc<str>,
     /// The line of its section header.
@@ -71,13 +74,13 @@ pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
             .clone()
             .map_or_else(|| "EDS".into(), |p| format!("{p} EDS")),
     };
-    let lines = LineStarts::of(files.text(file));
     let shared_file: Arc<str> = Arc::from(file_name.as_str());
-    let cite = |span: &Span, section: String| ir::Citation {
-        doc: EDS_SOURCE_ID.into(),
-        file: file_name.clone(),
+    let source_id: Arc<str> = Arc::from(EDS_SOURCE_ID);
+    let cite = |span: &Span, line: u32, section: String| ir::Citation {
+        doc: Arc::clone(&source_id),
+        file: Arc::clone(&shared_file),
         section: Some(section),
-        line: Some(lines.line(span.range.start)),
+        line: Some(line),
         example: None,
         span: span.clone(),
     };
@@ -96,24 +99,27 @@ pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
                     kind,
                     index: object.index,
                     doc: Some(object.name.clone()),
-                    source: Some(cite(&object.span, format!("[{:04X}]", object.index))),
+                    source: Some(cite(
+                        &object.span,
+                        object.line,
+                        format!("[{:04X}]", object.index),
+                    )),
                     span: object.span.clone(),
                 });
                 records.last().map(|r| r.name.clone())
             }
             ObjectKind::Var | ObjectKind::Domain => None,
         };
-        for v in object.variables {
-            entries.push(EdsEntry {
-                index: object.index,
-                record: record.clone(),
-                name: snake_name(&v.name),
-                data_type: entry_type(&v, object.kind),
-                file: Arc::clone(&shared_file),
-                line: lines.line(v.span.range.start),
-                variable: v,
-            });
-        }
+        entries.extend(object.variables.into_iter().map(|v| EdsEntry {
+            index: object.index,
+            record: record.clone(),
+            name: snake_name(&v.name),
+            data_type: entry_type(&v, object.kind),
+            source_id: Arc::clone(&source_id),
+            file: Arc::clone(&shared_file),
+            line: v.line,
+            variable: v,
+        }));
     }
     make_unique(&mut entries, &mut records);
     EdsModel {
@@ -121,21 +127,6 @@ pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
         device,
         records,
         entries,
-    }
-}
-
-/// Byte offsets of line starts, for line numbers of thousands of citations in one pass.
-struct LineStarts(Vec<usize>);
-
-impl LineStarts {
-    fn of(text: &str) -> Self {
-        let starts = std::iter::once(0).chain(text.match_indices('\n').map(|(i, _)| i + 1));
-        LineStarts(starts.collect())
-    }
-
-    /// The 1-based line of a byte offset.
-    fn line(&self, offset: usize) -> u32 {
-        self.0.partition_point(|&start| start <= offset) as u32
     }
 }
 
@@ -191,14 +182,17 @@ pub fn snake_name(text: &str) -> String {
 /// records sharing a name get their index appended.
 fn make_unique(entries: &mut [EdsEntry], records: &mut [ir::Record]) {
     let first = repeated(entries.iter().map(|e| e.name.as_str()));
-    for (e, _) in entries.iter_mut().zip(first).filter(|(_, clash)| *clash) {
-        if let Some(record) = &e.record {
-            e.name = format!("{record}_{}", e.name);
+    // Names only change where they clash; without a clash they are unique as they are.
+    if first.contains(&true) {
+        for (e, _) in entries.iter_mut().zip(first).filter(|(_, clash)| *clash) {
+            if let Some(record) = &e.record {
+                e.name = format!("{record}_{}", e.name);
+            }
         }
-    }
-    let second = repeated(entries.iter().map(|e| e.name.as_str()));
-    for (e, _) in entries.iter_mut().zip(second).filter(|(_, clash)| *clash) {
-        e.name = format!("{}_{:04x}_{}", e.name, e.index, e.variable.subindex);
+        let second = repeated(entries.iter().map(|e| e.name.as_str()));
+        for (e, _) in entries.iter_mut().zip(second).filter(|(_, clash)| *clash) {
+            e.name = format!("{}_{:04x}_{}", e.name, e.index, e.variable.subindex);
+        }
     }
     let records_clash = repeated(records.iter().map(|r| r.name.as_str()));
     for (r, _) in records
@@ -214,13 +208,25 @@ fn make_unique(entries: &mut [EdsEntry], records: &mut [ir::Record]) {
     }
 }
 
-/// For each name, whether another item has it too.
-fn repeated<'n>(names: impl Iterator<Item = &'n str> + Clone) -> Vec<bool> {
-    let mut counts: FnvHashMap<&str, usize> = FnvHashMap::default();
-    for name in names.clone() {
-        *counts.entry(name).or_default() += 1;
+/// For each name, whether another item has it too. One map lookup per name: the map remembers
+/// where a name was first seen, and a second sighting marks both.
+fn repeated<'n>(names: impl Iterator<Item = &'n str>) -> Vec<bool> {
+    let mut first_seen: FnvHashMap<&str, usize> =
+        FnvHashMap::with_capacity_and_hasher(names.size_hint().0, Default::default());
+    let mut clash = Vec::with_capacity(names.size_hint().0);
+    for (i, name) in names.enumerate() {
+        match first_seen.entry(name) {
+            Entry::Occupied(first) => {
+                clash[*first.get()] = true;
+                clash.push(true);
+            }
+            Entry::Vacant(slot) => {
+                slot.insert(i);
+                clash.push(false);
+            }
+        }
     }
-    names.map(|n| counts[n] > 1).collect()
+    clash
 }
 
 impl EdsEntry {
@@ -235,8 +241,8 @@ impl EdsEntry {
     /// The citation of its EDS line.
     pub fn citation(&self) -> ir::Citation {
         ir::Citation {
-            doc: EDS_SOURCE_ID.into(),
-            file: self.file.to_string(),
+            doc: Arc::clone(&self.source_id),
+            file: Arc::clone(&self.file),
             section: Some(self.section()),
             line: Some(self.line),
             example: None,

@@ -4,23 +4,26 @@
 //! start of a line, or after white space as python's `configparser` reads it), duplicate sections
 //! merge and duplicate keys keep the first value, both with a warning.
 
+use std::ops::Range;
+
 use fnv::FnvHashMap;
 
+use super::short_text::ShortText;
 use crate::diagnostic::{Diagnostic, FileId, Span};
 
 const RULE: &str = "eds_syntax";
 
-/// One `key=value` line, borrowed from the file text.
+/// One `key=value` line, borrowed from the file text. Offsets instead of spans keep it small:
+/// a large EDS has tens of thousands of entries.
 #[derive(Debug, Clone)]
 pub struct Entry<'t> {
     /// The key as written (compare it with [`Entry::is`]).
     pub key: &'t str,
-    /// The key as written.
-    pub key_span: Span,
     /// The value, trimmed, comment removed.
     pub value: &'t str,
-    /// Where the value is written.
-    pub value_span: Span,
+    file: FileId,
+    key_at: u32,
+    value_at: u32,
 }
 
 impl Entry<'_> {
@@ -28,72 +31,129 @@ impl Entry<'_> {
     pub fn is(&self, lower: &str) -> bool {
         self.key.eq_ignore_ascii_case(lower)
     }
+
+    /// Where the key is written.
+    pub fn key_span(&self) -> Span {
+        span(self.file, self.key_at, self.key)
+    }
+
+    /// Where the value is written.
+    pub fn value_span(&self) -> Span {
+        span(self.file, self.value_at, self.value)
+    }
 }
 
-/// One `[section]` with its entries.
-#[derive(Debug, Clone)]
-pub struct Section<'t> {
+fn span(file: FileId, at: u32, text: &str) -> Span {
+    let start = at as usize;
+    Span::new(file, start..start + text.len())
+}
+
+/// One `[section]` with its entries: a view into an [`Ini`].
+#[derive(Debug, Clone, Copy)]
+pub struct Section<'i, 't> {
     /// The name, lower-case.
-    pub name: String,
+    pub name: &'i str,
     /// The header `[...]`.
-    pub span: Span,
+    pub span: &'i Span,
+    /// The 1-based line of the header.
+    pub line: u32,
     /// Entries in file order, keys unique regardless of case.
-    pub entries: Vec<Entry<'t>>,
+    pub entries: &'i [Entry<'t>],
 }
 
-impl<'t> Section<'t> {
+impl<'i, 't> Section<'i, 't> {
     /// The entry of a lower-case key.
-    pub fn get(&self, key: &str) -> Option<&Entry<'t>> {
+    pub fn get(&self, key: &str) -> Option<&'i Entry<'t>> {
         self.entries.iter().find(|e| e.is(key))
     }
 }
 
-/// A whole file: sections in file order, names unique.
+/// A section header and where its entries are in [`Ini::entries`].
+#[derive(Debug, Clone)]
+struct Header {
+    name: ShortText,
+    span: Span,
+    line: u32,
+    entries: Range<usize>,
+}
+
+/// A whole file: sections in file order, names unique. The entries of all sections are kept in
+/// one vector (a large EDS has thousands of sections of a handful of entries each).
 #[derive(Debug, Default, Clone)]
 pub struct Ini<'t> {
-    /// Sections.
-    pub sections: Vec<Section<'t>>,
-    /// Lower-case name → position in `sections` (vendor files have thousands of sections).
-    by_name: FnvHashMap<String, usize>,
+    headers: Vec<Header>,
+    entries: Vec<Entry<'t>>,
+    /// Lower-case name → position in `headers`.
+    by_name: FnvHashMap<ShortText, usize>,
 }
 
 impl<'t> Ini<'t> {
-    /// The section of a lower-case name.
-    pub fn section(&self, name: &str) -> Option<&Section<'t>> {
-        self.by_name.get(name).map(|&i| &self.sections[i])
+    /// The sections in file order.
+    pub fn sections(&self) -> impl ExactSizeIterator<Item = Section<'_, 't>> + '_ {
+        self.headers.iter().map(|h| self.view(h))
     }
+
+    /// The section of a lower-case name.
+    pub fn section(&self, name: &str) -> Option<Section<'_, 't>> {
+        self.by_name.get(name).map(|&i| self.view(&self.headers[i]))
+    }
+
+    fn view<'i>(&'i self, header: &'i Header) -> Section<'i, 't> {
+        Section {
+            name: &header.name,
+            span: &header.span,
+            line: header.line,
+            entries: &self.entries[header.entries.clone()],
+        }
+    }
+}
+
+/// The INI being read: entries are appended as they come, tagged with their section; a section
+/// that appears twice gets its entries grouped at the end.
+struct Reader<'t> {
+    ini: Ini<'t>,
+    /// The section of each entry.
+    owners: Vec<usize>,
+    /// The section entries go to, and where its current run of entries starts.
+    current: Option<(usize, usize)>,
+    /// Whether a section was reopened by a duplicate header.
+    reopened: bool,
 }
 
 /// Splits `text` into sections; problems are warnings pushed to `diagnostics`.
 pub fn parse_ini<'t>(file: FileId, text: &'t str, diagnostics: &mut Vec<Diagnostic>) -> Ini<'t> {
-    let headers = text.bytes().filter(|&b| b == b'[').count();
-    let mut ini = Ini {
-        sections: Vec::with_capacity(headers),
-        by_name: FnvHashMap::with_capacity_and_hasher(headers, Default::default()),
+    if u32::try_from(text.len()).is_err() {
+        let message = "an EDS of 4 GiB or more is not read";
+        diagnostics.push(Diagnostic::error(RULE, Span::new(file, 0..0), message));
+        return Ini::default();
+    }
+    let headers = count_byte(text, b'[');
+    let entries = count_byte(text, b'=');
+    let mut reader = Reader {
+        ini: Ini {
+            headers: Vec::with_capacity(headers),
+            entries: Vec::with_capacity(entries),
+            by_name: FnvHashMap::with_capacity_and_hasher(headers, Default::default()),
+        },
+        owners: Vec::with_capacity(entries),
+        current: None,
+        reopened: false,
     };
-    let mut current: Option<usize> = None;
     let mut offset = 0;
-    for raw_line in text.split_inclusive('\n') {
-        let start = offset;
+    for (line_index, raw_line) in text.split_inclusive('\n').enumerate() {
+        let line_start = offset;
         offset += raw_line.len();
-        let line = strip_comment(raw_line.trim_end_matches(['\n', '\r']));
-        let trimmed = line.trim();
-        if trimmed.is_empty() {
+        let Some((lead, content)) = content(raw_line) else {
             continue;
-        }
-        let lead = line.len() - line.trim_start().len();
-        let span = Span::new(file, start + lead..start + lead + trimmed.len());
-        if let Some(name) = trimmed.strip_prefix('[').and_then(|t| t.strip_suffix(']')) {
-            current = Some(open_section(&mut ini, name.trim(), span, diagnostics));
-        } else if let Some(eq) = trimmed.find('=') {
-            let Some(section) = current else {
-                diagnostics.push(
-                    Diagnostic::error(RULE, span, "entry outside any section is ignored").warning(),
-                );
-                continue;
-            };
-            let entry = entry(file, start + lead, trimmed, eq);
-            add_entry(&mut ini.sections[section], entry, diagnostics);
+        };
+        let start = line_start + lead;
+        let span = Span::new(file, start..start + content.len());
+        if let Some(name) = content.strip_prefix('[').and_then(|t| t.strip_suffix(']')) {
+            let line = u32::try_from(line_index + 1).unwrap_or(u32::MAX);
+            let name = trim_end(trim_start(name));
+            reader.open_section(name, span, line, diagnostics);
+        } else if let Some(eq) = content.bytes().position(|b| b == b'=') {
+            reader.add_entry(entry(file, start, content, eq), span, diagnostics);
         } else {
             diagnostics.push(
                 Diagnostic::error(
@@ -105,73 +165,149 @@ pub fn parse_ini<'t>(file: FileId, text: &'t str, diagnostics: &mut Vec<Diagnost
             );
         }
     }
-    ini
+    reader.finish()
 }
 
-/// Removes a `;` comment: a whole-line one, or one preceded by white space.
-fn strip_comment(line: &str) -> &str {
-    if line.trim_start().starts_with(';') {
-        return "";
+/// How often `needle` occurs in `text` (an upper bound for the sections or entries to make room
+/// for). Counting into a byte per chunk of 255 lets the compiler use wide vector adds.
+fn count_byte(text: &str, needle: u8) -> usize {
+    text.as_bytes()
+        .chunks(255)
+        .map(|chunk| chunk.iter().fold(0u8, |n, &b| n + u8::from(b == needle)))
+        .map(usize::from)
+        .sum()
+}
+
+impl<'t> Reader<'t> {
+    fn open_section(
+        &mut self,
+        name: &str,
+        span: Span,
+        line: u32,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) {
+        let run_start = self.ini.entries.len();
+        let lower = ShortText::lowercase(name);
+        if let Some(&i) = self.ini.by_name.get(&*lower) {
+            diagnostics.push(
+                Diagnostic::error(RULE, span, format!("section `[{name}]` appears twice"))
+                    .warning()
+                    .label("its entries are merged into the first one")
+                    .help("CANopen tools (python canopen among them) refuse duplicate sections"),
+            );
+            self.reopened = true;
+            self.current = Some((i, run_start));
+            return;
+        }
+        let i = self.ini.headers.len();
+        self.ini.by_name.insert(lower.clone(), i);
+        self.ini.headers.push(Header {
+            name: lower,
+            span,
+            line,
+            entries: 0..0,
+        });
+        self.current = Some((i, run_start));
     }
-    let bytes = line.as_bytes();
-    (1..bytes.len())
+
+    fn add_entry(&mut self, entry: Entry<'t>, line: Span, diagnostics: &mut Vec<Diagnostic>) {
+        let Some((section, run_start)) = self.current else {
+            diagnostics.push(
+                Diagnostic::error(RULE, line, "entry outside any section is ignored").warning(),
+            );
+            return;
+        };
+        let same_key = |e: &Entry| e.key.eq_ignore_ascii_case(entry.key);
+        let in_run = self.ini.entries[run_start..].iter().any(same_key);
+        // Only a reopened section has entries before its current run.
+        let earlier = || {
+            let before = self.ini.entries[..run_start].iter().zip(&self.owners);
+            before
+                .filter(|&(_, &owner)| owner == section)
+                .any(|(e, _)| same_key(e))
+        };
+        if in_run || (self.reopened && earlier()) {
+            diagnostics.push(
+                Diagnostic::error(RULE, entry.key_span(), "key appears twice in its section")
+                    .warning()
+                    .label("this later value is ignored"),
+            );
+            return;
+        }
+        self.ini.entries.push(entry);
+        self.owners.push(section);
+    }
+
+    /// Groups each section's entries (only needed when a section was reopened) and records
+    /// where they are.
+    fn finish(mut self) -> Ini<'t> {
+        if self.reopened {
+            let mut tagged: Vec<(usize, Entry<'t>)> =
+                self.owners.iter().copied().zip(self.ini.entries).collect();
+            // Stable: each section's entries stay in file order.
+            tagged.sort_by_key(|&(owner, _)| owner);
+            self.owners = tagged.iter().map(|&(owner, _)| owner).collect();
+            self.ini.entries = tagged.into_iter().map(|(_, e)| e).collect();
+        }
+        let mut start = 0;
+        for run in self.owners.chunk_by(|a, b| a == b) {
+            self.ini.headers[run[0]].entries = start..start + run.len();
+            start += run.len();
+        }
+        self.ini
+    }
+}
+
+/// What a line says: its text without a `;` comment (a whole-line one, or one preceded by white
+/// space) and surrounding white space, with its offset in the line; `None` when nothing is left.
+fn content(line: &str) -> Option<(usize, &str)> {
+    let text = trim_start(line);
+    let bytes = text.as_bytes();
+    if bytes.first().is_none_or(|&b| b == b';') {
+        return None;
+    }
+    let end = (1..bytes.len())
         .find(|&i| bytes[i] == b';' && bytes[i - 1].is_ascii_whitespace())
-        .map_or(line, |i| &line[..i])
+        .unwrap_or(bytes.len());
+    Some((line.len() - text.len(), trim_end(&text[..end])))
 }
 
-fn open_section(
-    ini: &mut Ini<'_>,
-    name: &str,
-    span: Span,
-    diagnostics: &mut Vec<Diagnostic>,
-) -> usize {
-    let lower = name.to_ascii_lowercase();
-    if let Some(&i) = ini.by_name.get(&lower) {
-        diagnostics.push(
-            Diagnostic::error(RULE, span, format!("section `[{name}]` appears twice"))
-                .warning()
-                .label("its entries are merged into the first one")
-                .help("CANopen tools (python canopen among them) refuse duplicate sections"),
-        );
-        return i;
+/// `str::trim_start`, with a fast path for the ASCII white space nearly every line has.
+fn trim_start(text: &str) -> &str {
+    let ascii = text.trim_ascii_start();
+    match ascii.as_bytes().first() {
+        Some(b) if !b.is_ascii() => ascii.trim_start(),
+        _ => ascii,
     }
-    ini.by_name.insert(lower.clone(), ini.sections.len());
-    ini.sections.push(Section {
-        name: lower,
-        span,
-        entries: Vec::with_capacity(8),
-    });
-    ini.sections.len() - 1
+}
+
+/// `str::trim_end`, with a fast path for ASCII white space.
+fn trim_end(text: &str) -> &str {
+    let ascii = text.trim_ascii_end();
+    match ascii.as_bytes().last() {
+        Some(b) if !b.is_ascii() => ascii.trim_end(),
+        _ => ascii,
+    }
 }
 
 fn entry(file: FileId, line_start: usize, line: &str, eq: usize) -> Entry<'_> {
-    let key = &line[..eq];
-    let key_trimmed = key.trim_end();
+    let key = trim_end(&line[..eq]);
     let value_raw = &line[eq + 1..];
-    let value = value_raw.trim();
-    let value_start = line_start + eq + 1 + (value_raw.len() - value_raw.trim_start().len());
+    // The line is trimmed already, so only the start of the value can hold white space.
+    let value = trim_start(value_raw);
+    let value_start = line_start + eq + 1 + (value_raw.len() - value.len());
     Entry {
-        key: key_trimmed,
-        key_span: Span::new(file, line_start..line_start + key_trimmed.len()),
+        key,
         value,
-        value_span: Span::new(file, value_start..value_start + value.len()),
+        file,
+        key_at: offset(line_start),
+        value_at: offset(value_start),
     }
 }
 
-fn add_entry<'t>(section: &mut Section<'t>, entry: Entry<'t>, diagnostics: &mut Vec<Diagnostic>) {
-    if section
-        .entries
-        .iter()
-        .any(|e| e.key.eq_ignore_ascii_case(entry.key))
-    {
-        diagnostics.push(
-            Diagnostic::error(RULE, entry.key_span, "key appears twice in its section")
-                .warning()
-                .label("this later value is ignored"),
-        );
-        return;
-    }
-    section.entries.push(entry);
+/// A byte offset as stored in an entry (`parse_ini` refuses texts whose offsets do not fit).
+fn offset(at: usize) -> u32 {
+    u32::try_from(at).unwrap_or(u32::MAX)
 }
 
 #[cfg(test)]
@@ -196,8 +332,42 @@ mod tests {
     fn duplicates_and_stray_lines_are_warnings() {
         let mut d = Vec::new();
         let ini = parse_ini(FileId(0), "k=1\n[A]\nk=1\nK=2\n[a]\nj=3\ngarbage\n", &mut d);
-        assert_eq!(ini.sections.len(), 1);
-        assert_eq!(ini.sections[0].entries.len(), 2);
+        let sections: Vec<_> = ini.sections().collect();
+        assert_eq!(sections.len(), 1);
+        assert_eq!(sections[0].entries.len(), 2);
         assert_eq!(d.len(), 4);
+    }
+
+    #[test]
+    fn a_reopened_section_keeps_its_entries_together_and_in_file_order() {
+        let mut d = Vec::new();
+        let ini = parse_ini(
+            FileId(0),
+            "[A]\nx=1\n[B]\ny=2\n[a]\nz=3\nX=4\n[C]\n",
+            &mut d,
+        );
+        let keys = |name: &str| -> Vec<&str> {
+            let section = ini.section(name).unwrap();
+            section.entries.iter().map(|e| e.key).collect()
+        };
+        assert_eq!(keys("a"), ["x", "z"]);
+        assert_eq!(keys("b"), ["y"]);
+        assert!(keys("c").is_empty());
+        let messages: Vec<_> = d.iter().map(|d| d.message.as_str()).collect();
+        assert_eq!(
+            messages,
+            [
+                "section `[a]` appears twice",
+                "key appears twice in its section"
+            ]
+        );
+    }
+
+    #[test]
+    fn bytes_are_counted_across_chunks() {
+        let text = "[x]=".repeat(300);
+        assert_eq!(count_byte(&text, b'['), 300);
+        assert_eq!(count_byte(&text, b'='), 300);
+        assert_eq!(count_byte("", b'='), 0);
     }
 }

@@ -1,7 +1,9 @@
 //! Short texts kept without a heap allocation: an EDS has thousands of values like `0x1000`,
 //! `rw` or `$NODEID+0x180`, and allocating each one dominated reading large files.
 
+use std::borrow::Borrow;
 use std::fmt;
+use std::hash::{Hash, Hasher};
 use std::ops::Deref;
 
 /// Bytes stored inline; longer texts go to the heap.
@@ -28,6 +30,18 @@ impl From<&str> for ShortText {
     }
 }
 
+impl ShortText {
+    /// `text` in ASCII lower case.
+    pub fn lowercase(text: &str) -> Self {
+        let mut short = Self::from(text);
+        match &mut short {
+            ShortText::Inline(bytes, len) => bytes[..usize::from(*len)].make_ascii_lowercase(),
+            ShortText::Heap(text) => text.make_ascii_lowercase(),
+        }
+        short
+    }
+}
+
 impl Deref for ShortText {
     type Target = str;
 
@@ -39,6 +53,27 @@ impl Deref for ShortText {
             }
             ShortText::Heap(text) => text,
         }
+    }
+}
+
+// Equal and hashed as its text, so that maps keyed by it can be searched with a `&str`.
+impl PartialEq for ShortText {
+    fn eq(&self, other: &Self) -> bool {
+        **self == **other
+    }
+}
+
+impl Eq for ShortText {}
+
+impl Hash for ShortText {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        (**self).hash(state)
+    }
+}
+
+impl Borrow<str> for ShortText {
+    fn borrow(&self) -> &str {
+        self
     }
 }
 
@@ -69,5 +104,10 @@ mod tests {
             ShortText::from("$NODEID+0x180"),
             ShortText::Inline(..)
         ));
+        assert_eq!(&*ShortText::lowercase("1A00Sub1"), "1a00sub1");
+        assert_eq!(
+            &*ShortText::lowercase(&long.to_uppercase()),
+            long.to_uppercase().to_ascii_lowercase()
+        );
     }
 }

@@ -15,6 +15,8 @@ pub use number::Number;
 pub use pdo::{pdo_bits, CobId, PdoDirection, PdoMapping};
 pub use value_type::ValueType;
 
+use std::sync::Arc;
+
 use serde::Serialize;
 
 use crate::diagnostic::Span;
@@ -194,10 +196,10 @@ pub struct SourceDoc {
 /// A place in a manual.
 #[derive(Debug, Clone, Serialize, Default)]
 pub struct Citation {
-    /// `SourceDoc::id`.
-    pub doc: String,
+    /// `SourceDoc::id` (shared: a description cites a few documents thousands of times).
+    pub doc: Arc<str>,
     /// The `SourceDoc::file` it resolves to.
-    pub file: String,
+    pub file: Arc<str>,
     /// Section.
     pub section: Option<String>,
     /// Line in the file.

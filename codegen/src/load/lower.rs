@@ -3,6 +3,7 @@
 //! several values to each other are validation passes.
 
 use std::collections::{BTreeMap, BTreeSet};
+use std::sync::Arc;
 
 #[path = "lower_control.rs"]
 mod control;
@@ -39,8 +40,9 @@ pub fn lower(
     };
     let mut device = cx.device(&root.raw, files)?;
     if let Some(model) = eds {
-        cx.sources
-            .insert(model.source.id.clone(), model.source.file.clone());
+        let source = &model.source;
+        let shared = (source.id.as_str().into(), source.file.as_str().into());
+        cx.sources.insert(source.id.clone(), shared);
         device.sources.push(model.source.clone());
     }
     let included: Vec<LoadedFile> = files_iter.collect();
@@ -67,7 +69,8 @@ pub fn lower(
 pub(super) struct Lowering<'d> {
     pub(super) diagnostics: &'d mut Vec<Diagnostic>,
     /// Source id → file name.
-    sources: BTreeMap<String, String>,
+    /// Declared sources: id → (id, file), shared by every citation of them.
+    sources: BTreeMap<String, (Arc<str>, Arc<str>)>,
     pub(super) file: FileId,
     /// The EDS the root file is an overlay of.
     pub(super) overlay: Option<Overlay<'d>>,
@@ -220,7 +223,7 @@ impl Lowering<'_> {
         for source in &raw.source {
             let id = source.id.get_ref();
             match self.sources.get(id) {
-                Some(file) if *file != source.file => {
+                Some((_, file)) if **file != *source.file => {
                     let span = self.span(&source.id);
                     self.error(
                         "sources_are_unique",
@@ -230,7 +233,10 @@ impl Lowering<'_> {
                 }
                 Some(_) => {}
                 None => {
-                    self.sources.insert(id.clone(), source.file.clone());
+                    self.sources.insert(
+                        id.clone(),
+                        (id.as_str().into(), source.file.as_str().into()),
+                    );
                     device.sources.push(ir::SourceDoc {
                         id: id.clone(),
                         file: source.file.clone(),
@@ -309,7 +315,7 @@ impl Lowering<'_> {
     fn citation(&mut self, raw: &Spanned<RawCitation>) -> Option<ir::Citation> {
         let c = raw.get_ref();
         let doc = c.doc.get_ref();
-        let Some(file) = self.sources.get(doc).cloned() else {
+        let Some((doc, file)) = self.sources.get(doc).cloned() else {
             let span = self.span(&c.doc);
             let known: Vec<&str> = self.sources.keys().map(String::as_str).collect();
             self.error_help(
@@ -337,7 +343,7 @@ impl Lowering<'_> {
             None => None,
         };
         Some(ir::Citation {
-            doc: doc.clone(),
+            doc,
             file,
             section: c.section.clone(),
             line,
