@@ -1,5 +1,6 @@
 //! TOML → EDS → IR equals TOML → IR for every shipped CANopen description, on the fields an EDS
-//! carries: object addresses, names, types, access, PDO mapping, defaults, limits and records.
+//! carries: object addresses, names, types, access, PDO mapping, defaults, limits and records,
+//! plus the communication and mapping objects of the description's declared PDOs.
 
 mod support;
 
@@ -81,6 +82,11 @@ fn toml_to_eds_to_ir_keeps_every_canopen_field() {
             checked.render()
         );
         let again = checked.device.expect("no findings means a device");
+        // What the EDS carries of the description: its objects and those its PDOs imply.
+        let mut original = original;
+        let derived = drivegen::eds::pdo_objects(&original);
+        original.parameters.extend(derived.parameters);
+        original.records.extend(derived.records);
         let (before, after) = (canopen_view(&original), canopen_view(&again));
         assert!(
             !before.is_empty(),

@@ -4,8 +4,10 @@ Usage: eds_import_check.py FILE.eds IR.json NODE_ID
 
 Exit status 0 when the file loads without any warning and python canopen sees exactly the CANopen
 objects of the IR (`drivegen dump --json`): same indices and sub-indices, data types, access types,
-PDO mappability, defaults (node-relative ones resolved with NODE_ID) and limits. Every difference is
-printed on stderr.
+PDO mappability, defaults (node-relative ones resolved with NODE_ID) and limits. The IR's declared
+PDOs must appear as their communication and mapping objects (CiA 301 7.5.2.35-38), derived here
+from the IR's `pdos` independently of drivegen, unless the description defines those objects
+itself. Every difference is printed on stderr.
 """
 
 import json
@@ -75,6 +77,44 @@ def expected_objects(ir, node_id):
     return out
 
 
+def pdo_bits(type_name):
+    """Bits a value of this IR type takes in a PDO."""
+    return 1 if type_name == "bool" else int(type_name[1:])
+
+
+def pdo_objects(ir, taken, node_id):
+    """(index, subindex) -> expected fields of the objects the IR's PDOs imply."""
+    by_name = {p["name"]: p for p in ir["parameters"]}
+    out = {}
+
+    def var(index, sub, data_type, access, default):
+        out[(index, sub)] = {
+            "data_type": data_type, "access_type": access, "pdo_mappable": False,
+            "default": default, "min": None, "max": None,
+        }
+
+    for pdo in ir.get("pdos", []):
+        offset = pdo["number"] - 1
+        rx = pdo["direction"] == "rx"
+        communication = (0x1400 if rx else 0x1800) + offset
+        mapping = (0x1600 if rx else 0x1A00) + offset
+        if communication not in taken:
+            cob_id = pdo["cob_id"]["value"] + (node_id if pdo["cob_id"]["plus_node_id"] else 0)
+            kind = pdo["transmission_type"]
+            var(communication, 0, 0x05, "ro", 1 if kind is None else 2)
+            var(communication, 1, 0x07, "rw", cob_id)
+            if kind is not None:
+                var(communication, 2, 0x05, "rw", kind)
+        if mapping not in taken:
+            var(mapping, 0, 0x05, "rw", len(pdo["entries"]))
+            for sub, name in enumerate(pdo["entries"], start=1):
+                p = by_name[name]
+                a = next(a for a in p["canopen"] if a["variant"] is None)
+                value = a["index"] << 16 | a["subindex"] << 8 | pdo_bits(p["type"])
+                var(mapping, sub, 0x07, "rw", value)
+    return out
+
+
 def actual_objects(od):
     out = {}
     for obj in od.values():
@@ -101,7 +141,10 @@ def main():
     problems = [f"warning: {r}" for r in collect.records]
     problems += [f"python warning: {w.message}" for w in caught]
     with open(ir_path) as f:
-        expected = expected_objects(json.load(f), node_id)
+        ir = json.load(f)
+    expected = expected_objects(ir, node_id)
+    taken = {index for index, _ in expected} | {r["index"] for r in ir["records"]}
+    expected.update(pdo_objects(ir, taken, node_id))
     actual = actual_objects(od)
     for key in sorted(set(expected) | set(actual)):
         where = f"0x{key[0]:04X} sub {key[1]}"

@@ -2,12 +2,14 @@
 //!
 //! The output is what strict readers (python canopen) accept: canonical key spelling, no BOM,
 //! every sub-section after its parent, no duplicate section or key. Only the default variant's
-//! addresses are written. `$NODEID`-relative defaults stay relative.
+//! addresses are written. `$NODEID`-relative defaults stay relative. Declared PDOs add their
+//! communication and mapping objects ([`super::pdo_objects`]).
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
 use super::data_type::to_code;
+use super::pdo_objects::pdo_objects;
 use crate::ir::{self, Device, Number, Parameter};
 
 /// One variable to write.
@@ -18,24 +20,32 @@ struct Entry<'d> {
 
 /// The EDS text of `device`'s CANopen objects.
 pub fn export(device: &Device) -> String {
-    let objects = objects(device);
+    let pdo = pdo_objects(device);
+    let objects = objects(device, &pdo.parameters);
+    let records: Vec<&ir::Record> = device.records.iter().chain(&pdo.records).collect();
     let mut out = String::new();
     header(&mut out, device);
     object_lists(&mut out, &objects);
     for (index, entries) in &objects {
-        object(&mut out, device, *index, entries);
+        let record = records.iter().copied().find(|r| r.index == *index);
+        object(&mut out, record, *index, entries);
     }
     out
 }
 
-/// CANopen addresses of the default variant, grouped by index, first description wins.
-fn objects(device: &Device) -> BTreeMap<u16, BTreeMap<u8, Entry<'_>>> {
+/// CANopen addresses of the default variant, grouped by index, first description wins; then
+/// the objects derived from PDOs.
+fn objects<'d>(
+    device: &'d Device,
+    derived: &'d [Parameter],
+) -> BTreeMap<u16, BTreeMap<u8, Entry<'d>>> {
     let default_variant = device.variants.first().map(|v| v.name.as_str());
     let in_default = |v: &Option<String>| v.is_none() || v.as_deref() == default_variant;
     let mut objects: BTreeMap<u16, BTreeMap<u8, Entry<'_>>> = BTreeMap::new();
-    for parameter in device.parameters.iter().filter(|p| {
+    let described = device.parameters.iter().filter(|p| {
         p.variants.is_empty() || default_variant.is_some_and(|d| p.variants.iter().any(|v| v == d))
-    }) {
+    });
+    for parameter in described.chain(derived) {
         for address in parameter.canopen.iter().filter(|a| in_default(&a.variant)) {
             objects
                 .entry(address.index)
@@ -94,8 +104,12 @@ fn object_lists(out: &mut String, objects: &BTreeMap<u16, BTreeMap<u8, Entry<'_>
     }
 }
 
-fn object(out: &mut String, device: &Device, index: u16, entries: &BTreeMap<u8, Entry<'_>>) {
-    let record = device.records.iter().find(|r| r.index == index);
+fn object(
+    out: &mut String,
+    record: Option<&ir::Record>,
+    index: u16,
+    entries: &BTreeMap<u8, Entry<'_>>,
+) {
     let single = entries.len() == 1 && entries.contains_key(&0);
     match (record, single, entries.get(&0)) {
         (None, true, Some(entry)) => variable(out, &format!("{index:04X}"), entry),

@@ -16,6 +16,7 @@ mod import;
 mod lower;
 pub(crate) mod node_id;
 mod parse;
+mod pdo_objects;
 mod short_text;
 
 use std::path::Path;
@@ -31,6 +32,7 @@ pub use import::{import_overlay, ImportError};
 pub use lower::{snake_name, EdsEntry, EdsModel, TypeProblem, EDS_SOURCE_ID};
 pub use node_id::{parse_value, EdsValue};
 pub use parse::{parse_ini, Ini};
+pub use pdo_objects::{pdo_objects, PdoObjects};
 pub use short_text::ShortText;
 
 /// True for paths ending `.eds` or `.dcf` (any case).

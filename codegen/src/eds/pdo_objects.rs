@@ -1,0 +1,184 @@
+//! The PDO communication and mapping objects (CiA 301 §7.5.2.35–7.5.2.38) of the PDOs a
+//! description declares, as records and parameters: an exported EDS then tells a CANopen master
+//! the drive's default PDO layout.
+//!
+//! A description that defines a PDO's communication or mapping object itself keeps its own
+//! definition; that object is not derived again.
+
+use crate::ir::{self, pdo_bits, DataType, Device, Number, PdoDirection, PdoMapping};
+
+const READ_WRITE: ir::Access = ir::Access::READ_WRITE;
+
+/// Objects derived from declared PDOs.
+#[derive(Debug, Clone, Default)]
+pub struct PdoObjects {
+    /// One communication and one mapping record per PDO.
+    pub records: Vec<ir::Record>,
+    /// Their sub-indices.
+    pub parameters: Vec<ir::Parameter>,
+}
+
+/// The communication and mapping objects of `device`'s declared PDOs, where the description does
+/// not define them itself. A PDO whose entries do not resolve (an unchecked device) is skipped.
+pub fn pdo_objects(device: &Device) -> PdoObjects {
+    let taken = |index: u16| {
+        let addresses = device.parameters.iter().flat_map(|p| &p.canopen);
+        addresses.clone().any(|a| a.index == index)
+            || device.records.iter().any(|r| r.index == index)
+    };
+    let mut out = PdoObjects::default();
+    for pdo in &device.pdos {
+        let Some(mapped) = mapping_values(device, pdo) else {
+            continue;
+        };
+        let (communication, mapping) = indices(pdo);
+        if !taken(communication) {
+            communication_object(pdo, communication, &mut out);
+        }
+        if !taken(mapping) {
+            mapping_object(pdo, mapping, &mapped, &mut out);
+        }
+    }
+    out
+}
+
+/// The communication and mapping object indices of a PDO.
+pub fn indices(pdo: &PdoMapping) -> (u16, u16) {
+    let offset = pdo.number.saturating_sub(1);
+    match pdo.direction {
+        PdoDirection::Rx => (0x1400 + offset, 0x1600 + offset),
+        PdoDirection::Tx => (0x1800 + offset, 0x1A00 + offset),
+    }
+}
+
+/// Each entry as a mapping value: index, sub-index and length in bits (CiA 301 §7.5.2.36).
+fn mapping_values(device: &Device, pdo: &PdoMapping) -> Option<Vec<u32>> {
+    pdo.entries
+        .iter()
+        .map(|name| {
+            let parameter = device.parameter(name)?;
+            let address = parameter.pdo_object()?;
+            let bits = pdo_bits(parameter.data_type);
+            Some(u32::from(address.index) << 16 | u32::from(address.subindex) << 8 | bits)
+        })
+        .collect()
+}
+
+fn label(pdo: &PdoMapping) -> String {
+    let kind = match pdo.direction {
+        PdoDirection::Rx => "RPDO",
+        PdoDirection::Tx => "TPDO",
+    };
+    format!("{kind}{}", pdo.number)
+}
+
+fn communication_object(pdo: &PdoMapping, index: u16, out: &mut PdoObjects) {
+    let record = record(pdo, index, "communication", "communication parameter", out);
+    let highest = if pdo.transmission_type.is_some() {
+        2
+    } else {
+        1
+    };
+    let member = Member {
+        pdo,
+        record: &record,
+        index,
+    };
+    let u8_type = DataType::Unsigned(1);
+    let highest = member.sub(0, "highest_sub_index", u8_type, ir::Access::READ, highest);
+    let cob_id = i64::from(pdo.cob_id.value);
+    let mut cob_id = member.sub(1, "cob_id", DataType::Unsigned(4), READ_WRITE, cob_id);
+    cob_id.default_plus_node_id = pdo.cob_id.plus_node_id;
+    out.parameters.extend([highest, cob_id]);
+    if let Some(kind) = pdo.transmission_type {
+        let kind = member.sub(2, "transmission_type", u8_type, READ_WRITE, i64::from(kind));
+        out.parameters.push(kind);
+    }
+}
+
+fn mapping_object(pdo: &PdoMapping, index: u16, mapped: &[u32], out: &mut PdoObjects) {
+    let record = record(pdo, index, "mapping", "mapping parameter", out);
+    let member = Member {
+        pdo,
+        record: &record,
+        index,
+    };
+    let count = mapped.len() as i64;
+    let count = member.sub(0, "count", DataType::Unsigned(1), READ_WRITE, count);
+    out.parameters.push(count);
+    for (sub, &value) in (1u8..).zip(mapped) {
+        let name = format!("entry_{sub}");
+        let value = i64::from(value);
+        let entry = member.sub(sub, &name, DataType::Unsigned(4), READ_WRITE, value);
+        out.parameters.push(entry);
+    }
+}
+
+/// Adds the record `{pdo}_{suffix}` at `index`; returns its name.
+fn record(pdo: &PdoMapping, index: u16, suffix: &str, what: &str, out: &mut PdoObjects) -> String {
+    let name = format!("{}_{suffix}", pdo.name);
+    out.records.push(ir::Record {
+        name: name.clone(),
+        kind: ir::RecordKind::Record,
+        index,
+        doc: Some(format!("{} {what} ({})", label(pdo), pdo.name)),
+        source: pdo.source.clone(),
+        span: pdo.span.clone(),
+    });
+    name
+}
+
+/// Builds the sub-indices of one record.
+struct Member<'a> {
+    pdo: &'a PdoMapping,
+    record: &'a str,
+    index: u16,
+}
+
+impl Member<'_> {
+    /// Sub-index `subindex` of the record, `{record}_{name}`, with its default.
+    fn sub(
+        &self,
+        subindex: u8,
+        name: &str,
+        data_type: DataType,
+        access: ir::Access,
+        default: i64,
+    ) -> ir::Parameter {
+        ir::Parameter {
+            name: format!("{}_{name}", self.record),
+            doc: Some(format!("{}: {}.", label(self.pdo), name.replace('_', " "))),
+            data_type,
+            unit: None,
+            scale: None,
+            default: Some(Number::Int(default)),
+            default_plus_node_id: false,
+            range: None,
+            allowed: Vec::new(),
+            enumeration: None,
+            flags: None,
+            record: Some(self.record.to_owned()),
+            modbus: Vec::new(),
+            canopen: vec![ir::ObjectAddress {
+                index: self.index,
+                subindex,
+                access,
+                constant: false,
+                pdo: ir::Pdo::None,
+                variant: None,
+                span: self.pdo.span.clone(),
+            }],
+            rs232: Vec::new(),
+            effect: ir::Effect::Immediate,
+            command: None,
+            variants: Vec::new(),
+            source: self.pdo.source.clone(),
+            erratum: None,
+            spans: ir::ParameterSpans {
+                name: self.pdo.span.clone(),
+                data_type: self.pdo.span.clone(),
+                ..Default::default()
+            },
+        }
+    }
+}
