@@ -272,6 +272,44 @@ impl EdsEntry {
 
     /// The parameter this entry describes, with type `ty`.
     pub fn parameter(&self, ty: DataType, diagnostics: &mut Vec<Diagnostic>) -> ir::Parameter {
+        let names = Names {
+            name: self.name.clone(),
+            record: self.record.clone(),
+            doc: self.doc(),
+            source: self.citation(),
+        };
+        self.parameter_named(names, ty, diagnostics)
+    }
+
+    /// [`EdsEntry::parameter`], moving the entry's strings instead of copying them.
+    pub fn into_parameter(
+        mut self,
+        ty: DataType,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) -> ir::Parameter {
+        // The citation first: it names the section by whether the entry is a record member.
+        let source = self.citation();
+        let names = Names {
+            name: std::mem::take(&mut self.name),
+            record: self.record.take(),
+            doc: self.doc(),
+            source,
+        };
+        self.parameter_named(names, ty, diagnostics)
+    }
+
+    /// `Description`, or else `ParameterName`.
+    fn doc(&self) -> String {
+        let v = &self.variable;
+        v.description.clone().unwrap_or_else(|| v.name.to_string())
+    }
+
+    fn parameter_named(
+        &self,
+        names: Names,
+        ty: DataType,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) -> ir::Parameter {
         let v = &self.variable;
         let (access, constant, pdo) = self.access(diagnostics);
         let value = |t: &Option<Text>, what: &str, d: &mut Vec<Diagnostic>| {
@@ -299,8 +337,8 @@ impl EdsEntry {
             None => (None, false, None),
         };
         ir::Parameter {
-            name: self.name.clone(),
-            doc: Some(v.description.clone().unwrap_or_else(|| v.name.to_string())),
+            name: names.name,
+            doc: Some(names.doc),
             data_type: ty,
             unit: None,
             scale: None,
@@ -310,7 +348,7 @@ impl EdsEntry {
             allowed: Vec::new(),
             enumeration: None,
             flags: None,
-            record: self.record.clone(),
+            record: names.record,
             modbus: Vec::new(),
             canopen: vec![ir::ObjectAddress {
                 index: self.index,
@@ -325,7 +363,7 @@ impl EdsEntry {
             effect: ir::Effect::Immediate,
             command: None,
             variants: Vec::new(),
-            source: Some(self.citation()),
+            source: Some(names.source),
             erratum: None,
             spans: ir::ParameterSpans {
                 name: v.span.clone(),
@@ -369,6 +407,14 @@ impl EdsEntry {
         };
         (access, constant, pdo)
     }
+}
+
+/// The strings a parameter takes from its entry.
+struct Names {
+    name: String,
+    record: Option<String>,
+    doc: String,
+    source: ir::Citation,
 }
 
 /// The lower-case CiA 306 spelling of an access type written in any case; `""` when unknown.

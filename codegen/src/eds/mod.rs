@@ -94,9 +94,25 @@ pub fn read_bytes(
             .warning(),
         ),
     }
+    let t0 = std::time::Instant::now();
     let ini = parse_ini(file, files.text(file), diagnostics);
+    let t1 = std::time::Instant::now();
     let dictionary = dictionary::read(&ini, diagnostics);
-    lower::lower(dictionary, file, files)
+    let t2 = std::time::Instant::now();
+    drop(ini);
+    let t3 = std::time::Instant::now();
+    let m = lower::lower(dictionary, file, files);
+    let t4 = std::time::Instant::now();
+    if std::env::var_os("EDS_T").is_some() {
+        eprintln!(
+            "ini {:?} dict {:?} dropini {:?} lower {:?}",
+            t1 - t0,
+            t2 - t1,
+            t3 - t2,
+            t4 - t3
+        );
+    }
+    m
 }
 
 /// An EDS alone as a device: every object becomes a parameter named after its `ParameterName`.
@@ -114,7 +130,7 @@ pub fn check_eds(path: &Path) -> Checked {
                     .map_or("device".into(), |s| s.to_string_lossy().into_owned())
             });
         let mut device = empty_device(&name, &model);
-        let parameters = typed_parameters(&model.entries, &mut diagnostics);
+        let parameters = typed_parameters(model.entries, &mut diagnostics);
         device.parameters = parameters;
         device
     });
@@ -153,14 +169,14 @@ pub fn empty_device(name: &str, model: &EdsModel) -> ir::Device {
 
 /// The parameters of `entries`; entries without a usable type are errors.
 pub fn typed_parameters(
-    entries: &[EdsEntry],
+    entries: Vec<EdsEntry>,
     diagnostics: &mut Vec<Diagnostic>,
 ) -> Vec<ir::Parameter> {
     // Sized up front: parameters are large, and growing a vector of thousands moves megabytes.
     let mut parameters = Vec::with_capacity(entries.len());
     for e in entries {
         match e.data_type {
-            Ok(ty) => parameters.push(e.parameter(ty, diagnostics)),
+            Ok(ty) => parameters.push(e.into_parameter(ty, diagnostics)),
             Err(problem) => diagnostics.push(e.type_problem(problem)),
         }
     }
