@@ -78,3 +78,15 @@ fn objects_the_description_defines_itself_are_not_derived_again() {
         .iter()
         .any(|p| p.canopen[0].index == 0x1400));
 }
+
+#[test]
+fn pdos_validation_would_refuse_are_skipped_not_panicked_on() {
+    let mut device = ez_wheel();
+    let pdos = device.pdos.len();
+    assert!(pdos >= 3, "ez-Wheel declares its default PDOs");
+    device.pdos[0].number = 0;
+    device.pdos[1].number = 600;
+    device.pdos[2].entries.push("no_such_parameter".into());
+    let derived = drivegen::eds::pdo_objects(&device);
+    assert_eq!(derived.records.len(), 2 * (pdos - 3));
+}

@@ -19,19 +19,20 @@ pub struct PdoObjects {
 }
 
 /// The communication and mapping objects of `device`'s declared PDOs, where the description does
-/// not define them itself. A PDO whose entries do not resolve (an unchecked device) is skipped.
+/// not define them itself. A PDO that validation would refuse (an unchecked device: a number
+/// outside 1..=512, an entry that does not resolve or does not fit a PDO) is skipped.
 pub fn pdo_objects(device: &Device) -> PdoObjects {
     let taken = |index: u16| {
-        let addresses = device.parameters.iter().flat_map(|p| &p.canopen);
-        addresses.clone().any(|a| a.index == index)
-            || device.records.iter().any(|r| r.index == index)
+        let mut addresses = device.parameters.iter().flat_map(|p| &p.canopen);
+        addresses.any(|a| a.index == index) || device.records.iter().any(|r| r.index == index)
     };
     let mut out = PdoObjects::default();
     for pdo in &device.pdos {
-        let Some(mapped) = mapping_values(device, pdo) else {
+        let (Some((communication, mapping)), Some(mapped)) =
+            (indices(pdo), mapping_values(device, pdo))
+        else {
             continue;
         };
-        let (communication, mapping) = indices(pdo);
         if !taken(communication) {
             communication_object(pdo, communication, &mut out);
         }
@@ -42,13 +43,13 @@ pub fn pdo_objects(device: &Device) -> PdoObjects {
     out
 }
 
-/// The communication and mapping object indices of a PDO.
-pub fn indices(pdo: &PdoMapping) -> (u16, u16) {
-    let offset = pdo.number.saturating_sub(1);
-    match pdo.direction {
+/// The communication and mapping object indices of a PDO numbered 1..=512.
+fn indices(pdo: &PdoMapping) -> Option<(u16, u16)> {
+    let offset = pdo.number.checked_sub(1).filter(|&o| o < 512)?;
+    Some(match pdo.direction {
         PdoDirection::Rx => (0x1400 + offset, 0x1600 + offset),
         PdoDirection::Tx => (0x1800 + offset, 0x1A00 + offset),
-    }
+    })
 }
 
 /// Each entry as a mapping value: index, sub-index and length in bits (CiA 301 §7.5.2.36).
@@ -58,7 +59,7 @@ fn mapping_values(device: &Device, pdo: &PdoMapping) -> Option<Vec<u32>> {
         .map(|name| {
             let parameter = device.parameter(name)?;
             let address = parameter.pdo_object()?;
-            let bits = pdo_bits(parameter.data_type);
+            let bits = Some(pdo_bits(parameter.data_type)).filter(|&b| b <= 64)?;
             Some(u32::from(address.index) << 16 | u32::from(address.subindex) << 8 | bits)
         })
         .collect()
