@@ -605,12 +605,13 @@ fn report(
     write!(
         s,
         "\nTarget drivebus ≤ 1.2× floor: met in {met} of {} cases (interleaved minima). The \
-         largest gap is {:.1} ns ({} framing, {n} registers): the fixed cost of the general \
+         largest gap is {:.1} ns ({} framing, {n} register{}): the fixed cost of the general \
          request type, typed errors and the resynchronising frame scan, against a floor that \
          only handles this one well-formed answer.\n",
         minima.len(),
         ours - floor,
-        framing(*tcp)
+        framing(*tcp),
+        if *n == 1 { "" } else { "s" }
     )
     .unwrap();
     s += "\n### Client call over an in-memory peer\n\n\
@@ -630,14 +631,27 @@ fn report(
     write!(
         s,
         "\n### Modbus TCP over loopback\n\n{LOOPBACK_READS} reads of 17 holding registers from an \
-         in-process MBAP server thread; client thread CPU time (`CLOCK_THREAD_CPUTIME_ID`) and \
-         wall time per request.\n\n\
-         | client | CPU µs/request | wall µs/request |\n| --- | ---: | ---: |\n\
-         | drivebus `ModbusTcpClient` | {:.1} | {:.1} |\n| tokio-modbus 0.16 (current-thread) | {:.1} | {:.1} |\n\
-         | floor: raw `TcpStream` `write` + `read_exact` | {:.1} | {:.1} |\n",
-        us(ours.0), us(ours.1), us(theirs.0), us(theirs.1), us(floor.0), us(floor.1)
+         in-process MBAP server thread, one request at a time; client thread CPU time \
+         (`CLOCK_THREAD_CPUTIME_ID`) and wall time per request, and requests per second from the \
+         wall time.\n\n\
+         | client | CPU µs/request | wall µs/request | requests/s |\n| --- | ---: | ---: | ---: |\n"
     )
     .unwrap();
+    let rows = [
+        ("drivebus `ModbusTcpClient`", ours),
+        ("tokio-modbus 0.16 (current-thread)", theirs),
+        ("floor: raw `TcpStream` `write` + `read_exact`", floor),
+    ];
+    for (client, (cpu, wall)) in rows {
+        let per_second = 1e6 / us(wall);
+        writeln!(
+            s,
+            "| {client} | {:.1} | {:.1} | {per_second:.0} |",
+            us(cpu),
+            us(wall)
+        )
+        .unwrap();
+    }
     let met = if us(ours.0) <= 20.0 {
         "met"
     } else {
@@ -649,8 +663,12 @@ fn report(
          The stale-input flush is skipped after an exchange that ended cleanly, since MBAP \
          answers carry their transaction id. The floor row is the kernel's loopback TCP path \
          alone (a `write`, a blocking `read` and the wake-up between them), which every blocking \
-         client pays.\n",
-        us(ours.0) / us(floor.0)
+         client pays. The target was set when tokio-modbus measured 39 µs on this kind of \
+         machine, {:.1}× its {:.1} µs in this run; the raw socket alone costs {:.1} µs here.\n",
+        us(ours.0) / us(floor.0),
+        39.0 / us(theirs.0),
+        us(theirs.0),
+        us(floor.0)
     )
     .unwrap();
     Some(s)
