@@ -114,10 +114,21 @@ struct Reader<'t> {
     ini: Ini<'t>,
     /// The section of each entry.
     owners: Vec<usize>,
-    /// The section entries go to, and where its current run of entries starts.
-    current: Option<(usize, usize)>,
+    /// The run of entries being read.
+    current: Option<Run>,
     /// Whether a section was reopened by a duplicate header.
     reopened: bool,
+}
+
+/// The entries under one section header.
+#[derive(Clone, Copy)]
+struct Run {
+    /// The section they belong to.
+    section: usize,
+    /// Where the run starts in the entries.
+    start: usize,
+    /// Whether the header repeats an earlier one, so the section has entries before this run.
+    reopens: bool,
 }
 
 /// Splits `text` into sections; problems are warnings pushed to `diagnostics`.
@@ -196,7 +207,11 @@ impl<'t> Reader<'t> {
                     .help("CANopen tools (python canopen among them) refuse duplicate sections"),
             );
             self.reopened = true;
-            self.current = Some((i, run_start));
+            self.current = Some(Run {
+                section: i,
+                start: run_start,
+                reopens: true,
+            });
             return;
         }
         let i = self.ini.headers.len();
@@ -207,26 +222,30 @@ impl<'t> Reader<'t> {
             line,
             entries: 0..0,
         });
-        self.current = Some((i, run_start));
+        self.current = Some(Run {
+            section: i,
+            start: run_start,
+            reopens: false,
+        });
     }
 
     fn add_entry(&mut self, entry: Entry<'t>, line: Span, diagnostics: &mut Vec<Diagnostic>) {
-        let Some((section, run_start)) = self.current else {
+        let Some(run) = self.current else {
             diagnostics.push(
                 Diagnostic::error(RULE, line, "entry outside any section is ignored").warning(),
             );
             return;
         };
         let same_key = |e: &Entry| e.key.eq_ignore_ascii_case(entry.key);
-        let in_run = self.ini.entries[run_start..].iter().any(same_key);
-        // Only a reopened section has entries before its current run.
+        let in_run = self.ini.entries[run.start..].iter().any(same_key);
+        // Only a reopened section has entries before its current run (rare: a full scan is fine).
         let earlier = || {
-            let before = self.ini.entries[..run_start].iter().zip(&self.owners);
+            let before = self.ini.entries[..run.start].iter().zip(&self.owners);
             before
-                .filter(|&(_, &owner)| owner == section)
+                .filter(|&(_, &owner)| owner == run.section)
                 .any(|(e, _)| same_key(e))
         };
-        if in_run || (self.reopened && earlier()) {
+        if in_run || (run.reopens && earlier()) {
             diagnostics.push(
                 Diagnostic::error(RULE, entry.key_span(), "key appears twice in its section")
                     .warning()
@@ -235,7 +254,7 @@ impl<'t> Reader<'t> {
             return;
         }
         self.ini.entries.push(entry);
-        self.owners.push(section);
+        self.owners.push(run.section);
     }
 
     /// Groups each section's entries (only needed when a section was reopened) and records
