@@ -360,18 +360,16 @@ mod tests {
     #[test]
     fn a_reopened_section_keeps_its_entries_together_and_in_file_order() {
         let mut d = Vec::new();
-        let ini = parse_ini(
-            FileId(0),
-            "[A]\nx=1\n[B]\ny=2\n[a]\nz=3\nX=4\n[C]\n",
-            &mut d,
-        );
+        let text = "[A]\nx=1\n[B]\ny=2\n[a]\nz=3\nX=4\n[C]\nx=5\n[D]\n";
+        let ini = parse_ini(FileId(0), text, &mut d);
         let keys = |name: &str| -> Vec<&str> {
             let section = ini.section(name).unwrap();
             section.entries.iter().map(|e| e.key).collect()
         };
         assert_eq!(keys("a"), ["x", "z"]);
         assert_eq!(keys("b"), ["y"]);
-        assert!(keys("c").is_empty());
+        assert_eq!(keys("c"), ["x"], "a key of another section is no duplicate");
+        assert!(keys("d").is_empty());
         let messages: Vec<_> = d.iter().map(|d| d.message.as_str()).collect();
         assert_eq!(
             messages,
