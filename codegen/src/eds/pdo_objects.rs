@@ -5,6 +5,8 @@
 //! A description that defines a PDO's communication or mapping object itself keeps its own
 //! definition; that object is not derived again.
 
+use drivebus::canopen::pdo::MappedObject;
+
 use crate::ir::{self, pdo_bits, DataType, Device, Number, PdoDirection, PdoMapping};
 
 const READ_WRITE: ir::Access = ir::Access::READ_WRITE;
@@ -59,8 +61,10 @@ fn mapping_values(device: &Device, pdo: &PdoMapping) -> Option<Vec<u32>> {
         .map(|name| {
             let parameter = device.parameter(name)?;
             let address = parameter.pdo_object()?;
-            let bits = Some(pdo_bits(parameter.data_type)).filter(|&b| b <= 64)?;
-            Some(u32::from(address.index) << 16 | u32::from(address.subindex) << 8 | bits)
+            let bits = u8::try_from(pdo_bits(parameter.data_type))
+                .ok()
+                .filter(|&b| b <= 64)?;
+            Some(MappedObject::new(address.index, address.subindex, bits).entry())
         })
         .collect()
 }
