@@ -29,9 +29,6 @@ pub enum Scan {
 pub trait Framing {
     /// Largest ADU of this framing.
     const MAX_ADU: usize;
-    /// Whether an answer names the request it answers (the MBAP transaction id), so that a stale
-    /// answer can never be taken for the current one.
-    const IDENTIFIES_ANSWERS: bool = false;
 
     /// Encodes `request` to `unit` into `out`; returns the ADU length.
     fn encode_request(

@@ -163,7 +163,6 @@ impl TcpFraming {
 }
 
 impl Framing for TcpFraming {
-    const IDENTIFIES_ANSWERS: bool = true;
     const MAX_ADU: usize = MAX_ADU;
 
     #[inline]

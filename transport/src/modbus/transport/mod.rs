@@ -143,8 +143,6 @@ pub struct Client<S, F> {
     rx_len: usize,
     last_io: Option<Instant>,
     broken: bool,
-    /// The last exchange ended on its own answer with no byte left over.
-    settled: bool,
 }
 
 /// A Modbus RTU client over any byte stream.
@@ -164,7 +162,6 @@ impl<S: ByteStream, F: Framing> Client<S, F> {
             rx_len: 0,
             last_io: None,
             broken: false,
-            settled: false,
         }
     }
 
@@ -270,13 +267,10 @@ impl<S: ByteStream, F: Framing> Client<S, F> {
                 std::thread::sleep(ready - now);
             }
         }
-        // Stale input (a late answer, a duplicate) is flushed before each request. Only where
-        // answers carry their request's id and the last exchange ended cleanly can nothing stale
-        // be mistaken, and the flush (three syscalls on a socket) is skipped.
-        if !(F::IDENTIFIES_ANSWERS && self.settled) {
-            self.stream.discard_input()?;
-        }
-        self.settled = false;
+        // Before every request, even where answers carry a transaction id: the flush is also
+        // where a connection the peer closed while idle is found and reopened, before anything
+        // (possibly a write that must not be repeated) is sent.
+        self.stream.discard_input()?;
         self.rx_len = 0;
         let len = self.framing.encode_request(unit, request, &mut self.tx)?;
         self.stream.send(&self.tx[..len])?;
@@ -291,10 +285,7 @@ impl<S: ByteStream, F: Framing> Client<S, F> {
         let mut rejected = None;
         loop {
             match self.framing.scan(unit, request, &self.rx[..self.rx_len]) {
-                Scan::Found { start, len } => {
-                    self.settled = start + len == self.rx_len;
-                    return Ok(Some(start..start + len));
-                }
+                Scan::Found { start, len } => return Ok(Some(start..start + len)),
                 Scan::Incomplete {
                     discard,
                     rejected: why,

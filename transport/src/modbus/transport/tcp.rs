@@ -154,3 +154,61 @@ impl ModbusTcpClient {
         ))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::io::{Read, Write};
+    use std::net::{TcpListener, TcpStream};
+    use std::sync::mpsc;
+    use std::vec;
+    use std::vec::Vec;
+
+    use super::*;
+    use crate::modbus::{RegisterBus, Table, UnitId};
+
+    /// Reads one MBAP ADU; `None` at the end of the connection.
+    fn next_adu(stream: &mut TcpStream) -> Option<Vec<u8>> {
+        let mut adu = vec![0u8; 6];
+        stream.read_exact(&mut adu).ok()?;
+        let length = usize::from(u16::from_be_bytes([adu[4], adu[5]]));
+        adu.resize(6 + length, 0);
+        stream.read_exact(&mut adu[6..]).ok()?;
+        Some(adu)
+    }
+
+    #[test]
+    fn a_connection_the_server_closed_while_idle_is_reopened_before_a_write_is_sent() {
+        let listener = TcpListener::bind("127.0.0.1:0").unwrap();
+        let addr = listener.local_addr().unwrap();
+        let (closed_tx, closed_rx) = mpsc::channel();
+        let server = std::thread::spawn(move || {
+            // First connection: answer one read of one register, then close it (an idle timeout).
+            let (mut first, _) = listener.accept().unwrap();
+            let read = next_adu(&mut first).unwrap();
+            let mut answer = read[..4].to_vec();
+            answer.extend_from_slice(&[0, 5, read[6], 0x03, 2, 0x12, 0x34]);
+            first.write_all(&answer).unwrap();
+            drop(first);
+            closed_tx.send(()).unwrap();
+            // Second connection: echo writes (FC 0x06 answers with its request) and count them.
+            let (mut second, _) = listener.accept().unwrap();
+            let mut writes = 0;
+            while let Some(write) = next_adu(&mut second) {
+                writes += 1;
+                second.write_all(&write).unwrap();
+            }
+            writes
+        });
+        let mut client = ModbusTcpClient::connect(addr, &TcpConfig::default()).unwrap();
+        let mut value = [0u16];
+        client
+            .read_registers(UnitId(1), Table::Holding, 0, &mut value)
+            .unwrap();
+        assert_eq!(value, [0x1234]);
+        closed_rx.recv().unwrap();
+        // Not idempotent, so never repeated: it must go out once, on a working connection.
+        client.write_register(UnitId(1), 5, 77).unwrap();
+        drop(client);
+        assert_eq!(server.join().unwrap(), 1);
+    }
+}
