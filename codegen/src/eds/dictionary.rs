@@ -115,83 +115,74 @@ enum Key {
     SubNumber,
     CompactSubObj,
     Description,
+}
+
+/// How many [`Key`]s there are.
+const KEYS: usize = Key::Description as usize + 1;
+
+/// What an entry name means in an object or sub-index section.
+enum Known {
+    /// A key drivegen reads.
+    Read(Key),
     /// Known to CiA 306 (or common) but not needed.
     Ignored,
 }
 
 /// The key an entry name stands for, in any case; `None` for an unknown key. Dispatching on the
 /// length first leaves one or two case-insensitive comparisons per entry.
-fn key_of(name: &str) -> Option<Key> {
+fn key_of(name: &str) -> Option<Known> {
     let is = |known: &str| name.eq_ignore_ascii_case(known);
-    Some(match name.len() {
-        4 if is("unit") => Key::Ignored,
-        6 if is("factor") => Key::Ignored,
-        8 if is("datatype") => Key::DataType,
-        8 if is("lowlimit") => Key::LowLimit,
-        8 if is("objflags") => Key::Ignored,
-        9 if is("highlimit") => Key::HighLimit,
-        9 if is("subnumber") => Key::SubNumber,
-        10 if is("objecttype") => Key::ObjectType,
-        10 if is("accesstype") => Key::AccessType,
-        10 if is("pdomapping") => Key::PdoMapping,
-        10 if is("denotation") || is("uploadfile") => Key::Ignored,
-        11 if is("description") => Key::Description,
-        12 if is("defaultvalue") => Key::DefaultValue,
-        12 if is("downloadfile") => Key::Ignored,
-        13 if is("parametername") => Key::ParameterName,
-        13 if is("compactsubobj") => Key::CompactSubObj,
-        14 if is("parametervalue") => Key::ParameterValue,
-        15 if is("storagelocation") => Key::Ignored,
-        _ => return None,
-    })
+    let read = |key| Some(Known::Read(key));
+    match name.len() {
+        4 if is("unit") => Some(Known::Ignored),
+        6 if is("factor") => Some(Known::Ignored),
+        8 if is("datatype") => read(Key::DataType),
+        8 if is("lowlimit") => read(Key::LowLimit),
+        8 if is("objflags") => Some(Known::Ignored),
+        9 if is("highlimit") => read(Key::HighLimit),
+        9 if is("subnumber") => read(Key::SubNumber),
+        10 if is("objecttype") => read(Key::ObjectType),
+        10 if is("accesstype") => read(Key::AccessType),
+        10 if is("pdomapping") => read(Key::PdoMapping),
+        10 if is("denotation") || is("uploadfile") => Some(Known::Ignored),
+        11 if is("description") => read(Key::Description),
+        12 if is("defaultvalue") => read(Key::DefaultValue),
+        12 if is("downloadfile") => Some(Known::Ignored),
+        13 if is("parametername") => read(Key::ParameterName),
+        13 if is("compactsubobj") => read(Key::CompactSubObj),
+        14 if is("parametervalue") => read(Key::ParameterValue),
+        15 if is("storagelocation") => Some(Known::Ignored),
+        _ => None,
+    }
 }
 
 /// The entries of an object or sub-index section by key, found in one pass.
-#[derive(Default)]
 struct ObjectKeys<'s, 't> {
-    parameter_name: Option<&'s Entry<'t>>,
-    object_type: Option<&'s Entry<'t>>,
-    data_type: Option<&'s Entry<'t>>,
-    access_type: Option<&'s Entry<'t>>,
-    pdo_mapping: Option<&'s Entry<'t>>,
-    low_limit: Option<&'s Entry<'t>>,
-    high_limit: Option<&'s Entry<'t>>,
-    default_value: Option<&'s Entry<'t>>,
-    parameter_value: Option<&'s Entry<'t>>,
-    sub_number: Option<&'s Entry<'t>>,
-    compact_sub_obj: Option<&'s Entry<'t>>,
-    description: Option<&'s Entry<'t>>,
+    entries: [Option<&'s Entry<'t>>; KEYS],
     /// Whether some key is none of the known ones (reported once per section).
     has_unknown: bool,
 }
 
 impl<'s, 't> ObjectKeys<'s, 't> {
     fn of(section: &Section<'s, 't>) -> Self {
-        let mut keys = Self::default();
+        let mut keys = Self {
+            entries: [None; KEYS],
+            has_unknown: false,
+        };
         for entry in section.entries {
-            let slot = match key_of(entry.key) {
-                Some(Key::ParameterName) => &mut keys.parameter_name,
-                Some(Key::ObjectType) => &mut keys.object_type,
-                Some(Key::DataType) => &mut keys.data_type,
-                Some(Key::AccessType) => &mut keys.access_type,
-                Some(Key::PdoMapping) => &mut keys.pdo_mapping,
-                Some(Key::LowLimit) => &mut keys.low_limit,
-                Some(Key::HighLimit) => &mut keys.high_limit,
-                Some(Key::DefaultValue) => &mut keys.default_value,
-                Some(Key::ParameterValue) => &mut keys.parameter_value,
-                Some(Key::SubNumber) => &mut keys.sub_number,
-                Some(Key::CompactSubObj) => &mut keys.compact_sub_obj,
-                Some(Key::Description) => &mut keys.description,
-                Some(Key::Ignored) => continue,
-                None => {
-                    keys.has_unknown = true;
-                    continue;
-                }
-            };
-            // The first occurrence wins, as with `Section::get`.
-            slot.get_or_insert(entry);
+            match key_of(entry.key) {
+                // The INI layer already dropped repeated keys.
+                Some(Known::Read(key)) => keys.entries[key as usize] = Some(entry),
+                Some(Known::Ignored) => {}
+                None => keys.has_unknown = true,
+            }
         }
         keys
+    }
+
+    /// The entry of `key`, if the section has one.
+    fn get(&self, key: Key) -> Option<&'s Entry<'t>> {
+        self.entries[key as usize]
     }
 }
 
@@ -222,8 +213,14 @@ pub fn read(ini: &Ini, diagnostics: &mut Vec<Diagnostic>) -> Dictionary {
     let mut dictionary = Dictionary::default();
     let sections: Vec<Section> = ini.sections().collect();
     let kinds: Vec<SectionKind> = sections.iter().map(|s| classify(s.name)).collect();
-    let subs = SubSections::of(&sections, &kinds);
-    let parents = Parents::of(&sections, &kinds);
+    let subs: SubSections = ByIndex::of(&sections, &kinds, |section, kind| match kind {
+        SectionKind::Sub(index, sub) => Some((index, (sub, section))),
+        _ => None,
+    });
+    let parents: Parents = ByIndex::of(&sections, &kinds, |section, kind| match kind {
+        SectionKind::Object(index) => Some((index, section.span.range.start)),
+        _ => None,
+    });
     for (section, kind) in sections.iter().zip(kinds) {
         match kind {
             SectionKind::Object(index) => {
@@ -232,7 +229,12 @@ pub fn read(ini: &Ini, diagnostics: &mut Vec<Diagnostic>) -> Dictionary {
                 }
             }
             SectionKind::Sub(index, _) | SectionKind::Names(index) | SectionKind::Values(index) => {
-                orphan_check(parents.header_of(index), section, index, diagnostics)
+                orphan_check(
+                    parents.of_object(index).next().copied(),
+                    section,
+                    index,
+                    diagnostics,
+                )
             }
             SectionKind::DeviceInfo => {
                 let text = |k: &str| section.get(k).map(|e| e.value.to_owned());
@@ -255,61 +257,41 @@ pub fn read(ini: &Ini, diagnostics: &mut Vec<Diagnostic>) -> Dictionary {
     dictionary
 }
 
-/// `[XXXXsubN]` sections sorted by index, each index's in file order: one vector for all,
-/// searched by binary search.
-struct SubSections<'i>(Vec<(u16, u8, &'i Section<'i, 'i>)>);
+/// Values picked from the sections, sorted by object index, each index's in file order: one
+/// vector searched by binary search (vendor files have thousands of sections).
+struct ByIndex<T>(Vec<(u16, T)>);
 
-impl<'i> SubSections<'i> {
-    fn of(sections: &'i [Section<'i, 'i>], kinds: &[SectionKind]) -> Self {
-        let mut subs: Vec<_> = sections
+impl<T> ByIndex<T> {
+    fn of<'i>(
+        sections: &'i [Section<'i, 'i>],
+        kinds: &[SectionKind],
+        pick: impl Fn(&'i Section<'i, 'i>, SectionKind) -> Option<(u16, T)>,
+    ) -> Self {
+        let mut picked: Vec<_> = sections
             .iter()
             .zip(kinds)
-            .filter_map(|(section, kind)| match *kind {
-                SectionKind::Sub(index, sub) => Some((index, sub, section)),
-                _ => None,
-            })
+            .filter_map(|(section, &kind)| pick(section, kind))
             .collect();
-        // Stable: sub-sections of one index keep their file order.
-        subs.sort_by_key(|&(index, ..)| index);
-        SubSections(subs)
+        // Stable: one index's values keep their file order.
+        picked.sort_by_key(|&(index, _)| index);
+        ByIndex(picked)
     }
 
-    /// The sub-sections of object `index`: sub-index and section.
-    fn of_object(&self, index: u16) -> impl Iterator<Item = (u8, &'i Section<'i, 'i>)> + '_ {
-        let start = self.0.partition_point(|&(i, ..)| i < index);
+    /// The values of object `index`.
+    fn of_object(&self, index: u16) -> impl Iterator<Item = &T> {
+        let start = self.0.partition_point(|&(i, _)| i < index);
         self.0[start..]
             .iter()
-            .take_while(move |&&(i, ..)| i == index)
-            .map(|&(_, sub, section)| (sub, section))
+            .take_while(move |&&(i, _)| i == index)
+            .map(|(_, value)| value)
     }
 }
 
-/// Where each object's header starts, sorted by index.
-struct Parents(Vec<(u16, usize)>);
+/// `[XXXXsubN]` sections by object index: sub-index and section.
+type SubSections<'i> = ByIndex<(u8, &'i Section<'i, 'i>)>;
 
-impl Parents {
-    fn of(sections: &[Section], kinds: &[SectionKind]) -> Self {
-        let mut parents: Vec<_> = sections
-            .iter()
-            .zip(kinds)
-            .filter_map(|(section, kind)| match *kind {
-                SectionKind::Object(index) => Some((index, section.span.range.start)),
-                _ => None,
-            })
-            .collect();
-        parents.sort_unstable();
-        Parents(parents)
-    }
-
-    /// Where the header of object `index` starts, if there is one.
-    fn header_of(&self, index: u16) -> Option<usize> {
-        let at = self.0.partition_point(|&(i, _)| i < index);
-        self.0
-            .get(at)
-            .filter(|&&(i, _)| i == index)
-            .map(|&(_, start)| start)
-    }
-}
+/// Where each object's header starts, by object index.
+type Parents = ByIndex<usize>;
 
 #[derive(Clone, Copy)]
 enum SectionKind {
@@ -420,7 +402,7 @@ fn object(
 }
 
 fn object_kind(keys: &ObjectKeys, diagnostics: &mut Vec<Diagnostic>) -> Option<ObjectKind> {
-    let Some(entry) = keys.object_type else {
+    let Some(entry) = keys.get(Key::ObjectType) else {
         return Some(ObjectKind::Var);
     };
     Some(match parse_small(entry.value) {
@@ -452,7 +434,7 @@ fn parameter_name(
     diagnostics: &mut Vec<Diagnostic>,
     fallback: impl FnOnce() -> String,
 ) -> String {
-    match keys.parameter_name {
+    match keys.get(Key::ParameterName) {
         Some(e) if !e.value.is_empty() => e.value.to_owned(),
         _ => {
             let fallback = fallback();
@@ -467,7 +449,7 @@ fn parameter_name(
 }
 
 fn warn_subs_of_variable(subs: &SubSections<'_>, index: u16, diagnostics: &mut Vec<Diagnostic>) {
-    for (_, s) in subs.of_object(index) {
+    for &(_, s) in subs.of_object(index) {
         diagnostics.push(
             Diagnostic::error(
                 RULE_OBJECT,
@@ -481,7 +463,7 @@ fn warn_subs_of_variable(subs: &SubSections<'_>, index: u16, diagnostics: &mut V
 }
 
 fn compact_count(keys: &ObjectKeys, diagnostics: &mut Vec<Diagnostic>) -> Option<u8> {
-    let entry = keys.compact_sub_obj?;
+    let entry = keys.get(Key::CompactSubObj)?;
     let count = parse_small(entry.value).and_then(|n| u8::try_from(n).ok());
     if count.is_none() {
         diagnostics.push(
@@ -505,10 +487,10 @@ fn members(
 ) -> Vec<Variable> {
     let mut out: Vec<Variable> = subs
         .of_object(index)
-        .map(|(sub, s)| {
+        .map(|&(sub, s)| {
             let keys = ObjectKeys::of(s);
             if let Some(ot) = keys
-                .object_type
+                .get(Key::ObjectType)
                 .filter(|e| parse_small(e.value) != Some(0x7))
             {
                 diagnostics.push(
@@ -525,7 +507,7 @@ fn members(
         })
         .collect();
     out.sort_by_key(|v| v.subindex);
-    if let Some(entry) = parent.sub_number {
+    if let Some(entry) = parent.get(Key::SubNumber) {
         if parse_small(entry.value) != Some(out.len() as u64) {
             diagnostics.push(
                 Diagnostic::error(
@@ -617,7 +599,7 @@ fn variable(
             span: e.value_span(),
         })
     };
-    let data_type = keys.data_type.and_then(|e| {
+    let data_type = keys.get(Key::DataType).and_then(|e| {
         let code = parse_small(e.value).and_then(|c| u16::try_from(c).ok());
         if code.is_none() {
             diagnostics.push(Diagnostic::error(
@@ -628,7 +610,7 @@ fn variable(
         }
         code
     });
-    let pdo_mapping = keys.pdo_mapping.is_some_and(|e| {
+    let pdo_mapping = keys.get(Key::PdoMapping).is_some_and(|e| {
         let on = parse_small(e.value);
         if !matches!(on, Some(0 | 1)) {
             diagnostics.push(
@@ -645,16 +627,16 @@ fn variable(
     Variable {
         subindex,
         name: ShortText::from(name),
-        description: keys.description.map(|e| e.value.to_owned()),
+        description: keys.get(Key::Description).map(|e| e.value.to_owned()),
         span: section.span.clone(),
         line: section.line,
         data_type,
-        access: text(keys.access_type),
+        access: text(keys.get(Key::AccessType)),
         pdo_mapping,
-        low: text(keys.low_limit),
-        high: text(keys.high_limit),
-        default: text(keys.default_value),
-        parameter_value: text(keys.parameter_value),
+        low: text(keys.get(Key::LowLimit)),
+        high: text(keys.get(Key::HighLimit)),
+        default: text(keys.get(Key::DefaultValue)),
+        parameter_value: text(keys.get(Key::ParameterValue)),
     }
 }
 
