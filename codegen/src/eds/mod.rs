@@ -94,25 +94,9 @@ pub fn read_bytes(
             .warning(),
         ),
     }
-    let t0 = std::time::Instant::now();
     let ini = parse_ini(file, files.text(file), diagnostics);
-    let t1 = std::time::Instant::now();
     let dictionary = dictionary::read(&ini, diagnostics);
-    let t2 = std::time::Instant::now();
-    drop(ini);
-    let t3 = std::time::Instant::now();
-    let m = lower::lower(dictionary, file, files);
-    let t4 = std::time::Instant::now();
-    if std::env::var_os("EDS_T").is_some() {
-        eprintln!(
-            "ini {:?} dict {:?} dropini {:?} lower {:?}",
-            t1 - t0,
-            t2 - t1,
-            t3 - t2,
-            t4 - t3
-        );
-    }
-    m
+    lower::lower(dictionary, file, files)
 }
 
 /// An EDS alone as a device: every object becomes a parameter named after its `ParameterName`.
