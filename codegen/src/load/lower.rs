@@ -41,8 +41,8 @@ pub fn lower(
     let mut device = cx.device(&root.raw, files)?;
     if let Some(model) = eds {
         let source = &model.source;
-        let shared = (source.id.as_str().into(), source.file.as_str().into());
-        cx.sources.insert(source.id.clone(), shared);
+        cx.sources
+            .insert(source.id.clone(), shared_source(&source.id, &source.file));
         device.sources.push(model.source.clone());
     }
     let included: Vec<LoadedFile> = files_iter.collect();
@@ -66,9 +66,13 @@ pub fn lower(
     Some(device)
 }
 
+/// A source's id and file as citations share them.
+fn shared_source(id: &str, file: &str) -> (Arc<str>, Arc<str>) {
+    (Arc::from(id), Arc::from(file))
+}
+
 pub(super) struct Lowering<'d> {
     pub(super) diagnostics: &'d mut Vec<Diagnostic>,
-    /// Source id → file name.
     /// Declared sources: id → (id, file), shared by every citation of them.
     sources: BTreeMap<String, (Arc<str>, Arc<str>)>,
     pub(super) file: FileId,
@@ -233,10 +237,8 @@ impl Lowering<'_> {
                 }
                 Some(_) => {}
                 None => {
-                    self.sources.insert(
-                        id.clone(),
-                        (id.as_str().into(), source.file.as_str().into()),
-                    );
+                    self.sources
+                        .insert(id.clone(), shared_source(id, &source.file));
                     device.sources.push(ir::SourceDoc {
                         id: id.clone(),
                         file: source.file.clone(),
