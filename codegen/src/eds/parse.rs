@@ -150,20 +150,23 @@ pub fn parse_ini<'t>(file: FileId, text: &'t str, diagnostics: &mut Vec<Diagnost
         current: None,
         reopened: false,
     };
-    let mut offset = 0;
-    for (line_index, raw_line) in text.split_inclusive('\n').enumerate() {
-        let line_start = offset;
-        offset += raw_line.len();
-        let Some((lead, content)) = content(raw_line) else {
+    let mut next_line = 0;
+    let mut line_number = 0u32;
+    while next_line < text.len() {
+        let line_start = next_line;
+        let line_end = line_end(text.as_bytes(), line_start);
+        next_line = line_end + 1;
+        line_number = line_number.saturating_add(1);
+        let Some(Content { lead, text: content, eq }) = Content::of(&text[line_start..line_end])
+        else {
             continue;
         };
         let start = line_start + lead;
         let span = Span::new(file, start..start + content.len());
         if let Some(name) = content.strip_prefix('[').and_then(|t| t.strip_suffix(']')) {
-            let line = u32::try_from(line_index + 1).unwrap_or(u32::MAX);
             let name = trim_end(trim_start(name));
-            reader.open_section(name, span, line, diagnostics);
-        } else if let Some(eq) = content.bytes().position(|b| b == b'=') {
+            reader.open_section(name, span, line_number, diagnostics);
+        } else if let Some(eq) = eq {
             reader.add_entry(entry(file, start, content, eq), span, diagnostics);
         } else {
             diagnostics.push(
@@ -277,18 +280,54 @@ impl<'t> Reader<'t> {
     }
 }
 
+/// Where the line starting at `start` ends: its `\n`, or the end of the text. A plain loop: lines
+/// are a few dozen bytes, too short for `memchr`'s set-up to pay off.
+fn line_end(bytes: &[u8], start: usize) -> usize {
+    bytes[start..]
+        .iter()
+        .position(|&b| b == b'\n')
+        .map_or(bytes.len(), |n| start + n)
+}
+
 /// What a line says: its text without a `;` comment (a whole-line one, or one preceded by white
-/// space) and surrounding white space, with its offset in the line; `None` when nothing is left.
-fn content(line: &str) -> Option<(usize, &str)> {
-    let text = trim_start(line);
-    let bytes = text.as_bytes();
-    if bytes.first().is_none_or(|&b| b == b';') {
-        return None;
+/// space) and surrounding white space.
+struct Content<'l> {
+    /// Where the text starts in the line.
+    lead: usize,
+    /// The text.
+    text: &'l str,
+    /// Where its first `=` is.
+    eq: Option<usize>,
+}
+
+impl<'l> Content<'l> {
+    /// The content of `line` (without its `\n`); `None` when nothing is left. One pass finds both
+    /// the comment and the first `=`.
+    fn of(line: &'l str) -> Option<Self> {
+        let text = trim_start(line);
+        let bytes = text.as_bytes();
+        let first = *bytes.first()?;
+        if first == b';' {
+            return None;
+        }
+        let mut eq = (first == b'=').then_some(0);
+        let mut end = bytes.len();
+        for i in 1..bytes.len() {
+            match bytes[i] {
+                b'=' if eq.is_none() => eq = Some(i),
+                b';' if bytes[i - 1].is_ascii_whitespace() => {
+                    end = i;
+                    break;
+                }
+                _ => {}
+            }
+        }
+        Some(Content {
+            lead: line.len() - text.len(),
+            text: trim_end(&text[..end]),
+            eq,
+        })
     }
-    let end = (1..bytes.len())
-        .find(|&i| bytes[i] == b';' && bytes[i - 1].is_ascii_whitespace())
-        .unwrap_or(bytes.len());
-    Some((line.len() - text.len(), trim_end(&text[..end])))
 }
 
 /// `str::trim_start`, with a fast path for the ASCII white space nearly every line has.
