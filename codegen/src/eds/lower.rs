@@ -102,7 +102,7 @@ pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
                     source: Some(cite(
                         &object.span,
                         object.line,
-                        format!("[{:04X}]", object.index),
+                        section_name(object.index, None),
                     )),
                     span: object.span.clone(),
                 });
@@ -145,36 +145,71 @@ fn entry_type(v: &Variable, kind: ObjectKind) -> Result<DataType, TypeProblem> {
 /// starts at every non-alphanumeric run, at a lower-case or digit to upper-case step, and at the
 /// last capital of an acronym followed by lower case (`VendorID` → `vendor_id`).
 pub fn snake_name(text: &str) -> String {
+    // Bytes rather than chars: every byte of a multi-byte character is a non-alphanumeric
+    // separator, exactly as the character itself would be, and bytes are cheaper to walk.
+    let bytes = text.as_bytes();
     let mut out = String::with_capacity(text.len() + 2);
-    let mut chars = text.chars().peekable();
-    let mut prev: Option<char> = None;
-    while let Some(c) = chars.next() {
+    let mut after_underscore = false;
+    let mut prev: Option<u8> = None;
+    for (i, &c) in bytes.iter().enumerate() {
         if !c.is_ascii_alphanumeric() {
             prev = None;
-            if !out.is_empty() && !out.ends_with('_') {
+            if !out.is_empty() && !after_underscore {
                 out.push('_');
+                after_underscore = true;
             }
             continue;
         }
-        let next_lower = chars.peek().is_some_and(char::is_ascii_lowercase);
+        let next_lower = bytes.get(i + 1).is_some_and(u8::is_ascii_lowercase);
         let starts_word = c.is_ascii_uppercase()
             && prev.is_some_and(|p| {
                 p.is_ascii_lowercase()
                     || p.is_ascii_digit()
                     || (p.is_ascii_uppercase() && next_lower)
             });
-        if starts_word && !out.ends_with('_') {
+        if starts_word && !after_underscore {
             out.push('_');
         }
-        out.push(c.to_ascii_lowercase());
+        out.push(char::from(c.to_ascii_lowercase()));
+        after_underscore = false;
         prev = Some(c);
     }
-    let trimmed = out.trim_end_matches('_').len();
-    out.truncate(trimmed);
-    match out.chars().next() {
+    if after_underscore {
+        out.pop();
+    }
+    match out.as_bytes().first() {
         None => "object".into(),
-        Some(c) if c.is_ascii_digit() => format!("n{out}"),
+        Some(c) if c.is_ascii_digit() => {
+            out.insert(0, 'n');
+            out
+        }
         Some(_) => out,
+    }
+}
+
+/// `[1018sub1]`, or `[1018]` without a sub-index: how an EDS names the section of an object.
+/// Written digit by digit: `format!` is costly when thousands of objects are cited.
+fn section_name(index: u16, subindex: Option<u8>) -> String {
+    let mut name = String::with_capacity(12);
+    name.push('[');
+    push_hex(&mut name, index, 4);
+    if let Some(sub) = subindex {
+        name.push_str("sub");
+        push_hex(&mut name, sub.into(), 1);
+    }
+    name.push(']');
+    name
+}
+
+/// `value` in upper-case hex, zero-padded to at least `min_digits` digits.
+fn push_hex(out: &mut String, value: u16, min_digits: u32) {
+    const DIGITS: &[u8; 16] = b"0123456789ABCDEF";
+    let digits = (u16::BITS - value.leading_zeros())
+        .div_ceil(4)
+        .max(min_digits);
+    for shift in (0..digits).rev() {
+        let digit = (value >> (shift * 4)) & 0xF;
+        out.push(char::from(DIGITS[usize::from(digit)]));
     }
 }
 
@@ -186,7 +221,7 @@ fn make_unique(entries: &mut [EdsEntry], records: &mut [ir::Record]) {
     if first.contains(&true) {
         for (e, _) in entries.iter_mut().zip(first).filter(|(_, clash)| *clash) {
             if let Some(record) = &e.record {
-                e.name = format!("{record}_{}", e.name);
+                e.name = joined(&[record, "_", &e.name]);
             }
         }
         let second = repeated(entries.iter().map(|e| e.name.as_str()));
@@ -206,6 +241,13 @@ fn make_unique(entries: &mut [EdsEntry], records: &mut [ir::Record]) {
         }
         r.name = renamed;
     }
+}
+
+/// The concatenation of `parts`, allocated once.
+fn joined(parts: &[&str]) -> String {
+    let mut out = String::with_capacity(parts.iter().map(|p| p.len()).sum());
+    parts.iter().for_each(|p| out.push_str(p));
+    out
 }
 
 /// For each name, whether another item has it too. One map lookup per name: the map remembers
@@ -232,10 +274,8 @@ fn repeated<'n>(names: impl Iterator<Item = &'n str>) -> Vec<bool> {
 impl EdsEntry {
     /// The EDS section it is written in: `[1018sub1]`, or `[1000]` for a VAR.
     pub fn section(&self) -> String {
-        match self.record {
-            Some(_) => format!("[{:04X}sub{:X}]", self.index, self.variable.subindex),
-            None => format!("[{:04X}]", self.index),
-        }
+        let sub = self.record.as_ref().map(|_| self.variable.subindex);
+        section_name(self.index, sub)
     }
 
     /// The citation of its EDS line.
@@ -301,7 +341,9 @@ impl EdsEntry {
     /// `Description`, or else `ParameterName`.
     fn doc(&self) -> String {
         let v = &self.variable;
-        v.description.clone().unwrap_or_else(|| v.name.to_string())
+        v.description
+            .clone()
+            .unwrap_or_else(|| String::from(&*v.name))
     }
 
     fn parameter_named(
@@ -484,5 +526,16 @@ mod tests {
         assert_eq!(snake_name("VendorID"), "vendor_id");
         assert_eq!(snake_name("TPDO1 COB-ID"), "tpdo1_cob_id");
         assert_eq!(snake_name("Axis1Speed"), "axis1_speed");
+        assert_eq!(snake_name("Température moteur"), "temp_rature_moteur");
+        assert_eq!(snake_name("__"), "object");
+        assert_eq!(snake_name("Speed (rpm) "), "speed_rpm");
+    }
+
+    #[test]
+    fn sections_are_named_in_upper_case_hex() {
+        assert_eq!(section_name(0x1018, Some(1)), "[1018sub1]");
+        assert_eq!(section_name(0x00a, Some(0x1f)), "[000Asub1F]");
+        assert_eq!(section_name(0xFFFF, None), "[FFFF]");
+        assert_eq!(section_name(0x2000, Some(0)), "[2000sub0]");
     }
 }

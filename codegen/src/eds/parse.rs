@@ -157,7 +157,11 @@ pub fn parse_ini<'t>(file: FileId, text: &'t str, diagnostics: &mut Vec<Diagnost
         let line_end = line_end(text.as_bytes(), line_start);
         next_line = line_end + 1;
         line_number = line_number.saturating_add(1);
-        let Some(Content { lead, text: content, eq }) = Content::of(&text[line_start..line_end])
+        let Some(Content {
+            lead,
+            text: content,
+            eq,
+        }) = Content::of(&text[line_start..line_end])
         else {
             continue;
         };

@@ -11,7 +11,12 @@ const INLINE: usize = 30;
 
 /// An immutable string, inline up to 30 bytes.
 #[derive(Clone)]
-pub enum ShortText {
+pub struct ShortText(Repr);
+
+/// Private, so that only [`ShortText::from`] and [`ShortText::lowercase`] make inline bytes:
+/// they are always valid UTF-8, which [`ShortText`]'s `Deref` relies on.
+#[derive(Clone)]
+enum Repr {
     /// Up to 30 bytes of UTF-8 (`INLINE`) and their length.
     Inline([u8; INLINE], u8),
     /// A longer text.
@@ -20,13 +25,13 @@ pub enum ShortText {
 
 impl From<&str> for ShortText {
     fn from(text: &str) -> Self {
-        if text.len() <= INLINE {
+        ShortText(if text.len() <= INLINE {
             let mut bytes = [0; INLINE];
             bytes[..text.len()].copy_from_slice(text.as_bytes());
-            ShortText::Inline(bytes, text.len() as u8)
+            Repr::Inline(bytes, text.len() as u8)
         } else {
-            ShortText::Heap(text.into())
-        }
+            Repr::Heap(text.into())
+        })
     }
 }
 
@@ -34,9 +39,10 @@ impl ShortText {
     /// `text` in ASCII lower case.
     pub fn lowercase(text: &str) -> Self {
         let mut short = Self::from(text);
-        match &mut short {
-            ShortText::Inline(bytes, len) => bytes[..usize::from(*len)].make_ascii_lowercase(),
-            ShortText::Heap(text) => text.make_ascii_lowercase(),
+        // ASCII case changes keep UTF-8 valid: multi-byte sequences are left alone.
+        match &mut short.0 {
+            Repr::Inline(bytes, len) => bytes[..usize::from(*len)].make_ascii_lowercase(),
+            Repr::Heap(text) => text.make_ascii_lowercase(),
         }
         short
     }
@@ -46,12 +52,17 @@ impl Deref for ShortText {
     type Target = str;
 
     fn deref(&self) -> &str {
-        match self {
-            // The bytes were copied from a `&str` whole, so they are valid UTF-8.
-            ShortText::Inline(bytes, len) => {
-                std::str::from_utf8(&bytes[..usize::from(*len)]).unwrap_or_default()
+        match &self.0 {
+            Repr::Inline(bytes, len) => {
+                let bytes = &bytes[..usize::from(*len)];
+                // SAFETY: inline bytes are only written by `from` (a copy of a whole `&str`) and
+                // `lowercase` (ASCII case changes of such a copy), so they are valid UTF-8; the
+                // representation is private, so nothing else can write them. Checking again on
+                // every read cost more than copying the text (tens of thousands of reads per
+                // EDS).
+                unsafe { std::str::from_utf8_unchecked(bytes) }
             }
-            ShortText::Heap(text) => text,
+            Repr::Heap(text) => text,
         }
     }
 }
@@ -100,10 +111,9 @@ mod tests {
         assert_eq!(&*ShortText::from(""), "");
         assert_eq!(&*ShortText::from("µ".repeat(15).as_str()), "µ".repeat(15));
         assert_eq!(&*ShortText::from(long), long);
-        assert!(matches!(
-            ShortText::from("$NODEID+0x180"),
-            ShortText::Inline(..)
-        ));
+        let inline = |text: &str| matches!(ShortText::from(text).0, Repr::Inline(..));
+        assert!(inline("$NODEID+0x180"));
+        assert!(!inline(long));
         assert_eq!(&*ShortText::lowercase("1A00Sub1"), "1a00sub1");
         assert_eq!(
             &*ShortText::lowercase(&long.to_uppercase()),
