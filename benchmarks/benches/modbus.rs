@@ -1,5 +1,6 @@
 //! Modbus client codec and client-path benchmarks, side by side with tokio-modbus, rmodbus and a
-//! hand-written floor; wire efficiency of the planner; TCP loopback client CPU per request.
+//! hand-written floor; wire efficiency of the planner; TCP loopback client CPU per request
+//! (`modbus/loopback.rs`).
 //!
 //! `cargo bench -p drivegen-benchmarks --bench modbus` runs everything (about two minutes) and
 //! rewrites the `## Modbus` section of `docs/benchmarks.md` from this run's figures.
@@ -7,8 +8,6 @@
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::hint::black_box;
-use std::io::{Read, Write};
-use std::net::{TcpListener, TcpStream};
 use std::path::{Path, PathBuf};
 use std::pin::Pin;
 use std::task::{Context as TaskContext, Poll};
@@ -16,17 +15,18 @@ use std::time::{Duration, Instant};
 
 use criterion::{BenchmarkId, Criterion};
 use drivebus::modbus::framing::Scan;
-use drivebus::modbus::pdu::{
-    decode_request, decode_response, encode_registers_response, Request, Response, ServerRequest,
-};
+use drivebus::modbus::pdu::{decode_response, encode_registers_response, Request, Response};
 use drivebus::modbus::planner::plan;
 use drivebus::modbus::retry::RetryPolicy;
 use drivebus::modbus::rtu::{self, RtuFraming};
 use drivebus::modbus::tcp::{self as mbap, Header, TcpFraming};
-use drivebus::modbus::transport::{ByteStream, Client, ClientConfig, ModbusTcpClient, TcpConfig};
+use drivebus::modbus::transport::{ByteStream, Client, ClientConfig};
 use drivebus::modbus::{ModbusAddress, ModbusLimits, RegisterBus, Table, UnitId, WordOrder};
 use drivebus::BusError;
 use drivegen_benchmarks as floor;
+
+#[path = "modbus/loopback.rs"]
+mod loopback;
 
 const UNIT: UnitId = UnitId(1);
 const START: u16 = 0x0060;
@@ -290,7 +290,7 @@ fn client(c: &mut Criterion) {
     let config = ClientConfig {
         timeout: Duration::from_secs(1),
         retry: RetryPolicy::NONE,
-        idle_gap: Duration::ZERO,
+        ..ClientConfig::default()
     };
     for tcp in [false, true] {
         let mut group = c.benchmark_group(if tcp { "client_tcp" } else { "client_rtu" });
@@ -387,131 +387,6 @@ fn wire_efficiency() -> String {
     s
 }
 
-fn thread_cpu() -> Duration {
-    let mut ts = libc::timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: clock_gettime only writes the timespec it is given.
-    unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
-    Duration::new(ts.tv_sec as u64, ts.tv_nsec as u32)
-}
-
-/// A loopback MBAP server thread answering 0x03 reads with 0x1000.. values; returns its port.
-fn loopback_server() -> u16 {
-    let listener = TcpListener::bind("127.0.0.1:0").unwrap();
-    let port = listener.local_addr().unwrap().port();
-    std::thread::spawn(move || {
-        for stream in listener.incoming().take(3) {
-            let mut stream = stream.unwrap();
-            stream.set_nodelay(true).unwrap();
-            std::thread::spawn(move || {
-                let (mut rx, mut tx) = ([0u8; 260], [0u8; 260]);
-                while stream.read_exact(&mut rx[..mbap::HEADER_LEN]).is_ok() {
-                    let header = Header::parse(&rx).unwrap();
-                    stream
-                        .read_exact(&mut rx[mbap::HEADER_LEN..][..header.pdu_len])
-                        .unwrap();
-                    let Ok(ServerRequest::Read { count, .. }) =
-                        decode_request(&rx[mbap::HEADER_LEN..][..header.pdu_len])
-                    else {
-                        break;
-                    };
-                    let len =
-                        encode_registers_response(3, &values(count), &mut tx[mbap::HEADER_LEN..])
-                            .unwrap();
-                    Header {
-                        pdu_len: len,
-                        ..header
-                    }
-                    .write(&mut tx)
-                    .unwrap();
-                    stream.write_all(&tx[..mbap::HEADER_LEN + len]).unwrap();
-                }
-            });
-        }
-    });
-    port
-}
-
-const LOOPBACK_READS: u32 = 10_000;
-
-/// Client CPU and wall time per request over loopback TCP, drivebus and tokio-modbus.
-fn loopback() -> [(Duration, Duration); 3] {
-    let port = loopback_server();
-    let addr = format!("127.0.0.1:{port}");
-    let mut out = [0u16; 17];
-    let mut client = ModbusTcpClient::connect(&addr, &TcpConfig::default()).unwrap();
-    let (wall, cpu) = (Instant::now(), thread_cpu());
-    for _ in 0..LOOPBACK_READS {
-        client
-            .read_registers(UNIT, Table::Holding, START, &mut out)
-            .unwrap();
-    }
-    let ours = (
-        (thread_cpu() - cpu) / LOOPBACK_READS,
-        wall.elapsed() / LOOPBACK_READS,
-    );
-    assert_eq!(out.to_vec(), values(17));
-
-    use tokio_modbus::client::Reader;
-    let rt = runtime();
-    let theirs = rt.block_on(async {
-        let socket = addr.parse().unwrap();
-        let mut ctx = tokio_modbus::client::tcp::connect_slave(socket, tokio_modbus::Slave(UNIT.0))
-            .await
-            .unwrap();
-        let (wall, cpu) = (Instant::now(), thread_cpu());
-        for _ in 0..LOOPBACK_READS {
-            black_box(
-                ctx.read_holding_registers(START, 17)
-                    .await
-                    .unwrap()
-                    .unwrap(),
-            );
-        }
-        (
-            (thread_cpu() - cpu) / LOOPBACK_READS,
-            wall.elapsed() / LOOPBACK_READS,
-        )
-    });
-    [ours, theirs, raw_socket_floor(&addr)]
-}
-
-/// The least a blocking client can do per request: one `write` of a pre-encoded request and
-/// `read`s of the known answer length, with no framing checks, timeouts or retries.
-fn raw_socket_floor(addr: &str) -> (Duration, Duration) {
-    let mut stream = TcpStream::connect(addr).unwrap();
-    stream.set_nodelay(true).unwrap();
-    let mut request = [0u8; 12];
-    let len = mbap::encode_request(
-        1,
-        UNIT,
-        &Request::ReadHoldingRegisters {
-            start: START,
-            count: 17,
-        },
-        &mut request,
-    )
-    .unwrap();
-    let mut answer = [0u8; mbap::HEADER_LEN + 2 + 34];
-    let (wall, cpu) = (Instant::now(), thread_cpu());
-    for _ in 0..LOOPBACK_READS {
-        stream.write_all(&request[..len]).unwrap();
-        stream.read_exact(&mut answer).unwrap();
-    }
-    let floor = (
-        (thread_cpu() - cpu) / LOOPBACK_READS,
-        wall.elapsed() / LOOPBACK_READS,
-    );
-    assert_eq!(
-        answer[mbap::HEADER_LEN + 1],
-        34,
-        "byte count of 17 registers"
-    );
-    floor
-}
-
 fn median_ns(dir: &Path, group: &str, function: &str, n: u16) -> Option<f64> {
     let path = dir
         .join(group)
@@ -555,7 +430,7 @@ fn report(
     dir: &Path,
     minima: &BTreeMap<(bool, u16), [f64; 3]>,
     wire: &str,
-    loopback: [(Duration, Duration); 3],
+    loopback: &loopback::Loopback,
 ) -> Option<String> {
     let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
     let load = load.split_whitespace().next().unwrap_or("?");
@@ -626,52 +501,7 @@ fn report(
     s += &table(dir, "client_tcp", &clients, "drivebus")?;
     s += "\n### Wire efficiency\n\n";
     s += wire;
-    let [ours, theirs, floor] = loopback;
-    let us = |d: Duration| d.as_nanos() as f64 / 1000.0;
-    write!(
-        s,
-        "\n### Modbus TCP over loopback\n\n{LOOPBACK_READS} reads of 17 holding registers from an \
-         in-process MBAP server thread, one request at a time; client thread CPU time \
-         (`CLOCK_THREAD_CPUTIME_ID`) and wall time per request, and requests per second from the \
-         wall time.\n\n\
-         | client | CPU µs/request | wall µs/request | requests/s |\n| --- | ---: | ---: | ---: |\n"
-    )
-    .unwrap();
-    let rows = [
-        ("drivebus `ModbusTcpClient`", ours),
-        ("tokio-modbus 0.16 (current-thread)", theirs),
-        ("floor: raw `TcpStream` `write` + `read_exact`", floor),
-    ];
-    for (client, (cpu, wall)) in rows {
-        let per_second = 1e6 / us(wall);
-        writeln!(
-            s,
-            "| {client} | {:.1} | {:.1} | {per_second:.0} |",
-            us(cpu),
-            us(wall)
-        )
-        .unwrap();
-    }
-    let met = if us(ours.0) <= 20.0 {
-        "met"
-    } else {
-        "**not met**"
-    };
-    write!(
-        s,
-        "\nTarget: at most 20 µs of client CPU per request — {met}; drivebus / floor = {:.2}×. \
-         The floor row is the kernel's loopback TCP path alone (a `write`, a blocking `read` and \
-         the wake-up between them), which every blocking client pays; drivebus adds a stale-input \
-         check before each request (a non-blocking `read` between two mode switches), which is \
-         also where a connection the server closed while idle is found and reopened before \
-         anything is sent. The target was set when tokio-modbus measured 39 µs on this kind of \
-         machine, {:.1}× its {:.1} µs in this run; the raw socket alone costs {:.1} µs here.\n",
-        us(ours.0) / us(floor.0),
-        39.0 / us(theirs.0),
-        us(theirs.0),
-        us(floor.0)
-    )
-    .unwrap();
+    s += &loopback.section();
     Some(s)
 }
 
@@ -710,12 +540,8 @@ fn main() {
     let minima = interleaved();
     let wire = wire_efficiency();
     println!("{wire}");
-    let loopback = loopback();
-    println!(
-        "loopback µs/request (cpu, wall): drivebus {:?}, tokio-modbus {:?}, raw socket {:?}",
-        loopback[0], loopback[1], loopback[2]
-    );
-    match report(&dir, &minima, &wire, loopback) {
+    let loopback = loopback::measure();
+    match report(&dir, &minima, &wire, &loopback) {
         Some(section) => {
             let doc = root.join("docs/benchmarks.md");
             write_section(&doc, &section);

@@ -14,7 +14,7 @@ use drivebus::modbus::retry::{Idempotency, RetryPolicy};
 use drivebus::modbus::rtu::{self, RtuFraming};
 use drivebus::modbus::tcp::{self as mbap, Header, TcpFraming};
 use drivebus::modbus::transport::{ByteStream, Client, ClientConfig};
-use drivebus::modbus::{RegisterBus, Table, UnitId};
+use drivebus::modbus::{RegisterBus, RegisterRead, Table, UnitId};
 use drivebus::BusError;
 use proptest::prelude::*;
 
@@ -28,7 +28,8 @@ enum Fault {
     None,
     /// Byte `at` (modulo the length) XOR `mask` (non-zero).
     Corrupt { at: usize, mask: u8 },
-    /// Only the first `keep` bytes arrive.
+    /// Only the first `keep` bytes arrive. On TCP, whose byte stream is reliable, that means the
+    /// connection ended: no later answer arrives on it.
     Truncate { keep: usize },
     /// Arrives after `by`.
     Delay { by: Duration },
@@ -44,6 +45,8 @@ enum Fault {
     Trickle,
     /// Comes from another unit.
     OtherUnit,
+    /// Arrives after the answer to the next request (TCP answers may come in any order).
+    Late,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -61,8 +64,14 @@ struct FaultyDevice {
     /// Bytes in flight: when they arrive, and what they are.
     inbound: VecDeque<(Instant, Vec<u8>)>,
     previous_answer: Vec<u8>,
+    /// An answer held back by [`Fault::Late`] until the next one is delivered.
+    held_back: Option<Vec<u8>>,
     writes_executed: usize,
     flushes: usize,
+    /// How many times the client sent bytes.
+    sends: usize,
+    /// Set when a TCP answer was cut short: the connection is over, nothing more arrives.
+    cut: bool,
 }
 
 impl FaultyDevice {
@@ -74,8 +83,11 @@ impl FaultyDevice {
             faults: VecDeque::new(),
             inbound: VecDeque::new(),
             previous_answer: Vec::new(),
+            held_back: None,
             writes_executed: 0,
             flushes: 0,
+            sends: 0,
+            cut: false,
         }
     }
 
@@ -134,12 +146,29 @@ impl FaultyDevice {
     }
 
     fn deliver(&mut self, bytes: Vec<u8>, delay: Duration) {
-        self.inbound.push_back((Instant::now() + delay, bytes));
+        if !self.cut {
+            self.inbound.push_back((Instant::now() + delay, bytes));
+        }
     }
-}
 
-impl ByteStream for FaultyDevice {
-    fn send(&mut self, bytes: &[u8]) -> Result<(), BusError> {
+    /// Splits what the client sent into ADUs: one RTU frame, or any number of MBAP frames (a
+    /// pipelining client sends several at once).
+    fn adus(kind: Kind, mut bytes: &[u8]) -> Vec<&[u8]> {
+        if kind == Kind::Rtu {
+            return vec![bytes];
+        }
+        let mut adus = Vec::new();
+        while !bytes.is_empty() {
+            let len = mbap::HEADER_LEN + Header::parse(bytes).unwrap().pdu_len;
+            let (adu, rest) = bytes.split_at(len);
+            adus.push(adu);
+            bytes = rest;
+        }
+        adus
+    }
+
+    /// Executes one request ADU and delivers its answer through the next fault of the plan.
+    fn answer(&mut self, bytes: &[u8]) {
         let (unit, transaction, pdu) = match self.kind {
             Kind::Rtu => (
                 bytes[0],
@@ -167,7 +196,10 @@ impl ByteStream for FaultyDevice {
                 bad[at] ^= mask;
                 self.deliver(bad, now);
             }
-            Fault::Truncate { keep } => self.deliver(answer[..keep % answer.len()].to_vec(), now),
+            Fault::Truncate { keep } => {
+                self.deliver(answer[..keep % answer.len()].to_vec(), now);
+                self.cut = self.kind == Kind::Tcp;
+            }
             Fault::Delay { by } => self.deliver(answer.clone(), by),
             Fault::Duplicate => {
                 self.deliver(answer.clone(), now);
@@ -191,8 +223,32 @@ impl ByteStream for FaultyDevice {
                 let other = self.frame(unit.wrapping_add(1), transaction, &answer_pdu);
                 self.deliver(other, now);
             }
+            Fault::Late => {
+                let earlier = self.held_back.replace(answer.clone());
+                self.previous_answer = answer;
+                if let Some(earlier) = earlier {
+                    self.deliver(earlier, now);
+                }
+                return;
+            }
+        }
+        if let Some(earlier) = self.held_back.take() {
+            self.deliver(earlier, now);
         }
         self.previous_answer = answer;
+    }
+}
+
+impl ByteStream for FaultyDevice {
+    fn send(&mut self, bytes: &[u8]) -> Result<(), BusError> {
+        self.sends += 1;
+        for adu in Self::adus(self.kind, bytes) {
+            self.answer(adu);
+        }
+        // An answer held back for one that never came goes out last.
+        if let Some(earlier) = self.held_back.take() {
+            self.deliver(earlier, Duration::ZERO);
+        }
         Ok(())
     }
 
@@ -218,6 +274,12 @@ impl ByteStream for FaultyDevice {
 
     fn discard_input(&mut self) -> Result<(), BusError> {
         self.flushes += 1;
+        if self.cut {
+            // The client finds the connection closed and opens a new one: the old one's bytes
+            // are gone with it.
+            self.cut = false;
+            self.inbound.clear();
+        }
         // What has arrived is dropped; what is still in flight arrives later, as on a real line.
         let now = Instant::now();
         self.inbound.retain(|(at, _)| *at > now);
@@ -230,6 +292,7 @@ fn config(retries: u8) -> ClientConfig {
         timeout: TIMEOUT,
         retry: RetryPolicy::reads(retries),
         idle_gap: Duration::ZERO,
+        max_in_flight: 1,
     }
 }
 
@@ -299,6 +362,7 @@ fn any_fault(kind: Kind) -> impl Strategy<Value = Fault> {
         Just(Fault::StaleFirst),
         Just(Fault::Trickle),
         Just(Fault::OtherUnit),
+        Just(Fault::Late),
     ]
 }
 
@@ -544,5 +608,146 @@ proptest! {
         // Noise forming a valid answer (CRC, unit, function, byte count, transaction) is beyond
         // proptest's reach; anything else must be refused with a typed error.
         prop_assert!(matches!(result, Err(ref e) if typed(e)), "{:?}", result);
+    }
+}
+
+/// A Modbus TCP client keeping up to `in_flight` reads of a batch awaiting their answers.
+fn pipelining_client(in_flight: usize, retries: u8) -> Client<FaultyDevice, TcpFraming> {
+    let config = ClientConfig {
+        max_in_flight: in_flight,
+        ..config(retries)
+    };
+    Client::new(FaultyDevice::new(Kind::Tcp), TcpFraming::default(), config)
+}
+
+/// `(table, start, count)` of the reads of a test batch.
+const BATCH: [(Table, u16, usize); 4] = [
+    (Table::Holding, 0x10, 4),
+    (Table::Input, 0x20, 17),
+    (Table::Holding, 0x60, 1),
+    (Table::Input, 0x00, 2),
+];
+
+/// Reads `BATCH` through `bus`; returns the outcome, the values and which reads are done.
+fn read_batch(bus: &mut dyn RegisterBus) -> (Result<(), BusError>, Vec<Vec<u16>>, Vec<bool>) {
+    let mut values: Vec<Vec<u16>> = BATCH.iter().map(|(_, _, n)| vec![0; *n]).collect();
+    let mut reads: Vec<RegisterRead> = BATCH
+        .iter()
+        .zip(values.iter_mut())
+        .map(|((table, start, _), out)| RegisterRead::new(*table, *start, out))
+        .collect();
+    let outcome = bus.read_register_batch(UNIT, &mut reads);
+    let done = reads.iter().map(|read| read.done).collect();
+    (outcome, values, done)
+}
+
+#[test]
+fn a_pipelined_batch_goes_out_in_one_write_and_takes_answers_in_any_order() {
+    let mut client = pipelining_client(8, 0);
+    client
+        .stream_mut()
+        .faults
+        .extend([Fault::Late, Fault::None, Fault::Late, Fault::Trickle]);
+    let (outcome, values, done) = read_batch(&mut client);
+    assert_eq!(outcome, Ok(()));
+    assert_eq!(done, [true; 4]);
+    for ((table, start, count), got) in BATCH.iter().zip(&values) {
+        assert_eq!(*got, expected(*table, *start, *count));
+    }
+    assert_eq!(
+        client.stream_mut().sends,
+        1,
+        "one write for the whole batch"
+    );
+}
+
+#[test]
+fn pipelining_is_bounded_by_max_in_flight_and_off_for_rtu() {
+    let mut client = pipelining_client(3, 0);
+    assert_eq!(read_batch(&mut client).0, Ok(()));
+    assert_eq!(client.stream_mut().sends, 2, "windows of 3 and 1 reads");
+
+    let config = ClientConfig {
+        max_in_flight: 8,
+        ..config(0)
+    };
+    let mut rtu = Client::new(FaultyDevice::new(Kind::Rtu), RtuFraming, config);
+    let (outcome, values, _) = read_batch(&mut rtu);
+    assert_eq!(outcome, Ok(()));
+    assert_eq!(values[1], expected(Table::Input, 0x20, 17));
+    assert_eq!(
+        rtu.stream_mut().sends,
+        4,
+        "RTU answers carry no id: one request at a time"
+    );
+}
+
+#[test]
+fn an_exception_fails_its_read_while_the_others_of_the_window_complete() {
+    let mut client = pipelining_client(8, 2);
+    let mut values = [vec![0u16; 2], vec![0u16; 2], vec![0u16; 2]];
+    let [a, b, c] = &mut values;
+    // Register 0x1FF + 2 lies past the device's 256 registers: exception 0x02.
+    let mut reads = [
+        RegisterRead::new(Table::Holding, 0x01, a),
+        RegisterRead::new(Table::Holding, 0xFF, b),
+        RegisterRead::new(Table::Input, 0x03, c),
+    ];
+    assert_eq!(
+        client.read_register_batch(UNIT, &mut reads),
+        Err(BusError::ModbusException {
+            function: 3,
+            code: 2
+        })
+    );
+    assert_eq!(reads.map(|read| read.done), [true, false, true]);
+    assert_eq!(values[0], expected(Table::Holding, 0x01, 2));
+    assert_eq!(values[2], expected(Table::Input, 0x03, 2));
+    assert_eq!(client.stream_mut().sends, 1, "an exception is not retried");
+}
+
+#[test]
+fn a_lost_answer_is_fetched_again_alone() {
+    let mut client = pipelining_client(8, 1);
+    client
+        .stream_mut()
+        .faults
+        .extend([Fault::None, Fault::Drop, Fault::None, Fault::None]);
+    let (outcome, values, done) = read_batch(&mut client);
+    assert_eq!((outcome, done), (Ok(()), vec![true; 4]));
+    assert_eq!(values[1], expected(Table::Input, 0x20, 17));
+    let device = client.stream_mut();
+    assert_eq!(device.sends, 2);
+    assert_eq!(device.flushes, 2);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+    /// Each read of a pipelined batch ends done with its own values or not done under a typed
+    /// error — an answer is never taken for another read's — and the next batch is in step.
+    #[test]
+    fn pipelined_faults_end_in_the_values_or_a_typed_error(
+        faults in proptest::collection::vec(any_fault(Kind::Tcp), 4),
+        retries in 0u8..2,
+    ) {
+        let mut client = pipelining_client(4, retries);
+        client.stream_mut().faults.extend(faults);
+        let (outcome, values, done) = read_batch(&mut client);
+        if let Err(error) = &outcome {
+            prop_assert!(typed(error), "untyped error {:?}", error);
+        } else {
+            prop_assert_eq!(&done, &vec![true; 4]);
+        }
+        for (((table, start, count), got), done) in BATCH.iter().zip(&values).zip(&done) {
+            if *done {
+                prop_assert_eq!(got, &expected(*table, *start, *count));
+            }
+        }
+        std::thread::sleep(Duration::from_millis(90));
+        client.stream_mut().faults.clear();
+        let (outcome, values, _) = read_batch(&mut client);
+        prop_assert_eq!(outcome, Ok(()));
+        prop_assert_eq!(&values[1], &expected(Table::Input, 0x20, 17));
     }
 }

@@ -1,5 +1,6 @@
-//! Against an independent implementation: pymodbus 3.16.1 serving Modbus TCP, RTU-over-TCP and RTU
-//! on a socat pty pair. Each test starts its own peer processes and stops them by PID.
+//! Against independent implementations: pymodbus 3.16.1 serving Modbus TCP, RTU-over-TCP and RTU
+//! on a socat pty pair, and pyModbusTCP 0.3.1 serving pipelined Modbus TCP requests. Each test
+//! starts its own peer processes and stops them by PID.
 //!
 //! Python comes from `DRIVEGEN_PYTHON`, else `.venv/bin/python` at the workspace root, else
 //! `python3`. Missing peers fail the test with instructions; `tests/peers/setup.sh` installs them.
@@ -15,17 +16,22 @@ use drivebus::modbus::transport::{
     ModbusTcpClient, RtuOverTcpClient, SerialConfig, SerialRtuClient, TcpConfig,
 };
 use drivebus::modbus::{
-    BitBus, ExceptionCode, ModbusAddress, ModbusLimits, ModbusLink, RegisterBus, Table, UnitId,
-    WordOrder,
+    BitBus, ExceptionCode, ModbusAddress, ModbusLimits, ModbusLink, RegisterBus, RegisterRead,
+    Table, UnitId, WordOrder,
 };
 use drivebus::{BusError, Link};
 use peer_support::{pty_pair, python, workspace_root, Process, SETUP_HINT};
 
 const UNIT: UnitId = UnitId(1);
-/// Starts the pymodbus server in `mode` and waits for its first stdout line.
+/// Starts the pymodbus server with `args` and waits for its first stdout line.
 fn start_server(args: &[&str]) -> (Process, String) {
+    start_peer("modbus_server.py", args)
+}
+
+/// Starts `tests/peers/<script>` with `args` and waits for its first stdout line.
+fn start_peer(script: &str, args: &[&str]) -> (Process, String) {
     let python = python();
-    let script = workspace_root().join("tests/peers/modbus_server.py");
+    let script = workspace_root().join("tests/peers").join(script);
     let mut child = Command::new(&python)
         .arg(&script)
         .args(args)
@@ -42,14 +48,18 @@ fn start_server(args: &[&str]) -> (Process, String) {
         .expect("read the peer's stdout");
     assert!(
         !line.is_empty(),
-        "the pymodbus peer exited before it was ready (is pymodbus 3.16.1 installed for {}?); {SETUP_HINT}",
+        "the peer {} exited before it was ready (are its packages installed for {}?); {SETUP_HINT}",
+        script.display(),
         python.display()
     );
     (process, line.trim().to_owned())
 }
 
 fn tcp_server(mode: &str) -> (Process, String) {
-    let (process, line) = start_server(&[mode]);
+    port_of(start_server(&[mode]))
+}
+
+fn port_of((process, line): (Process, String)) -> (Process, String) {
     let port = line
         .strip_prefix("PORT ")
         .unwrap_or_else(|| panic!("unexpected peer output {line:?}"));
@@ -205,6 +215,59 @@ fn modbus_tcp_against_pymodbus() {
     let mut client = ModbusTcpClient::connect(&addr, &tcp_config()).unwrap();
     exercise(&mut client);
     exercise_link(client);
+}
+
+/// A pipelined batch, an exception in the middle of it, and a planned `read_many` spanning both
+/// tables, against pyModbusTCP 0.3.1 (pymodbus 3.16.1 answers only the first of several requests
+/// that arrive together, so it cannot be the peer here).
+#[test]
+fn pipelined_modbus_tcp_against_pymodbustcp() {
+    let (_server, addr) = port_of(start_peer("pipelining_server.py", &[]));
+    let config = TcpConfig {
+        max_in_flight: 8,
+        ..tcp_config()
+    };
+    let mut client = ModbusTcpClient::connect(&addr, &config).unwrap();
+    let (mut status, mut holding, mut missing, mut last) =
+        ([0u16; 17], [0u16; 4], [0u16; 1], [0u16; 2]);
+    let mut reads = [
+        RegisterRead::new(Table::Input, 0x60, &mut status),
+        RegisterRead::new(Table::Holding, 0x10, &mut holding),
+        RegisterRead::new(Table::Holding, 0x0200, &mut missing),
+        RegisterRead::new(Table::Input, 0x6F, &mut last),
+    ];
+    assert_eq!(
+        client.read_register_batch(UNIT, &mut reads),
+        Err(BusError::ModbusException {
+            function: 0x03,
+            code: 0x02
+        })
+    );
+    assert_eq!(reads.map(|read| read.done), [true, true, false, true]);
+    assert_eq!(
+        [status[0], status[11], status[16]],
+        [0x1060, 0x5678, 0x1070]
+    );
+    assert_eq!(holding, [0x10, 0x11, 0x12, 0x13]);
+    assert_eq!(last, [0x106F, 0x1070]);
+
+    let mut link = ModbusLink::new(client, UNIT, ModbusLimits::SPEC);
+    let (mut a, mut b) = ([0u8; 4], [0u8; 2]);
+    let mut batch = [
+        ReadRequest {
+            address: pair(Table::Input, 0x6B),
+            buf: &mut a,
+            len: 0,
+        },
+        ReadRequest {
+            address: one(Table::Holding, 0x28),
+            buf: &mut b,
+            len: 0,
+        },
+    ];
+    link.read_many(&mut batch).unwrap();
+    assert_eq!(u32::from_le_bytes(a), 0x1234_5678);
+    assert_eq!(u16::from_le_bytes(b), 1, "holding 0x0028 (drive address)");
 }
 
 #[test]

@@ -25,10 +25,14 @@ pub enum Scan {
     },
 }
 
-/// A Modbus framing (ADU format): RTU or MBAP.
-pub trait Framing {
+/// A Modbus framing (ADU format): RTU or MBAP. A copy remembers the request last encoded, which
+/// is how a client keeps track of several requests in flight.
+pub trait Framing: Copy {
     /// Largest ADU of this framing.
     const MAX_ADU: usize;
+    /// Whether an answer names the request it answers (MBAP's transaction id), so several
+    /// requests may await their answers at once. RTU answers only by order: one at a time.
+    const TAGGED_ANSWERS: bool = false;
 
     /// Encodes `request` to `unit` into `out`; returns the ADU length.
     fn encode_request(

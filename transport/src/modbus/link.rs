@@ -7,8 +7,8 @@ use super::address::{
     le_to_registers, registers_to_le, ModbusAddress, ModbusLimits, Table, UnitId, MAX_VALUE_WORDS,
 };
 use super::pdu::MAX_READ_REGISTERS;
-use super::planner::{check_item, next_read};
-use super::{Modbus, RegisterBus};
+use super::planner::{check_item, next_read, PlannedRead};
+use super::{Modbus, RegisterBus, RegisterRead};
 
 /// A [`RegisterBus`] bound to one unit: the [`Link`] generated Modbus drive handles use.
 #[derive(Debug)]
@@ -103,8 +103,9 @@ impl<B: RegisterBus> Link for ModbusLink<B> {
     }
 
     /// Reads the batch with the fewest requests the device's limits allow (see
-    /// [`planner`](super::planner)). On an error, the values already read keep their `len`; the
-    /// others have `len == 0`.
+    /// [`planner`](super::planner)), handed to the bus [`MAX_BATCH`] at a time so a client that
+    /// pipelines sends them together. On an error, the values already read keep their `len`;
+    /// the others have `len == 0`.
     fn read_many(
         &mut self,
         requests: &mut [ReadRequest<'_, ModbusAddress>],
@@ -112,33 +113,93 @@ impl<B: RegisterBus> Link for ModbusLink<B> {
         for request in requests.iter_mut() {
             request.len = 0;
         }
-        let mut registers = [0u16; MAX_READ_REGISTERS as usize];
-        // A value is never zero bytes long, so `len != 0` doubles as "already read".
-        while let Some(read) = next_read(&self.limits, requests.len(), |i| {
-            (requests[i].address, requests[i].len != 0)
-        })? {
-            let registers = &mut registers[..read.count as usize];
-            self.bus
-                .read_registers(self.unit, read.table, read.start, registers)?;
-            for request in requests.iter_mut().filter(|r| r.len == 0) {
-                let Some(offset) = read.offset_of(&request.address) else {
-                    continue;
-                };
-                let words = request.address.words as usize;
-                let bytes = request
-                    .buf
-                    .get_mut(..words * 2)
-                    .ok_or(BusError::Frame("value buffer too small"))?;
-                registers_to_le(
-                    &registers[offset..offset + words],
-                    request.address.word_order,
-                    bytes,
-                );
-                request.len = words * 2;
+        let mut registers = [[0u16; MAX_READ_REGISTERS as usize]; MAX_BATCH];
+        loop {
+            let mut planned = [None; MAX_BATCH];
+            let count = plan_batch(&self.limits, requests, &mut planned)?;
+            if count == 0 {
+                return Ok(());
+            }
+            let planned = &planned[..count];
+            let mut reads = registers
+                .each_mut()
+                .map(|out| RegisterRead::new(Table::Input, 0, out));
+            for (read, plan) in reads.iter_mut().zip(planned.iter().flatten()) {
+                read.table = plan.table;
+                read.start = plan.start;
+                read.out = &mut core::mem::take(&mut read.out)[..plan.count as usize];
+            }
+            let mut outcome = self.bus.read_register_batch(self.unit, &mut reads[..count]);
+            for (read, plan) in reads.iter().zip(planned.iter().flatten()) {
+                outcome = outcome.and(deliver(requests, plan, read));
+            }
+            if outcome.is_err() {
+                for request in requests.iter_mut().filter(|r| r.len == PLANNED) {
+                    request.len = 0;
+                }
+                return outcome;
             }
         }
-        Ok(())
     }
+}
+
+/// Reads handed to the bus at once by [`ModbusLink::read_many`].
+pub const MAX_BATCH: usize = 8;
+
+/// Marks a value planned but not read yet; `len == 0` means "not planned", any other length
+/// "read" — a value is never zero bytes long.
+const PLANNED: usize = usize::MAX;
+
+/// Plans up to [`MAX_BATCH`] reads for the values not read yet and marks the values they cover
+/// [`PLANNED`]; returns how many reads it planned.
+fn plan_batch(
+    limits: &ModbusLimits,
+    requests: &mut [ReadRequest<'_, ModbusAddress>],
+    planned: &mut [Option<PlannedRead>; MAX_BATCH],
+) -> Result<usize, BusError> {
+    for (count, slot) in planned.iter_mut().enumerate() {
+        let Some(read) = next_read(limits, requests.len(), |i| {
+            (requests[i].address, requests[i].len != 0)
+        })?
+        else {
+            return Ok(count);
+        };
+        for request in requests.iter_mut().filter(|r| r.len == 0) {
+            if read.offset_of(&request.address).is_some() {
+                request.len = PLANNED;
+            }
+        }
+        *slot = Some(read);
+    }
+    Ok(MAX_BATCH)
+}
+
+/// Copies the values `plan` covers out of its finished `read`; values of a read that did not
+/// finish stay [`PLANNED`].
+fn deliver(
+    requests: &mut [ReadRequest<'_, ModbusAddress>],
+    plan: &PlannedRead,
+    read: &RegisterRead<'_>,
+) -> Result<(), BusError> {
+    for request in requests.iter_mut().filter(|r| r.len == PLANNED) {
+        let Some(offset) = plan.offset_of(&request.address) else {
+            continue;
+        };
+        if !read.done {
+            continue;
+        }
+        let words = request.address.words as usize;
+        let Some(bytes) = request.buf.get_mut(..words * 2) else {
+            return Err(BusError::Frame("value buffer too small"));
+        };
+        registers_to_le(
+            &read.out[offset..offset + words],
+            request.address.word_order,
+            bytes,
+        );
+        request.len = words * 2;
+    }
+    Ok(())
 }
 
 #[cfg(all(test, feature = "std"))]

@@ -64,6 +64,56 @@ pub trait RegisterBus {
     /// Writes consecutive holding registers (FC 0x10).
     fn write_registers(&mut self, unit: UnitId, start: u16, values: &[u16])
         -> Result<(), BusError>;
+    /// Reads several register ranges of `unit`, marking each [`RegisterRead::done`] once its
+    /// `out` holds the registers; on an error the reads not marked were not completed. Clients
+    /// that can keep several requests in flight (Modbus TCP with
+    /// `ClientConfig::max_in_flight` above 1) send them together; by default they are read one
+    /// after the other.
+    fn read_register_batch(
+        &mut self,
+        unit: UnitId,
+        reads: &mut [RegisterRead<'_>],
+    ) -> Result<(), BusError> {
+        read_one_by_one(self, unit, reads)
+    }
+}
+
+/// The batch reads of a bus that keeps one request in flight: each read not done yet, in order.
+pub(crate) fn read_one_by_one<B: RegisterBus + ?Sized>(
+    bus: &mut B,
+    unit: UnitId,
+    reads: &mut [RegisterRead<'_>],
+) -> Result<(), BusError> {
+    for read in reads.iter_mut().filter(|read| !read.done) {
+        bus.read_registers(unit, read.table, read.start, read.out)?;
+        read.done = true;
+    }
+    Ok(())
+}
+
+/// One range of registers in a [`RegisterBus::read_register_batch`].
+#[derive(Debug)]
+pub struct RegisterRead<'a> {
+    /// The table read (FC 0x04 for input, 0x03 for holding registers).
+    pub table: Table,
+    /// Address of the first register.
+    pub start: u16,
+    /// Where the registers go; its length is the register count.
+    pub out: &'a mut [u16],
+    /// Whether `out` holds the registers: set by the bus, and reads already done are skipped.
+    pub done: bool,
+}
+
+impl<'a> RegisterRead<'a> {
+    /// A read of `out.len()` registers of `table` from `start`, not done yet.
+    pub fn new(table: Table, start: u16, out: &'a mut [u16]) -> Self {
+        Self {
+            table,
+            start,
+            out,
+            done: false,
+        }
+    }
 }
 
 impl<B: RegisterBus + ?Sized> RegisterBus for &mut B {
@@ -86,6 +136,13 @@ impl<B: RegisterBus + ?Sized> RegisterBus for &mut B {
         values: &[u16],
     ) -> Result<(), BusError> {
         (**self).write_registers(unit, start, values)
+    }
+    fn read_register_batch(
+        &mut self,
+        unit: UnitId,
+        reads: &mut [RegisterRead<'_>],
+    ) -> Result<(), BusError> {
+        (**self).read_register_batch(unit, reads)
     }
 }
 

@@ -164,6 +164,7 @@ impl TcpFraming {
 
 impl Framing for TcpFraming {
     const MAX_ADU: usize = MAX_ADU;
+    const TAGGED_ANSWERS: bool = true;
 
     #[inline]
     fn encode_request(

@@ -49,6 +49,7 @@
 //! # }
 //! ```
 
+mod pipeline;
 mod rtu_over_tcp;
 mod serial;
 mod tcp;
@@ -56,6 +57,7 @@ mod tcp;
 use core::ops::Range;
 use std::time::{Duration, Instant};
 
+pub use pipeline::MAX_IN_FLIGHT;
 pub use rtu_over_tcp::RtuOverTcpClient;
 pub use serial::{SerialConfig, SerialRtuClient, SerialStream};
 pub use tcp::{ModbusTcpClient, NetStream, TcpConfig};
@@ -67,7 +69,7 @@ use super::pdu::{decode_response, Request, Response};
 use super::retry::{is_transient, Idempotency, RetryPolicy};
 use super::rtu::RtuFraming;
 use super::tcp::TcpFraming;
-use super::{BitBus, RegisterBus, Table, UnitId};
+use super::{read_one_by_one, BitBus, RegisterBus, RegisterRead, Table, UnitId};
 
 /// The byte channel under a client: a serial port, a TCP connection, or a test double.
 pub trait ByteStream {
@@ -114,6 +116,11 @@ pub struct ClientConfig {
     /// Least idle time between the end of one exchange and the next request (t3.5 and the
     /// device's turnaround delay on RTU; usually zero on TCP).
     pub idle_gap: Duration,
+    /// How many reads of a batch may await their answers at once (at most [`MAX_IN_FLIGHT`]).
+    /// Above 1, a framing whose answers name their request (Modbus TCP) sends them together:
+    /// one write and one round trip for the lot. Many servers and gateways handle one request
+    /// at a time, so the default is 1.
+    pub max_in_flight: usize,
 }
 
 impl Default for ClientConfig {
@@ -122,6 +129,7 @@ impl Default for ClientConfig {
             timeout: Duration::from_secs(1),
             retry: RetryPolicy::reads(2),
             idle_gap: Duration::ZERO,
+            max_in_flight: 1,
         }
     }
 }
@@ -199,14 +207,7 @@ impl<S: ByteStream, F: Framing> Client<S, F> {
             return Err(BusError::Unsupported("reads cannot be broadcast"));
         }
         let attempts = self.config.retry.attempts(request, declared);
-        let mut attempt = 1;
-        let frame = loop {
-            match self.transact(unit, request) {
-                Ok(frame) => break frame,
-                Err(error) if attempt < attempts && is_transient(&error) => attempt += 1,
-                Err(error) => return Err(error),
-            }
-        };
+        let frame = self.with_retries(attempts, |client| client.exchange(unit, request))?;
         match frame {
             Some(range) => decode_response(request, self.framing.pdu(&self.rx[range])),
             None => Ok(Response::Written),
@@ -237,30 +238,39 @@ impl<S: ByteStream, F: Framing> Client<S, F> {
         self.execute(unit, &request, Some(idempotency)).map(drop)
     }
 
-    /// One attempt; a broken channel is re-established first, and an I/O failure marks it broken.
-    fn transact(
+    /// Runs `attempt` up to `attempts` times while it fails transiently. Each attempt first
+    /// re-establishes a broken channel, and an I/O failure marks the channel broken.
+    fn with_retries<T>(
         &mut self,
-        unit: UnitId,
-        request: &Request<'_>,
-    ) -> Result<Option<Range<usize>>, BusError> {
+        attempts: u32,
+        mut attempt: impl FnMut(&mut Self) -> Result<T, BusError>,
+    ) -> Result<T, BusError> {
+        let mut tried = 1;
+        loop {
+            let result = match self.reconnect_if_broken() {
+                Ok(()) => attempt(self),
+                Err(error) => Err(error),
+            };
+            if let Err(BusError::Io(_)) = result {
+                self.broken = true;
+            }
+            match result {
+                Err(error) if tried < attempts && is_transient(&error) => tried += 1,
+                result => return result,
+            }
+        }
+    }
+
+    fn reconnect_if_broken(&mut self) -> Result<(), BusError> {
         if self.broken {
             self.stream.reconnect()?;
             self.broken = false;
         }
-        let result = self.exchange(unit, request);
-        if let Err(BusError::Io(_)) = result {
-            self.broken = true;
-        }
-        result
+        Ok(())
     }
 
-    fn exchange(
-        &mut self,
-        unit: UnitId,
-        request: &Request<'_>,
-    ) -> Result<Option<Range<usize>>, BusError> {
-        // Clock reads cost tens of ns; with no idle gap to keep, one per request is enough.
-        let pacing = !self.config.idle_gap.is_zero();
+    /// Waits out the idle gap, then drops stale input: the start of every exchange.
+    fn prepare_exchange(&mut self) -> Result<(), BusError> {
         if let Some(ready) = self.last_io.map(|at| at + self.config.idle_gap) {
             let now = Instant::now();
             if ready > now {
@@ -272,13 +282,43 @@ impl<S: ByteStream, F: Framing> Client<S, F> {
         // (possibly a write that must not be repeated) is sent.
         self.stream.discard_input()?;
         self.rx_len = 0;
-        let len = self.framing.encode_request(unit, request, &mut self.tx)?;
+        Ok(())
+    }
+
+    /// Sends the `len` bytes encoded in the transmit buffer; returns the answer deadline.
+    fn send_encoded(&mut self, len: usize) -> Result<Instant, BusError> {
         self.stream.send(&self.tx[..len])?;
         let sent = Instant::now();
-        let deadline = sent + self.config.timeout;
-        if pacing {
+        // Clock reads cost tens of ns; with no idle gap to keep, one per request is enough.
+        if !self.config.idle_gap.is_zero() {
             self.last_io = Some(sent);
         }
+        Ok(sent + self.config.timeout)
+    }
+
+    /// Receives more bytes into the receive buffer (0: the deadline passed), first making room
+    /// by dropping old bytes should a misbehaving framing leave the buffer full.
+    fn receive_more(&mut self, deadline: Instant) -> Result<usize, BusError> {
+        if self.rx_len == self.rx.len() {
+            // Unreachable with well-behaved framings (a pending frame is shorter than an ADU).
+            self.drop_front(self.rx.len() / 2);
+        }
+        let got = self.stream.receive(&mut self.rx[self.rx_len..], deadline)?;
+        self.rx_len += got;
+        if got != 0 && !self.config.idle_gap.is_zero() {
+            self.last_io = Some(Instant::now());
+        }
+        Ok(got)
+    }
+
+    fn exchange(
+        &mut self,
+        unit: UnitId,
+        request: &Request<'_>,
+    ) -> Result<Option<Range<usize>>, BusError> {
+        self.prepare_exchange()?;
+        let len = self.framing.encode_request(unit, request, &mut self.tx)?;
+        let deadline = self.send_encoded(len)?;
         if unit == BROADCAST {
             return Ok(None);
         }
@@ -294,18 +334,8 @@ impl<S: ByteStream, F: Framing> Client<S, F> {
                     self.drop_front(discard);
                 }
             }
-            if self.rx_len == self.rx.len() {
-                // Unreachable with well-behaved framings (a pending frame is shorter than an
-                // ADU); dropping old bytes keeps a misbehaving one from stalling.
-                self.drop_front(self.rx.len() / 2);
-            }
-            let got = self.stream.receive(&mut self.rx[self.rx_len..], deadline)?;
-            if got == 0 {
+            if self.receive_more(deadline)? == 0 {
                 return Err(rejected.map_or(BusError::Timeout, BusError::Frame));
-            }
-            self.rx_len += got;
-            if pacing {
-                self.last_io = Some(Instant::now());
             }
         }
     }
@@ -370,6 +400,17 @@ impl<S: ByteStream, F: Framing> RegisterBus for Client<S, F> {
     ) -> Result<(), BusError> {
         let request = Request::WriteMultipleRegisters { start, values };
         self.execute(unit, &request, None).map(drop)
+    }
+
+    fn read_register_batch(
+        &mut self,
+        unit: UnitId,
+        reads: &mut [RegisterRead<'_>],
+    ) -> Result<(), BusError> {
+        if F::TAGGED_ANSWERS && self.config.max_in_flight > 1 {
+            return self.read_pipelined(unit, reads);
+        }
+        read_one_by_one(self, unit, reads)
     }
 }
 

@@ -54,6 +54,7 @@ impl SerialConfig {
             timeout: self.timeout,
             retry: self.retry,
             idle_gap: self.timing().t3_5.max(self.turnaround),
+            max_in_flight: 1,
         }
     }
 }

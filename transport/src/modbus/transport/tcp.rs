@@ -20,6 +20,9 @@ pub struct TcpConfig {
     pub turnaround: Duration,
     /// Which failed requests are repeated.
     pub retry: RetryPolicy,
+    /// How many reads of a batch may await their answers at once: above 1, Modbus TCP sends
+    /// them together (see [`ClientConfig::max_in_flight`]); RTU over TCP ignores it.
+    pub max_in_flight: usize,
 }
 
 impl Default for TcpConfig {
@@ -29,6 +32,7 @@ impl Default for TcpConfig {
             connect_timeout: Duration::from_secs(3),
             turnaround: Duration::ZERO,
             retry: RetryPolicy::reads(2),
+            max_in_flight: 1,
         }
     }
 }
@@ -40,6 +44,7 @@ impl TcpConfig {
             timeout: self.timeout,
             retry: self.retry,
             idle_gap: self.turnaround,
+            max_in_flight: self.max_in_flight,
         }
     }
 }
