@@ -680,6 +680,13 @@ fn pipelining_is_bounded_by_max_in_flight_and_off_for_rtu() {
         4,
         "RTU answers carry no id: one request at a time"
     );
+
+    let mut out = [0u16; 1];
+    let mut reads = [RegisterRead::new(Table::Holding, 0, &mut out)];
+    assert!(matches!(
+        client.read_register_batch(UnitId(0), &mut reads),
+        Err(BusError::Unsupported(_))
+    ));
 }
 
 #[test]
