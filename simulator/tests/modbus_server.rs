@@ -2,7 +2,7 @@
 //! addresses, function codes and limits answered with the described exception codes.
 
 use drivebus::modbus::transport::{ModbusTcpClient, TcpConfig};
-use drivebus::modbus::{RegisterBus, Table, UnitId};
+use drivebus::modbus::{RegisterBus, RegisterRead, Table, UnitId};
 use drivebus::BusError;
 use drivesim::Simulator;
 
@@ -150,4 +150,30 @@ fn another_units_requests_get_no_answer() {
     let mut regs = [0u16; 1];
     let result = client.read_registers(UnitId(9), Table::Holding, 0x0010, &mut regs);
     assert_eq!(result, Err(BusError::Timeout));
+}
+
+/// The server reads its connection request by request, so a pipelining client's batch (sent in
+/// one write) is answered in full, an exception included.
+#[test]
+fn pipelined_requests_are_answered_in_turn() {
+    let (_sim, _client, server) = fixture();
+    let config = TcpConfig {
+        max_in_flight: 8,
+        ..TcpConfig::default()
+    };
+    let mut client = ModbusTcpClient::connect(server.local_addr(), &config).unwrap();
+    let (mut holding, mut input, mut unknown) = ([0u16; 1], [0u16; 1], [0u16; 1]);
+    let mut reads = [
+        RegisterRead::new(Table::Holding, 0x0010, &mut holding),
+        RegisterRead::new(Table::Input, 0x7000, &mut unknown),
+        RegisterRead::new(Table::Input, 0x0010, &mut input),
+    ];
+    assert_eq!(
+        client
+            .read_register_batch(UNIT, &mut reads)
+            .map_err(|e| e.modbus_exception()),
+        Err(Some(drivebus::modbus::ExceptionCode::IllegalDataAddress))
+    );
+    assert_eq!(reads.map(|read| read.done), [true, false, true]);
+    assert_eq!((holding, input), ([100], [0]), "the described defaults");
 }
