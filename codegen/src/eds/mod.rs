@@ -18,6 +18,7 @@ pub(crate) mod node_id;
 mod parse;
 mod pdo_objects;
 mod short_text;
+mod trim;
 
 use std::path::Path;
 

@@ -3,6 +3,7 @@
 //! `$NODEID+0x180`, `0x180+$NODEID` and `$NodeID + 0x200` all mean "the node id plus 384"; the
 //! value stays a function of the node id (a COB-ID default differs on every node).
 
+use super::trim::trim;
 use crate::ir::{DataType, Number};
 
 /// A value of `DefaultValue`, `LowLimit`, `HighLimit` or `ParameterValue`.
@@ -26,7 +27,7 @@ pub fn parse_value(text: &str, ty: DataType) -> Result<Option<EdsValue>, String>
 }
 
 fn parse_float(text: &str) -> Result<Number, String> {
-    let t = text.trim();
+    let t = trim(text);
     if let Ok(f) = t.parse::<f64>() {
         if f.is_finite() {
             return Ok(Number::Float(f));
@@ -37,7 +38,7 @@ fn parse_float(text: &str) -> Result<Number, String> {
 }
 
 fn parse_bool(text: &str) -> Result<i64, String> {
-    match text.trim().to_ascii_lowercase().as_str() {
+    match trim(text).to_ascii_lowercase().as_str() {
         "true" => Ok(1),
         "false" => Ok(0),
         t => match parse_int(t) {
@@ -49,13 +50,13 @@ fn parse_bool(text: &str) -> Result<i64, String> {
 
 /// `$NODEID` and integer terms joined by `+`; hex beyond a signed type's maximum is two's complement.
 fn parse_integer(text: &str, ty: DataType) -> Result<EdsValue, String> {
-    let compact = text.trim();
+    let compact = trim(text);
     if compact.is_empty() {
         return Err("the value is empty".into());
     }
     let mut node_terms = 0;
     let mut sum: i128 = 0;
-    for term in compact.split('+').map(str::trim) {
+    for term in terms(compact) {
         if term.eq_ignore_ascii_case("$nodeid") {
             node_terms += 1;
             continue;
@@ -83,6 +84,20 @@ fn parse_integer(text: &str, ty: DataType) -> Result<EdsValue, String> {
     })
 }
 
+/// The `+`-separated terms of `text`, trimmed (`str::split` costs more on such short texts).
+fn terms(text: &str) -> impl Iterator<Item = &str> {
+    let mut rest = Some(text);
+    std::iter::from_fn(move || {
+        let current = rest?;
+        let (term, next) = match current.bytes().position(|b| b == b'+') {
+            Some(plus) => (&current[..plus], Some(&current[plus + 1..])),
+            None => (current, None),
+        };
+        rest = next;
+        Some(trim(term))
+    })
+}
+
 /// An integer term: decimal or `0x` hex, either with a leading `-`. Returns the value and whether
 /// it was written in hex.
 fn parse_int(term: &str) -> Option<(i128, bool)> {
@@ -94,8 +109,9 @@ fn parse_int(term: &str) -> Option<(i128, bool)> {
         .strip_prefix("0x")
         .or_else(|| digits.strip_prefix("0X"))
     {
+        // At most 16 hex digits always fit a `u64`, which parses faster than an `i128`.
         Some(hex) if !hex.is_empty() && hex.len() <= 16 => {
-            (i128::from_str_radix(hex, 16).ok()?, true)
+            (u64::from_str_radix(hex, 16).ok()?.into(), true)
         }
         Some(_) => return None,
         None if !digits.is_empty()

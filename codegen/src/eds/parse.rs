@@ -9,6 +9,7 @@ use std::ops::Range;
 use fnv::FnvHashMap;
 
 use super::short_text::ShortText;
+use super::trim::{trim_end, trim_start};
 use crate::diagnostic::{Diagnostic, FileId, Span};
 
 const RULE: &str = "eds_syntax";
@@ -138,8 +139,7 @@ pub fn parse_ini<'t>(file: FileId, text: &'t str, diagnostics: &mut Vec<Diagnost
         diagnostics.push(Diagnostic::error(RULE, Span::new(file, 0..0), message));
         return Ini::default();
     }
-    let headers = count_byte(text, b'[');
-    let entries = count_byte(text, b'=');
+    let (headers, entries) = count_brackets_and_equals(text.as_bytes());
     let mut reader = Reader {
         ini: Ini {
             headers: Vec::with_capacity(headers),
@@ -153,25 +153,18 @@ pub fn parse_ini<'t>(file: FileId, text: &'t str, diagnostics: &mut Vec<Diagnost
     let mut next_line = 0;
     let mut line_number = 0u32;
     while next_line < text.len() {
-        let line_start = next_line;
-        let line_end = line_end(text.as_bytes(), line_start);
-        next_line = line_end + 1;
+        let line = Line::scan(text, next_line);
+        next_line = line.end + 1;
         line_number = line_number.saturating_add(1);
-        let Some(Content {
-            lead,
-            text: content,
-            eq,
-        }) = Content::of(&text[line_start..line_end])
-        else {
+        let Some((start, content)) = line.content(text) else {
             continue;
         };
-        let start = line_start + lead;
         let span = Span::new(file, start..start + content.len());
         if let Some(name) = content.strip_prefix('[').and_then(|t| t.strip_suffix(']')) {
             let name = trim_end(trim_start(name));
             reader.open_section(name, span, line_number, diagnostics);
-        } else if let Some(eq) = eq {
-            reader.add_entry(entry(file, start, content, eq), span, diagnostics);
+        } else if let Some(eq) = line.eq {
+            reader.add_entry(entry(file, start, content, eq - start), span, diagnostics);
         } else {
             diagnostics.push(
                 Diagnostic::error(
@@ -186,14 +179,15 @@ pub fn parse_ini<'t>(file: FileId, text: &'t str, diagnostics: &mut Vec<Diagnost
     reader.finish()
 }
 
-/// How often `needle` occurs in `text` (an upper bound for the sections or entries to make room
-/// for). Counting into a byte per chunk of 255 lets the compiler use wide vector adds.
-fn count_byte(text: &str, needle: u8) -> usize {
-    text.as_bytes()
-        .chunks(255)
-        .map(|chunk| chunk.iter().fold(0u8, |n, &b| n + u8::from(b == needle)))
-        .map(usize::from)
-        .sum()
+/// How often `[` and `=` occur in `bytes` (upper bounds for the sections and entries to make room
+/// for). Counting into bytes per chunk of 255 lets the compiler use wide vector adds.
+fn count_brackets_and_equals(bytes: &[u8]) -> (usize, usize) {
+    bytes.chunks(255).fold((0, 0), |(brackets, equals), chunk| {
+        let (b, e) = chunk.iter().fold((0u8, 0u8), |(b, e), &byte| {
+            (b + u8::from(byte == b'['), e + u8::from(byte == b'='))
+        });
+        (brackets + usize::from(b), equals + usize::from(e))
+    })
 }
 
 impl<'t> Reader<'t> {
@@ -284,72 +278,89 @@ impl<'t> Reader<'t> {
     }
 }
 
-/// Where the line starting at `start` ends: its `\n`, or the end of the text. A plain loop: lines
-/// are a few dozen bytes, too short for `memchr`'s set-up to pay off.
-fn line_end(bytes: &[u8], start: usize) -> usize {
-    bytes[start..]
-        .iter()
-        .position(|&b| b == b'\n')
-        .map_or(bytes.len(), |n| start + n)
-}
-
-/// What a line says: its text without a `;` comment (a whole-line one, or one preceded by white
-/// space) and surrounding white space.
-struct Content<'l> {
-    /// Where the text starts in the line.
-    lead: usize,
-    /// The text.
-    text: &'l str,
-    /// Where its first `=` is.
+/// One line's landmarks, found in a single pass over its bytes (offsets into the whole text).
+struct Line {
+    /// Where the line starts.
+    start: usize,
+    /// Its `\n`, or the end of the text.
+    end: usize,
+    /// The first `=` before any comment.
     eq: Option<usize>,
+    /// A `;` preceded by white space: a comment to the end of the line.
+    comment: Option<usize>,
 }
 
-impl<'l> Content<'l> {
-    /// The content of `line` (without its `\n`); `None` when nothing is left. One pass finds both
-    /// the comment and the first `=`.
-    fn of(line: &'l str) -> Option<Self> {
-        let text = trim_start(line);
+impl Line {
+    /// Scans the line of `text` starting at `start`.
+    fn scan(text: &str, start: usize) -> Self {
         let bytes = text.as_bytes();
-        let first = *bytes.first()?;
-        if first == b';' {
-            return None;
-        }
-        let mut eq = (first == b'=').then_some(0);
-        let mut end = bytes.len();
-        for i in 1..bytes.len() {
-            match bytes[i] {
-                b'=' if eq.is_none() => eq = Some(i),
-                b';' if bytes[i - 1].is_ascii_whitespace() => {
-                    end = i;
-                    break;
+        let mut line = Line {
+            start,
+            end: start,
+            eq: None,
+            comment: None,
+        };
+        while let Some(at) = next_landmark(bytes, line.end) {
+            line.end = at;
+            match bytes[at] {
+                b'\n' => return line,
+                _ if line.comment.is_some() => {}
+                b'=' if line.eq.is_none() => line.eq = Some(at),
+                b';' if at > start && bytes[at - 1].is_ascii_whitespace() => {
+                    line.comment = Some(at)
                 }
                 _ => {}
             }
+            line.end += 1;
         }
-        Some(Content {
-            lead: line.len() - text.len(),
-            text: trim_end(&text[..end]),
-            eq,
-        })
+        line.end = bytes.len();
+        line
+    }
+
+    /// What the line says, with where it starts: its text without a `;` comment (a whole-line
+    /// one, or one preceded by white space) and surrounding white space; `None` when nothing is
+    /// left.
+    fn content<'t>(&self, text: &'t str) -> Option<(usize, &'t str)> {
+        let line = &text[self.start..self.end];
+        let trimmed = trim_start(line);
+        if trimmed.as_bytes().first().is_none_or(|&b| b == b';') {
+            return None;
+        }
+        let start = self.end - trimmed.len();
+        // A comment always starts after the first non-white byte, which is not `;`.
+        let end = self.comment.unwrap_or(self.end);
+        Some((start, trim_end(&text[start..end])))
     }
 }
 
-/// `str::trim_start`, with a fast path for the ASCII white space nearly every line has.
-fn trim_start(text: &str) -> &str {
-    let ascii = text.trim_ascii_start();
-    match ascii.as_bytes().first() {
-        Some(b) if !b.is_ascii() => ascii.trim_start(),
-        _ => ascii,
+/// The first `\n`, `=` or `;` at or after `from`. Eight bytes at a time: lines are mostly
+/// letters, and testing a whole word for the three bytes takes a dozen operations.
+fn next_landmark(bytes: &[u8], from: usize) -> Option<usize> {
+    let mut at = from;
+    while let Some(word) = bytes.get(at..at + 8) {
+        let mut chunk = [0; 8];
+        chunk.copy_from_slice(word);
+        let found = landmarks(u64::from_le_bytes(chunk));
+        if found != 0 {
+            return Some(at + found.trailing_zeros() as usize / 8);
+        }
+        at += 8;
     }
+    let tail = bytes.get(at..)?;
+    let found = tail.iter().position(|b| matches!(b, b'\n' | b'=' | b';'));
+    found.map(|n| at + n)
 }
 
-/// `str::trim_end`, with a fast path for ASCII white space.
-fn trim_end(text: &str) -> &str {
-    let ascii = text.trim_ascii_end();
-    match ascii.as_bytes().last() {
-        Some(b) if !b.is_ascii() => ascii.trim_end(),
-        _ => ascii,
-    }
+/// A mask whose lowest set bit is the high bit of the first `\n`, `=` or `;` byte of `word`
+/// (little-endian); zero if there is none. Bits above the lowest may be false alarms.
+fn landmarks(word: u64) -> u64 {
+    const ONES: u64 = u64::from_le_bytes([0x01; 8]);
+    const HIGHS: u64 = u64::from_le_bytes([0x80; 8]);
+    // The classic test for a zero byte, applied to the word XOR each landmark repeated.
+    let zero = |v: u64| v.wrapping_sub(ONES) & !v & HIGHS;
+    zero(word ^ (ONES * u64::from(b'\n')))
+        | zero(word ^ (ONES * u64::from(b'=')))
+        | zero(word ^ (ONES * u64::from(b';')))
 }
 
 fn entry(file: FileId, line_start: usize, line: &str, eq: usize) -> Entry<'_> {
@@ -424,10 +435,28 @@ mod tests {
     }
 
     #[test]
+    fn landmarks_are_found_in_words_and_tails() {
+        let text = b"abcdefgh;jk=lmnopqrstuvw\nxy";
+        assert_eq!(next_landmark(text, 0), Some(8));
+        assert_eq!(next_landmark(text, 9), Some(11));
+        assert_eq!(next_landmark(text, 12), Some(24));
+        assert_eq!(next_landmark(text, 25), None);
+        assert_eq!(next_landmark(b"", 0), None);
+        for at in 0..8 {
+            let mut word = *b"........";
+            word[at] = b'=';
+            word[7] = b';';
+            assert_eq!(
+                landmarks(u64::from_le_bytes(word)).trailing_zeros() / 8,
+                at as u32
+            );
+        }
+    }
+
+    #[test]
     fn bytes_are_counted_across_chunks() {
         let text = "[x]=".repeat(300);
-        assert_eq!(count_byte(&text, b'['), 300);
-        assert_eq!(count_byte(&text, b'='), 300);
-        assert_eq!(count_byte("", b'='), 0);
+        assert_eq!(count_brackets_and_equals(text.as_bytes()), (300, 300));
+        assert_eq!(count_brackets_and_equals(b""), (0, 0));
     }
 }
