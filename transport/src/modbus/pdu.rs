@@ -223,6 +223,20 @@ impl<'a> Request<'a> {
         }
     }
 
+    /// For a register read, what its normal answer PDU must be: the function code and byte count it
+    /// starts with, and its length. `None` for other requests, and for counts no byte count can
+    /// express (validation refuses those before sending).
+    #[inline]
+    pub fn register_answer(&self) -> Option<([u8; 2], usize)> {
+        match *self {
+            Self::ReadHoldingRegisters { count, .. } | Self::ReadInputRegisters { count, .. } => {
+                let bytes = u8::try_from(2 * count as usize).ok()?;
+                Some(([self.function(), bytes], 2 + usize::from(bytes)))
+            }
+            _ => None,
+        }
+    }
+
     /// Encodes the PDU into `out`; returns its length.
     #[inline]
     pub fn encode(&self, out: &mut [u8]) -> Result<usize, BusError> {
@@ -422,21 +436,57 @@ fn be16(bytes: &[u8], at: usize) -> u16 {
 /// [`BusError::ModbusException`].
 #[inline]
 pub fn decode_response<'a>(request: &Request<'_>, pdu: &'a [u8]) -> Result<Response<'a>, BusError> {
-    // Fast path, small enough to inline: a well-formed answer to a register read.
-    if let Request::ReadHoldingRegisters { count, .. } | Request::ReadInputRegisters { count, .. } =
-        *request
-    {
-        let bytes = 2 * count as usize;
-        if let [function, byte_count, data @ ..] = pdu {
-            if *function == request.function()
-                && *byte_count as usize == bytes
-                && data.len() == bytes
-            {
-                return Ok(Response::Registers(Registers { bytes: data }));
-            }
-        }
+    match register_data(request, pdu) {
+        Some(bytes) => Ok(Response::Registers(Registers { bytes })),
+        None => decode_any_response(request, pdu),
     }
-    decode_any_response(request, pdu)
+}
+
+/// Decodes the response PDU `pdu` to register read `request` straight into `out`, which must have
+/// one slot per requested register.
+///
+/// Accepts and rejects exactly what [`decode_response`] followed by [`Registers::copy_to`] does,
+/// with the same errors; a well-formed answer is checked and copied in one pass. `out` is only
+/// written when the answer is accepted.
+#[inline]
+pub fn decode_registers(
+    request: &Request<'_>,
+    pdu: &[u8],
+    out: &mut [u16],
+) -> Result<(), BusError> {
+    match register_data(request, pdu) {
+        Some(bytes) => Registers { bytes }.copy_to(out),
+        None => decode_registers_slowly(request, pdu, out),
+    }
+}
+
+/// Everything [`decode_registers`] does not accept at first sight: exceptions, malformed or
+/// mismatched answers, requests that are not register reads. Out of line to keep the fast path
+/// small.
+#[cold]
+#[inline(never)]
+fn decode_registers_slowly(
+    request: &Request<'_>,
+    pdu: &[u8],
+    out: &mut [u16],
+) -> Result<(), BusError> {
+    match decode_response(request, pdu)? {
+        Response::Registers(registers) => registers.copy_to(out),
+        _ => Err(frame_error("response does not match the request")),
+    }
+}
+
+/// The register bytes of `pdu` if it is a well-formed normal answer to register read `request`
+/// (function code, byte count and length all match); `None` for anything else, which the general
+/// decoder then classifies. Small enough to inline into every caller.
+#[inline]
+fn register_data<'a>(request: &Request<'_>, pdu: &'a [u8]) -> Option<&'a [u8]> {
+    let (head, len) = request.register_answer()?;
+    if pdu.len() != len {
+        return None;
+    }
+    let (first, data) = pdu.split_first_chunk()?;
+    (*first == head).then_some(data)
 }
 
 fn decode_any_response<'a>(request: &Request<'_>, pdu: &'a [u8]) -> Result<Response<'a>, BusError> {
@@ -841,6 +891,76 @@ mod tests {
         }
     }
 
+    /// What `decode_registers` must do: `decode_response`, then `copy_to`.
+    fn decode_then_copy(
+        request: &Request<'_>,
+        pdu: &[u8],
+        out: &mut [u16],
+    ) -> Result<(), BusError> {
+        match decode_response(request, pdu)? {
+            Response::Registers(registers) => registers.copy_to(out),
+            _ => Err(frame_error("response does not match the request")),
+        }
+    }
+
+    #[test]
+    fn decodes_registers_in_one_pass_with_the_general_errors() {
+        let read = Request::ReadInputRegisters { start: 0, count: 2 };
+        let mut out = [0u16; 2];
+        decode_registers(&read, &[4, 4, 0x12, 0x34, 0xAB, 0xCD], &mut out).unwrap();
+        assert_eq!(out, [0x1234, 0xABCD]);
+        let cases: [(&[u8], BusError); 4] = [
+            (
+                &[0x84, 2],
+                BusError::ModbusException {
+                    function: 4,
+                    code: 2,
+                },
+            ),
+            (
+                &[3, 4, 0, 0, 0, 0],
+                frame_error("function code does not match the request"),
+            ),
+            (
+                &[4, 5, 0, 0, 0, 0],
+                frame_error("byte count does not match the request"),
+            ),
+            (
+                &[4, 4, 0, 0],
+                frame_error("response length does not match the request"),
+            ),
+        ];
+        for (pdu, error) in cases {
+            assert_eq!(decode_registers(&read, pdu, &mut out), Err(error));
+        }
+        assert_eq!(out, [0x1234, 0xABCD], "rejected answers leave `out` alone");
+        assert_eq!(
+            decode_registers(&read, &[4, 4, 0, 0, 0, 0], &mut [0u16; 3]),
+            Err(frame_error("register count does not match the request"))
+        );
+        let write = Request::WriteSingleRegister {
+            address: 0x28,
+            value: 2,
+        };
+        assert_eq!(
+            decode_registers(&write, &[6, 0, 0x28, 0, 2], &mut out),
+            Err(frame_error("response does not match the request"))
+        );
+    }
+
+    #[test]
+    fn register_answers_follow_from_the_request() {
+        let read = |count| Request::ReadHoldingRegisters { start: 0, count };
+        assert_eq!(read(1).register_answer(), Some(([3, 2], 4)));
+        assert_eq!(read(125).register_answer(), Some(([3, 250], 252)));
+        assert_eq!(read(127).register_answer(), Some(([3, 254], 256)));
+        // No byte count can say 256 or more: no answer can match.
+        assert_eq!(read(128).register_answer(), None);
+        assert_eq!(read(u16::MAX).register_answer(), None);
+        let coils = Request::ReadCoils { start: 0, count: 8 };
+        assert_eq!(coils.register_answer(), None);
+    }
+
     proptest! {
         #[test]
         fn request_and_response_round_trip((kind, start, regs, bits) in any_request()) {
@@ -901,6 +1021,46 @@ mod tests {
                 prop_assert_eq!(got.len(), request.span().1);
             }
             let _ = decode_request(&bytes);
+        }
+
+        #[test]
+        fn decode_registers_agrees_with_the_general_decoder(
+            (kind, start, regs, bits) in any_request(),
+            bytes in proptest::collection::vec(any::<u8>(), 0..300),
+            slots in 0usize..130,
+        ) {
+            let request = build(kind, start, &regs, &bits);
+            let (mut fast, mut general) = (std::vec![0u16; slots], std::vec![0u16; slots]);
+            let got = decode_registers(&request, &bytes, &mut fast);
+            prop_assert_eq!(&got, &decode_then_copy(&request, &bytes, &mut general));
+            prop_assert_eq!(fast, general);
+        }
+
+        #[test]
+        fn decode_registers_agrees_on_damaged_answers(
+            values in proptest::collection::vec(any::<u16>(), 1..=125),
+            other_count in proptest::option::of(1u16..=127),
+            flip in proptest::option::of((any::<prop::sample::Index>(), 1u8..)),
+            cut in proptest::option::of(any::<prop::sample::Index>()),
+        ) {
+            let count = other_count.unwrap_or(values.len() as u16);
+            let request = Request::ReadInputRegisters { start: 0, count };
+            let mut pdu = [0u8; MAX_PDU];
+            let mut len = encode_registers_response(4, &values, &mut pdu).unwrap();
+            if let Some((at, bits)) = flip {
+                pdu[at.index(len)] ^= bits;
+            }
+            if let Some(at) = cut {
+                len = at.index(len);
+            }
+            let (mut fast, mut general) = (std::vec![0u16; values.len()], std::vec![0u16; values.len()]);
+            let got = decode_registers(&request, &pdu[..len], &mut fast);
+            prop_assert_eq!(&got, &decode_then_copy(&request, &pdu[..len], &mut general));
+            prop_assert_eq!(&fast, &general);
+            if flip.is_none() && cut.is_none() && usize::from(count) == values.len() {
+                prop_assert_eq!(got, Ok(()));
+                prop_assert_eq!(fast, values);
+            }
         }
     }
 }

@@ -78,6 +78,32 @@ fn answer_len(request: &Request<'_>, second: u8) -> Option<usize> {
 /// garbage, corrupted frames and answers to other requests are skipped.
 #[inline]
 pub fn scan(unit: UnitId, request: &Request<'_>, buf: &[u8]) -> Scan {
+    match registers_at_start(unit, request, buf) {
+        Some((len, _)) => Scan::Found { start: 0, len },
+        None => scan_every_offset(unit, request, buf),
+    }
+}
+
+/// If `buf` starts with the normal answer to register read `request` from `unit`: the frame's
+/// length and its register bytes. The address, function code and byte count follow from the
+/// request and the CRC must match: exactly what [`scan`] accepts at offset 0. Anything else is
+/// left to the general scan.
+#[inline]
+pub fn registers_at_start<'a>(
+    unit: UnitId,
+    request: &Request<'_>,
+    buf: &'a [u8],
+) -> Option<(usize, &'a [u8])> {
+    let ([function, bytes], pdu_len) = request.register_answer()?;
+    let frame = buf.get(..1 + pdu_len + 2)?;
+    // Byte by byte: a three-byte array would be stored and reloaded, which stalls the load.
+    let head_matches = frame[0] == unit.0 && frame[1] == function && frame[2] == bytes;
+    (head_matches && check(frame)).then(|| (frame.len(), &frame[3..frame.len() - 2]))
+}
+
+/// [`scan`] the slow way: a candidate frame at every offset.
+#[inline]
+fn scan_every_offset(unit: UnitId, request: &Request<'_>, buf: &[u8]) -> Scan {
     let mut rejected = None;
     let mut pending = None;
     for start in 0..buf.len() {
@@ -131,6 +157,16 @@ impl Framing for RtuFraming {
     #[inline]
     fn scan(&self, unit: UnitId, request: &Request<'_>, buf: &[u8]) -> Scan {
         scan(unit, request, buf)
+    }
+
+    #[inline]
+    fn registers_at_start<'a>(
+        &self,
+        unit: UnitId,
+        request: &Request<'_>,
+        buf: &'a [u8],
+    ) -> Option<(usize, &'a [u8])> {
+        registers_at_start(unit, request, buf)
     }
 
     #[inline]
@@ -397,6 +433,50 @@ mod tests {
                 Scan::Incomplete { discard, .. } => prop_assert!(discard <= bytes.len()),
             }
             let _ = open_frame(UNIT, &bytes);
+            let _ = registers_at_start(UNIT, &request, &bytes);
+        }
+
+        #[test]
+        fn the_fast_path_accepts_exactly_what_the_general_scan_accepts(
+            values in proptest::collection::vec(any::<u16>(), 1..=125),
+            other_count in proptest::option::of(1u16..=125),
+            (unit, function) in (1u8..=2, prop::sample::select(&[3u8, 4, 0x83][..])),
+            flip in proptest::option::of((any::<prop::sample::Index>(), 1u8..)),
+            cut in proptest::option::of(any::<prop::sample::Index>()),
+            tail in proptest::collection::vec(any::<u8>(), 0..12),
+        ) {
+            let count = other_count.unwrap_or(values.len() as u16);
+            let request = Request::ReadHoldingRegisters { start: 0, count };
+            let mut buf = if function == 0x83 {
+                reply(unit, &[0x83, 2])
+            } else {
+                registers_reply(unit, function, &values)
+            };
+            if let Some((at, bits)) = flip {
+                let at = at.index(buf.len());
+                buf[at] ^= bits;
+            }
+            if let Some(at) = cut {
+                buf.truncate(at.index(buf.len()));
+            }
+            buf.extend_from_slice(&tail);
+            let intact = flip.is_none() && cut.is_none() && other_count.is_none();
+            if intact && function == 3 && unit == 1 {
+                prop_assert!(registers_at_start(UNIT, &request, &buf).is_some());
+            }
+            let general = scan_every_offset(UNIT, &request, &buf);
+            prop_assert_eq!(scan(UNIT, &request, &buf), general);
+            match registers_at_start(UNIT, &request, &buf) {
+                Some((len, data)) => {
+                    prop_assert_eq!(general, Scan::Found { start: 0, len });
+                    prop_assert_eq!(data, &buf[3..len - 2]);
+                }
+                // Only exceptions are left to the general scan.
+                None => {
+                    let found_at_start = matches!(general, Scan::Found { start: 0, .. });
+                    prop_assert!(!found_at_start || buf[1] == 0x83, "fast path missed an answer");
+                }
+            }
         }
 
         #[test]

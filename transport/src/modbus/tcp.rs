@@ -101,43 +101,109 @@ pub fn open_frame(transaction: u16, unit: UnitId, frame: &[u8]) -> Result<&[u8],
     Ok(&frame[HEADER_LEN..])
 }
 
+/// What the bytes at a frame boundary hold, as far as the current request is concerned.
+enum Verdict {
+    /// The answer, `len` bytes long.
+    Answer(usize),
+    /// A complete frame of `len` bytes that does not answer the request.
+    Other(usize, &'static str),
+    /// The start of a frame that has not arrived completely.
+    Partial,
+    /// A header no frame can have: the stream is out of step.
+    OutOfStep(&'static str),
+}
+
+/// Judges the frame at the start of `bytes`.
+#[inline]
+fn judge(transaction: u16, unit: UnitId, request: &Request<'_>, bytes: &[u8]) -> Verdict {
+    if bytes.len() < HEADER_LEN {
+        return Verdict::Partial;
+    }
+    let header = match parse_header(bytes) {
+        Ok(header) => header,
+        Err(why) => return Verdict::OutOfStep(why),
+    };
+    let len = HEADER_LEN + header.pdu_len;
+    let Some(frame) = bytes.get(..len) else {
+        return Verdict::Partial;
+    };
+    let verdict = if header.transaction != transaction {
+        Err("transaction id does not match the request")
+    } else if header.unit != unit {
+        Err("unit id does not match the request")
+    } else {
+        answers(request, &frame[HEADER_LEN..])
+    };
+    match verdict {
+        Ok(()) => Verdict::Answer(len),
+        Err(why) => Verdict::Other(len, why),
+    }
+}
+
 /// Finds the answer to transaction `transaction` in `buf`, which starts at a frame boundary.
 /// Frames of other transactions (late answers to earlier requests) are skipped; a header that
 /// cannot be valid means the stream lost step, and everything buffered is discarded.
 #[inline]
 pub fn scan(transaction: u16, unit: UnitId, request: &Request<'_>, buf: &[u8]) -> Scan {
+    match registers_at_start(transaction, unit, request, buf) {
+        Some((len, _)) => Scan::Found { start: 0, len },
+        None => scan_past_others(transaction, unit, request, buf),
+    }
+}
+
+/// If `buf` starts with the normal answer to register read `request`: the frame's length and its
+/// register bytes. Every byte up to the data follows from the request, so one comparison replaces
+/// the general scan's field-by-field checks, and accepts exactly the frames they accept at the
+/// start. Anything else (exceptions, other requests, stale or malformed frames) is left to them.
+#[inline]
+pub fn registers_at_start<'a>(
+    transaction: u16,
+    unit: UnitId,
+    request: &Request<'_>,
+    buf: &'a [u8],
+) -> Option<(usize, &'a [u8])> {
+    let ([function, bytes], pdu_len) = request.register_answer()?;
+    let frame = buf.get(..HEADER_LEN + pdu_len)?;
+    let (head, rest) = frame.split_first_chunk::<8>()?;
+    // Transaction, protocol 0, MBAP length, unit, function code: built in a register, because
+    // bytes stored one by one and reloaded as a word stall the load.
+    let expected = u64::from(transaction) << 48
+        | (pdu_len as u64 + 1) << 16
+        | u64::from(unit.0) << 8
+        | u64::from(function);
+    match rest.split_first() {
+        Some((&count, data)) if u64::from_be_bytes(*head) == expected && count == bytes => {
+            Some((frame.len(), data))
+        }
+        _ => None,
+    }
+}
+
+/// [`scan`] from the first frame on, skipping the frames that do not answer the request.
+#[inline(never)]
+fn scan_past_others(transaction: u16, unit: UnitId, request: &Request<'_>, buf: &[u8]) -> Scan {
     let mut start = 0;
     let mut rejected = None;
-    while let Some(rest) = buf.get(start..).filter(|rest| rest.len() >= HEADER_LEN) {
-        let header = match parse_header(rest) {
-            Ok(header) => header,
-            Err(why) => {
+    loop {
+        match judge(transaction, unit, request, &buf[start..]) {
+            Verdict::Answer(len) => return Scan::Found { start, len },
+            Verdict::Other(len, why) => {
+                rejected = Some(why);
+                start += len;
+            }
+            Verdict::Partial => {
+                return Scan::Incomplete {
+                    discard: start,
+                    rejected,
+                }
+            }
+            Verdict::OutOfStep(why) => {
                 return Scan::Incomplete {
                     discard: buf.len(),
                     rejected: Some(why),
                 }
             }
-        };
-        let len = HEADER_LEN + header.pdu_len;
-        let Some(frame) = rest.get(..len) else {
-            break;
-        };
-        let verdict = if header.transaction != transaction {
-            Err("transaction id does not match the request")
-        } else if header.unit != unit {
-            Err("unit id does not match the request")
-        } else {
-            answers(request, &frame[HEADER_LEN..])
-        };
-        match verdict {
-            Ok(()) => return Scan::Found { start, len },
-            Err(why) => rejected = Some(why),
         }
-        start += len;
-    }
-    Scan::Incomplete {
-        discard: start,
-        rejected,
     }
 }
 
@@ -180,6 +246,16 @@ impl Framing for TcpFraming {
     #[inline]
     fn scan(&self, unit: UnitId, request: &Request<'_>, buf: &[u8]) -> Scan {
         scan(self.transaction, unit, request, buf)
+    }
+
+    #[inline]
+    fn registers_at_start<'a>(
+        &self,
+        unit: UnitId,
+        request: &Request<'_>,
+        buf: &'a [u8],
+    ) -> Option<(usize, &'a [u8])> {
+        registers_at_start(self.transaction, unit, request, buf)
     }
 
     #[inline]
@@ -287,6 +363,53 @@ mod tests {
                 prop_assert!(answers(&request, pdu).is_ok());
             }
             let _ = Header::parse(&bytes);
+            let _ = registers_at_start(transaction, UNIT, &request, &bytes);
+        }
+
+        #[test]
+        fn the_fast_path_accepts_exactly_what_the_general_scan_accepts(
+            values in proptest::collection::vec(any::<u16>(), 1..=125),
+            other_count in proptest::option::of(1u16..=125),
+            (transaction, other_transaction, unit) in (any::<u16>(), any::<bool>(), 1u8..=2),
+            exception in any::<bool>(),
+            flip in proptest::option::of((any::<prop::sample::Index>(), 1u8..)),
+            cut in proptest::option::of(any::<prop::sample::Index>()),
+            tail in proptest::collection::vec(any::<u8>(), 0..12),
+        ) {
+            let count = other_count.unwrap_or(values.len() as u16);
+            let request = Request::ReadHoldingRegisters { start: 0, count };
+            let sent = transaction.wrapping_add(u16::from(other_transaction));
+            let mut buf = answer(sent, unit, &values);
+            if exception {
+                buf.truncate(HEADER_LEN + 2);
+                buf[5] = 3;
+                buf[HEADER_LEN..].copy_from_slice(&[0x83, 2]);
+            }
+            if let Some((at, bits)) = flip {
+                let at = at.index(buf.len());
+                buf[at] ^= bits;
+            }
+            if let Some(at) = cut {
+                buf.truncate(at.index(buf.len()));
+            }
+            buf.extend_from_slice(&tail);
+            let intact = flip.is_none() && cut.is_none() && other_count.is_none();
+            if intact && !exception && !other_transaction && unit == 1 {
+                prop_assert!(registers_at_start(transaction, UNIT, &request, &buf).is_some());
+            }
+            let general = scan_past_others(transaction, UNIT, &request, &buf);
+            prop_assert_eq!(scan(transaction, UNIT, &request, &buf), general);
+            match registers_at_start(transaction, UNIT, &request, &buf) {
+                Some((len, data)) => {
+                    prop_assert_eq!(general, Scan::Found { start: 0, len });
+                    prop_assert_eq!(data, &buf[HEADER_LEN + 2..len]);
+                }
+                // Only exceptions are left to the general scan.
+                None => {
+                    let found_at_start = matches!(general, Scan::Found { start: 0, .. });
+                    prop_assert!(!found_at_start || buf[HEADER_LEN] == 0x83, "fast path missed an answer");
+                }
+            }
         }
 
         #[test]

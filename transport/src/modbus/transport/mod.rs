@@ -64,7 +64,7 @@ pub use tcp::{ModbusTcpClient, NetStream, TcpConfig};
 
 use crate::error::BusError;
 
-use super::framing::{Framing, Scan};
+use super::framing::{scan_registers, Framing, Scan};
 use super::pdu::{decode_response, Request, Response};
 use super::retry::{is_transient, Idempotency, RetryPolicy};
 use super::rtu::RtuFraming;
@@ -202,12 +202,12 @@ impl<S: ByteStream, F: Framing> Client<S, F> {
         request: &Request<'_>,
         declared: Option<Idempotency>,
     ) -> Result<Response<'_>, BusError> {
-        request.validate()?;
-        if unit == BROADCAST && !request.is_write() {
-            return Err(BusError::Unsupported("reads cannot be broadcast"));
-        }
-        let attempts = self.config.retry.attempts(request, declared);
-        let frame = self.with_retries(attempts, |client| client.exchange(unit, request))?;
+        let attempts = self.checked_attempts(unit, request, declared)?;
+        let frame = self.with_retries(attempts, |client| {
+            client.exchange(unit, request, |framing, buf| {
+                Ok(framing.scan(unit, request, buf))
+            })
+        })?;
         match frame {
             Some(range) => decode_response(request, self.framing.pdu(&self.rx[range])),
             None => Ok(Response::Written),
@@ -236,6 +236,20 @@ impl<S: ByteStream, F: Framing> Client<S, F> {
     ) -> Result<(), BusError> {
         let request = Request::WriteMultipleRegisters { start, values };
         self.execute(unit, &request, Some(idempotency)).map(drop)
+    }
+
+    /// Checks `request` before anything is sent; returns how many attempts it may take.
+    fn checked_attempts(
+        &self,
+        unit: UnitId,
+        request: &Request<'_>,
+        declared: Option<Idempotency>,
+    ) -> Result<u32, BusError> {
+        request.validate()?;
+        if unit == BROADCAST && !request.is_write() {
+            return Err(BusError::Unsupported("reads cannot be broadcast"));
+        }
+        Ok(self.config.retry.attempts(request, declared))
     }
 
     /// Runs `attempt` up to `attempts` times while it fails transiently. Each attempt first
@@ -311,10 +325,13 @@ impl<S: ByteStream, F: Framing> Client<S, F> {
         Ok(got)
     }
 
+    /// One request and its answer; `scan` looks for the answer in the bytes received so far (and
+    /// may decode it on the way, see [`scan_registers`]).
     fn exchange(
         &mut self,
         unit: UnitId,
         request: &Request<'_>,
+        mut scan: impl FnMut(&F, &[u8]) -> Result<Scan, BusError>,
     ) -> Result<Option<Range<usize>>, BusError> {
         self.prepare_exchange()?;
         let len = self.framing.encode_request(unit, request, &mut self.tx)?;
@@ -324,7 +341,7 @@ impl<S: ByteStream, F: Framing> Client<S, F> {
         }
         let mut rejected = None;
         loop {
-            match self.framing.scan(unit, request, &self.rx[..self.rx_len]) {
+            match scan(&self.framing, &self.rx[..self.rx_len])? {
                 Scan::Found { start, len } => return Ok(Some(start..start + len)),
                 Scan::Incomplete {
                     discard,
@@ -352,10 +369,14 @@ impl<S: ByteStream, F: Framing> Client<S, F> {
         request: Request<'_>,
         out: &mut [u16],
     ) -> Result<(), BusError> {
-        match self.execute(unit, &request, None)? {
-            Response::Registers(registers) => registers.copy_to(out),
-            _ => Err(BusError::Frame("response does not match the request")),
-        }
+        let attempts = self.checked_attempts(unit, &request, None)?;
+        // The answer is decoded into `out` as it is found: one pass over the frame.
+        self.with_retries(attempts, |client| {
+            client.exchange(unit, &request, |framing, buf| {
+                scan_registers(framing, unit, &request, buf, out)
+            })
+        })
+        .map(drop)
     }
 
     fn read_into_bits(
