@@ -5,7 +5,7 @@
 
 use super::parse::{Entry, Ini, Section};
 use super::short_text::ShortText;
-use crate::diagnostic::{Diagnostic, Span};
+use crate::diagnostic::{Diagnostic, FileId, Span};
 
 const RULE_KEY: &str = "eds_unknown_key";
 const RULE_OBJECT: &str = "eds_objects";
@@ -23,13 +23,32 @@ pub enum ObjectKind {
     Record,
 }
 
-/// A text value and where it is written.
+/// A text value and where it is written. The location is two offsets rather than a [`Span`]:
+/// a large EDS has tens of thousands of values, and every byte of a variable is moved twice.
 #[derive(Debug, Clone)]
 pub struct Text {
     /// The value.
     pub value: ShortText,
-    /// Its location.
-    pub span: Span,
+    at: u32,
+    len: u32,
+}
+
+impl Text {
+    /// `value`, written at `span` (which must fit `u32` offsets, as every span of a read EDS does).
+    pub fn new(value: ShortText, span: &Span) -> Self {
+        let offset = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
+        Text {
+            value,
+            at: offset(span.range.start),
+            len: offset(span.range.len()),
+        }
+    }
+
+    /// Where it is written, in `file` (the file of its variable).
+    pub fn span(&self, file: FileId) -> Span {
+        let at = self.at as usize;
+        Span::new(file, at..at + self.len as usize)
+    }
 }
 
 /// One variable: a whole VAR / DOMAIN, or one sub-index of an ARRAY / RECORD.
@@ -38,7 +57,7 @@ pub struct Variable {
     /// Sub-index (0 for a VAR).
     pub subindex: u8,
     /// `ParameterName`.
-    pub name: ShortText,
+    pub name: String,
     /// `Description` (a common non-standard key).
     pub description: Option<String>,
     /// The section header (or the parent's, for compact sub-objects).
@@ -539,19 +558,13 @@ fn compact(
     let names = ini.section(&format!("{index:04x}name"));
     let values = ini.section(&format!("{index:04x}value"));
     let template = variable(section, keys, 1, name, diagnostics);
-    let count_text = Text {
-        value: ShortText::from(count.to_string().as_str()),
-        span: section.span.clone(),
-    };
+    let count_text = Text::new(ShortText::from(count.to_string().as_str()), section.span);
     let mut out = vec![Variable {
         subindex: 0,
-        name: ShortText::from("Number of entries"),
+        name: "Number of entries".into(),
         description: None,
         data_type: Some(0x0005),
-        access: Some(Text {
-            value: ShortText::from("ro"),
-            span: section.span.clone(),
-        }),
+        access: Some(Text::new(ShortText::from("ro"), section.span)),
         pdo_mapping: false,
         low: None,
         high: None,
@@ -564,15 +577,11 @@ fn compact(
         let key = sub.to_string();
         let mut v = template.clone();
         v.subindex = sub;
-        v.name = names.and_then(|s| s.get(&key)).map_or_else(
-            || ShortText::from(format!("{name}{sub}").as_str()),
-            |e| ShortText::from(e.value),
-        );
+        v.name = names
+            .and_then(|s| s.get(&key))
+            .map_or_else(|| format!("{name}{sub}"), |e| e.value.to_owned());
         if let Some(value) = values.and_then(|s| s.get(&key)) {
-            v.parameter_value = Some(Text {
-                value: ShortText::from(value.value),
-                span: value.value_span(),
-            });
+            v.parameter_value = Some(text(value));
         }
         out.push(v);
     }
@@ -593,12 +602,7 @@ fn variable(
             );
         }
     }
-    let text = |entry: Option<&Entry>| {
-        entry.map(|e| Text {
-            value: ShortText::from(e.value),
-            span: e.value_span(),
-        })
-    };
+    let text = |entry: Option<&Entry>| entry.map(text);
     let data_type = keys.get(Key::DataType).and_then(|e| {
         let code = parse_small(e.value).and_then(|c| u16::try_from(c).ok());
         if code.is_none() {
@@ -626,7 +630,7 @@ fn variable(
     });
     Variable {
         subindex,
-        name: ShortText::from(name),
+        name: name.to_owned(),
         description: keys.get(Key::Description).map(|e| e.value.to_owned()),
         span: section.span.clone(),
         line: section.line,
@@ -638,6 +642,11 @@ fn variable(
         default: text(keys.get(Key::DefaultValue)),
         parameter_value: text(keys.get(Key::ParameterValue)),
     }
+}
+
+/// The value of `entry`.
+fn text(entry: &Entry) -> Text {
+    Text::new(ShortText::from(entry.value), &entry.value_span())
 }
 
 fn commissioning(section: &Section, diagnostics: &mut Vec<Diagnostic>) -> Option<u8> {

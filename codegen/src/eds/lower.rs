@@ -44,8 +44,6 @@ pub struct EdsEntry {
     pub source_id: Arc<str>,
     /// The EDS file, shared by every entry.
     pub file: Arc<str>,
-    /// The line of its section header.
-    pub line: u32,
 }
 
 /// Everything an EDS contributes to a device.
@@ -117,7 +115,6 @@ pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
             data_type: entry_type(&v, object.kind),
             source_id: Arc::clone(&source_id),
             file: Arc::clone(&shared_file),
-            line: v.line,
             variable: v,
         }));
     }
@@ -284,7 +281,7 @@ impl EdsEntry {
             doc: Arc::clone(&self.source_id),
             file: Arc::clone(&self.file),
             section: Some(self.section()),
-            line: Some(self.line),
+            line: Some(self.variable.line),
             example: None,
             span: self.variable.span.clone(),
         }
@@ -332,7 +329,7 @@ impl EdsEntry {
         let names = Names {
             name: std::mem::take(&mut self.name),
             record: self.record.take(),
-            doc: self.doc(),
+            doc: self.take_doc(),
             source,
         };
         self.parameter_named(names, ty, diagnostics)
@@ -341,9 +338,15 @@ impl EdsEntry {
     /// `Description`, or else `ParameterName`.
     fn doc(&self) -> String {
         let v = &self.variable;
+        v.description.clone().unwrap_or_else(|| v.name.clone())
+    }
+
+    /// [`EdsEntry::doc`], moved out of the entry.
+    fn take_doc(&mut self) -> String {
+        let v = &mut self.variable;
         v.description
-            .clone()
-            .unwrap_or_else(|| String::from(&*v.name))
+            .take()
+            .unwrap_or_else(|| std::mem::take(&mut v.name))
     }
 
     fn parameter_named(
@@ -357,12 +360,16 @@ impl EdsEntry {
         let value = |t: &Option<Text>, what: &str, d: &mut Vec<Diagnostic>| {
             let t = t.as_ref()?;
             match parse_value(&t.value, ty) {
-                Ok(value) => value.map(|x| (x, t.span.clone())),
+                Ok(value) => value.map(|x| (x, t.span(v.span.file))),
                 Err(why) => {
                     d.push(
-                        Diagnostic::error(RULE_VALUE, t.span.clone(), format!("{what}: {why}"))
-                            .warning()
-                            .label("ignored"),
+                        Diagnostic::error(
+                            RULE_VALUE,
+                            t.span(v.span.file),
+                            format!("{what}: {why}"),
+                        )
+                        .warning()
+                        .label("ignored"),
                     );
                     None
                 }
@@ -427,7 +434,10 @@ impl EdsEntry {
             "rw" | "rwr" | "rww" => (ir::Access::READ_WRITE, false),
             "const" => (ir::Access::READ, true),
             _ => {
-                let span = v.access.as_ref().map_or(v.span.clone(), |t| t.span.clone());
+                let span = v
+                    .access
+                    .as_ref()
+                    .map_or(v.span.clone(), |t| t.span(v.span.file));
                 let message = if written.is_empty() {
                     format!("object {} has no AccessType; read as `ro`", self.address())
                 } else {

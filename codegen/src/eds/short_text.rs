@@ -6,10 +6,11 @@ use std::fmt;
 use std::hash::{Hash, Hasher};
 use std::ops::Deref;
 
-/// Bytes stored inline; longer texts go to the heap.
-const INLINE: usize = 30;
+/// Bytes stored inline; longer texts go to the heap. 22 keeps a `ShortText` at 24 bytes (a `String`'s
+/// size) and still holds values like `$NODEID+0x180` or `0x7FFFFFFF`.
+const INLINE: usize = 22;
 
-/// An immutable string, inline up to 30 bytes.
+/// An immutable string, inline up to 22 bytes.
 #[derive(Clone)]
 pub struct ShortText(Repr);
 
@@ -17,7 +18,7 @@ pub struct ShortText(Repr);
 /// they are always valid UTF-8, which [`ShortText`]'s `Deref` relies on.
 #[derive(Clone)]
 enum Repr {
-    /// Up to 30 bytes of UTF-8 (`INLINE`) and their length.
+    /// Up to 22 bytes of UTF-8 (`INLINE`) and their length.
     Inline([u8; INLINE], u8),
     /// A longer text.
     Heap(Box<str>),
@@ -109,7 +110,8 @@ mod tests {
         let long = "a name longer than thirty bytes, with µ";
         assert_eq!(&*ShortText::from("rw"), "rw");
         assert_eq!(&*ShortText::from(""), "");
-        assert_eq!(&*ShortText::from("µ".repeat(15).as_str()), "µ".repeat(15));
+        assert_eq!(&*ShortText::from("µ".repeat(11).as_str()), "µ".repeat(11));
+        assert_eq!(std::mem::size_of::<ShortText>(), 24);
         assert_eq!(&*ShortText::from(long), long);
         let inline = |text: &str| matches!(ShortText::from(text).0, Repr::Inline(..));
         assert!(inline("$NODEID+0x180"));
