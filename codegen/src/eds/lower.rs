@@ -1,13 +1,11 @@
 //! EDS objects to IR records and parameters, with names derived from `ParameterName` and every
 //! value citing its EDS line.
 
-use std::collections::hash_map::Entry;
 use std::sync::Arc;
-
-use fnv::FnvHashMap;
 
 use super::data_type::{from_code, Code, UNSIZED_CAPACITY};
 use super::dictionary::{Dictionary, ObjectKind, Text, Variable};
+use super::names::{repeated, snake_name, unique_names, Address, NameList};
 use super::node_id::{parse_value, EdsValue};
 use crate::diagnostic::{Diagnostic, FileId, Files, Span};
 use crate::ir::{self, DataType, Number};
@@ -83,7 +81,9 @@ pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
         span: span.clone(),
     };
     let mut records = Vec::new();
-    let mut entries = Vec::with_capacity(objects.iter().map(|o| o.variables.len()).sum());
+    let count = objects.iter().map(|o| o.variables.len()).sum();
+    let mut entries = Vec::with_capacity(count);
+    let mut snakes = NameList::with_capacity(count);
     for object in objects {
         let record = match object.kind {
             ObjectKind::Array | ObjectKind::Record => {
@@ -111,14 +111,18 @@ pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
         entries.extend(object.variables.into_iter().map(|v| EdsEntry {
             index: object.index,
             record: record.clone(),
-            name: snake_name(&v.name),
+            // Named once every name is known, by `name_uniquely`.
+            name: {
+                snakes.push_snake(&v.name);
+                String::new()
+            },
             data_type: entry_type(&v, object.kind),
             source_id: Arc::clone(&source_id),
             file: Arc::clone(&shared_file),
             variable: v,
         }));
     }
-    make_unique(&mut entries, &mut records);
+    name_uniquely(&snakes, &mut entries, &mut records);
     EdsModel {
         source,
         device,
@@ -135,52 +139,6 @@ fn entry_type(v: &Variable, kind: ObjectKind) -> Result<DataType, TypeProblem> {
         },
         (None, ObjectKind::Domain) => Ok(DataType::Octets(UNSIZED_CAPACITY)),
         (None, _) => Err(TypeProblem::Missing),
-    }
-}
-
-/// A snake_case identifier from an EDS name: ASCII letters, digits and single underscores; a word
-/// starts at every non-alphanumeric run, at a lower-case or digit to upper-case step, and at the
-/// last capital of an acronym followed by lower case (`VendorID` → `vendor_id`).
-pub fn snake_name(text: &str) -> String {
-    // Bytes rather than chars: every byte of a multi-byte character is a non-alphanumeric
-    // separator, exactly as the character itself would be, and bytes are cheaper to walk.
-    let bytes = text.as_bytes();
-    let mut out = String::with_capacity(text.len() + 2);
-    let mut after_underscore = false;
-    let mut prev: Option<u8> = None;
-    for (i, &c) in bytes.iter().enumerate() {
-        if !c.is_ascii_alphanumeric() {
-            prev = None;
-            if !out.is_empty() && !after_underscore {
-                out.push('_');
-                after_underscore = true;
-            }
-            continue;
-        }
-        let next_lower = bytes.get(i + 1).is_some_and(u8::is_ascii_lowercase);
-        let starts_word = c.is_ascii_uppercase()
-            && prev.is_some_and(|p| {
-                p.is_ascii_lowercase()
-                    || p.is_ascii_digit()
-                    || (p.is_ascii_uppercase() && next_lower)
-            });
-        if starts_word && !after_underscore {
-            out.push('_');
-        }
-        out.push(char::from(c.to_ascii_lowercase()));
-        after_underscore = false;
-        prev = Some(c);
-    }
-    if after_underscore {
-        out.pop();
-    }
-    match out.as_bytes().first() {
-        None => "object".into(),
-        Some(c) if c.is_ascii_digit() => {
-            out.insert(0, 'n');
-            out
-        }
-        Some(_) => out,
     }
 }
 
@@ -210,21 +168,15 @@ fn push_hex(out: &mut String, value: u16, min_digits: u32) {
     }
 }
 
-/// Members sharing a name get their record's name in front, then any remaining clash its address;
-/// records sharing a name get their index appended.
-fn make_unique(entries: &mut [EdsEntry], records: &mut [ir::Record]) {
-    let first = repeated(entries.iter().map(|e| e.name.as_str()));
-    // Names only change where they clash; without a clash they are unique as they are.
-    if first.contains(&true) {
-        for (e, _) in entries.iter_mut().zip(first).filter(|(_, clash)| *clash) {
-            if let Some(record) = &e.record {
-                e.name = joined(&[record, "_", &e.name]);
-            }
-        }
-        let second = repeated(entries.iter().map(|e| e.name.as_str()));
-        for (e, _) in entries.iter_mut().zip(second).filter(|(_, clash)| *clash) {
-            e.name = format!("{}_{:04x}_{}", e.name, e.index, e.variable.subindex);
-        }
+/// Names every entry (see [`unique_names`]); records sharing a name get their index appended.
+fn name_uniquely(snakes: &NameList, entries: &mut [EdsEntry], records: &mut [ir::Record]) {
+    let names = unique_names(snakes, |i| Address {
+        record: entries[i].record.as_deref(),
+        index: entries[i].index,
+        subindex: entries[i].variable.subindex,
+    });
+    for (e, name) in entries.iter_mut().zip(names) {
+        e.name = name;
     }
     let records_clash = repeated(records.iter().map(|r| r.name.as_str()));
     for (r, _) in records
@@ -238,34 +190,6 @@ fn make_unique(entries: &mut [EdsEntry], records: &mut [ir::Record]) {
         }
         r.name = renamed;
     }
-}
-
-/// The concatenation of `parts`, allocated once.
-fn joined(parts: &[&str]) -> String {
-    let mut out = String::with_capacity(parts.iter().map(|p| p.len()).sum());
-    parts.iter().for_each(|p| out.push_str(p));
-    out
-}
-
-/// For each name, whether another item has it too. One map lookup per name: the map remembers
-/// where a name was first seen, and a second sighting marks both.
-fn repeated<'n>(names: impl Iterator<Item = &'n str>) -> Vec<bool> {
-    let mut first_seen: FnvHashMap<&str, usize> =
-        FnvHashMap::with_capacity_and_hasher(names.size_hint().0, Default::default());
-    let mut clash = Vec::with_capacity(names.size_hint().0);
-    for (i, name) in names.enumerate() {
-        match first_seen.entry(name) {
-            Entry::Occupied(first) => {
-                clash[*first.get()] = true;
-                clash.push(true);
-            }
-            Entry::Vacant(slot) => {
-                slot.insert(i);
-                clash.push(false);
-            }
-        }
-    }
-    clash
 }
 
 impl EdsEntry {
@@ -523,23 +447,6 @@ fn limits(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn names_become_snake_case_identifiers() {
-        assert_eq!(snake_name("Vendor-ID"), "vendor_id");
-        assert_eq!(
-            snake_name("Highest sub-index supported"),
-            "highest_sub_index_supported"
-        );
-        assert_eq!(snake_name("2nd Temp (°C)"), "n2nd_temp_c");
-        assert_eq!(snake_name("µ"), "object");
-        assert_eq!(snake_name("VendorID"), "vendor_id");
-        assert_eq!(snake_name("TPDO1 COB-ID"), "tpdo1_cob_id");
-        assert_eq!(snake_name("Axis1Speed"), "axis1_speed");
-        assert_eq!(snake_name("Température moteur"), "temp_rature_moteur");
-        assert_eq!(snake_name("__"), "object");
-        assert_eq!(snake_name("Speed (rpm) "), "speed_rpm");
-    }
 
     #[test]
     fn sections_are_named_in_upper_case_hex() {

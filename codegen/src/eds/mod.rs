@@ -14,6 +14,7 @@ mod encoding;
 mod export;
 mod import;
 mod lower;
+mod names;
 pub(crate) mod node_id;
 mod parse;
 mod pdo_objects;
@@ -30,7 +31,8 @@ pub use dictionary::{DeviceInfo, Dictionary, Object, ObjectKind, Text, Variable}
 pub use encoding::{decode, Encoding};
 pub use export::export;
 pub use import::{import_overlay, ImportError};
-pub use lower::{snake_name, EdsEntry, EdsModel, TypeProblem, EDS_SOURCE_ID};
+pub use lower::{EdsEntry, EdsModel, TypeProblem, EDS_SOURCE_ID};
+pub use names::snake_name;
 pub use node_id::{parse_value, EdsValue};
 pub use parse::{parse_ini, Ini};
 pub use pdo_objects::{pdo_objects, PdoObjects};
