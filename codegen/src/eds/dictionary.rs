@@ -296,13 +296,11 @@ impl<T> ByIndex<T> {
         ByIndex(picked)
     }
 
-    /// The values of object `index`.
-    fn of_object(&self, index: u16) -> impl Iterator<Item = &T> {
+    /// The values of object `index`. Sized, so that collecting them allocates once.
+    fn of_object(&self, index: u16) -> impl ExactSizeIterator<Item = &T> {
         let start = self.0.partition_point(|&(i, _)| i < index);
-        self.0[start..]
-            .iter()
-            .take_while(move |&&(i, _)| i == index)
-            .map(|(_, value)| value)
+        let len = self.0[start..].partition_point(|&(i, _)| i == index);
+        self.0[start..start + len].iter().map(|(_, value)| value)
     }
 }
 

@@ -248,6 +248,17 @@ impl EdsEntry {
         ty: DataType,
         diagnostics: &mut Vec<Diagnostic>,
     ) -> ir::Parameter {
+        self.take_parameter(ty, diagnostics)
+    }
+
+    /// [`EdsEntry::into_parameter`] through a reference, so that a vector of entries can be
+    /// turned into parameters without moving each (large) entry out of it first. The entry is
+    /// left without its name, record and doc.
+    pub(super) fn take_parameter(
+        &mut self,
+        ty: DataType,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) -> ir::Parameter {
         // The citation first: it names the section by whether the entry is a record member.
         let source = self.citation();
         let names = Names {

@@ -20,6 +20,7 @@ mod parse;
 mod pdo_objects;
 mod short_text;
 mod trim;
+mod word_hash;
 
 use std::path::Path;
 
@@ -156,14 +157,14 @@ pub fn empty_device(name: &str, model: &EdsModel) -> ir::Device {
 
 /// The parameters of `entries`; entries without a usable type are errors.
 pub fn typed_parameters(
-    entries: Vec<EdsEntry>,
+    mut entries: Vec<EdsEntry>,
     diagnostics: &mut Vec<Diagnostic>,
 ) -> Vec<ir::Parameter> {
     // Sized up front: parameters are large, and growing a vector of thousands moves megabytes.
     let mut parameters = Vec::with_capacity(entries.len());
-    for e in entries {
+    for e in &mut entries {
         match e.data_type {
-            Ok(ty) => parameters.push(e.into_parameter(ty, diagnostics)),
+            Ok(ty) => parameters.push(e.take_parameter(ty, diagnostics)),
             Err(problem) => diagnostics.push(e.type_problem(problem)),
         }
     }

@@ -8,7 +8,7 @@ use std::collections::hash_map::Entry;
 use std::fmt::Write as _;
 use std::ops::Range;
 
-use fnv::FnvHashMap;
+use super::word_hash::WordMap;
 
 /// A snake_case identifier from an EDS name: ASCII letters, digits and single underscores; a word
 /// starts at every non-alphanumeric run, at a lower-case or digit to upper-case step, and at the
@@ -149,8 +149,8 @@ pub fn unique_names<'a>(snakes: &NameList, address: impl Fn(usize) -> Address<'a
 /// For each name, whether another item has it too. One map lookup per name: the map remembers
 /// where a name was first seen, and a second sighting marks both.
 pub fn repeated<'n>(names: impl Iterator<Item = &'n str>) -> Vec<bool> {
-    let mut first_seen: FnvHashMap<&str, usize> =
-        FnvHashMap::with_capacity_and_hasher(names.size_hint().0, Default::default());
+    let mut first_seen: WordMap<&str, usize> =
+        WordMap::with_capacity_and_hasher(names.size_hint().0, Default::default());
     let mut clash = Vec::with_capacity(names.size_hint().0);
     for (i, name) in names.enumerate() {
         match first_seen.entry(name) {

@@ -4,12 +4,12 @@
 //! start of a line, or after white space as python's `configparser` reads it), duplicate sections
 //! merge and duplicate keys keep the first value, both with a warning.
 
+use std::collections::hash_map::Entry as MapEntry;
 use std::ops::Range;
-
-use fnv::FnvHashMap;
 
 use super::short_text::ShortText;
 use super::trim::{trim_end, trim_start};
+use super::word_hash::WordMap;
 use crate::diagnostic::{Diagnostic, FileId, Span};
 
 const RULE: &str = "eds_syntax";
@@ -85,7 +85,7 @@ pub struct Ini<'t> {
     headers: Vec<Header>,
     entries: Vec<Entry<'t>>,
     /// Lower-case name → position in `headers`.
-    by_name: FnvHashMap<ShortText, usize>,
+    by_name: WordMap<ShortText, usize>,
 }
 
 impl<'t> Ini<'t> {
@@ -144,7 +144,7 @@ pub fn parse_ini<'t>(file: FileId, text: &'t str, diagnostics: &mut Vec<Diagnost
         ini: Ini {
             headers: Vec::with_capacity(headers),
             entries: Vec::with_capacity(entries),
-            by_name: FnvHashMap::with_capacity_and_hasher(headers, Default::default()),
+            by_name: WordMap::with_capacity_and_hasher(headers, Default::default()),
         },
         owners: Vec::with_capacity(entries),
         current: None,
@@ -199,24 +199,21 @@ impl<'t> Reader<'t> {
         diagnostics: &mut Vec<Diagnostic>,
     ) {
         let run_start = self.ini.entries.len();
-        let lower = ShortText::lowercase(name);
-        if let Some(&i) = self.ini.by_name.get(&*lower) {
-            diagnostics.push(
-                Diagnostic::error(RULE, span, format!("section `[{name}]` appears twice"))
-                    .warning()
-                    .label("its entries are merged into the first one")
-                    .help("CANopen tools (python canopen among them) refuse duplicate sections"),
-            );
-            self.reopened = true;
-            self.current = Some(Run {
-                section: i,
-                start: run_start,
-                reopens: true,
-            });
-            return;
-        }
         let i = self.ini.headers.len();
-        self.ini.by_name.insert(lower.clone(), i);
+        // One hash per header: the map's entry both finds a repeated name and takes a new one.
+        let lower = ShortText::lowercase(name);
+        let lower = match self.ini.by_name.entry(lower) {
+            MapEntry::Vacant(slot) => {
+                let lower = slot.key().clone();
+                slot.insert(i);
+                lower
+            }
+            MapEntry::Occupied(first) => {
+                let i = *first.get();
+                self.reopen(i, name, span, run_start, diagnostics);
+                return;
+            }
+        };
         self.ini.headers.push(Header {
             name: lower,
             span,
@@ -227,6 +224,29 @@ impl<'t> Reader<'t> {
             section: i,
             start: run_start,
             reopens: false,
+        });
+    }
+
+    /// A header repeating section `i`'s: its entries are merged into that section.
+    fn reopen(
+        &mut self,
+        i: usize,
+        name: &str,
+        span: Span,
+        run_start: usize,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) {
+        diagnostics.push(
+            Diagnostic::error(RULE, span, format!("section `[{name}]` appears twice"))
+                .warning()
+                .label("its entries are merged into the first one")
+                .help("CANopen tools (python canopen among them) refuse duplicate sections"),
+        );
+        self.reopened = true;
+        self.current = Some(Run {
+            section: i,
+            start: run_start,
+            reopens: true,
         });
     }
 
