@@ -3,8 +3,11 @@
 //! Values stay text here (their meaning depends on the data type); [`super::lower`] interprets
 //! them. Everything malformed is a warning and is skipped, except what makes an object unusable.
 
+use std::ops::Range;
+
 use super::parse::{Entry, Ini, Section};
 use super::short_text::ShortText;
+use super::trim::trim;
 use crate::diagnostic::{Diagnostic, FileId, Span};
 
 const RULE_KEY: &str = "eds_unknown_key";
@@ -85,7 +88,8 @@ pub struct Variable {
 pub struct Object {
     /// Index.
     pub index: u16,
-    /// `ParameterName`.
+    /// `ParameterName` of an ARRAY / RECORD; empty for a VAR / DOMAIN, whose name is its
+    /// variable's (kept once).
     pub name: String,
     /// Object code.
     pub kind: ObjectKind,
@@ -93,8 +97,9 @@ pub struct Object {
     pub span: Span,
     /// The 1-based line of the header.
     pub line: u32,
-    /// The variable of a VAR / DOMAIN, or the sub-indices of an ARRAY / RECORD.
-    pub variables: Vec<Variable>,
+    /// Where its variables are in [`Dictionary::variables`]: the variable of a VAR / DOMAIN, or
+    /// the sub-indices of an ARRAY / RECORD.
+    pub variables: Range<usize>,
 }
 
 /// `[DeviceInfo]`, `[DeviceComissioning]` and `[Comments]`.
@@ -110,13 +115,16 @@ pub struct DeviceInfo {
     pub comments: Vec<String>,
 }
 
-/// A whole EDS: identity and objects, ordered by index.
+/// A whole EDS: identity and objects, ordered by index. The variables of all objects are kept
+/// in one vector, in the objects' order: a large EDS has thousands of objects.
 #[derive(Debug, Clone, Default)]
 pub struct Dictionary {
     /// Identity.
     pub device: DeviceInfo,
     /// Objects by ascending index.
     pub objects: Vec<Object>,
+    /// Every object's variables, object after object.
+    pub variables: Vec<Variable>,
 }
 
 /// A key of an object or sub-index section that drivegen reads.
@@ -150,7 +158,7 @@ enum Known {
 /// The key an entry name stands for, in any case; `None` for an unknown key. Dispatching on the
 /// length first leaves one or two case-insensitive comparisons per entry.
 fn key_of(name: &str) -> Option<Known> {
-    let is = |known: &str| name.eq_ignore_ascii_case(known);
+    let is = |known: &str| is_key(name, known);
     let read = |key| Some(Known::Read(key));
     match name.len() {
         4 if is("unit") => Some(Known::Ignored),
@@ -173,6 +181,25 @@ fn key_of(name: &str) -> Option<Known> {
         15 if is("storagelocation") => Some(Known::Ignored),
         _ => None,
     }
+}
+
+/// Whether `name` is `known` (lower-case letters only) in any case. For such a key, setting bit 5
+/// of a byte lower-cases a letter and maps no other byte onto a lower-case letter, so keys of 8 to
+/// 16 bytes compare as two overlapping words instead of byte by byte.
+fn is_key(name: &str, known: &str) -> bool {
+    debug_assert!(known.bytes().all(|b| b.is_ascii_lowercase()));
+    let (name, known) = (name.as_bytes(), known.as_bytes());
+    if name.len() != known.len() || !(8..=16).contains(&name.len()) {
+        return name.eq_ignore_ascii_case(known);
+    }
+    let word = |bytes: &[u8], at: usize| {
+        let mut word = [0; 8];
+        word.copy_from_slice(&bytes[at..at + 8]);
+        u64::from_le_bytes(word)
+    };
+    let lower = u64::from_le_bytes([0x20; 8]);
+    let tail = name.len() - 8;
+    word(name, 0) | lower == word(known, 0) && word(name, tail) | lower == word(known, tail)
 }
 
 /// The entries of an object or sub-index section by key, found in one pass.
@@ -240,10 +267,16 @@ pub fn read(ini: &Ini, diagnostics: &mut Vec<Diagnostic>) -> Dictionary {
         SectionKind::Object(index) => Some((index, section.span.range.start)),
         _ => None,
     });
+    // Room for one variable per object and sub-section: moving grown variables costs megabytes.
+    let variables = kinds
+        .iter()
+        .filter(|k| matches!(k, SectionKind::Object(_) | SectionKind::Sub(..)));
+    dictionary.variables.reserve_exact(variables.count());
     for (section, kind) in sections.iter().zip(kinds) {
         match kind {
             SectionKind::Object(index) => {
-                if let Some(object) = object(ini, &subs, section, index, diagnostics) {
+                let variables = &mut dictionary.variables;
+                if let Some(object) = object(ini, &subs, section, index, variables, diagnostics) {
                     dictionary.objects.push(object);
                 }
             }
@@ -272,8 +305,28 @@ pub fn read(ini: &Ini, diagnostics: &mut Vec<Diagnostic>) -> Dictionary {
             ),
         }
     }
-    dictionary.objects.sort_by_key(|o| o.index);
+    sort_by_index(&mut dictionary);
     dictionary
+}
+
+/// Orders the objects by index, and their variables with them (they are usually in order already).
+fn sort_by_index(dictionary: &mut Dictionary) {
+    if dictionary.objects.is_sorted_by_key(|o| o.index) {
+        return;
+    }
+    dictionary.objects.sort_by_key(|o| o.index);
+    let mut unsorted: Vec<Option<Variable>> = std::mem::take(&mut dictionary.variables)
+        .into_iter()
+        .map(Some)
+        .collect();
+    for object in &mut dictionary.objects {
+        let start = dictionary.variables.len();
+        let moved = unsorted[object.variables.clone()]
+            .iter_mut()
+            .filter_map(Option::take);
+        dictionary.variables.extend(moved);
+        object.variables = start..dictionary.variables.len();
+    }
 }
 
 /// Values picked from the sections, sorted by object index, each index's in file order: one
@@ -384,37 +437,42 @@ fn orphan_check(
     }
 }
 
+/// The object of `section`, its variables appended to `variables`.
 fn object(
     ini: &Ini,
     subs: &SubSections<'_>,
     section: &Section,
     index: u16,
+    variables: &mut Vec<Variable>,
     diagnostics: &mut Vec<Diagnostic>,
 ) -> Option<Object> {
     let keys = ObjectKeys::of(section);
     let kind = object_kind(&keys, diagnostics)?;
-    let name = parameter_name(section, &keys, diagnostics, || {
+    let mut name = parameter_name(section, &keys, diagnostics, || {
         format!("Object {index:04X}h")
     });
-    let variables = match kind {
+    let start = variables.len();
+    match kind {
         ObjectKind::Var | ObjectKind::Domain => {
             warn_subs_of_variable(subs, index, diagnostics);
-            vec![variable(section, &keys, 0, &name, diagnostics)]
+            let name = std::mem::take(&mut name);
+            variables.push(variable(section, &keys, 0, name, diagnostics));
         }
         ObjectKind::Array | ObjectKind::Record => match compact_count(&keys, diagnostics) {
             Some(count) if count > 0 => {
-                compact(ini, section, &keys, index, &name, count, diagnostics)
+                let object = (section, &keys, index, name.as_str());
+                compact(ini, object, count, variables, diagnostics)
             }
-            _ => members(subs, &keys, index, diagnostics),
+            _ => members(subs, &keys, index, variables, diagnostics),
         },
-    };
+    }
     Some(Object {
         index,
         name,
         kind,
         span: section.span.clone(),
         line: section.line,
-        variables,
+        variables: start..variables.len(),
     })
 }
 
@@ -500,32 +558,32 @@ fn members(
     subs: &SubSections<'_>,
     parent: &ObjectKeys,
     index: u16,
+    variables: &mut Vec<Variable>,
     diagnostics: &mut Vec<Diagnostic>,
-) -> Vec<Variable> {
-    let mut out: Vec<Variable> = subs
-        .of_object(index)
-        .map(|&(sub, s)| {
-            let keys = ObjectKeys::of(s);
-            if let Some(ot) = keys
-                .get(Key::ObjectType)
-                .filter(|e| parse_small(e.value) != Some(0x7))
-            {
-                diagnostics.push(
-                    Diagnostic::error(
-                        RULE_OBJECT,
-                        ot.key_span(),
-                        "a sub-index is always a VAR; its ObjectType is ignored",
-                    )
-                    .warning(),
-                );
-            }
-            let name = parameter_name(s, &keys, diagnostics, || format!("Sub {sub}"));
-            variable(s, &keys, sub, &name, diagnostics)
-        })
-        .collect();
-    out.sort_by_key(|v| v.subindex);
+) {
+    let start = variables.len();
+    variables.extend(subs.of_object(index).map(|&(sub, s)| {
+        let keys = ObjectKeys::of(s);
+        if let Some(ot) = keys
+            .get(Key::ObjectType)
+            .filter(|e| parse_small(e.value) != Some(0x7))
+        {
+            diagnostics.push(
+                Diagnostic::error(
+                    RULE_OBJECT,
+                    ot.key_span(),
+                    "a sub-index is always a VAR; its ObjectType is ignored",
+                )
+                .warning(),
+            );
+        }
+        let name = parameter_name(s, &keys, diagnostics, || format!("Sub {sub}"));
+        variable(s, &keys, sub, name, diagnostics)
+    }));
+    let members = &mut variables[start..];
+    members.sort_by_key(|v| v.subindex);
     if let Some(entry) = parent.get(Key::SubNumber) {
-        if parse_small(entry.value) != Some(out.len() as u64) {
+        if parse_small(entry.value) != Some(members.len() as u64) {
             diagnostics.push(
                 Diagnostic::error(
                     RULE_OBJECT,
@@ -533,31 +591,28 @@ fn members(
                     format!(
                         "SubNumber says {} but {} sub-sections follow",
                         entry.value,
-                        out.len()
+                        members.len()
                     ),
                 )
                 .warning(),
             );
         }
     }
-    out
 }
 
 /// `CompactSubObj=N`: sub 0 holds N, subs 1..=N share the object's own description.
 fn compact(
     ini: &Ini,
-    section: &Section,
-    keys: &ObjectKeys,
-    index: u16,
-    name: &str,
+    (section, keys, index, name): (&Section, &ObjectKeys, u16, &str),
     count: u8,
+    variables: &mut Vec<Variable>,
     diagnostics: &mut Vec<Diagnostic>,
-) -> Vec<Variable> {
+) {
     let names = ini.section(&format!("{index:04x}name"));
     let values = ini.section(&format!("{index:04x}value"));
-    let template = variable(section, keys, 1, name, diagnostics);
+    let template = variable(section, keys, 1, String::new(), diagnostics);
     let count_text = Text::new(ShortText::from(count.to_string().as_str()), section.span);
-    let mut out = vec![Variable {
+    variables.push(Variable {
         subindex: 0,
         name: "Number of entries".into(),
         description: None,
@@ -570,7 +625,7 @@ fn compact(
         parameter_value: None,
         span: section.span.clone(),
         line: section.line,
-    }];
+    });
     for sub in 1..=count {
         let key = sub.to_string();
         let mut v = template.clone();
@@ -581,16 +636,15 @@ fn compact(
         if let Some(value) = values.and_then(|s| s.get(&key)) {
             v.parameter_value = Some(text(value));
         }
-        out.push(v);
+        variables.push(v);
     }
-    out
 }
 
 fn variable(
     section: &Section,
     keys: &ObjectKeys,
     subindex: u8,
-    name: &str,
+    name: String,
     diagnostics: &mut Vec<Diagnostic>,
 ) -> Variable {
     if keys.has_unknown {
@@ -628,7 +682,7 @@ fn variable(
     });
     Variable {
         subindex,
-        name: name.to_owned(),
+        name,
         description: keys.get(Key::Description).map(|e| e.value.to_owned()),
         span: section.span.clone(),
         line: section.line,
@@ -705,11 +759,77 @@ fn dummy_usage(section: &Section, diagnostics: &mut Vec<Diagnostic>) {
     }
 }
 
-/// A small unsigned number in decimal or `0x` hex.
+/// A small unsigned number in decimal or `0x` hex (with an optional `+`, as `u64::from_str_radix`
+/// reads it). Digit by digit: these are a few characters long, read tens of thousands of times.
 pub fn parse_small(text: &str) -> Option<u64> {
-    let t = text.trim();
-    match t.strip_prefix("0x").or_else(|| t.strip_prefix("0X")) {
-        Some(hex) => u64::from_str_radix(hex, 16).ok(),
-        None => t.parse().ok(),
+    let t = trim(text).as_bytes();
+    let (digits, radix) = match t {
+        [b'0', b'x' | b'X', hex @ ..] => (hex, 16),
+        _ => (t, 10),
+    };
+    let digits = match digits {
+        [b'+', rest @ ..] if !rest.is_empty() => rest,
+        _ => digits,
+    };
+    if digits.is_empty() {
+        return None;
+    }
+    digits.iter().try_fold(0u64, |n, &b| {
+        let digit = char::from(b).to_digit(radix)?;
+        n.checked_mul(radix.into())?.checked_add(digit.into())
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn keys_match_in_any_case_and_nothing_else() {
+        for (name, known) in [
+            ("DataType", "datatype"),
+            ("PARAMETERNAME", "parametername"),
+            ("storageLocation", "storagelocation"),
+            ("Unit", "unit"),
+        ] {
+            assert!(is_key(name, known), "{name}");
+        }
+        for (name, known) in [
+            ("DataTypf", "datatype"),
+            ("Data@ype", "datatype"),
+            ("DataType ", "datatype"),
+            ("ParameterNa_e", "parametername"),
+            ("Uni", "unit"),
+        ] {
+            assert!(!is_key(name, known), "{name}");
+        }
+    }
+
+    #[test]
+    fn small_numbers_read_as_from_str_radix_reads_them() {
+        for text in [
+            "0",
+            "7",
+            " 0x7 ",
+            "0X1f",
+            "+5",
+            "0x+5",
+            "+",
+            "0x",
+            "-1",
+            "1a",
+            "0xg",
+            "18446744073709551615",
+            "18446744073709551616",
+            "0xFFFFFFFFFFFFFFFF",
+            "",
+        ] {
+            let t = text.trim();
+            let expected = match t.strip_prefix("0x").or_else(|| t.strip_prefix("0X")) {
+                Some(hex) => u64::from_str_radix(hex, 16).ok(),
+                None => t.parse().ok(),
+            };
+            assert_eq!(parse_small(text), expected, "{text:?}");
+        }
     }
 }

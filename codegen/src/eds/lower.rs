@@ -59,7 +59,11 @@ pub struct EdsModel {
 
 /// Lowers a dictionary read from file `file`.
 pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
-    let Dictionary { device, objects } = dictionary;
+    let Dictionary {
+        device,
+        objects,
+        variables,
+    } = dictionary;
     let path = files.path(file);
     let file_name = path.display().to_string();
     let source = ir::SourceDoc {
@@ -81,7 +85,8 @@ pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
         span: span.clone(),
     };
     let mut records = Vec::new();
-    let count = objects.iter().map(|o| o.variables.len()).sum();
+    let count = variables.len();
+    let mut variables = variables.into_iter();
     let mut entries = Vec::with_capacity(count);
     let mut snakes = NameList::with_capacity(count);
     for object in objects {
@@ -108,7 +113,8 @@ pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
             }
             ObjectKind::Var | ObjectKind::Domain => None,
         };
-        entries.extend(object.variables.into_iter().map(|v| EdsEntry {
+        let members = variables.by_ref().take(object.variables.len());
+        entries.extend(members.map(|v| EdsEntry {
             index: object.index,
             record: record.clone(),
             // Named once every name is known, by `name_uniquely`.

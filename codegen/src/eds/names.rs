@@ -65,6 +65,9 @@ fn push_snake_name(out: &mut String, text: &str) {
 pub struct NameList {
     text: String,
     ends: Vec<usize>,
+    /// Where the snake name of each text seen so far was written: records repeat the same
+    /// member names hundreds of times, and a copy costs less than deriving the name again.
+    snakes: WordMap<Box<str>, Range<usize>>,
 }
 
 impl NameList {
@@ -73,12 +76,20 @@ impl NameList {
         NameList {
             text: String::with_capacity(count * 24),
             ends: Vec::with_capacity(count),
+            snakes: WordMap::default(),
         }
     }
 
     /// Adds the [`snake_name`] of `text`.
     pub fn push_snake(&mut self, text: &str) {
-        push_snake_name(&mut self.text, text);
+        let start = self.text.len();
+        match self.snakes.get(text) {
+            Some(earlier) => self.text.extend_from_within(earlier.clone()),
+            None => {
+                push_snake_name(&mut self.text, text);
+                self.snakes.insert(text.into(), start..self.text.len());
+            }
+        }
         self.ends.push(self.text.len());
     }
 
@@ -191,11 +202,14 @@ mod tests {
     #[test]
     fn names_in_a_list_are_made_like_alone() {
         let mut list = NameList::default();
-        for text in ["2nd", "__", "Vendor-ID", ""] {
+        for text in ["2nd", "__", "Vendor-ID", "", "2nd", "Vendor-ID"] {
             list.push_snake(text);
         }
         let names: Vec<_> = list.iter().collect();
-        assert_eq!(names, ["n2nd", "object", "vendor_id", "object"]);
+        assert_eq!(
+            names,
+            ["n2nd", "object", "vendor_id", "object", "n2nd", "vendor_id"]
+        );
     }
 
     #[test]
