@@ -38,9 +38,17 @@ pub struct EdsEntry {
     pub variable: Variable,
     /// Its type, unless the EDS does not give one.
     pub data_type: Result<DataType, TypeProblem>,
-    /// The EDS's source id ([`EDS_SOURCE_ID`]), shared by every entry.
-    pub source_id: Arc<str>,
-    /// The EDS file, shared by every entry.
+    /// The EDS as citations name it, shared by every entry.
+    pub cited: Arc<CitedEds>,
+}
+
+/// How citations name the EDS: one per EDS, shared by its entries (one reference count to touch
+/// per entry rather than two).
+#[derive(Debug)]
+pub struct CitedEds {
+    /// The source id ([`EDS_SOURCE_ID`]).
+    pub id: Arc<str>,
+    /// The EDS file.
     pub file: Arc<str>,
 }
 
@@ -74,11 +82,13 @@ pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
             .clone()
             .map_or_else(|| "EDS".into(), |p| format!("{p} EDS")),
     };
-    let shared_file: Arc<str> = Arc::from(file_name.as_str());
-    let source_id: Arc<str> = Arc::from(EDS_SOURCE_ID);
+    let cited = Arc::new(CitedEds {
+        id: Arc::from(EDS_SOURCE_ID),
+        file: Arc::from(file_name.as_str()),
+    });
     let cite = |span: &Span, line: u32, section: String| ir::Citation {
-        doc: Arc::clone(&source_id),
-        file: Arc::clone(&shared_file),
+        doc: Arc::clone(&cited.id),
+        file: Arc::clone(&cited.file),
         section: Some(section),
         line: Some(line),
         example: None,
@@ -123,8 +133,7 @@ pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
                 String::new()
             },
             data_type: entry_type(&v, object.kind),
-            source_id: Arc::clone(&source_id),
-            file: Arc::clone(&shared_file),
+            cited: Arc::clone(&cited),
             variable: v,
         }));
     }
@@ -208,8 +217,8 @@ impl EdsEntry {
     /// The citation of its EDS line.
     pub fn citation(&self) -> ir::Citation {
         ir::Citation {
-            doc: Arc::clone(&self.source_id),
-            file: Arc::clone(&self.file),
+            doc: Arc::clone(&self.cited.id),
+            file: Arc::clone(&self.cited.file),
             section: Some(self.section()),
             line: Some(self.variable.line),
             example: None,

@@ -32,7 +32,7 @@ pub use dictionary::{DeviceInfo, Dictionary, Object, ObjectKind, Text, Variable}
 pub use encoding::{decode, Encoding};
 pub use export::export;
 pub use import::{import_overlay, ImportError};
-pub use lower::{EdsEntry, EdsModel, TypeProblem, EDS_SOURCE_ID};
+pub use lower::{CitedEds, EdsEntry, EdsModel, TypeProblem, EDS_SOURCE_ID};
 pub use names::snake_name;
 pub use node_id::{parse_value, EdsValue};
 pub use parse::{parse_ini, Ini};

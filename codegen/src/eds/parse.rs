@@ -109,12 +109,12 @@ impl<'t> Ini<'t> {
     }
 }
 
-/// The INI being read: entries are appended as they come, tagged with their section; a section
-/// that appears twice gets its entries grouped at the end.
+/// The INI being read: entries are appended as they come, in runs (one per section header); a
+/// section that appears twice gets its runs grouped at the end.
 struct Reader<'t> {
     ini: Ini<'t>,
-    /// The section of each entry.
-    owners: Vec<usize>,
+    /// The runs read so far: section and entries.
+    runs: Vec<(usize, Range<usize>)>,
     /// The run of entries being read.
     current: Option<Run>,
     /// Whether a section was reopened by a duplicate header.
@@ -146,7 +146,7 @@ pub fn parse_ini<'t>(file: FileId, text: &'t str, diagnostics: &mut Vec<Diagnost
             entries: Vec::with_capacity(entries),
             by_name: WordMap::with_capacity_and_hasher(headers, Default::default()),
         },
-        owners: Vec::with_capacity(entries),
+        runs: Vec::with_capacity(headers),
         current: None,
         reopened: false,
     };
@@ -198,6 +198,7 @@ impl<'t> Reader<'t> {
         line: u32,
         diagnostics: &mut Vec<Diagnostic>,
     ) {
+        self.close_run();
         let run_start = self.ini.entries.len();
         let i = self.ini.headers.len();
         // One hash per header: the map's entry both finds a repeated name and takes a new one.
@@ -261,10 +262,12 @@ impl<'t> Reader<'t> {
         let in_run = self.ini.entries[run.start..].iter().any(same_key);
         // Only a reopened section has entries before its current run (rare: a full scan is fine).
         let earlier = || {
-            let before = self.ini.entries[..run.start].iter().zip(&self.owners);
-            before
-                .filter(|&(_, &owner)| owner == run.section)
-                .any(|(e, _)| same_key(e))
+            let runs = self
+                .runs
+                .iter()
+                .filter(|(section, _)| *section == run.section);
+            runs.flat_map(|(_, entries)| &self.ini.entries[entries.clone()])
+                .any(same_key)
         };
         if in_run || (run.reopens && earlier()) {
             diagnostics.push(
@@ -275,25 +278,41 @@ impl<'t> Reader<'t> {
             return;
         }
         self.ini.entries.push(entry);
-        self.owners.push(run.section);
     }
 
-    /// Groups each section's entries (only needed when a section was reopened) and records
-    /// where they are.
+    /// Ends the run being read, if any.
+    fn close_run(&mut self) {
+        if let Some(run) = self.current.take() {
+            let entries = run.start..self.ini.entries.len();
+            self.runs.push((run.section, entries));
+        }
+    }
+
+    /// Records where each section's entries are, grouping the runs of a reopened section.
     fn finish(mut self) -> Ini<'t> {
-        if self.reopened {
-            let mut tagged: Vec<(usize, Entry<'t>)> =
-                self.owners.iter().copied().zip(self.ini.entries).collect();
-            // Stable: each section's entries stay in file order.
-            tagged.sort_by_key(|&(owner, _)| owner);
-            self.owners = tagged.iter().map(|&(owner, _)| owner).collect();
-            self.ini.entries = tagged.into_iter().map(|(_, e)| e).collect();
+        self.close_run();
+        if !self.reopened {
+            for (section, entries) in self.runs {
+                self.ini.headers[section].entries = entries;
+            }
+            return self.ini;
         }
-        let mut start = 0;
-        for run in self.owners.chunk_by(|a, b| a == b) {
-            self.ini.headers[run[0]].entries = start..start + run.len();
-            start += run.len();
+        // Stable: a section's runs stay in file order.
+        self.runs.sort_by_key(|&(section, _)| section);
+        let mut grouped = Vec::with_capacity(self.ini.entries.len());
+        let mut previous = None;
+        for (section, entries) in self.runs {
+            let start = grouped.len();
+            grouped.extend_from_slice(&self.ini.entries[entries]);
+            let range = &mut self.ini.headers[section].entries;
+            if previous == Some(section) {
+                range.end = grouped.len();
+            } else {
+                *range = start..grouped.len();
+            }
+            previous = Some(section);
         }
+        self.ini.entries = grouped;
         self.ini
     }
 }
