@@ -60,10 +60,30 @@ pub fn crc16(data: &[u8]) -> u16 {
             ^ t[1][at(14)]
             ^ t[0][at(15)];
     }
-    for &byte in blocks.remainder() {
-        crc = (crc >> 8) ^ t[0][usize::from(crc as u8 ^ byte)];
+    fold_short(crc, blocks.remainder())
+}
+
+/// The CRC register after `bytes` (fewer than 16), starting from `crc`, by slicing as many bytes
+/// as there are: the lookups are independent of each other, so a short frame costs one lookup's
+/// latency instead of one per byte (a byte-wise loop chains one table load per byte, which
+/// dominated the cost of the 5–8 byte frames most Modbus traffic consists of).
+#[inline]
+fn fold_short(crc: u16, bytes: &[u8]) -> u16 {
+    let [lo, hi] = crc.to_le_bytes();
+    match bytes {
+        [] => crc,
+        // The register's high byte is shifted down, not consumed.
+        [only] => (crc >> 8) ^ TABLES[0][usize::from(only ^ lo)],
+        [first, second, rest @ ..] => {
+            let mut folded = TABLES[rest.len() + 1][usize::from(first ^ lo)]
+                ^ TABLES[rest.len()][usize::from(second ^ hi)];
+            // The last byte is followed by no zero bytes, the one before it by one, ...
+            for (zeros, &byte) in rest.iter().rev().enumerate() {
+                folded ^= TABLES[zeros][usize::from(byte)];
+            }
+            folded
+        }
     }
-    crc
 }
 
 /// Whether `frame` ends in the correct CRC of the bytes before it.
