@@ -11,12 +11,13 @@ use drivebus::canopen::blocking::BlockingSdo;
 use drivebus::canopen::{CanBus, CanFrame, NodeId, SdoBus};
 use drivebus::modbus::rtu::{Parity, StopBits};
 use drivebus::modbus::transport::{ModbusTcpClient, SerialConfig, SerialRtuClient, TcpConfig};
-use drivebus::modbus::{RegisterBus, UnitId, WordOrder};
+use drivebus::modbus::{ModbusLimits, RegisterBus, UnitId, WordOrder};
 use drivebus::BusError;
 use drivegen::ir::{self, Device, Parameter};
 use drivesim::registers;
 
 use crate::error::CliError;
+use crate::modbus_batch;
 
 /// How to reach the drive.
 #[derive(Debug, Args, Clone)]
@@ -49,6 +50,11 @@ pub struct BusArgs {
     /// How long the drive has to answer, in milliseconds.
     #[arg(long, default_value_t = 1000)]
     pub timeout_ms: u64,
+    /// Modbus TCP: how many read requests may await their answers at once (1 to 16). Above 1,
+    /// the requests for several parameters go out together; the server must read its
+    /// connection request by request.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u8).range(1..=16))]
+    pub max_in_flight: u8,
 }
 
 /// A CAN backend behind a box.
@@ -67,8 +73,9 @@ enum Link {
     Modbus {
         bus: Box<dyn RegisterBus + Send>,
         unit: UnitId,
-        /// Whether the device implements FC 0x10; without it values are written word by word.
-        write_multiple: bool,
+        /// The described limits: registers per read, and whether FC 0x10 exists (without it
+        /// values are written word by word).
+        limits: ModbusLimits,
     },
     CanOpen {
         sdo: BlockingSdo<DynCan>,
@@ -115,6 +122,7 @@ impl Session {
             let config = TcpConfig {
                 timeout,
                 connect_timeout: timeout,
+                max_in_flight: args.max_in_flight.into(),
                 ..TcpConfig::default()
             };
             let target = format!("Modbus TCP {addr} unit {}", args.unit);
@@ -160,15 +168,11 @@ impl Session {
     }
 
     fn modbus(bus: Box<dyn RegisterBus + Send>, unit: u8, device: &Device, target: String) -> Self {
-        const WRITE_MULTIPLE_REGISTERS: u8 = 0x10;
         Self {
             link: Link::Modbus {
                 bus,
                 unit: UnitId(unit),
-                write_multiple: device
-                    .modbus
-                    .as_ref()
-                    .is_none_or(|m| m.functions.contains(&WRITE_MULTIPLE_REGISTERS)),
+                limits: modbus_batch::limits(device),
             },
             target,
             relay: None,
@@ -188,34 +192,46 @@ impl Session {
         }
     }
 
-    /// Reads the raw bytes of `parameter`.
-    pub fn read(&mut self, parameter: &Parameter) -> Result<Vec<u8>, CliError> {
-        let result = match &mut self.link {
-            Link::Modbus { bus, unit, .. } => {
-                let address = modbus_address(parameter, true)?;
-                let mut regs = vec![0u16; address.words as usize];
-                bus.read_registers(
-                    *unit,
-                    registers::table(address.table),
-                    address.address,
-                    &mut regs,
-                )
-                .and_then(|()| {
-                    registers::from_registers(parameter.data_type, &regs, order(address)).map_err(
-                        |_| {
-                            BusError::Frame(
-                                "the registers hold a value outside the parameter's type",
-                            )
-                        },
-                    )
+    /// Reads the raw bytes of each parameter: over Modbus with the fewest requests the device's
+    /// limits allow (sent together with `--max-in-flight`), over CANopen an SDO upload each.
+    pub fn read_many(&mut self, parameters: &[&Parameter]) -> Result<Vec<Vec<u8>>, CliError> {
+        let (bus, unit, limits) = match &mut self.link {
+            Link::Modbus { bus, unit, limits } => (bus, *unit, *limits),
+            Link::CanOpen { .. } => return parameters.iter().map(|p| self.upload(p)).collect(),
+        };
+        let addresses = parameters
+            .iter()
+            .map(|p| modbus_address(p, true))
+            .collect::<Result<Vec<_>, _>>()?;
+        let wire: Vec<_> = addresses
+            .iter()
+            .map(|a| modbus_batch::wire_address(a))
+            .collect();
+        let registers = modbus_batch::read_registers(&mut **bus, unit, &limits, &wire)
+            .map_err(|failure| self.bus_error(parameters[failure.value], failure.cause))?;
+        parameters
+            .iter()
+            .zip(&addresses)
+            .zip(&registers)
+            .map(|((parameter, address), regs)| {
+                registers::from_registers(parameter.data_type, regs, order(address)).map_err(|_| {
+                    let why = "the registers hold a value outside the parameter's type";
+                    self.bus_error(parameter, BusError::Frame(why))
                 })
-            }
+            })
+            .collect()
+    }
+
+    /// One parameter by SDO upload.
+    fn upload(&mut self, parameter: &Parameter) -> Result<Vec<u8>, CliError> {
+        let address = object_address(parameter, true)?;
+        let result = match &mut self.link {
             Link::CanOpen { sdo, node } => {
-                let address = object_address(parameter, true)?;
                 let mut buf = vec![0u8; (parameter.data_type.bytes() as usize).max(8)];
                 sdo.upload(*node, address.index, address.subindex, &mut buf)
                     .map(|len| buf[..len].to_vec())
             }
+            Link::Modbus { .. } => Err(BusError::Unsupported("SDO uploads need a CANopen bus")),
         };
         result.map_err(|e| self.bus_error(parameter, e))
     }
@@ -223,11 +239,7 @@ impl Session {
     /// Writes the raw bytes of `parameter`.
     pub fn write(&mut self, parameter: &Parameter, bytes: &[u8]) -> Result<(), CliError> {
         let result = match &mut self.link {
-            Link::Modbus {
-                bus,
-                unit,
-                write_multiple,
-            } => {
+            Link::Modbus { bus, unit, limits } => {
                 let address = modbus_address(parameter, false)?;
                 let regs = registers::to_registers(
                     parameter.data_type,
@@ -235,7 +247,7 @@ impl Session {
                     address.words,
                     order(address),
                 );
-                if regs.len() > 1 && *write_multiple {
+                if regs.len() > 1 && limits.write_multiple {
                     bus.write_registers(*unit, address.address, &regs)
                 } else {
                     // FC 0x06 per word, in address order.

@@ -6,6 +6,7 @@ mod codec;
 mod commands;
 mod connect;
 mod error;
+mod modbus_batch;
 mod pdo_mappings;
 mod suggest;
 mod table;

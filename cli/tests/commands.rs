@@ -80,6 +80,43 @@ fn read_prints_values_with_units_and_names() {
     assert!(text.contains("operation_mode  velocity  2"), "{text}");
 }
 
+/// Both tables in one batch, sent together; out-of-range windows are usage errors.
+#[test]
+fn reads_may_keep_several_requests_in_flight() {
+    let (_sim, _server, addr) = simulated_lafert();
+    let lafert = lafert_path();
+    let read = |in_flight: &str| {
+        drivegen(&[
+            "read",
+            lafert.to_str().unwrap(),
+            "bus_dc_link",
+            "operation_mode",
+            "velocity_average",
+            "--modbus-tcp",
+            &addr,
+            "--max-in-flight",
+            in_flight,
+        ])
+    };
+    let (one, eight) = (read("1"), read("8"));
+    assert!(eight.status.success(), "{}", stderr(&eight));
+    assert!(
+        stdout(&eight).contains("operation_mode    velocity  2"),
+        "{}",
+        stdout(&eight)
+    );
+    assert_eq!(stdout(&one), stdout(&eight));
+    for refused in ["0", "17"] {
+        let output = read(refused);
+        assert_eq!(output.status.code(), Some(2), "clap usage error");
+        assert!(
+            stderr(&output).contains("--max-in-flight"),
+            "{}",
+            stderr(&output)
+        );
+    }
+}
+
 #[test]
 fn read_json_is_machine_readable() {
     let (_sim, _server, addr) = simulated_lafert();

@@ -61,10 +61,12 @@ pub fn read_all(
     device: &Device,
     parameters: &[&Parameter],
 ) -> Result<Vec<codec::Shown>, CliError> {
-    parameters
+    let values = session.read_many(parameters)?;
+    Ok(parameters
         .iter()
-        .map(|p| Ok(codec::show(device, p, &session.read(p)?)))
-        .collect()
+        .zip(&values)
+        .map(|(p, raw)| codec::show(device, p, raw))
+        .collect())
 }
 
 /// One value as a JSON object.
