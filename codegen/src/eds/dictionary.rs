@@ -377,18 +377,22 @@ enum SectionKind {
     Unknown,
 }
 
+/// What a section is, by its name in any ASCII case.
 fn classify(name: &str) -> SectionKind {
+    let is = |text: &str, lower: &str| text.eq_ignore_ascii_case(lower);
     let index = name
         .get(..4)
         .filter(|h| h.bytes().all(|b| b.is_ascii_hexdigit()))
         .and_then(|h| u16::from_str_radix(h, 16).ok());
     match (index, name.get(4..)) {
         (Some(i), Some("")) => return SectionKind::Object(i),
-        (Some(i), Some("name")) => return SectionKind::Names(i),
-        (Some(i), Some("value")) => return SectionKind::Values(i),
+        (Some(i), Some(rest)) if is(rest, "name") => return SectionKind::Names(i),
+        (Some(i), Some(rest)) if is(rest, "value") => return SectionKind::Values(i),
         (Some(i), Some(rest)) => {
             if let Some(sub) = rest
-                .strip_prefix("sub")
+                .get(..3)
+                .filter(|prefix| is(prefix, "sub"))
+                .and_then(|_| rest.get(3..))
                 .filter(|s| !s.is_empty() && s.len() <= 2)
                 .and_then(|s| u8::from_str_radix(s, 16).ok())
             {
@@ -397,13 +401,19 @@ fn classify(name: &str) -> SectionKind {
         }
         _ => {}
     }
-    match name {
-        "deviceinfo" => SectionKind::DeviceInfo,
-        "devicecomissioning" | "devicecommissioning" => SectionKind::Commissioning,
-        "comments" => SectionKind::Comments,
-        "dummyusage" => SectionKind::DummyUsage,
-        n if IGNORED_SECTIONS.contains(&n) || n.starts_with("tool") => SectionKind::Ignored,
-        _ => SectionKind::Unknown,
+    let named = |names: &[&str]| names.iter().any(|n| is(name, n));
+    if named(&["deviceinfo"]) {
+        SectionKind::DeviceInfo
+    } else if named(&["devicecomissioning", "devicecommissioning"]) {
+        SectionKind::Commissioning
+    } else if named(&["comments"]) {
+        SectionKind::Comments
+    } else if named(&["dummyusage"]) {
+        SectionKind::DummyUsage
+    } else if named(IGNORED_SECTIONS) || name.get(..4).is_some_and(|p| is(p, "tool")) {
+        SectionKind::Ignored
+    } else {
+        SectionKind::Unknown
     }
 }
 

@@ -4,12 +4,10 @@
 //! start of a line, or after white space as python's `configparser` reads it), duplicate sections
 //! merge and duplicate keys keep the first value, both with a warning.
 
-use std::collections::hash_map::Entry as MapEntry;
 use std::ops::Range;
 
-use super::short_text::ShortText;
 use super::trim::{trim_end, trim_start};
-use super::word_hash::WordMap;
+use super::word_hash::{caseless_hash, WordMap};
 use crate::diagnostic::{Diagnostic, FileId, Span};
 
 const RULE: &str = "eds_syntax";
@@ -52,8 +50,8 @@ fn span(file: FileId, at: u32, text: &str) -> Span {
 /// One `[section]` with its entries: a view into an [`Ini`].
 #[derive(Debug, Clone, Copy)]
 pub struct Section<'i, 't> {
-    /// The name, lower-case.
-    pub name: &'i str,
+    /// The name as written (compare it regardless of ASCII case).
+    pub name: &'t str,
     /// The header `[...]`.
     pub span: &'i Span,
     /// The 1-based line of the header.
@@ -71,21 +69,25 @@ impl<'i, 't> Section<'i, 't> {
 
 /// A section header and where its entries are in [`Ini::entries`].
 #[derive(Debug, Clone)]
-struct Header {
-    name: ShortText,
+struct Header<'t> {
+    name: &'t str,
     span: Span,
     line: u32,
     entries: Range<usize>,
+    /// The next header whose name has the same [`caseless_hash`].
+    same_hash: Option<usize>,
 }
 
-/// A whole file: sections in file order, names unique. The entries of all sections are kept in
-/// one vector (a large EDS has thousands of sections of a handful of entries each).
+/// A whole file: sections in file order, names unique regardless of ASCII case. The entries of
+/// all sections are kept in one vector (a large EDS has thousands of sections of a handful of
+/// entries each).
 #[derive(Debug, Default, Clone)]
 pub struct Ini<'t> {
-    headers: Vec<Header>,
+    headers: Vec<Header<'t>>,
     entries: Vec<Entry<'t>>,
-    /// Lower-case name → position in `headers`.
-    by_name: WordMap<ShortText, usize>,
+    /// The [`caseless_hash`] of a name → the first header with that hash. Hashes rather than
+    /// lower-cased copies of the names: copying thousands of names cost more than the lookups.
+    by_hash: WordMap<u64, usize>,
 }
 
 impl<'t> Ini<'t> {
@@ -94,14 +96,27 @@ impl<'t> Ini<'t> {
         self.headers.iter().map(|h| self.view(h))
     }
 
-    /// The section of a lower-case name.
+    /// The section of a name, in any ASCII case.
     pub fn section(&self, name: &str) -> Option<Section<'_, 't>> {
-        self.by_name.get(name).map(|&i| self.view(&self.headers[i]))
+        self.find(name, caseless_hash(name))
+            .map(|i| self.view(&self.headers[i]))
     }
 
-    fn view<'i>(&'i self, header: &'i Header) -> Section<'i, 't> {
+    /// The header named `name` (whose hash is `hash`).
+    fn find(&self, name: &str, hash: u64) -> Option<usize> {
+        let mut next = self.by_hash.get(&hash).copied();
+        while let Some(i) = next {
+            if self.headers[i].name.eq_ignore_ascii_case(name) {
+                return Some(i);
+            }
+            next = self.headers[i].same_hash;
+        }
+        None
+    }
+
+    fn view<'i>(&'i self, header: &'i Header<'t>) -> Section<'i, 't> {
         Section {
-            name: &header.name,
+            name: header.name,
             span: &header.span,
             line: header.line,
             entries: &self.entries[header.entries.clone()],
@@ -144,7 +159,7 @@ pub fn parse_ini<'t>(file: FileId, text: &'t str, diagnostics: &mut Vec<Diagnost
         ini: Ini {
             headers: Vec::with_capacity(headers),
             entries: Vec::with_capacity(entries),
-            by_name: WordMap::with_capacity_and_hasher(headers, Default::default()),
+            by_hash: WordMap::with_capacity_and_hasher(headers, Default::default()),
         },
         runs: Vec::with_capacity(headers),
         current: None,
@@ -193,33 +208,27 @@ fn count_brackets_and_equals(bytes: &[u8]) -> (usize, usize) {
 impl<'t> Reader<'t> {
     fn open_section(
         &mut self,
-        name: &str,
+        name: &'t str,
         span: Span,
         line: u32,
         diagnostics: &mut Vec<Diagnostic>,
     ) {
         self.close_run();
         let run_start = self.ini.entries.len();
+        let hash = caseless_hash(name);
+        if let Some(first) = self.ini.find(name, hash) {
+            self.reopen(first, name, span, run_start, diagnostics);
+            return;
+        }
         let i = self.ini.headers.len();
-        // One hash per header: the map's entry both finds a repeated name and takes a new one.
-        let lower = ShortText::lowercase(name);
-        let lower = match self.ini.by_name.entry(lower) {
-            MapEntry::Vacant(slot) => {
-                let lower = slot.key().clone();
-                slot.insert(i);
-                lower
-            }
-            MapEntry::Occupied(first) => {
-                let i = *first.get();
-                self.reopen(i, name, span, run_start, diagnostics);
-                return;
-            }
-        };
+        // The new header goes first in its hash's chain.
+        let same_hash = self.ini.by_hash.insert(hash, i);
         self.ini.headers.push(Header {
-            name: lower,
+            name,
             span,
             line,
             entries: 0..0,
+            same_hash,
         });
         self.current = Some(Run {
             section: i,

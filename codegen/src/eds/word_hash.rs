@@ -8,16 +8,19 @@ use std::hash::{BuildHasherDefault, Hasher};
 /// A map keyed by short texts, hashed a word at a time.
 pub type WordMap<K, V> = HashMap<K, V, BuildHasherDefault<WordHasher>>;
 
-/// The multiplier of rustc's FxHasher, whose step this is: odd, with well-mixed bits.
-const SEED: u64 = 0x517c_c1b7_2722_0a95;
+/// The multiplier of rustc-hash 2's FxHasher, whose step and finish this is: odd, with well-mixed
+/// bits.
+const SEED: u64 = 0xf135_7aea_2e62_a9c5;
 
-/// Hashes eight bytes per step: rotate, XOR, multiply.
+/// Hashes eight bytes per step: add, multiply. A product's low bits depend only on its factors'
+/// low bits, so [`Hasher::finish`] rotates the well-mixed high bits down to where the map takes
+/// its bucket index from (without it, names differing in their fourth byte all collided).
 #[derive(Debug, Default, Clone, Copy)]
 pub struct WordHasher(u64);
 
 impl WordHasher {
     fn add(&mut self, word: u64) {
-        self.0 = (self.0.rotate_left(5) ^ word).wrapping_mul(SEED);
+        self.0 = self.0.wrapping_add(word).wrapping_mul(SEED);
     }
 }
 
@@ -37,6 +40,10 @@ impl Hasher for WordHasher {
         }
     }
 
+    fn write_u64(&mut self, n: u64) {
+        self.add(n);
+    }
+
     fn write_u8(&mut self, n: u8) {
         self.add(n.into());
     }
@@ -46,13 +53,55 @@ impl Hasher for WordHasher {
     }
 
     fn finish(&self) -> u64 {
-        self.0
+        self.0.rotate_left(26)
     }
+}
+
+/// A hash of `text` that ignores ASCII case: bit 5 is set on every byte first (`A` | 0x20 is `a`),
+/// so texts equal regardless of case hash alike; the rare other texts that also do (`@` and `` ` ``)
+/// are told apart by comparing them.
+pub fn caseless_hash(text: &str) -> u64 {
+    const CASE: u64 = u64::from_le_bytes([0x20; 8]);
+    let mut hasher = WordHasher::default();
+    for chunk in text.as_bytes().chunks(8) {
+        let mut word = [0; 8];
+        word[..chunk.len()].copy_from_slice(chunk);
+        hasher.add(u64::from_le_bytes(word) | CASE);
+    }
+    hasher.add(text.len() as u64);
+    hasher.finish()
 }
 
 #[cfg(test)]
 mod tests {
+    use std::hash::Hash;
+
     use super::*;
+
+    #[test]
+    fn low_bits_differ_for_names_differing_in_one_byte() {
+        let low = |name: &str| {
+            let mut hasher = WordHasher::default();
+            name.hash(&mut hasher);
+            hasher.finish() & 0xFFF
+        };
+        let buckets: std::collections::HashSet<u64> = (0..256)
+            .map(|i| low(&format!("{:04x}sub1", 0x2000 + i)))
+            .collect();
+        assert!(
+            buckets.len() > 200,
+            "{} distinct buckets of 256",
+            buckets.len()
+        );
+    }
+
+    #[test]
+    fn caseless_hashes_ignore_ascii_case_only() {
+        assert_eq!(caseless_hash("1A00Sub1"), caseless_hash("1a00sub1"));
+        assert_eq!(caseless_hash("DeviceInfo"), caseless_hash("DEVICEINFO"));
+        assert_ne!(caseless_hash("2000"), caseless_hash("2001"));
+        assert_ne!(caseless_hash("a"), caseless_hash("a "));
+    }
 
     #[test]
     fn texts_are_told_apart_as_keys() {
