@@ -100,33 +100,34 @@ pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
     let mut entries = Vec::with_capacity(count);
     let mut snakes = NameList::with_capacity(count);
     for object in objects {
-        let record = match object.kind {
+        let is_record = match object.kind {
             ObjectKind::Array | ObjectKind::Record => {
                 let kind = if object.kind == ObjectKind::Array {
                     ir::RecordKind::Array
                 } else {
                     ir::RecordKind::Record
                 };
+                let source = cite(&object.span, object.line, section_name(object.index, None));
                 records.push(ir::Record {
                     name: snake_name(&object.name),
                     kind,
                     index: object.index,
-                    doc: Some(object.name.clone()),
-                    source: Some(cite(
-                        &object.span,
-                        object.line,
-                        section_name(object.index, None),
-                    )),
-                    span: object.span.clone(),
+                    doc: Some(object.name),
+                    source: Some(source),
+                    span: object.span,
                 });
-                records.last().map(|r| r.name.clone())
+                true
             }
-            ObjectKind::Var | ObjectKind::Domain => None,
+            ObjectKind::Var | ObjectKind::Domain => false,
         };
+        let record = records
+            .last()
+            .filter(|_| is_record)
+            .map(|r| r.name.as_str());
         let members = variables.by_ref().take(object.variables.len());
         entries.extend(members.map(|v| EdsEntry {
             index: object.index,
-            record: record.clone(),
+            record: record.map(str::to_owned),
             // Named once every name is known, by `name_uniquely`.
             name: {
                 snakes.push_snake(&v.name);

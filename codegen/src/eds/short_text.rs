@@ -26,13 +26,16 @@ enum Repr {
 
 impl From<&str> for ShortText {
     fn from(text: &str) -> Self {
-        ShortText(if text.len() <= INLINE {
-            let mut bytes = [0; INLINE];
+        if text.len() > INLINE {
+            return ShortText(Repr::Heap(text.into()));
+        }
+        // Zeroed in place, then filled: copying into a separate array and moving that (wide
+        // loads of bytes just stored narrowly) stalled on store forwarding.
+        let mut short = ShortText(Repr::Inline([0; INLINE], text.len() as u8));
+        if let Repr::Inline(bytes, _) = &mut short.0 {
             bytes[..text.len()].copy_from_slice(text.as_bytes());
-            Repr::Inline(bytes, text.len() as u8)
-        } else {
-            Repr::Heap(text.into())
-        })
+        }
+        short
     }
 }
 
