@@ -103,8 +103,8 @@ impl<B: RegisterBus> Link for ModbusLink<B> {
     }
 
     /// Reads the batch with the fewest requests the device's limits allow (see
-    /// [`planner`](super::planner)), handed to the bus [`MAX_BATCH`] at a time so a client that
-    /// pipelines sends them together. On an error, the values already read keep their `len`;
+    /// [`planner`](super::planner)), handed to the bus eight reads at a time
+    /// ([`RegisterBus::read_register_batch`]) so a client that pipelines sends them together. On an error, the values already read keep their `len`;
     /// the others have `len == 0`.
     fn read_many(
         &mut self,
@@ -144,7 +144,7 @@ impl<B: RegisterBus> Link for ModbusLink<B> {
 }
 
 /// Reads handed to the bus at once by [`ModbusLink::read_many`].
-pub const MAX_BATCH: usize = 8;
+const MAX_BATCH: usize = 8;
 
 /// Marks a value planned but not read yet; `len == 0` means "not planned", any other length
 /// "read" — a value is never zero bytes long.

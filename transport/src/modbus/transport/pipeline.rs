@@ -9,7 +9,7 @@
 use super::{count, ByteStream, Client, BROADCAST};
 use crate::error::BusError;
 use crate::modbus::framing::{Framing, Scan};
-use crate::modbus::pdu::{decode_response, Request, Response};
+use crate::modbus::pdu::{decode_registers, Request};
 use crate::modbus::{RegisterRead, UnitId};
 
 /// Most reads in flight at once: as many MBAP read requests (12 bytes) as the client's transmit
@@ -151,11 +151,7 @@ impl<S: ByteStream, F: Framing> Client<S, F> {
         let (request, framing) = (&answer.to.request, &answer.to.framing);
         let end = answer.start + answer.len;
         let frame = &self.rx[answer.start..end];
-        let outcome = match decode_response(request, framing.pdu(frame)) {
-            Ok(Response::Registers(registers)) => registers.copy_to(read.out),
-            Ok(_) => Err(BusError::Frame("response does not match the request")),
-            Err(error) => Err(error),
-        };
+        let outcome = decode_registers(request, framing.pdu(frame), read.out);
         read.done = outcome.is_ok();
         self.rx.copy_within(end..self.rx_len, answer.start);
         self.rx_len -= answer.len;
