@@ -568,12 +568,15 @@ fn main() {
     let wire = wire_efficiency();
     println!("{wire}");
     let loopback = loopback::measure();
-    match report(&dir, &minima, &wire, &loopback) {
+    // A filtered run leaves older criterion results on disk for what it skipped, and a report
+    // would mix runs: only a full run (no positional argument) rewrites the docs.
+    let full_run = std::env::args().skip(1).all(|arg| arg.starts_with('-'));
+    match report(&dir, &minima, &wire, &loopback).filter(|_| full_run) {
         Some(section) => {
             let doc = root.join("docs/benchmarks.md");
             write_section(&doc, &section);
             println!("wrote {}", doc.display());
         }
-        None => println!("partial run (filtered?): docs/benchmarks.md left unchanged"),
+        None => println!("filtered or partial run: docs/benchmarks.md left unchanged"),
     }
 }
