@@ -109,20 +109,28 @@ fn parse_int(term: &str) -> Option<(i128, bool)> {
         .strip_prefix("0x")
         .or_else(|| digits.strip_prefix("0X"))
     {
-        // At most 16 hex digits always fit a `u64`, which parses faster than an `i128`.
+        // A `+` may lead hex digits, as `u64::from_str_radix` allows.
         Some(hex) if !hex.is_empty() && hex.len() <= 16 => {
-            (u64::from_str_radix(hex, 16).ok()?.into(), true)
+            let hex = hex
+                .strip_prefix('+')
+                .filter(|h| !h.is_empty())
+                .unwrap_or(hex);
+            (digits_value(hex, 16)?, true)
         }
         Some(_) => return None,
-        None if !digits.is_empty()
-            && digits.len() <= 20
-            && digits.bytes().all(|b| b.is_ascii_digit()) =>
-        {
-            (digits.parse::<i128>().ok()?, false)
-        }
+        None if !digits.is_empty() && digits.len() <= 20 => (digits_value(digits, 10)?, false),
         None => return None,
     };
     Some((if negative { -magnitude } else { magnitude }, hex))
+}
+
+/// The value of `digits` in `radix`, digit by digit: these are short, and at most 16 hex or 20
+/// decimal digits cannot overflow an `i128`.
+fn digits_value(digits: &str, radix: u32) -> Option<i128> {
+    digits.bytes().try_fold(0i128, |n, b| {
+        let digit = char::from(b).to_digit(radix)?;
+        Some(n * i128::from(radix) + i128::from(digit))
+    })
 }
 
 /// `0xFFFF` for an INTEGER16 is the bit pattern of -1, as CANopen tools write it.
@@ -176,6 +184,16 @@ mod tests {
         assert!(parse_value("0x1FFFF", i16_).is_err());
         assert!(parse_value("-1", U32).is_err());
         assert!(parse_value("12abc", U32).is_err());
+        assert_eq!(
+            int("99999999999999999999", DataType::F64),
+            EdsValue::Number(Number::Float(1e20))
+        );
+        let float = DataType::F64;
+        assert_eq!(int("0x+1F", float), EdsValue::Number(Number::Float(31.0)));
+        assert_eq!(int("-0x1F", float), EdsValue::Number(Number::Float(-31.0)));
+        assert!(parse_value("0x+", U32).is_err());
+        assert!(parse_value("0x-1", U32).is_err());
+        assert!(parse_value("1_000", U32).is_err());
     }
 
     #[test]
