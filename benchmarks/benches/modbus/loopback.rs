@@ -37,13 +37,43 @@ impl PerRequest {
     }
 }
 
+/// Rounds of every client, back to back: how fast a blocking round trip is on loopback depends
+/// on whether the scheduler puts client and server on one core or two, which changes between
+/// rounds; each client's best and worst round are reported.
+const ROUNDS: usize = 3;
+
+/// One client's rounds.
+#[derive(Debug, Clone, Copy)]
+struct Rounds {
+    /// The round with the least CPU per request.
+    best: PerRequest,
+    /// The most CPU per request of any round.
+    worst_cpu: Duration,
+}
+
+impl Rounds {
+    fn new(first: PerRequest) -> Self {
+        Self {
+            best: first,
+            worst_cpu: first.cpu,
+        }
+    }
+
+    fn add(&mut self, round: PerRequest) {
+        if round.cpu < self.best.cpu {
+            self.best = round;
+        }
+        self.worst_cpu = self.worst_cpu.max(round.cpu);
+    }
+}
+
 /// The loopback figures of one run.
 #[derive(Debug)]
 pub struct Loopback {
-    drivebus: PerRequest,
-    pipelined: PerRequest,
-    tokio_modbus: PerRequest,
-    raw_socket: PerRequest,
+    drivebus: Rounds,
+    pipelined: Rounds,
+    tokio_modbus: Rounds,
+    raw_socket: Rounds,
 }
 
 fn thread_cpu() -> Duration {
@@ -62,7 +92,7 @@ fn server() -> String {
     let listener = TcpListener::bind("127.0.0.1:0").unwrap();
     let port = listener.local_addr().unwrap().port();
     std::thread::spawn(move || {
-        for stream in listener.incoming().take(4) {
+        for stream in listener.incoming().take(4 * ROUNDS) {
             let mut stream = stream.unwrap();
             stream.set_nodelay(true).unwrap();
             std::thread::spawn(move || serve(&mut stream));
@@ -92,14 +122,29 @@ fn serve(stream: &mut TcpStream) {
     }
 }
 
-/// Measures every client against one server.
+/// Measures every client against one server, [`ROUNDS`] times.
 pub fn measure() -> Loopback {
     let addr = server();
+    let round = || {
+        [
+            one_at_a_time(&addr),
+            pipelined(&addr),
+            tokio_modbus(&addr),
+            raw_socket_floor(&addr),
+        ]
+    };
+    let mut rounds = round().map(Rounds::new);
+    for _ in 1..ROUNDS {
+        for (client, measured) in rounds.iter_mut().zip(round()) {
+            client.add(measured);
+        }
+    }
+    let [drivebus, pipelined, tokio_modbus, raw_socket] = rounds;
     let loopback = Loopback {
-        drivebus: one_at_a_time(&addr),
-        pipelined: pipelined(&addr),
-        tokio_modbus: tokio_modbus(&addr),
-        raw_socket: raw_socket_floor(&addr),
+        drivebus,
+        pipelined,
+        tokio_modbus,
+        raw_socket,
     };
     println!("loopback per request: {loopback:?}");
     loopback
@@ -198,10 +243,11 @@ impl Loopback {
     pub fn section(&self) -> String {
         let mut s = format!(
             "\n### Modbus TCP over loopback\n\n{READS} reads of {COUNT} holding registers from an \
-             in-process MBAP server thread; client thread CPU time (`CLOCK_THREAD_CPUTIME_ID`) \
-             and wall time per request, and requests per second from the wall time.\n\n\
-             | client | CPU µs/request | wall µs/request | requests/s |\n\
-             | --- | ---: | ---: | ---: |\n"
+             in-process MBAP server thread, {ROUNDS} rounds of every client back to back; client \
+             thread CPU time (`CLOCK_THREAD_CPUTIME_ID`) per request in the best round and the \
+             worst, and the best round's wall time per request and requests per second.\n\n\
+             | client | CPU µs/request, best | worst | wall µs/request | requests/s |\n\
+             | --- | ---: | ---: | ---: | ---: |\n"
         );
         let rows = [
             (
@@ -221,46 +267,51 @@ impl Loopback {
                 self.raw_socket,
             ),
         ];
-        for (client, PerRequest { cpu, wall }) in rows {
+        for (client, rounds) in rows {
+            let PerRequest { cpu, wall } = rounds.best;
             writeln!(
                 s,
-                "| {client} | {:.1} | {:.1} | {:.0} |",
+                "| {client} | {:.1} | {:.1} | {:.1} | {:.0} |",
                 us(cpu),
+                us(rounds.worst_cpu),
                 us(wall),
                 1e6 / us(wall)
             )
             .unwrap();
         }
-        let verdict = |per: PerRequest| {
-            if us(per.cpu) <= 20.0 {
-                "met"
-            } else {
-                "**not met**"
-            }
+        let verdict = |rounds: Rounds| match (us(rounds.best.cpu), us(rounds.worst_cpu)) {
+            (_, worst) if worst <= 20.0 => "met in every round",
+            (best, _) if best <= 20.0 => "met in the best round only",
+            _ => "**not met**",
         };
         write!(
             s,
             "\nTarget: at most 20 µs of client CPU per request. One request at a time: {} \
-             ({:.1} µs, {:.2}× the raw socket); pipelined: {} ({:.1} µs, {:.2}× tokio-modbus). \
-             One request at a time, every blocking client pays the kernel's loopback path — a \
-             `write`, a blocking `read` and the wake-up between them — which alone costs \
-             {:.1} µs here; drivebus adds a stale-input check before each exchange, which is \
+             (best {:.1} µs, {:.2}× the raw socket's best); pipelined: {} (best {:.1} µs, \
+             {:.2}× tokio-modbus's best). One request at a time, every blocking client pays the \
+             kernel's loopback path — a `write`, a blocking `read` and the wake-up between them \
+             — which alone costs {:.1} to {:.1} µs here, depending on whether client and server \
+             share a core; drivebus adds a stale-input check before each exchange, which is \
              also where a connection the server closed while idle is found and reopened before \
              anything is sent. Modbus TCP lets a client send requests without waiting for \
              earlier answers (each answer carries its transaction id): with `max_in_flight` set, \
              `read_register_batch` (and `ModbusLink::read_many`, which generated `read_many` \
              uses) sends a batch in one write and matches the answers as they come, so the \
-             syscalls and wake-ups are shared by the batch. Servers must read their connection \
+             syscalls and wake-ups are shared by the batch — as far as the answers arrive \
+             together: a server answering one by one on the other core can wake the client once \
+             per answer. On a real network the larger gain is wall time, one round trip per \
+             batch instead of one per request. Servers must read their connection \
              request by request for this (the in-process server here and pyModbusTCP do; \
              pymodbus 3.16.1 answers only the first of several requests that arrive together), \
              hence the default of one in flight.\n",
             verdict(self.drivebus),
-            us(self.drivebus.cpu),
-            us(self.drivebus.cpu) / us(self.raw_socket.cpu),
+            us(self.drivebus.best.cpu),
+            us(self.drivebus.best.cpu) / us(self.raw_socket.best.cpu),
             verdict(self.pipelined),
-            us(self.pipelined.cpu),
-            us(self.pipelined.cpu) / us(self.tokio_modbus.cpu),
-            us(self.raw_socket.cpu),
+            us(self.pipelined.best.cpu),
+            us(self.pipelined.best.cpu) / us(self.tokio_modbus.best.cpu),
+            us(self.raw_socket.best.cpu),
+            us(self.raw_socket.worst_cpu),
         )
         .unwrap();
         s
