@@ -94,13 +94,16 @@ pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
         example: None,
         span: span.clone(),
     };
-    let mut records = Vec::new();
+    let is_record = |kind| matches!(kind, ObjectKind::Array | ObjectKind::Record);
+    let mut records = Vec::with_capacity(objects.iter().filter(|o| is_record(o.kind)).count());
     let count = variables.len();
+    // A snake name is about as long as the name, plus an underscore or two.
+    let snake_bytes = variables.iter().map(|v| v.name.len() + 2).sum();
     let mut variables = variables.into_iter();
     let mut entries = Vec::with_capacity(count);
-    let mut snakes = NameList::with_capacity(count);
+    let mut snakes = NameList::with_capacity(count, snake_bytes);
     for object in objects {
-        let is_record = match object.kind {
+        let record_object = match object.kind {
             ObjectKind::Array | ObjectKind::Record => {
                 let kind = if object.kind == ObjectKind::Array {
                     ir::RecordKind::Array
@@ -122,7 +125,7 @@ pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
         };
         let record = records
             .last()
-            .filter(|_| is_record)
+            .filter(|_| record_object)
             .map(|r| r.name.as_str());
         let members = variables.by_ref().take(object.variables.len());
         entries.extend(members.map(|v| EdsEntry {

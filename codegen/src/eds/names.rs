@@ -71,10 +71,10 @@ pub struct NameList {
 }
 
 impl NameList {
-    /// Room for `count` names.
-    pub fn with_capacity(count: usize) -> Self {
+    /// Room for `count` names of `bytes` bytes in all (growing the shared text copies it).
+    pub fn with_capacity(count: usize, bytes: usize) -> Self {
         NameList {
-            text: String::with_capacity(count * 24),
+            text: String::with_capacity(bytes),
             ends: Vec::with_capacity(count),
             snakes: WordMap::default(),
         }
@@ -133,7 +133,10 @@ pub fn unique_names<'a>(snakes: &NameList, address: impl Fn(usize) -> Address<'a
     if !first.contains(&true) {
         return snakes.iter().map(str::to_owned).collect();
     }
-    let mut prefixed = NameList::with_capacity(first.len());
+    let prefixes = first.iter().enumerate().filter(|&(_, &clash)| clash);
+    let prefixes = prefixes.filter_map(|(i, _)| address(i).record.map(|r| r.len() + 1));
+    let bytes = snakes.text.len() + prefixes.sum::<usize>();
+    let mut prefixed = NameList::with_capacity(first.len(), bytes);
     for (i, &clash) in first.iter().enumerate() {
         prefixed.push_with(|out| {
             if let Some(record) = address(i).record.filter(|_| clash) {
