@@ -84,7 +84,14 @@ impl NameList {
     pub fn push_snake(&mut self, text: &str) {
         let start = self.text.len();
         match self.snakes.get(text) {
-            Some(earlier) => self.text.extend_from_within(earlier.clone()),
+            // Byte by byte (`String::extend_from_within` is too recent for our MSRV): snake
+            // names are ASCII, so each byte is a whole character.
+            Some(earlier) => {
+                for at in earlier.clone() {
+                    let byte = self.text.as_bytes()[at];
+                    self.text.push(char::from(byte));
+                }
+            }
             None => {
                 push_snake_name(&mut self.text, text);
                 self.snakes.insert(text.into(), start..self.text.len());
