@@ -4,6 +4,7 @@
 //! start of a line, or after white space as python's `configparser` reads it), duplicate sections
 //! merge and duplicate keys keep the first value, both with a warning.
 
+use std::collections::hash_map::Entry as MapEntry;
 use std::ops::Range;
 
 use super::trim::{trim_end, trim_start};
@@ -215,14 +216,28 @@ impl<'t> Reader<'t> {
     ) {
         self.close_run();
         let run_start = self.ini.entries.len();
-        let hash = caseless_hash(name);
-        if let Some(first) = self.ini.find(name, hash) {
-            self.reopen(first, name, span, run_start, diagnostics);
-            return;
-        }
         let i = self.ini.headers.len();
-        // The new header goes first in its hash's chain.
-        let same_hash = self.ini.by_hash.insert(hash, i);
+        // One probe of the map: a new hash takes the header; a known one chains it first, unless
+        // a header of its chain has the name.
+        let same_hash = match self.ini.by_hash.entry(caseless_hash(name)) {
+            MapEntry::Vacant(slot) => {
+                slot.insert(i);
+                None
+            }
+            MapEntry::Occupied(mut chain) => {
+                let headers = &self.ini.headers;
+                let mut next = Some(*chain.get());
+                while let Some(at) = next.filter(|&at| !headers[at].name.eq_ignore_ascii_case(name))
+                {
+                    next = headers[at].same_hash;
+                }
+                if let Some(first) = next {
+                    self.reopen(first, name, span, run_start, diagnostics);
+                    return;
+                }
+                Some(chain.insert(i))
+            }
+        };
         self.ini.headers.push(Header {
             name,
             span,

@@ -26,18 +26,7 @@ impl WordHasher {
 
 impl Hasher for WordHasher {
     fn write(&mut self, bytes: &[u8]) {
-        let mut words = bytes.chunks_exact(8);
-        for chunk in &mut words {
-            let mut word = [0; 8];
-            word.copy_from_slice(chunk);
-            self.add(u64::from_le_bytes(word));
-        }
-        let rest = words.remainder();
-        if !rest.is_empty() {
-            let mut word = [0; 8];
-            word[..rest.len()].copy_from_slice(rest);
-            self.add(u64::from_le_bytes(word));
-        }
+        for_words(bytes, |word| self.add(word));
     }
 
     fn write_u64(&mut self, n: u64) {
@@ -63,13 +52,37 @@ impl Hasher for WordHasher {
 pub fn caseless_hash(text: &str) -> u64 {
     const CASE: u64 = u64::from_le_bytes([0x20; 8]);
     let mut hasher = WordHasher::default();
-    for chunk in text.as_bytes().chunks(8) {
-        let mut word = [0; 8];
-        word[..chunk.len()].copy_from_slice(chunk);
-        hasher.add(u64::from_le_bytes(word) | CASE);
-    }
+    for_words(text.as_bytes(), |word| hasher.add(word | CASE));
     hasher.add(text.len() as u64);
     hasher.finish()
+}
+
+/// Calls `f` with `bytes` as little-endian words, the last one zero-extended.
+fn for_words(bytes: &[u8], mut f: impl FnMut(u64)) {
+    let mut words = bytes.chunks_exact(8);
+    for chunk in &mut words {
+        f(word_at(chunk));
+    }
+    let rest = words.remainder().len();
+    if rest == 0 {
+        return;
+    }
+    // The last bytes as one load: filling a zeroed array byte by byte and reading it back as a
+    // word stalled on store forwarding.
+    f(match bytes.len().checked_sub(8) {
+        Some(last) => word_at(&bytes[last..]) >> (8 * (8 - rest)),
+        None => bytes
+            .iter()
+            .rev()
+            .fold(0, |word, &b| word << 8 | u64::from(b)),
+    });
+}
+
+/// The eight bytes of `chunk` as a little-endian word.
+fn word_at(chunk: &[u8]) -> u64 {
+    let mut word = [0; 8];
+    word.copy_from_slice(chunk);
+    u64::from_le_bytes(word)
 }
 
 #[cfg(test)]
@@ -101,6 +114,25 @@ mod tests {
         assert_eq!(caseless_hash("DeviceInfo"), caseless_hash("DEVICEINFO"));
         assert_ne!(caseless_hash("2000"), caseless_hash("2001"));
         assert_ne!(caseless_hash("a"), caseless_hash("a "));
+    }
+
+    #[test]
+    fn words_end_zero_extended() {
+        let words = |bytes: &[u8]| {
+            let mut out = Vec::new();
+            for_words(bytes, |w| out.push(w));
+            out
+        };
+        assert_eq!(words(b""), Vec::<u64>::new());
+        assert_eq!(words(b"\x01\x02"), [0x0201]);
+        assert_eq!(words(b"abcdefgh"), [u64::from_le_bytes(*b"abcdefgh")]);
+        assert_eq!(
+            words(b"abcdefghij"),
+            [
+                u64::from_le_bytes(*b"abcdefgh"),
+                u64::from_le_bytes(*b"ij\0\0\0\0\0\0")
+            ]
+        );
     }
 
     #[test]
