@@ -100,6 +100,8 @@ pub fn read_bytes(
     }
     let ini = parse_ini(file, files.text(file), diagnostics);
     let dictionary = dictionary::read(&ini, diagnostics);
+    // Freed before lowering, which then reuses its memory (still in cache) for the entries.
+    drop(ini);
     lower::lower(dictionary, file, files)
 }
 
