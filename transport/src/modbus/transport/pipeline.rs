@@ -6,7 +6,7 @@
 //! framing's own scan (resynchronisation, late and foreign frames skipped, exceptions) decides
 //! which bytes answer which request.
 
-use super::{count, ByteStream, Client, BROADCAST};
+use super::{count, ByteStream, Client};
 use crate::error::BusError;
 use crate::modbus::framing::{Framing, Scan};
 use crate::modbus::pdu::{decode_registers, Request};
@@ -42,15 +42,12 @@ impl<S: ByteStream, F: Framing> Client<S, F> {
         unit: UnitId,
         reads: &mut [RegisterRead<'_>],
     ) -> Result<(), BusError> {
-        if unit == BROADCAST {
-            return Err(BusError::Unsupported("reads cannot be broadcast"));
-        }
         let window = self.config.max_in_flight.clamp(1, MAX_IN_FLIGHT);
         for reads in reads.chunks_mut(window) {
             let Some(first) = reads.iter().find(|read| !read.done) else {
                 continue;
             };
-            let attempts = self.config.retry.attempts(&read_request(first)?, None);
+            let attempts = self.checked_attempts(unit, &read_request(first)?, None)?;
             self.with_retries(attempts, |client| client.exchange_window(unit, reads))?;
         }
         Ok(())
