@@ -3,7 +3,9 @@
 //! `--max-in-flight` above 1 sends the requests together.
 
 use drivebus::modbus::planner::{check_item, plan};
-use drivebus::modbus::{ModbusAddress, ModbusLimits, RegisterBus, RegisterRead, UnitId};
+use drivebus::modbus::{
+    ModbusAddress, ModbusLimits, RegisterBus, RegisterRead, RegisterSpan, UnitId,
+};
 use drivebus::BusError;
 use drivegen::ir::{self, Device};
 use drivesim::registers;
@@ -20,7 +22,26 @@ pub fn limits(device: &Device) -> ModbusLimits {
             max_write_registers: m.max_write_registers,
             write_multiple: m.functions.contains(&WRITE_MULTIPLE_REGISTERS),
             read_gaps: m.read_gaps,
+            readable: if m.read_gaps {
+                &[]
+            } else {
+                readable_registers(device)
+            },
         })
+}
+
+/// The description's readable registers for the planner. Limits hold them as `'static` (as
+/// generated crates do); a command opens one session, so leaking one list per run is bounded.
+fn readable_registers(device: &Device) -> &'static [RegisterSpan] {
+    let spans = device
+        .readable_register_runs()
+        .into_iter()
+        .map(|run| RegisterSpan {
+            table: registers::table(run.table),
+            start: run.start,
+            count: run.count,
+        });
+    Vec::leak(spans.collect())
 }
 
 /// The wire address of a described Modbus address.

@@ -7,12 +7,14 @@ mod data_type;
 mod expr;
 mod number;
 mod pdo;
+mod readable_registers;
 mod value_type;
 
 pub use data_type::DataType;
 pub use expr::{Expr, ExprError, Op};
 pub use number::Number;
 pub use pdo::{pdo_bits, CobId, PdoDirection, PdoMapping};
+pub use readable_registers::RegisterRun;
 pub use value_type::ValueType;
 
 use std::sync::Arc;

@@ -122,6 +122,10 @@ fn read_many_returns_typed_values_in_order() {
         (Table::Input, 0x0064, 0x1356),
         (Table::Input, 0x0065, 0x0163),
         (Table::Input, 0x0060, 0x0002),
+        // Listed by the manual, so the planner reads past them (the drive answers them).
+        (Table::Input, 0x0061, 0),
+        (Table::Input, 0x0062, 0),
+        (Table::Input, 0x0063, 0),
     ]);
     let (volts, temperature, status) = drive
         .read_many((
@@ -132,6 +136,12 @@ fn read_many_returns_typed_values_in_order() {
         .unwrap();
     assert_eq!((volts, temperature), (Volts(49.5), Celsius(35.5)));
     assert!(status.contains(DriveStatus::STANDBY));
+    let read = Request::Read {
+        table: Table::Input,
+        start: 0x0060,
+        count: 6,
+    };
+    assert_eq!(drive.into_link().into_bus().log(), [read], "one request");
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -68,6 +68,46 @@ pub struct ModbusLimits {
     pub write_multiple: bool,
     /// Whether a read may span addresses the description does not list.
     pub read_gaps: bool,
+    /// Where `read_gaps` is false: the registers the description lists as readable, as runs
+    /// sorted by table and address, which a read may cover besides the requested ones. Empty:
+    /// a read covers requested registers only.
+    pub readable: &'static [RegisterSpan],
+}
+
+/// Consecutive registers of one table.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct RegisterSpan {
+    /// The table.
+    pub table: Table,
+    /// First register.
+    pub start: u16,
+    /// How many registers.
+    pub count: u16,
+}
+
+impl RegisterSpan {
+    /// `count` input registers from `start`.
+    pub const fn input(start: u16, count: u16) -> Self {
+        Self {
+            table: Table::Input,
+            start,
+            count,
+        }
+    }
+
+    /// `count` holding registers from `start`.
+    pub const fn holding(start: u16, count: u16) -> Self {
+        Self {
+            table: Table::Holding,
+            start,
+            count,
+        }
+    }
+
+    /// One past the last register.
+    pub fn end(&self) -> usize {
+        self.start as usize + self.count as usize
+    }
 }
 
 impl ModbusLimits {
@@ -77,6 +117,7 @@ impl ModbusLimits {
         max_write_registers: 123,
         write_multiple: true,
         read_gaps: true,
+        readable: &[],
     };
 }
 

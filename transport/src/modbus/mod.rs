@@ -32,8 +32,8 @@ pub mod tcp;
 pub mod transport;
 
 pub use address::{
-    le_to_registers, registers_to_le, ModbusAddress, ModbusLimits, Table, UnitId, WordOrder,
-    MAX_VALUE_WORDS,
+    le_to_registers, registers_to_le, ModbusAddress, ModbusLimits, RegisterSpan, Table, UnitId,
+    WordOrder, MAX_VALUE_WORDS,
 };
 pub use exception::ExceptionCode;
 pub use link::ModbusLink;

@@ -14,7 +14,7 @@
 
 use crate::error::BusError;
 
-use super::address::{ModbusAddress, ModbusLimits, Table, MAX_VALUE_WORDS};
+use super::address::{ModbusAddress, ModbusLimits, RegisterSpan, Table, MAX_VALUE_WORDS};
 use super::pdu::{Request, MAX_READ_REGISTERS};
 
 /// One read request of a plan.
@@ -92,13 +92,20 @@ pub fn next_read(
     let start = first.address as usize;
     let mut limit = start + read_limit(limits);
     if !limits.read_gaps {
-        // Extend the run of requested registers from `start` until it stops growing.
+        // Extend the run of requested and listed readable registers from `start` until it
+        // stops growing.
         let mut reach = start;
         loop {
+            let readable = limits
+                .readable
+                .iter()
+                .filter(|span| span.table == first.table && span.start as usize <= reach)
+                .map(RegisterSpan::end);
             let grown = (0..len)
                 .map(|i| item(i).0)
                 .filter(|a| a.table == first.table && a.address as usize <= reach)
                 .map(|a| end(&a))
+                .chain(readable)
                 .fold(reach, usize::max);
             if grown == reach || grown >= limit {
                 reach = grown;
@@ -234,6 +241,43 @@ mod tests {
     }
 
     #[test]
+    fn listed_readable_registers_bridge_gaps_where_unlisted_ones_may_not_be_read() {
+        // Lafert: 0x60..=0x70 are all listed; 0x71 is not.
+        const LISTED: &[RegisterSpan] = &[
+            RegisterSpan {
+                table: Table::Input,
+                start: 0x60,
+                count: 0x11,
+            },
+            RegisterSpan {
+                table: Table::Holding,
+                start: 0x28,
+                count: 1,
+            },
+        ];
+        let limits = ModbusLimits {
+            readable: LISTED,
+            ..limits(125, false)
+        };
+        let items = [at(Table::Input, 0x60, 1), at(Table::Input, 0x64, 1)];
+        assert_eq!(
+            plan(&limits, &items).unwrap(),
+            [read(Table::Input, 0x60, 5)]
+        );
+        // Another table's listing bridges nothing, and nothing bridges past the listing.
+        let items = [at(Table::Holding, 0x60, 1), at(Table::Holding, 0x64, 1)];
+        assert_eq!(plan(&limits, &items).unwrap().len(), 2);
+        let items = [at(Table::Input, 0x70, 1), at(Table::Input, 0x72, 1)];
+        assert_eq!(plan(&limits, &items).unwrap().len(), 2);
+        // With gaps allowed the listing changes nothing.
+        let open = ModbusLimits {
+            read_gaps: true,
+            ..limits
+        };
+        assert_eq!(plan(&open, &items).unwrap(), [read(Table::Input, 0x70, 3)]);
+    }
+
+    #[test]
     fn single_register_devices_get_one_read_per_register() {
         let items = [
             at(Table::Input, 1, 1),
@@ -259,11 +303,7 @@ mod tests {
     /// item's end (every optimal plan can be shifted to such reads).
     fn optimum(limits: &ModbusLimits, items: &[ModbusAddress]) -> usize {
         let n = items.len();
-        let requested = |table, register: usize| {
-            items
-                .iter()
-                .any(|a| a.table == table && (a.address as usize..end(a)).contains(&register))
-        };
+        let requested = |table, register: usize| readable(limits, items, table, register);
         let mut windows = Vec::new();
         for s in items {
             for e in items {
@@ -293,6 +333,23 @@ mod tests {
         best[(1 << n) - 1]
     }
 
+    /// Whether a plan may read `register` where gaps may not be read: requested or listed.
+    fn readable(
+        limits: &ModbusLimits,
+        items: &[ModbusAddress],
+        table: Table,
+        register: usize,
+    ) -> bool {
+        let requested = items
+            .iter()
+            .any(|a| a.table == table && (a.address as usize..end(a)).contains(&register));
+        let listed = limits
+            .readable
+            .iter()
+            .any(|s| s.table == table && (s.start as usize..s.end()).contains(&register));
+        requested || listed
+    }
+
     fn any_item() -> impl Strategy<Value = ModbusAddress> {
         (
             prop_oneof![Just(Table::Input), Just(Table::Holding)],
@@ -308,8 +365,13 @@ mod tests {
             items in proptest::collection::vec(any_item(), 0..7),
             max in 3u16..10,
             read_gaps in any::<bool>(),
+            listed in proptest::collection::vec(any_item(), 0..3),
         ) {
-            let limits = limits(max, read_gaps);
+            let listed = listed.iter().map(|a| RegisterSpan { table: a.table, start: a.address, count: a.words * 2 });
+            let limits = ModbusLimits {
+                readable: Vec::leak(listed.collect()),
+                ..limits(max, read_gaps)
+            };
             let plan = plan(&limits, &items).unwrap();
             for item in &items {
                 prop_assert!(plan.iter().any(|r| r.offset_of(item).is_some()), "{:?} not covered", item);
@@ -318,8 +380,7 @@ mod tests {
                 prop_assert!(r.count >= 1 && r.count <= max);
                 if !read_gaps {
                     for register in r.start as usize..r.start as usize + r.count as usize {
-                        prop_assert!(items.iter().any(|a| a.table == r.table
-                            && (a.address as usize..end(a)).contains(&register)));
+                        prop_assert!(readable(&limits, &items, r.table, register));
                     }
                 }
             }

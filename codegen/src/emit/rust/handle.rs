@@ -1,11 +1,12 @@
 //! The drive handle: constructors per protocol and one accessor method per parameter.
 
-use proc_macro2::TokenStream;
+use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
+use super::addresses::hex;
 use super::{doc_attrs, ident};
 use crate::emit::{doc, ident as names};
-use crate::ir::Device;
+use crate::ir::{Device, Table};
 
 fn modbus_limits(device: &Device) -> TokenStream {
     let Some(m) = &device.modbus else {
@@ -13,14 +14,33 @@ fn modbus_limits(device: &Device) -> TokenStream {
     };
     let (read, write, gaps) = (m.max_read_registers, m.max_write_registers, m.read_gaps);
     let multiple = m.functions.contains(&0x10);
+    let readable = readable_registers(device);
     quote! {
         ::drivebus::modbus::ModbusLimits {
             max_read_registers: #read,
             max_write_registers: #write,
             write_multiple: #multiple,
             read_gaps: #gaps,
+            readable: #readable,
         }
     }
+}
+
+/// Where reads may not span unlisted addresses, the listed readable registers the planner may
+/// read past; where they may, nothing (the planner would not look).
+fn readable_registers(device: &Device) -> TokenStream {
+    if device.modbus.as_ref().is_none_or(|m| m.read_gaps) {
+        return quote! { &[] };
+    }
+    let runs = device.readable_register_runs().into_iter().map(|run| {
+        let table = match run.table {
+            Table::Input => quote! { input },
+            Table::Holding => quote! { holding },
+        };
+        let (start, count) = (hex(run.start), Literal::u16_unsuffixed(run.count));
+        quote! { ::drivebus::modbus::RegisterSpan::#table(#start, #count) }
+    });
+    quote! { &[#(#runs),*] }
 }
 
 fn constructors(device: &Device, handle: &proc_macro2::Ident) -> TokenStream {
