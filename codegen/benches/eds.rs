@@ -1,7 +1,6 @@
 //! EDS reading speed: a generated EDS of 2,000 objects (814 VARs and 1,186 RECORDs of 5 sub-indices:
 //! 6,744 entries) read into IR parameters, side by side with python canopen 2.4.1's `import_od` on
 //! the same file (codegen/benches/eds_import.py, best of 3). Target: at most 6 ms, 100× python.
-//! Measured both as the reader runs by default (two threads for a file this size) and on one.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -10,7 +9,6 @@ use std::time::{Duration, Instant};
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use drivegen::diagnostic::Files;
-use drivegen::eds::{self, Threads};
 
 const RECORDS: u16 = 1186;
 const VARS: u16 = 814;
@@ -46,21 +44,11 @@ fn generated_eds() -> String {
     eds
 }
 
-fn read(path: &Path, bytes: &[u8], threads: Threads) -> usize {
+fn read(path: &Path, bytes: &[u8]) -> usize {
     let mut files = Files::default();
     let mut diagnostics = Vec::new();
-    let model = eds::read_bytes_with(path, bytes, &mut files, &mut diagnostics, threads);
-    eds::typed_parameters(model.entries, &mut diagnostics).len()
-}
-
-/// The best of 20 reads on `threads`.
-fn best_of_20(path: &Path, bytes: &[u8], threads: Threads) -> Duration {
-    let time = |_| {
-        let start = Instant::now();
-        read(path, bytes, threads);
-        start.elapsed()
-    };
-    (0..20).map(time).min().unwrap_or(Duration::ZERO)
+    let model = drivegen::eds::read_bytes(path, bytes, &mut files, &mut diagnostics);
+    drivegen::eds::typed_parameters(model.entries, &mut diagnostics).len()
 }
 
 fn python() -> PathBuf {
@@ -99,26 +87,26 @@ fn eds_read(c: &mut Criterion) {
     let path = dir.join("bench.eds");
     let text = generated_eds();
     std::fs::write(&path, &text).unwrap();
-    let entries = read(&path, text.as_bytes(), Threads::Auto);
+    let entries = read(&path, text.as_bytes());
     assert_eq!(entries, usize::from(VARS) + 5 * usize::from(RECORDS));
-    let ways = [
-        ("two threads, the default for this size", Threads::Auto),
-        ("one thread", Threads::One),
-    ];
-    for (way, threads) in ways {
-        let name = format!("read a 2,000-object EDS into IR parameters ({way})");
-        c.bench_function(&name, |b| b.iter(|| read(&path, text.as_bytes(), threads)));
-    }
-    let best = ways.map(|(way, threads)| (way, best_of_20(&path, text.as_bytes(), threads)));
+    c.bench_function("read a 2,000-object EDS into IR parameters", |b| {
+        b.iter(|| read(&path, text.as_bytes()))
+    });
+    let best = (0..20)
+        .map(|_| {
+            let start = Instant::now();
+            read(&path, text.as_bytes());
+            start.elapsed()
+        })
+        .min()
+        .unwrap_or(Duration::ZERO);
     let python = python_import_od(&path);
-    for (way, best) in best {
-        println!(
-            "drivegen ({way}): {entries} entries in {:.3} ms (best of 20); python canopen import_od: {:.1} ms; ratio {:.0}x",
-            best.as_secs_f64() * 1e3,
-            python * 1e3,
-            python / best.as_secs_f64()
-        );
-    }
+    println!(
+        "drivegen: {entries} entries in {:.3} ms (best of 20); python canopen import_od: {:.1} ms; ratio {:.0}x",
+        best.as_secs_f64() * 1e3,
+        python * 1e3,
+        python / best.as_secs_f64()
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -13,16 +13,12 @@ mod dictionary;
 mod encoding;
 mod export;
 mod import;
-mod ini_halves;
 mod lower;
 mod names;
 pub(crate) mod node_id;
 mod parse;
 mod pdo_objects;
-#[cfg(test)]
-mod same_on_two_threads;
 mod short_text;
-mod threads;
 mod trim;
 mod word_hash;
 
@@ -42,7 +38,6 @@ pub use node_id::{parse_value, EdsValue};
 pub use parse::{parse_ini, Ini};
 pub use pdo_objects::{pdo_objects, PdoObjects};
 pub use short_text::ShortText;
-pub use threads::Threads;
 
 /// True for paths ending `.eds` or `.dcf` (any case).
 pub fn is_eds_path(path: &Path) -> bool {
@@ -80,17 +75,6 @@ pub fn read_bytes(
     files: &mut Files,
     diagnostics: &mut Vec<Diagnostic>,
 ) -> EdsModel {
-    read_bytes_with(path, bytes, files, diagnostics, Threads::Auto)
-}
-
-/// [`read_bytes`] on as many `threads` as asked: the result is the same whatever the number.
-pub fn read_bytes_with(
-    path: &Path,
-    bytes: &[u8],
-    files: &mut Files,
-    diagnostics: &mut Vec<Diagnostic>,
-    threads: Threads,
-) -> EdsModel {
     let (text, encoding) = decode(bytes);
     let file = files.add(path.to_path_buf(), text);
     let start = Span::new(file, 0..0);
@@ -114,9 +98,7 @@ pub fn read_bytes_with(
             .warning(),
         ),
     }
-    let text = files.text(file);
-    let two_threads = threads.two_for(text.len());
-    let ini = parse::parse_ini_threads(file, text, diagnostics, two_threads);
+    let ini = parse_ini(file, files.text(file), diagnostics);
     let dictionary = dictionary::read(&ini, diagnostics);
     // Freed before lowering, which then reuses its memory (still in cache) for the entries.
     drop(ini);

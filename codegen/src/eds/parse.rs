@@ -115,29 +115,6 @@ impl<'t> Ini<'t> {
         None
     }
 
-    /// Appends the sections of `later`, read from the text after this INI's `lines` lines.
-    /// `Err` if a section of `later` may repeat one of this INI (their names hash alike), which
-    /// only reading the whole file in one pass reports correctly; `self` is then left half-joined.
-    pub(super) fn append(&mut self, later: Ini<'t>, lines: u32) -> Result<(), SameHash> {
-        let (sections, entries) = (self.headers.len(), self.entries.len());
-        self.by_hash.reserve(later.by_hash.len());
-        for (hash, first) in later.by_hash {
-            match self.by_hash.entry(hash) {
-                MapEntry::Vacant(slot) => slot.insert(first + sections),
-                MapEntry::Occupied(_) => return Err(SameHash),
-            };
-        }
-        self.headers
-            .extend(later.headers.into_iter().map(|h| Header {
-                line: h.line.saturating_add(lines),
-                entries: h.entries.start + entries..h.entries.end + entries,
-                same_hash: h.same_hash.map(|i| i + sections),
-                ..h
-            }));
-        self.entries.extend(later.entries);
-        Ok(())
-    }
-
     fn view<'i>(&'i self, header: &'i Header<'t>) -> Section<'i, 't> {
         Section {
             name: header.name,
@@ -147,10 +124,6 @@ impl<'t> Ini<'t> {
         }
     }
 }
-
-/// Two parts of a file have sections whose names hash alike (see [`Ini::append`]).
-#[derive(Debug)]
-pub(super) struct SameHash;
 
 /// The INI being read: entries are appended as they come, in runs (one per section header); a
 /// section that appears twice gets its runs grouped at the end.
@@ -177,38 +150,12 @@ struct Run {
 
 /// Splits `text` into sections; problems are warnings pushed to `diagnostics`.
 pub fn parse_ini<'t>(file: FileId, text: &'t str, diagnostics: &mut Vec<Diagnostic>) -> Ini<'t> {
-    parse_ini_threads(file, text, diagnostics, false)
-}
-
-/// [`parse_ini`], on two threads when `two_threads` (see [`super::ini_halves`]).
-pub(super) fn parse_ini_threads<'t>(
-    file: FileId,
-    text: &'t str,
-    diagnostics: &mut Vec<Diagnostic>,
-    two_threads: bool,
-) -> Ini<'t> {
     if u32::try_from(text.len()).is_err() {
         let message = "an EDS of 4 GiB or more is not read";
         diagnostics.push(Diagnostic::error(RULE, Span::new(file, 0..0), message));
         return Ini::default();
     }
-    if two_threads {
-        if let Some(ini) = super::ini_halves::parse(file, text, diagnostics) {
-            return ini;
-        }
-    }
-    read_lines(file, text, 0..text.len(), diagnostics).0
-}
-
-/// The sections of the lines of `text[range]` (which starts at a line start, and whose offsets
-/// fit `u32`), and how many lines there are. Header lines count from the range's first line.
-pub(super) fn read_lines<'t>(
-    file: FileId,
-    text: &'t str,
-    range: Range<usize>,
-    diagnostics: &mut Vec<Diagnostic>,
-) -> (Ini<'t>, u32) {
-    let (headers, entries) = count_brackets_and_equals(&text.as_bytes()[range.clone()]);
+    let (headers, entries) = count_brackets_and_equals(text.as_bytes());
     let mut reader = Reader {
         ini: Ini {
             headers: Vec::with_capacity(headers),
@@ -219,9 +166,9 @@ pub(super) fn read_lines<'t>(
         current: None,
         reopened: false,
     };
-    let mut next_line = range.start;
+    let mut next_line = 0;
     let mut line_number = 0u32;
-    while next_line < range.end {
+    while next_line < text.len() {
         let line = Line::scan(text, next_line);
         next_line = line.end + 1;
         line_number = line_number.saturating_add(1);
@@ -229,7 +176,8 @@ pub(super) fn read_lines<'t>(
             continue;
         };
         let span = Span::new(file, start..start + content.len());
-        if let Some(name) = header_name(content) {
+        if let Some(name) = content.strip_prefix('[').and_then(|t| t.strip_suffix(']')) {
+            let name = trim_end(trim_start(name));
             reader.open_section(name, span, line_number, diagnostics);
         } else if let Some(eq) = line.eq {
             reader.add_entry(entry(file, start, content, eq - start), span, diagnostics);
@@ -244,20 +192,7 @@ pub(super) fn read_lines<'t>(
             );
         }
     }
-    (reader.finish(), line_number)
-}
-
-/// The section name of a `[section]` line's content.
-fn header_name(content: &str) -> Option<&str> {
-    let name = content.strip_prefix('[')?.strip_suffix(']')?;
-    Some(trim_end(trim_start(name)))
-}
-
-/// Whether the line of `text` starting at `start` is a section header.
-pub(super) fn is_header_line(text: &str, start: usize) -> bool {
-    let line = Line::scan(text, start);
-    line.content(text)
-        .is_some_and(|(_, content)| header_name(content).is_some())
+    reader.finish()
 }
 
 /// How often `[` and `=` occur in `bytes` (upper bounds for the sections and entries to make room
