@@ -207,14 +207,13 @@ impl Session {
             .iter()
             .map(|a| modbus_batch::wire_address(a))
             .collect();
-        let registers = modbus_batch::read_registers(&mut **bus, unit, &limits, &wire)
+        let values = modbus_batch::read_wire(&mut **bus, unit, limits, &wire)
             .map_err(|failure| self.bus_error(parameters[failure.value], failure.cause))?;
         parameters
             .iter()
-            .zip(&addresses)
-            .zip(&registers)
-            .map(|((parameter, address), regs)| {
-                registers::from_registers(parameter.data_type, regs, order(address)).map_err(|_| {
+            .zip(values)
+            .map(|(parameter, wire)| {
+                registers::from_wire(parameter.data_type, wire).map_err(|_| {
                     let why = "the registers hold a value outside the parameter's type";
                     self.bus_error(parameter, BusError::Frame(why))
                 })

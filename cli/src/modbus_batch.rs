@@ -1,10 +1,11 @@
-//! Several parameters over Modbus in the fewest requests the device allows: the planner groups
-//! neighbouring registers within the described limits, and a client opened with
+//! Several parameters over Modbus in the fewest requests the device allows: the link's planner
+//! groups neighbouring registers within the described limits, and a client opened with
 //! `--max-in-flight` above 1 sends the requests together.
 
-use drivebus::modbus::planner::{check_item, plan};
+use drivebus::link::{Link, ReadRequest};
+use drivebus::modbus::planner::check_item;
 use drivebus::modbus::{
-    ModbusAddress, ModbusLimits, RegisterBus, RegisterRead, RegisterSpan, UnitId,
+    ModbusAddress, ModbusLimits, ModbusLink, RegisterBus, RegisterSpan, UnitId,
 };
 use drivebus::BusError;
 use drivegen::ir::{self, Device};
@@ -63,46 +64,37 @@ pub struct Failure {
     pub cause: BusError,
 }
 
-/// Reads the registers of every address (in wire order) with the fewest requests `limits`
-/// allow, handed to the bus as one batch.
-pub fn read_registers(
+/// Reads the value of every address as the little-endian bytes of its registers, in its word
+/// order, through [`ModbusLink::read_many`]: the fewest requests `limits` allow, handed to the
+/// bus together.
+pub fn read_wire(
     bus: &mut dyn RegisterBus,
     unit: UnitId,
-    limits: &ModbusLimits,
+    limits: ModbusLimits,
     addresses: &[ModbusAddress],
-) -> Result<Vec<Vec<u16>>, Failure> {
+) -> Result<Vec<Vec<u8>>, Failure> {
+    // Checked here first only to name the value at fault; the link checks them too.
     for (value, address) in addresses.iter().enumerate() {
-        check_item(limits, address).map_err(|cause| Failure { value, cause })?;
+        check_item(&limits, address).map_err(|cause| Failure { value, cause })?;
     }
-    let plan = plan(limits, addresses).map_err(|cause| Failure { value: 0, cause })?;
-    let mut registers: Vec<Vec<u16>> = plan.iter().map(|r| vec![0; r.count.into()]).collect();
-    let mut batch: Vec<RegisterRead> = plan
+    let mut wire: Vec<Vec<u8>> = addresses
         .iter()
-        .zip(&mut registers)
-        .map(|(read, out)| RegisterRead::new(read.table, read.start, out))
+        .map(|a| vec![0; 2 * usize::from(a.words)])
         .collect();
-    if let Err(cause) = bus.read_register_batch(unit, &mut batch) {
-        let failed = plan.iter().zip(&batch).find(|(_, read)| !read.done);
-        let value = failed
-            .and_then(|(read, _)| addresses.iter().position(|a| read.offset_of(a).is_some()))
-            .unwrap_or(0);
+    let mut requests: Vec<ReadRequest<ModbusAddress>> = addresses
+        .iter()
+        .zip(&mut wire)
+        .map(|(address, buf)| ReadRequest {
+            address: *address,
+            buf,
+            len: 0,
+        })
+        .collect();
+    if let Err(cause) = ModbusLink::new(bus, unit, limits).read_many(&mut requests) {
+        let value = requests.iter().position(|r| r.len == 0).unwrap_or(0);
         return Err(Failure { value, cause });
     }
-    drop(batch);
-    let value_registers = |(value, address): (usize, &ModbusAddress)| {
-        plan.iter()
-            .zip(&registers)
-            .find_map(|(read, regs)| {
-                let at = read.offset_of(address)?;
-                regs.get(at..at + usize::from(address.words))
-            })
-            .map(<[u16]>::to_vec)
-            .ok_or(Failure {
-                value,
-                cause: BusError::Unsupported("the read plan does not cover this value"),
-            })
-    };
-    addresses.iter().enumerate().map(value_registers).collect()
+    Ok(wire)
 }
 
 #[cfg(test)]
@@ -132,8 +124,9 @@ mod tests {
     fn neighbouring_values_are_one_request() {
         let mut bus = bus();
         let addresses = [input(0x70, 1), input(0x6B, 2), input(0x60, 1)];
-        let values = read_registers(&mut bus, UnitId(1), &ModbusLimits::SPEC, &addresses);
-        assert_eq!(values, Ok(vec![vec![0x70], vec![0x6B, 0x6C], vec![0x60]]));
+        let values = read_wire(&mut bus, UnitId(1), ModbusLimits::SPEC, &addresses);
+        let wire = vec![vec![0x70, 0], vec![0x6B, 0, 0x6C, 0], vec![0x60, 0]];
+        assert_eq!(values, Ok(wire));
         assert_eq!(
             bus.log(),
             [Request::Read {
@@ -147,15 +140,15 @@ mod tests {
     #[test]
     fn a_failed_read_names_the_first_value_it_held() {
         let mut bus = bus();
-        let one_at_a_time = ModbusLimits {
+        let two_at_a_time = ModbusLimits {
             max_read_registers: 2,
             ..ModbusLimits::SPEC
         };
         let addresses = [input(0x60, 1), input(0x71, 1)];
-        let failure = read_registers(&mut bus, UnitId(1), &one_at_a_time, &addresses);
+        let failure = read_wire(&mut bus, UnitId(1), two_at_a_time, &addresses);
         assert_eq!(failure.unwrap_err().value, 1);
         let too_wide = [input(0x60, 1), input(0x61, 3)];
-        let failure = read_registers(&mut bus, UnitId(1), &one_at_a_time, &too_wide);
+        let failure = read_wire(&mut bus, UnitId(1), two_at_a_time, &too_wide);
         assert_eq!(
             failure,
             Err(Failure {

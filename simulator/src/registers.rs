@@ -29,6 +29,13 @@ pub fn from_registers(
 ) -> Result<Vec<u8>, Refusal> {
     let mut wire = vec![0u8; 2 * regs.len()];
     registers_to_le(regs, order, &mut wire);
+    from_wire(data_type, wire)
+}
+
+/// The little-endian value of `data_type` in `wire`, the little-endian bytes of its registers
+/// (what [`drivebus::modbus::ModbusLink`] reads); an integer that does not fit the type is
+/// refused.
+pub fn from_wire(data_type: DataType, mut wire: Vec<u8>) -> Result<Vec<u8>, Refusal> {
     let Some((min, max)) = data_type.integer_bounds() else {
         wire.truncate(data_type.bytes() as usize);
         return Ok(wire);
