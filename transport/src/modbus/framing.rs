@@ -119,6 +119,7 @@ pub(crate) fn answers(request: &Request<'_>, pdu: &[u8]) -> Result<(), &'static 
 #[cfg(all(test, feature = "modbus-core"))]
 mod tests {
     use super::*;
+    use crate::modbus::damage::damage;
     use crate::modbus::pdu::{encode_exception, encode_registers_response, MAX_PDU};
     use crate::modbus::rtu::{self, RtuFraming};
     use crate::modbus::tcp::{self, Header, TcpFraming};
@@ -256,13 +257,7 @@ mod tests {
             let clean = garbage.is_empty();
             let mut buf = garbage;
             buf.extend(wrap(tcp.then_some(7), 1, &registers_pdu(&values)));
-            if let Some((at, bits)) = flip {
-                let at = at.index(buf.len());
-                buf[at] ^= bits;
-            }
-            if let Some(at) = cut {
-                buf.truncate(at.index(buf.len()));
-            }
+            damage(&mut buf, flip, cut);
             let mut out = std::vec![0u16; values.len()];
             let found = if tcp {
                 agrees(&tcp_framing(), &request, &buf, values.len())?;

@@ -19,6 +19,8 @@
 mod address;
 #[cfg(feature = "modbus-core")]
 pub mod crc;
+#[cfg(test)]
+mod damage;
 pub mod exception;
 pub mod framing;
 mod link;

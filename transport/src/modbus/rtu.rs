@@ -237,6 +237,7 @@ impl Timing {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::modbus::damage::damage;
     use crate::modbus::pdu::{encode_exception, encode_registers_response};
     use proptest::prelude::*;
     use std::vec::Vec;
@@ -452,13 +453,7 @@ mod tests {
             } else {
                 registers_reply(unit, function, &values)
             };
-            if let Some((at, bits)) = flip {
-                let at = at.index(buf.len());
-                buf[at] ^= bits;
-            }
-            if let Some(at) = cut {
-                buf.truncate(at.index(buf.len()));
-            }
+            damage(&mut buf, flip, cut);
             buf.extend_from_slice(&tail);
             let intact = flip.is_none() && cut.is_none() && other_count.is_none();
             if intact && function == 3 && unit == 1 {

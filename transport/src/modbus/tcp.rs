@@ -267,6 +267,7 @@ impl Framing for TcpFraming {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::modbus::damage::damage;
     use crate::modbus::pdu::encode_registers_response;
     use proptest::prelude::*;
     use std::vec::Vec;
@@ -385,13 +386,7 @@ mod tests {
                 buf[5] = 3;
                 buf[HEADER_LEN..].copy_from_slice(&[0x83, 2]);
             }
-            if let Some((at, bits)) = flip {
-                let at = at.index(buf.len());
-                buf[at] ^= bits;
-            }
-            if let Some(at) = cut {
-                buf.truncate(at.index(buf.len()));
-            }
+            damage(&mut buf, flip, cut);
             buf.extend_from_slice(&tail);
             let intact = flip.is_none() && cut.is_none() && other_count.is_none();
             if intact && !exception && !other_transaction && unit == 1 {
