@@ -11,8 +11,6 @@ use drivebus::BusError;
 use drivegen::ir::{self, Device};
 use drivesim::registers;
 
-const WRITE_MULTIPLE_REGISTERS: u8 = 0x10;
-
 /// The device's Modbus limits as described; the specification's where it says nothing.
 pub fn limits(device: &Device) -> ModbusLimits {
     device
@@ -21,21 +19,17 @@ pub fn limits(device: &Device) -> ModbusLimits {
         .map_or(ModbusLimits::SPEC, |m| ModbusLimits {
             max_read_registers: m.max_read_registers,
             max_write_registers: m.max_write_registers,
-            write_multiple: m.functions.contains(&WRITE_MULTIPLE_REGISTERS),
+            write_multiple: m.writes_multiple_registers(),
             read_gaps: m.read_gaps,
-            readable: if m.read_gaps {
-                &[]
-            } else {
-                readable_registers(device)
-            },
+            readable: readable_registers(device),
         })
 }
 
-/// The description's readable registers for the planner. Limits hold them as `'static` (as
-/// generated crates do); a command opens one session, so leaking one list per run is bounded.
+/// The registers the planner may read past. Limits hold them as `'static` (as generated crates
+/// do); a command opens one session, so leaking one list per run is bounded.
 fn readable_registers(device: &Device) -> &'static [RegisterSpan] {
     let spans = device
-        .readable_register_runs()
+        .registers_to_read_past()
         .into_iter()
         .map(|run| RegisterSpan {
             table: registers::table(run.table),
@@ -100,7 +94,7 @@ pub fn read_wire(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use drivebus::memory::{MemoryBus, Request};
+    use drivebus::memory::MemoryBus;
     use drivebus::modbus::{Table, WordOrder};
 
     fn input(address: u16, words: u16) -> ModbusAddress {
@@ -118,23 +112,6 @@ mod tests {
             bus.set_register(Table::Input, a, a);
         }
         bus
-    }
-
-    #[test]
-    fn neighbouring_values_are_one_request() {
-        let mut bus = bus();
-        let addresses = [input(0x70, 1), input(0x6B, 2), input(0x60, 1)];
-        let values = read_wire(&mut bus, UnitId(1), ModbusLimits::SPEC, &addresses);
-        let wire = vec![vec![0x70, 0], vec![0x6B, 0, 0x6C, 0], vec![0x60, 0]];
-        assert_eq!(values, Ok(wire));
-        assert_eq!(
-            bus.log(),
-            [Request::Read {
-                table: Table::Input,
-                start: 0x60,
-                count: 17
-            }]
-        );
     }
 
     #[test]

@@ -236,6 +236,14 @@ pub struct ModbusCaps {
     pub source: Option<Citation>,
 }
 
+impl ModbusCaps {
+    /// Whether the device implements FC 0x10 (write multiple registers); without it, values of
+    /// several registers are written register by register.
+    pub fn writes_multiple_registers(&self) -> bool {
+        self.functions.contains(&0x10)
+    }
+}
+
 /// The device's CANopen capabilities.
 #[derive(Debug, Clone, Serialize)]
 pub struct CanOpenCaps {

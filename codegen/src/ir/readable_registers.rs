@@ -15,6 +15,16 @@ pub struct RegisterRun {
 }
 
 impl Device {
+    /// What a request planner may read past besides the registers it was asked for: nothing
+    /// where the device reads unlisted addresses too (`read_gaps`, the planner then need not
+    /// know), else [`Device::readable_register_runs`].
+    pub fn registers_to_read_past(&self) -> Vec<RegisterRun> {
+        match &self.modbus {
+            Some(modbus) if !modbus.read_gaps => self.readable_register_runs(),
+            _ => Vec::new(),
+        }
+    }
+
     /// The registers readable in every variant, merged into runs sorted by table and address.
     /// Addresses limited to some variants are left out: a planner must not read past a register
     /// the drive at hand may not have.

@@ -181,13 +181,13 @@ fn deliver(
     plan: &PlannedRead,
     read: &RegisterRead<'_>,
 ) -> Result<(), BusError> {
+    if !read.done {
+        return Ok(());
+    }
     for request in requests.iter_mut().filter(|r| r.len == PLANNED) {
         let Some(offset) = plan.offset_of(&request.address) else {
             continue;
         };
-        if !read.done {
-            continue;
-        }
         let words = request.address.words as usize;
         let Some(bytes) = request.buf.get_mut(..words * 2) else {
             return Err(BusError::Frame("value buffer too small"));

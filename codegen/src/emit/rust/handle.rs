@@ -13,7 +13,7 @@ fn modbus_limits(device: &Device) -> TokenStream {
         return quote! { ::drivebus::modbus::ModbusLimits::SPEC };
     };
     let (read, write, gaps) = (m.max_read_registers, m.max_write_registers, m.read_gaps);
-    let multiple = m.functions.contains(&0x10);
+    let multiple = m.writes_multiple_registers();
     let readable = readable_registers(device);
     quote! {
         ::drivebus::modbus::ModbusLimits {
@@ -26,13 +26,9 @@ fn modbus_limits(device: &Device) -> TokenStream {
     }
 }
 
-/// Where reads may not span unlisted addresses, the listed readable registers the planner may
-/// read past; where they may, nothing (the planner would not look).
+/// The registers the planner may read past ([`Device::registers_to_read_past`]).
 fn readable_registers(device: &Device) -> TokenStream {
-    if device.modbus.as_ref().is_none_or(|m| m.read_gaps) {
-        return quote! { &[] };
-    }
-    let runs = device.readable_register_runs().into_iter().map(|run| {
+    let runs = device.registers_to_read_past().into_iter().map(|run| {
         let table = match run.table {
             Table::Input => quote! { input },
             Table::Holding => quote! { holding },
