@@ -76,7 +76,10 @@ fn runs_merge_neighbours_and_leave_out_write_only_and_variant_bound_registers() 
         count,
     };
     // read_gaps = false: the planner reads past exactly these.
-    assert_eq!(device.registers_to_read_past(), device.readable_register_runs());
+    assert_eq!(
+        device.registers_to_read_past(),
+        device.readable_register_runs()
+    );
     assert_eq!(
         device.readable_register_runs(),
         [
