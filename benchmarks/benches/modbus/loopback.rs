@@ -187,24 +187,18 @@ fn pipelined(addr: &str) -> PerRequest {
 fn tokio_modbus(addr: &str) -> PerRequest {
     use tokio_modbus::client::Reader;
     let rt = runtime();
-    rt.block_on(async {
-        let socket = addr.parse().unwrap();
-        let mut ctx = tokio_modbus::client::tcp::connect_slave(socket, tokio_modbus::Slave(UNIT.0))
-            .await
-            .unwrap();
-        let (wall, cpu) = (Instant::now(), thread_cpu());
-        for _ in 0..READS {
-            black_box(
-                ctx.read_holding_registers(START, COUNT as u16)
-                    .await
-                    .unwrap()
-                    .unwrap(),
-            );
-        }
-        PerRequest {
-            cpu: (thread_cpu() - cpu) / READS,
-            wall: wall.elapsed() / READS,
-        }
+    let socket = addr.parse().unwrap();
+    let slave = tokio_modbus::Slave(UNIT.0);
+    let mut ctx = rt
+        .block_on(tokio_modbus::client::tcp::connect_slave(socket, slave))
+        .unwrap();
+    PerRequest::measure(|| {
+        rt.block_on(async {
+            for _ in 0..READS {
+                let registers = ctx.read_holding_registers(START, COUNT as u16).await;
+                black_box(registers.unwrap().unwrap());
+            }
+        })
     })
 }
 
