@@ -184,55 +184,38 @@ impl Session {
         &self.target
     }
 
-    fn bus_error(&self, parameter: &Parameter, cause: BusError) -> CliError {
-        CliError::Bus {
-            target: self.target.clone(),
-            parameter: parameter.name.clone(),
-            cause,
-        }
-    }
-
     /// Reads the raw bytes of each parameter: over Modbus with the fewest requests the device's
     /// limits allow (sent together with `--max-in-flight`), over CANopen an SDO upload each.
     pub fn read_many(&mut self, parameters: &[&Parameter]) -> Result<Vec<Vec<u8>>, CliError> {
-        let (bus, unit, limits) = match &mut self.link {
-            Link::Modbus { bus, unit, limits } => (bus, *unit, *limits),
-            Link::CanOpen { .. } => return parameters.iter().map(|p| self.upload(p)).collect(),
-        };
-        let addresses = parameters
-            .iter()
-            .map(|p| modbus_address(p, true))
-            .collect::<Result<Vec<_>, _>>()?;
-        let wire: Vec<_> = addresses
-            .iter()
-            .map(|a| modbus_batch::wire_address(a))
-            .collect();
-        let values = modbus_batch::read_wire(&mut **bus, unit, limits, &wire)
-            .map_err(|failure| self.bus_error(parameters[failure.value], failure.cause))?;
-        parameters
-            .iter()
-            .zip(values)
-            .map(|(parameter, wire)| {
-                registers::from_wire(parameter.data_type, wire).map_err(|_| {
-                    let why = "the registers hold a value outside the parameter's type";
-                    self.bus_error(parameter, BusError::Frame(why))
+        let target = &self.target;
+        match &mut self.link {
+            Link::CanOpen { sdo, node } => parameters
+                .iter()
+                .map(|p| {
+                    let address = object_address(p, true)?;
+                    upload(sdo, *node, p, address).map_err(|e| bus_error(target, p, e))
                 })
-            })
-            .collect()
-    }
-
-    /// One parameter by SDO upload.
-    fn upload(&mut self, parameter: &Parameter) -> Result<Vec<u8>, CliError> {
-        let address = object_address(parameter, true)?;
-        let result = match &mut self.link {
-            Link::CanOpen { sdo, node } => {
-                let mut buf = vec![0u8; (parameter.data_type.bytes() as usize).max(8)];
-                sdo.upload(*node, address.index, address.subindex, &mut buf)
-                    .map(|len| buf[..len].to_vec())
+                .collect(),
+            Link::Modbus { bus, unit, limits } => {
+                let wire = parameters
+                    .iter()
+                    .map(|p| modbus_address(p, true).map(modbus_batch::wire_address))
+                    .collect::<Result<Vec<_>, _>>()?;
+                let values = modbus_batch::read_wire(&mut **bus, *unit, *limits, &wire).map_err(
+                    |failure| bus_error(target, parameters[failure.value], failure.cause),
+                )?;
+                parameters
+                    .iter()
+                    .zip(values)
+                    .map(|(parameter, wire)| {
+                        registers::from_wire(parameter.data_type, wire).map_err(|_| {
+                            let why = "the registers hold a value outside the parameter's type";
+                            bus_error(target, parameter, BusError::Frame(why))
+                        })
+                    })
+                    .collect()
             }
-            Link::Modbus { .. } => Err(BusError::Unsupported("SDO uploads need a CANopen bus")),
-        };
-        result.map_err(|e| self.bus_error(parameter, e))
+        }
     }
 
     /// Writes the raw bytes of `parameter`.
@@ -260,7 +243,7 @@ impl Session {
                 sdo.download(*node, address.index, address.subindex, bytes)
             }
         };
-        result.map_err(|e| self.bus_error(parameter, e))
+        result.map_err(|e| bus_error(&self.target, parameter, e))
     }
 }
 
@@ -290,6 +273,27 @@ fn can_backend(spec: &str) -> Result<(Box<dyn CanBus + Send>, Option<Child>), Cl
     Err(CliError::Usage(format!(
         "--can {spec}: expected slcan:HOST:PORT or candump:exec:COMMAND"
     )))
+}
+
+/// A bus failure reaching `target`, naming the parameter it was for.
+fn bus_error(target: &str, parameter: &Parameter, cause: BusError) -> CliError {
+    CliError::Bus {
+        target: target.to_owned(),
+        parameter: parameter.name.clone(),
+        cause,
+    }
+}
+
+/// The value of `parameter` at `address`, by SDO upload.
+fn upload(
+    sdo: &mut BlockingSdo<DynCan>,
+    node: NodeId,
+    parameter: &Parameter,
+    address: &ir::ObjectAddress,
+) -> Result<Vec<u8>, BusError> {
+    let mut buf = vec![0u8; (parameter.data_type.bytes() as usize).max(8)];
+    sdo.upload(node, address.index, address.subindex, &mut buf)
+        .map(|len| buf[..len].to_vec())
 }
 
 fn no_access(parameter: &Parameter, protocol: &str, read: bool) -> CliError {
