@@ -25,6 +25,7 @@ def main():
     bank.set_input_registers(0x60, inputs)
     server = ModbusServer(host="127.0.0.1", port=0, no_block=True, data_bank=bank)
     server.start()
+    # pyModbusTCP 0.3.1 has no public accessor for the port it bound (port 0 picks one).
     print(f"PORT {server._service.server_address[1]}", flush=True)
     sys.stdin.read()
     server.stop()
