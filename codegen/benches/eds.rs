@@ -48,7 +48,7 @@ fn read(path: &Path, bytes: &[u8]) -> usize {
     let mut files = Files::default();
     let mut diagnostics = Vec::new();
     let model = drivegen::eds::read_bytes(path, bytes, &mut files, &mut diagnostics);
-    drivegen::eds::typed_parameters(model.entries, &mut diagnostics).len()
+    drivegen::eds::typed_parameters(model.entries, &model.cited, &mut diagnostics).len()
 }
 
 fn python() -> PathBuf {

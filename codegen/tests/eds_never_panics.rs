@@ -17,7 +17,8 @@ fn read_everything(bytes: &[u8]) {
         let _ = d.render(&files);
     }
     let mut device = drivegen::eds::empty_device("Fuzz", &model);
-    device.parameters = drivegen::eds::typed_parameters(model.entries, &mut diagnostics);
+    device.parameters =
+        drivegen::eds::typed_parameters(model.entries, &model.cited, &mut diagnostics);
     let exported = drivegen::eds::export(&device);
     let mut again = Vec::new();
     let _ = drivegen::eds::read_bytes(

@@ -23,7 +23,7 @@ fn overlay_entries_refine_their_eds_objects() {
     assert_eq!(speed.data_type.name(), "u16", "type from the overlay");
     assert_eq!(speed.unit.as_deref(), Some("rpm"));
     assert_eq!(speed.default, Some(Number::Int(10)), "default from the EDS");
-    assert_eq!(&*speed.source.as_ref().unwrap().doc, "manual");
+    assert_eq!(speed.source.as_ref().unwrap().doc(), "manual");
     let vendor_id = d.parameter("vendor_id").unwrap();
     assert_eq!(
         vendor_id.record.as_deref(),
@@ -31,7 +31,7 @@ fn overlay_entries_refine_their_eds_objects() {
         "record renamed by the overlay"
     );
     assert_eq!(
-        &*vendor_id.source.as_ref().unwrap().doc,
+        vendor_id.source.as_ref().unwrap().doc(),
         "eds",
         "citation from the EDS"
     );

@@ -118,7 +118,7 @@ fn skeleton(model: &EdsModel, file_name: &str) -> String {
             "canopen = {{ index = 0x{:04X}, subindex = {} }}",
             e.index, e.variable.subindex
         );
-        cite(&mut out, Some(&e.citation()));
+        cite(&mut out, Some(&e.citation(&model.cited)));
     }
     out
 }

@@ -38,18 +38,6 @@ pub struct EdsEntry {
     pub variable: Variable,
     /// Its type, unless the EDS does not give one.
     pub data_type: Result<DataType, TypeProblem>,
-    /// The EDS as citations name it, shared by every entry.
-    pub cited: Arc<CitedEds>,
-}
-
-/// How citations name the EDS: one per EDS, shared by its entries (one reference count to touch
-/// per entry rather than two).
-#[derive(Debug)]
-pub struct CitedEds {
-    /// The source id ([`EDS_SOURCE_ID`]).
-    pub id: Arc<str>,
-    /// The EDS file.
-    pub file: Arc<str>,
 }
 
 /// Everything an EDS contributes to a device.
@@ -57,6 +45,9 @@ pub struct CitedEds {
 pub struct EdsModel {
     /// The EDS as a cited source.
     pub source: ir::SourceDoc,
+    /// The EDS as citations name it, shared by all of them (entries do not hold it: every
+    /// reference count touched per entry costs an atomic operation).
+    pub cited: Arc<ir::CitedDoc>,
     /// Identity read from `[DeviceInfo]` / `[DeviceComissioning]` / `[Comments]`.
     pub device: super::dictionary::DeviceInfo,
     /// ARRAY and RECORD objects.
@@ -82,13 +73,9 @@ pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
             .clone()
             .map_or_else(|| "EDS".into(), |p| format!("{p} EDS")),
     };
-    let cited = Arc::new(CitedEds {
-        id: Arc::from(EDS_SOURCE_ID),
-        file: Arc::from(file_name.as_str()),
-    });
+    let cited = ir::CitedDoc::shared(EDS_SOURCE_ID, &file_name);
     let cite = |span: &Span, line: u32, section: String| ir::Citation {
-        doc: Arc::clone(&cited.id),
-        file: Arc::clone(&cited.file),
+        cited: Arc::clone(&cited),
         section: Some(section),
         line: Some(line),
         example: None,
@@ -137,13 +124,13 @@ pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
                 String::new()
             },
             data_type: entry_type(&v, object.kind),
-            cited: Arc::clone(&cited),
             variable: v,
         }));
     }
     name_uniquely(&snakes, &mut entries, &mut records);
     EdsModel {
         source,
+        cited,
         device,
         records,
         entries,
@@ -218,11 +205,10 @@ impl EdsEntry {
         section_name(self.index, sub)
     }
 
-    /// The citation of its EDS line.
-    pub fn citation(&self) -> ir::Citation {
+    /// The citation of its EDS line, in the EDS `cited`.
+    pub fn citation(&self, cited: &Arc<ir::CitedDoc>) -> ir::Citation {
         ir::Citation {
-            doc: Arc::clone(&self.cited.id),
-            file: Arc::clone(&self.cited.file),
+            cited: Arc::clone(cited),
             section: Some(self.section()),
             line: Some(self.variable.line),
             example: None,
@@ -250,36 +236,33 @@ impl EdsEntry {
         format!("{:#06X} sub {}", self.index, self.variable.subindex)
     }
 
-    /// The parameter this entry describes, with type `ty`.
-    pub fn parameter(&self, ty: DataType, diagnostics: &mut Vec<Diagnostic>) -> ir::Parameter {
+    /// The parameter this entry of the EDS `cited` describes, with type `ty`.
+    pub fn parameter(
+        &self,
+        cited: &Arc<ir::CitedDoc>,
+        ty: DataType,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) -> ir::Parameter {
         let names = Names {
             name: self.name.clone(),
             record: self.record.clone(),
             doc: self.doc(),
-            source: self.citation(),
+            source: self.citation(cited),
         };
         self.parameter_named(names, ty, diagnostics)
     }
 
-    /// [`EdsEntry::parameter`], moving the entry's strings instead of copying them.
-    pub fn into_parameter(
-        mut self,
-        ty: DataType,
-        diagnostics: &mut Vec<Diagnostic>,
-    ) -> ir::Parameter {
-        self.take_parameter(ty, diagnostics)
-    }
-
-    /// [`EdsEntry::into_parameter`] through a reference, so that a vector of entries can be
-    /// turned into parameters without moving each (large) entry out of it first. The entry is
-    /// left without its name, record and doc.
+    /// [`EdsEntry::parameter`], moving the entry's strings instead of copying them: a vector of
+    /// entries becomes parameters without moving each (large) entry out of it first. The entry
+    /// is left without its name, record and doc.
     pub(super) fn take_parameter(
         &mut self,
+        cited: &Arc<ir::CitedDoc>,
         ty: DataType,
         diagnostics: &mut Vec<Diagnostic>,
     ) -> ir::Parameter {
         // The citation first: it names the section by whether the entry is a record member.
-        let source = self.citation();
+        let source = self.citation(cited);
         let names = Names {
             name: std::mem::take(&mut self.name),
             record: self.record.take(),

@@ -23,6 +23,7 @@ mod trim;
 mod word_hash;
 
 use std::path::Path;
+use std::sync::Arc;
 
 use crate::diagnostic::{Diagnostic, Files, Span};
 use crate::{ir, Checked};
@@ -32,7 +33,7 @@ pub use dictionary::{DeviceInfo, Dictionary, Object, ObjectKind, Text, Variable}
 pub use encoding::{decode, Encoding};
 pub use export::export;
 pub use import::{import_overlay, ImportError};
-pub use lower::{CitedEds, EdsEntry, EdsModel, TypeProblem, EDS_SOURCE_ID};
+pub use lower::{EdsEntry, EdsModel, TypeProblem, EDS_SOURCE_ID};
 pub use names::snake_name;
 pub use node_id::{parse_value, EdsValue};
 pub use parse::{parse_ini, Ini};
@@ -120,7 +121,7 @@ pub fn check_eds(path: &Path) -> Checked {
                     .map_or("device".into(), |s| s.to_string_lossy().into_owned())
             });
         let mut device = empty_device(&name, &model);
-        let parameters = typed_parameters(model.entries, &mut diagnostics);
+        let parameters = typed_parameters(model.entries, &model.cited, &mut diagnostics);
         device.parameters = parameters;
         device
     });
@@ -157,16 +158,17 @@ pub fn empty_device(name: &str, model: &EdsModel) -> ir::Device {
     }
 }
 
-/// The parameters of `entries`; entries without a usable type are errors.
+/// The parameters of `entries` of the EDS `cited`; entries without a usable type are errors.
 pub fn typed_parameters(
     mut entries: Vec<EdsEntry>,
+    cited: &Arc<ir::CitedDoc>,
     diagnostics: &mut Vec<Diagnostic>,
 ) -> Vec<ir::Parameter> {
     // Sized up front: parameters are large, and growing a vector of thousands moves megabytes.
     let mut parameters = Vec::with_capacity(entries.len());
     for e in &mut entries {
         match e.data_type {
-            Ok(ty) => parameters.push(e.take_parameter(ty, diagnostics)),
+            Ok(ty) => parameters.push(e.take_parameter(cited, ty, diagnostics)),
             Err(problem) => diagnostics.push(e.type_problem(problem)),
         }
     }

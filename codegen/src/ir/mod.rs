@@ -195,13 +195,32 @@ pub struct SourceDoc {
     pub title: String,
 }
 
+/// A cited manual as its citations name it: one per manual, shared by all of them (a description
+/// cites a few documents thousands of times).
+#[derive(Debug, Serialize, Default, PartialEq, Eq)]
+pub struct CitedDoc {
+    /// `SourceDoc::id`.
+    pub doc: String,
+    /// The `SourceDoc::file` it resolves to.
+    pub file: String,
+}
+
+impl CitedDoc {
+    /// The document `doc` in `file`, ready to share.
+    pub fn shared(doc: &str, file: &str) -> Arc<Self> {
+        Arc::new(CitedDoc {
+            doc: doc.to_owned(),
+            file: file.to_owned(),
+        })
+    }
+}
+
 /// A place in a manual.
 #[derive(Debug, Clone, Serialize, Default)]
 pub struct Citation {
-    /// `SourceDoc::id` (shared: a description cites a few documents thousands of times).
-    pub doc: Arc<str>,
-    /// The `SourceDoc::file` it resolves to.
-    pub file: Arc<str>,
+    /// The manual (serialized as its `doc` and `file`).
+    #[serde(flatten)]
+    pub cited: Arc<CitedDoc>,
     /// Section.
     pub section: Option<String>,
     /// Line in the file.
@@ -211,6 +230,18 @@ pub struct Citation {
     /// Where the citation is written.
     #[serde(skip)]
     pub span: Span,
+}
+
+impl Citation {
+    /// `SourceDoc::id` of the manual.
+    pub fn doc(&self) -> &str {
+        &self.cited.doc
+    }
+
+    /// The `SourceDoc::file` of the manual.
+    pub fn file(&self) -> &str {
+        &self.cited.file
+    }
 }
 
 /// The device's Modbus capabilities.

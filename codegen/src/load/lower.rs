@@ -41,8 +41,10 @@ pub fn lower(
     let mut device = cx.device(&root.raw, files)?;
     if let Some(model) = eds {
         let source = &model.source;
-        cx.sources
-            .insert(source.id.clone(), shared_source(&source.id, &source.file));
+        cx.sources.insert(
+            source.id.clone(),
+            ir::CitedDoc::shared(&source.id, &source.file),
+        );
         device.sources.push(model.source.clone());
     }
     let included: Vec<LoadedFile> = files_iter.collect();
@@ -66,15 +68,10 @@ pub fn lower(
     Some(device)
 }
 
-/// A source's id and file as citations share them.
-fn shared_source(id: &str, file: &str) -> (Arc<str>, Arc<str>) {
-    (Arc::from(id), Arc::from(file))
-}
-
 pub(super) struct Lowering<'d> {
     pub(super) diagnostics: &'d mut Vec<Diagnostic>,
-    /// Declared sources: id → (id, file), shared by every citation of them.
-    sources: BTreeMap<String, (Arc<str>, Arc<str>)>,
+    /// Declared sources by id, shared by every citation of them.
+    sources: BTreeMap<String, Arc<ir::CitedDoc>>,
     pub(super) file: FileId,
     /// The EDS the root file is an overlay of.
     pub(super) overlay: Option<Overlay<'d>>,
@@ -227,7 +224,7 @@ impl Lowering<'_> {
         for source in &raw.source {
             let id = source.id.get_ref();
             match self.sources.get(id) {
-                Some((_, file)) if **file != *source.file => {
+                Some(cited) if cited.file != source.file => {
                     let span = self.span(&source.id);
                     self.error(
                         "sources_are_unique",
@@ -238,7 +235,7 @@ impl Lowering<'_> {
                 Some(_) => {}
                 None => {
                     self.sources
-                        .insert(id.clone(), shared_source(id, &source.file));
+                        .insert(id.clone(), ir::CitedDoc::shared(id, &source.file));
                     device.sources.push(ir::SourceDoc {
                         id: id.clone(),
                         file: source.file.clone(),
@@ -317,7 +314,7 @@ impl Lowering<'_> {
     fn citation(&mut self, raw: &Spanned<RawCitation>) -> Option<ir::Citation> {
         let c = raw.get_ref();
         let doc = c.doc.get_ref();
-        let Some((doc, file)) = self.sources.get(doc).cloned() else {
+        let Some(cited) = self.sources.get(doc).cloned() else {
             let span = self.span(&c.doc);
             let known: Vec<&str> = self.sources.keys().map(String::as_str).collect();
             self.error_help(
@@ -345,8 +342,7 @@ impl Lowering<'_> {
             None => None,
         };
         Some(ir::Citation {
-            doc,
-            file,
+            cited,
             section: c.section.clone(),
             line,
             example: c.example.clone(),

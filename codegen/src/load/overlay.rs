@@ -92,7 +92,7 @@ impl<'m> Overlay<'m> {
         {
             match entry.data_type {
                 Ok(ty) => {
-                    let mut p = entry.parameter(ty, diagnostics);
+                    let mut p = entry.parameter(&self.model.cited, ty, diagnostics);
                     if taken.contains(&p.name) {
                         p.name =
                             format!("{}_{:04x}_{}", p.name, entry.index, entry.variable.subindex);
@@ -186,7 +186,7 @@ impl Lowering<'_> {
         let Some(model) = self.overlay.as_ref().map(|o| o.model) else {
             return p;
         };
-        let base = model.entries[entry].parameter(p.data_type, self.diagnostics);
+        let base = model.entries[entry].parameter(&model.cited, p.data_type, self.diagnostics);
         let present = Present::of(raw);
         if !present.doc {
             p.doc = base.doc;

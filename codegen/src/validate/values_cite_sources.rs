@@ -9,7 +9,7 @@ const RULE: &str = "values_cite_sources";
 fn uncited(kind: &str, name: &str, span: &Span, source: &Option<Citation>) -> Option<Diagnostic> {
     let message = match source {
         None => format!("{kind} `{name}` cites no source"),
-        Some(c) if c.line.is_none() => format!("{kind} `{name}` cites no line of `{}`", c.doc),
+        Some(c) if c.line.is_none() => format!("{kind} `{name}` cites no line of `{}`", c.doc()),
         Some(_) => return None,
     };
     Some(

@@ -158,9 +158,9 @@ pub fn citation(c: &Citation, device: &Device) -> String {
     let title = device
         .sources
         .iter()
-        .find(|s| *s.id == *c.doc)
-        .map_or(&*c.file, |s| s.title.as_str());
-    let mut cite = format!("{} (`{}`)", doc::escape(title), doc::escape(&c.file));
+        .find(|s| s.id == c.doc())
+        .map_or(c.file(), |s| s.title.as_str());
+    let mut cite = format!("{} (`{}`)", doc::escape(title), doc::escape(c.file()));
     if let Some(section) = &c.section {
         let _ = write!(cite, " §{}", doc::escape(section));
     }
