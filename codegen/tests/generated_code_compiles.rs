@@ -1,28 +1,55 @@
 //! The generated code of every shipped description compiles warning-free and `no_std`, with docs
 //! on every item — not only the Lafert crate that `drives/` builds. Variants, run-time scales,
-//! records and CANopen-only parameters are exercised here by the Kinco, Lenze and ez-Wheel files.
+//! records and CANopen-only parameters are exercised here by the Kinco, Lenze and ez-Wheel files;
+//! names derived from vendor text by the EDS corpus and the EDS + overlay fixture.
 
 mod support;
+
+use std::path::{Path, PathBuf};
 
 use support::crate_build::{build_and_doctest, generated};
 use support::{shipped_descriptions, short_name};
 
-#[test]
-fn every_shipped_description_compiles_without_warnings() {
+/// Builds one `no_std` crate holding a module per description, denying warnings and missing docs.
+fn assert_compiles(crate_name: &str, descriptions: &[PathBuf]) {
     let mut lib = String::from(
-        "//! Every shipped description.\n#![no_std]\n#![deny(warnings, missing_docs)]\n#[cfg(feature = \"std\")]\nextern crate std;\n",
+        "//! Generated descriptions.\n#![no_std]\n#![deny(warnings, missing_docs)]\n#[cfg(feature = \"std\")]\nextern crate std;\n",
     );
-    for path in shipped_descriptions() {
-        let module = short_name(&path).replace('-', "_");
+    for path in descriptions {
+        let module = short_name(path).replace('-', "_");
         lib += &format!(
             "/// Generated from {module}.\npub mod {module} {{\n{}\n}}\n",
-            generated(&path)
+            generated(path)
         );
     }
-    let built = build_and_doctest("shipped", &lib);
+    let built = build_and_doctest(crate_name, &lib);
     assert!(
         built.success,
         "generated code does not build:\n{}",
         built.stderr
     );
+}
+
+#[test]
+fn every_shipped_description_compiles_without_warnings() {
+    assert_compiles("shipped", &shipped_descriptions());
+}
+
+/// Every EDS of the corpus that is a valid device on its own (keywords, digits, clashing and
+/// non-ASCII names, wide types, `$NODEID` defaults...), and the EDS + overlay fixture.
+#[test]
+fn code_generated_from_eds_files_compiles_without_warnings() {
+    let mut descriptions: Vec<PathBuf> = std::fs::read_dir("tests/eds")
+        .expect("tests/eds exists")
+        .map(|e| e.unwrap().path())
+        .filter(|p| drivegen::eds::is_eds_path(p) && drivegen::check(p).device.is_some())
+        .collect();
+    descriptions.sort();
+    assert!(
+        descriptions.len() >= 20,
+        "only {} valid EDS files",
+        descriptions.len()
+    );
+    descriptions.push(Path::new("tests/fixtures/overlay").to_path_buf());
+    assert_compiles("from_eds", &descriptions);
 }

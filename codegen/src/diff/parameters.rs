@@ -140,7 +140,7 @@ const FACTS: [(&str, Describe); 6] = [
     ("range", range),
     ("allowed values", |p| list(&p.allowed)),
     ("default", |p| {
-        p.default.map_or_else(|| "none".into(), number)
+        p.default.map_or_else(|| "none".into(), |n| n.to_string())
     }),
     ("variants", variants),
     ("takes effect", |p| effect(p.effect).into()),
@@ -160,10 +160,9 @@ fn behaviour(o: &Parameter, n: &Parameter, out: &mut Vec<Change>) {
 }
 
 fn range(p: &Parameter) -> String {
-    p.range.as_ref().map_or_else(
-        || "none".into(),
-        |r| format!("{}..={}", number(r.min), number(r.max)),
-    )
+    p.range
+        .as_ref()
+        .map_or_else(|| "none".into(), |r| format!("{}..={}", r.min, r.max))
 }
 
 fn variants(p: &Parameter) -> String {
@@ -202,20 +201,13 @@ fn ratio(numerator: i64, denominator: i64) -> String {
     }
 }
 
-fn number(n: Number) -> String {
-    match n {
-        Number::Int(i) => i.to_string(),
-        Number::Float(f) => f.to_string(),
-    }
-}
-
 fn list(values: &[Number]) -> String {
     if values.is_empty() {
         return "any".into();
     }
     values
         .iter()
-        .map(|n| number(*n))
+        .map(|n| n.to_string())
         .collect::<Vec<_>>()
         .join(", ")
 }

@@ -148,13 +148,13 @@ fn variable(out: &mut String, section: &str, entry: &Entry<'_>) {
         let value = if p.default_plus_node_id {
             node_relative(default)
         } else {
-            number(default)
+            default.to_string()
         };
         let _ = writeln!(out, "DefaultValue={value}");
     }
     if let Some(range) = &p.range {
-        let _ = writeln!(out, "LowLimit={}", number(range.min));
-        let _ = writeln!(out, "HighLimit={}", number(range.max));
+        let _ = writeln!(out, "LowLimit={}", range.min);
+        let _ = writeln!(out, "HighLimit={}", range.max);
     }
     let _ = writeln!(out, "PDOMapping={}", u8::from(a.pdo != ir::Pdo::None));
 }
@@ -171,18 +171,11 @@ fn access_type(a: &ir::ObjectAddress) -> &'static str {
     }
 }
 
-fn number(n: Number) -> String {
-    match n {
-        Number::Int(i) => i.to_string(),
-        Number::Float(f) => format!("{f:?}"),
-    }
-}
-
 fn node_relative(offset: Number) -> String {
     match offset.as_int() {
         Some(0) => "$NODEID".into(),
         Some(o) if o > 0 => format!("$NODEID+0x{o:X}"),
-        _ => format!("$NODEID+{}", number(offset)),
+        _ => format!("$NODEID+{offset}"),
     }
 }
 

@@ -1,5 +1,7 @@
 //! Raw numbers of defaults, ranges and allowed values: exact integers, or floats for float types.
 
+use std::fmt;
+
 use serde::{Serialize, Serializer};
 
 /// A raw value as written in a description.
@@ -24,6 +26,18 @@ impl Number {
         match self {
             Number::Int(i) => Some(i),
             Number::Float(_) => None,
+        }
+    }
+}
+
+/// As written in diagnostics, docs and EDS files: a float in its shortest exact form, with an
+/// exponent when it is very large or small (`1e300`, not 301 digits) and a `.0` when integral,
+/// so that it reads back as the same float.
+impl fmt::Display for Number {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Number::Int(i) => write!(f, "{i}"),
+            Number::Float(x) => write!(f, "{x:?}"),
         }
     }
 }

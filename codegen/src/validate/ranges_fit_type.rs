@@ -1,32 +1,30 @@
 //! A range has `min <= max`, and ranges and allowed values fit the parameter's type.
 
 use crate::diagnostic::{Diagnostic, Span};
-use crate::ir::{Device, Number, Parameter};
+use crate::ir::{DataType, Device, Number, Parameter};
 
 const RULE: &str = "ranges_fit_type";
 
-/// Whether a raw value fits the parameter's data type.
+/// Whether a raw value fits the parameter's data type. A float type takes finite values its own
+/// width can hold (TOML allows `inf` and `nan`, and a value beyond `f32` would be infinite on the
+/// wire).
 pub fn fits(p: &Parameter, n: Number) -> bool {
     match (p.data_type.integer_bounds(), n) {
         (Some((lo, hi)), Number::Int(i)) => (lo..=hi).contains(&(i as i128)),
         (Some(_), Number::Float(_)) => false,
-        (None, _) => p.data_type.is_numeric(),
+        (None, n) => match p.data_type {
+            DataType::F32 => n.as_f64().abs() <= f64::from(f32::MAX),
+            DataType::F64 => n.as_f64().is_finite(),
+            _ => false,
+        },
     }
 }
 
 fn out_of_type(p: &Parameter, n: Number, span: &Span) -> Diagnostic {
-    let value = match n {
-        Number::Int(i) => i.to_string(),
-        Number::Float(f) => f.to_string(),
-    };
     Diagnostic::error(
         RULE,
         span.clone(),
-        format!(
-            "{value} does not fit `{}`, a {}",
-            p.name,
-            p.data_type.name()
-        ),
+        format!("{n} does not fit `{}`, a {}", p.name, p.data_type.name()),
     )
     .help("values here are raw wire values; check the type and the sign")
 }
@@ -73,6 +71,34 @@ source = { doc = "m", line = 1 }
         assert_eq!(
             messages("ranges_fit_type", body),
             ["-3000 does not fit `speed`, a u16"]
+        );
+    }
+
+    #[test]
+    fn float_bounds_must_be_finite_and_within_the_width() {
+        let body = r#"
+[[parameter]]
+name = "gain"
+type = "f32"
+range = [-1e39, 3.4e38]
+allowed = [nan, 1.5]
+modbus = { table = "holding", address = 1, words = 2 }
+source = { doc = "m", line = 1 }
+
+[[parameter]]
+name = "ratio"
+type = "f64"
+range = [-inf, 1e300]
+modbus = { table = "holding", address = 3, words = 4 }
+source = { doc = "m", line = 1 }
+"#;
+        assert_eq!(
+            messages("ranges_fit_type", body),
+            [
+                "-1e39 does not fit `gain`, a f32",
+                "NaN does not fit `gain`, a f32",
+                "-inf does not fit `ratio`, a f64",
+            ]
         );
     }
 }

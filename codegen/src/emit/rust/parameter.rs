@@ -11,21 +11,18 @@ use super::addresses::{self, Direction};
 use super::enums::int_literal;
 use super::{concat, doc_attrs, ident, parameter_doc, raw_type};
 use crate::emit::ident as names;
-use crate::ir::{Device, Expr, Number, Op, Parameter, Scale, ValueType};
+use crate::ir::{DataType, Device, Expr, Number, Op, Parameter, Scale, ValueType};
 use crate::validate::scale_inputs_exist::{inputs_readable, readable_canopen, readable_modbus};
 
+/// A raw value as a literal of the parameter's raw type (validation keeps floats finite and
+/// within that type's width).
 fn number(n: Number, p: &Parameter) -> TokenStream {
-    match n {
-        Number::Int(i) if p.data_type.is_integer() => int_literal(i as i128, p.data_type),
-        Number::Int(i) => {
-            let lit = Literal::f64_suffixed(i as f64);
-            quote! { #lit }
-        }
-        Number::Float(f) => {
-            let lit = Literal::f64_suffixed(f);
-            quote! { #lit }
-        }
-    }
+    let lit = match n {
+        Number::Int(i) if p.data_type.is_integer() => return int_literal(i as i128, p.data_type),
+        n if p.data_type == DataType::F32 => Literal::f32_suffixed(n.as_f64() as f32),
+        n => Literal::f64_suffixed(n.as_f64()),
+    };
+    quote! { #lit }
 }
 
 /// The Rust type of a parameter's value, naming generated enums and flags through `types` (the

@@ -3,7 +3,7 @@
 use std::fmt::Write as _;
 
 use crate::emit::doc;
-use crate::ir::{Access, Citation, Device, Effect, Number, Parameter, Scale};
+use crate::ir::{Access, Citation, Device, Effect, Parameter, Scale};
 
 fn access(a: Access) -> &'static str {
     match (a.read, a.write) {
@@ -11,13 +11,6 @@ fn access(a: Access) -> &'static str {
         (true, false) => "read-only",
         (false, true) => "write-only",
         (false, false) => "no access",
-    }
-}
-
-fn number(n: Number) -> String {
-    match n {
-        Number::Int(i) => i.to_string(),
-        Number::Float(f) => f.to_string(),
     }
 }
 
@@ -100,11 +93,7 @@ pub fn text(p: &Parameter, device: &Device) -> String {
     }
     row(&mut out, "Type", ty);
     if let Some(r) = &p.range {
-        row(
-            &mut out,
-            "Range (raw)",
-            format!("{}..={}", number(r.min), number(r.max)),
-        );
+        row(&mut out, "Range (raw)", format!("{}..={}", r.min, r.max));
     }
     if !p.allowed.is_empty() {
         row(
@@ -112,18 +101,16 @@ pub fn text(p: &Parameter, device: &Device) -> String {
             "Allowed (raw)",
             p.allowed
                 .iter()
-                .map(|n| number(*n))
+                .map(|n| n.to_string())
                 .collect::<Vec<_>>()
                 .join(", "),
         );
     }
     match p.default {
-        Some(d) if p.default_plus_node_id => row(
-            &mut out,
-            "Default (raw)",
-            format!("node id + {}", number(d)),
-        ),
-        Some(d) => row(&mut out, "Default (raw)", number(d)),
+        Some(d) if p.default_plus_node_id => {
+            row(&mut out, "Default (raw)", format!("node id + {d}"))
+        }
+        Some(d) => row(&mut out, "Default (raw)", d.to_string()),
         None => {}
     }
     match p.effect {
