@@ -1,6 +1,6 @@
 //! The EDS reader never panics: arbitrary bytes, and arbitrary arrangements of EDS-like lines
-//! (sections, keys, values, `$NODEID` terms, hex, garbage), are read into diagnostics, and whatever
-//! device comes out can be exported and read again.
+//! (sections, keys, values, `$NODEID` terms, hex, garbage), are read into diagnostics, whatever
+//! device comes out can be exported and read again, and a valid one generates code.
 
 use std::path::Path;
 
@@ -19,6 +19,13 @@ fn read_everything(bytes: &[u8]) {
     let mut device = drivegen::eds::empty_device("Fuzz", &model);
     device.parameters =
         drivegen::eds::typed_parameters(model.entries, &model.cited, &mut diagnostics);
+    let errors = drivegen::validate::validate(&device);
+    if !errors
+        .iter()
+        .any(|d| d.severity == drivegen::Severity::Error)
+    {
+        drivegen::emit::rust::generate(&device, "fuzz");
+    }
     let exported = drivegen::eds::export(&device);
     let mut again = Vec::new();
     let _ = drivegen::eds::read_bytes(

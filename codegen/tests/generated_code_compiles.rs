@@ -7,32 +7,12 @@ mod support;
 
 use std::path::{Path, PathBuf};
 
-use support::crate_build::{build_and_doctest, generated};
-use support::{shipped_descriptions, short_name};
-
-/// Builds one `no_std` crate holding a module per description, denying warnings and missing docs.
-fn assert_compiles(crate_name: &str, descriptions: &[PathBuf]) {
-    let mut lib = String::from(
-        "//! Generated descriptions.\n#![no_std]\n#![deny(warnings, missing_docs)]\n#[cfg(feature = \"std\")]\nextern crate std;\n",
-    );
-    for path in descriptions {
-        let module = short_name(path).replace('-', "_");
-        lib += &format!(
-            "/// Generated from {module}.\npub mod {module} {{\n{}\n}}\n",
-            generated(path)
-        );
-    }
-    let built = build_and_doctest(crate_name, &lib);
-    assert!(
-        built.success,
-        "generated code does not build:\n{}",
-        built.stderr
-    );
-}
+use support::crate_build::assert_descriptions_compile;
+use support::shipped_descriptions;
 
 #[test]
 fn every_shipped_description_compiles_without_warnings() {
-    assert_compiles("shipped", &shipped_descriptions());
+    assert_descriptions_compile("shipped", &shipped_descriptions());
 }
 
 /// Every EDS of the corpus that is a valid device on its own (keywords, digits, clashing and
@@ -51,5 +31,5 @@ fn code_generated_from_eds_files_compiles_without_warnings() {
         descriptions.len()
     );
     descriptions.push(Path::new("tests/fixtures/overlay").to_path_buf());
-    assert_compiles("from_eds", &descriptions);
+    assert_descriptions_compile("from_eds", &descriptions);
 }

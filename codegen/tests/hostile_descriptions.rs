@@ -8,7 +8,7 @@ use std::path::Path;
 
 use proc_macro2::{TokenStream, TokenTree};
 use quote::ToTokens;
-use support::crate_build::build_and_doctest;
+use support::crate_build::{build_and_doctest, no_std_lib};
 
 fn generate(path: &str) -> String {
     let checked = drivegen::check(Path::new(path));
@@ -79,9 +79,7 @@ fn doc_texts(source: &str) -> Vec<String> {
 #[test]
 fn hostile_description_compiles_without_warnings_and_without_doctests() {
     let source = generate("tests/fixtures/hostile.toml");
-    let lib =
-        format!("//! Hostile fixture.\n#![no_std]\n#![deny(warnings, missing_docs)]\n#[cfg(feature = \"std\")]\nextern crate std;\n{source}");
-    let built = build_and_doctest("hostile", &lib);
+    let built = build_and_doctest("hostile", &no_std_lib(&source));
     assert!(
         built.success,
         "generated code does not build:\n{}",

@@ -56,4 +56,21 @@ mod tests {
             })
         );
     }
+
+    #[test]
+    fn booleans_are_checked_as_zero_and_one() {
+        assert!(in_range("c", true, true, true).is_ok());
+        assert_eq!(
+            in_range("c", false, true, true),
+            Err(ValueError::OutOfRange {
+                parameter: "c",
+                raw: 0.0,
+                min: 1.0,
+                max: 1.0
+            })
+        );
+        assert!(one_of("c", false, &[false]).is_ok());
+        assert_eq!(bool::from_f64(1.0), Some(true));
+        assert_eq!(bool::from_f64(0.5), None);
+    }
 }

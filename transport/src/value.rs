@@ -160,6 +160,22 @@ impl WireValue for bool {
     }
 }
 
+/// CiA 301 BOOLEAN as the numbers 0 and 1 (`false < true`), so that the range and allowed values
+/// a description gives a boolean are checked like any other parameter's.
+impl Numeric for bool {
+    const IS_INTEGER: bool = true;
+    fn to_f64(self) -> f64 {
+        f64::from(u8::from(self))
+    }
+    fn from_f64(value: f64) -> Option<Self> {
+        match value {
+            0.0 => Some(false),
+            1.0 => Some(true),
+            _ => None,
+        }
+    }
+}
+
 /// A fixed-capacity byte string (CANopen VISIBLE_STRING / OCTET_STRING), heap free.
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Text<const N: usize> {

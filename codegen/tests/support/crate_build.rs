@@ -1,6 +1,6 @@
 //! Building generated code in a scratch crate, the way a drive crate would.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use super::workspace_root;
@@ -42,4 +42,31 @@ pub fn build_and_doctest(name: &str, lib_rs: &str) -> Built {
 /// The generated Rust source of a description.
 pub fn generated(path: &Path) -> String {
     drivegen::emit::rust::generate(&super::device(path), &super::short_name(path))
+}
+
+/// The `src/lib.rs` of a drive crate around `body`: `no_std` with `std` behind the default
+/// feature, warnings and missing docs denied.
+pub fn no_std_lib(body: &str) -> String {
+    format!("//! Generated code under test.\n#![no_std]\n#![deny(warnings, missing_docs)]\n#[cfg(feature = \"std\")]\nextern crate std;\n{body}")
+}
+
+/// Builds one scratch crate `crate_name` holding a module of generated code per description, and
+/// fails with the compiler's output unless it builds warning-free.
+pub fn assert_descriptions_compile(crate_name: &str, descriptions: &[PathBuf]) {
+    let modules: String = descriptions
+        .iter()
+        .map(|path| {
+            let module = super::short_name(path).replace('-', "_");
+            format!(
+                "/// Generated from {module}.\npub mod {module} {{\n{}\n}}\n",
+                generated(path)
+            )
+        })
+        .collect();
+    let built = build_and_doctest(crate_name, &no_std_lib(&modules));
+    assert!(
+        built.success,
+        "generated code does not build:\n{}",
+        built.stderr
+    );
 }

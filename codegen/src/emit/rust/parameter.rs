@@ -19,6 +19,11 @@ use crate::validate::scale_inputs_exist::{inputs_readable, readable_canopen, rea
 fn number(n: Number, p: &Parameter) -> TokenStream {
     let lit = match n {
         Number::Int(i) if p.data_type.is_integer() => return int_literal(i as i128, p.data_type),
+        // Validation keeps a boolean's values to 0 and 1.
+        Number::Int(i) if p.data_type == DataType::Bool => {
+            let value = i != 0;
+            return quote! { #value };
+        }
         n if p.data_type == DataType::F32 => Literal::f32_suffixed(n.as_f64() as f32),
         n => Literal::f64_suffixed(n.as_f64()),
     };
