@@ -1,12 +1,16 @@
-//! TOML → EDS → IR equals TOML → IR for every shipped CANopen description, on the fields an EDS
-//! carries: object addresses, names, types, access, PDO mapping, defaults, limits and records,
-//! plus the communication and mapping objects of the description's declared PDOs.
+//! TOML → EDS → IR equals TOML → IR for every shipped CANopen description and for random valid
+//! ones, on the fields an EDS carries: object addresses, names, types, access, PDO mapping,
+//! defaults, limits and records, plus the communication and mapping objects of the description's
+//! declared PDOs.
 
 mod support;
 
 use std::collections::BTreeMap;
+use std::path::Path;
 
 use drivegen::ir::{Device, Number};
+use proptest::prelude::*;
+use support::random_description::description;
 use support::{canopen_descriptions, device, short_name, Scratch};
 
 /// What an EDS keeps of one object: name, type name, access, constant, PDO, default, range.
@@ -22,6 +26,12 @@ type Kept = (
 
 fn number(n: Number) -> String {
     format!("{n:?}")
+}
+
+/// A name as the generated code spells it. An EDS keeps a name's words, not every character:
+/// `a__b` reads back as `a_b`, the same Rust identifier (names that collide there are refused).
+fn rust(name: &str) -> String {
+    drivegen::emit::ident::snake(name)
 }
 
 /// The CANopen view of a device, default variant only, keyed by (index, subindex).
@@ -54,7 +64,7 @@ fn canopen_view(device: &Device) -> BTreeMap<(u16, u8), Kept> {
                 .as_ref()
                 .map(|r| format!("{}..={}", number(r.min), number(r.max)));
             view.entry((a.index, a.subindex)).or_insert((
-                p.name.clone(),
+                rust(&p.name),
                 p.data_type.name(),
                 format!("{:?}", a.access),
                 a.constant,
@@ -67,65 +77,89 @@ fn canopen_view(device: &Device) -> BTreeMap<(u16, u8), Kept> {
     view
 }
 
+/// Exports `original` to `eds`, reads it back and compares what an EDS carries; the first
+/// difference, or a finding of the reader, is the error.
+fn round_trip(original: Device, eds: &Path) -> Result<(), String> {
+    std::fs::write(eds, drivegen::eds::export(&original)).unwrap();
+    let checked = drivegen::check(eds);
+    if !checked.diagnostics.is_empty() {
+        return Err(format!(
+            "the exported EDS reads with findings:\n{}",
+            checked.render()
+        ));
+    }
+    let again = checked.device.expect("no findings means a device");
+    // What the EDS carries of the description: its objects and those its PDOs imply.
+    let mut original = original;
+    let derived = drivegen::eds::pdo_objects(&original);
+    original.parameters.extend(derived.parameters);
+    original.records.extend(derived.records);
+    for record in &original.records {
+        let found = again.records.iter().find(|r| r.index == record.index);
+        if found.map(|r| (rust(&r.name), r.kind)) != Some((rust(&record.name), record.kind)) {
+            return Err(format!("record {:#06X} became {found:?}", record.index));
+        }
+        for member in original
+            .parameters
+            .iter()
+            .filter(|p| p.record.as_ref() == Some(&record.name))
+        {
+            let read_back = again
+                .parameters
+                .iter()
+                .find(|p| rust(&p.name) == rust(&member.name))
+                .map(|p| p.record.as_deref().map(rust));
+            if read_back != Some(Some(rust(&record.name))) {
+                return Err(format!("member {} is in {read_back:?}", member.name));
+            }
+        }
+    }
+    let (before, after) = (canopen_view(&original), canopen_view(&again));
+    match before
+        .keys()
+        .chain(after.keys())
+        .find(|key| before.get(key) != after.get(key))
+    {
+        Some(key) => Err(format!(
+            "object {:#06X} sub {}: {:?} became {:?}",
+            key.0,
+            key.1,
+            before.get(key),
+            after.get(key)
+        )),
+        None => Ok(()),
+    }
+}
+
 #[test]
 fn toml_to_eds_to_ir_keeps_every_canopen_field() {
     let scratch = Scratch::new("eds-round-trip");
     for description in canopen_descriptions() {
         let original = device(&description);
-        let eds = scratch.0.join(format!("{}.eds", short_name(&description)));
-        std::fs::write(&eds, drivegen::eds::export(&original)).unwrap();
-        let checked = drivegen::check(&eds);
         assert!(
-            checked.diagnostics.is_empty(),
-            "{}: the exported EDS reads with findings:\n{}",
-            description.display(),
-            checked.render()
-        );
-        let again = checked.device.expect("no findings means a device");
-        // What the EDS carries of the description: its objects and those its PDOs imply.
-        let mut original = original;
-        let derived = drivegen::eds::pdo_objects(&original);
-        original.parameters.extend(derived.parameters);
-        original.records.extend(derived.records);
-        let (before, after) = (canopen_view(&original), canopen_view(&again));
-        assert!(
-            !before.is_empty(),
+            original.parameters.iter().any(|p| !p.canopen.is_empty()),
             "{} has CANopen objects",
             description.display()
         );
-        for record in &original.records {
-            let found = again.records.iter().find(|r| r.index == record.index);
-            assert_eq!(
-                found.map(|r| (&r.name, r.kind)),
-                Some((&record.name, record.kind)),
-                "{}: record {:#06X}",
-                description.display(),
-                record.index
-            );
-            for member in original
-                .parameters
-                .iter()
-                .filter(|p| p.record.as_ref() == Some(&record.name))
-            {
-                let read_back = again.parameter(&member.name).map(|p| &p.record);
-                assert_eq!(
-                    read_back,
-                    Some(&member.record),
-                    "{}: member {}",
-                    description.display(),
-                    member.name
-                );
-            }
+        let eds = scratch.0.join(format!("{}.eds", short_name(&description)));
+        if let Err(difference) = round_trip(original, &eds) {
+            panic!("{}: {difference}", description.display());
         }
-        for key in before.keys().chain(after.keys()) {
-            assert_eq!(
-                before.get(key),
-                after.get(key),
-                "{}: object {:#06X} sub {}",
-                description.display(),
-                key.0,
-                key.1
-            );
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Random valid descriptions (every type, limits, defaults, enums, flags, variants...).
+    #[test]
+    fn random_descriptions_keep_every_canopen_field_through_an_eds(text in description()) {
+        let scratch = Scratch::new("eds-round-trip-random");
+        let path = scratch.0.join("device.toml");
+        std::fs::write(&path, &text).unwrap();
+        if let Some(original) = drivegen::check(&path).device {
+            let result = round_trip(original, &scratch.0.join("random.eds"));
+            prop_assert!(result.is_ok(), "{}\n{}", result.unwrap_err(), text);
         }
     }
 }

@@ -1,0 +1,296 @@
+//! Random TOML descriptions for property tests: every type, units, fixed scales, ranges,
+//! defaults, allowed values, enums, flags, variants, commands, effects, Modbus and CANopen
+//! addresses and awkward names. About half of them are valid (the rest mostly have a default
+//! outside their range).
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use proptest::prelude::*;
+use proptest::strategy::ValueTree;
+use proptest::test_runner::TestRunner;
+
+const TYPES: &[&str] = &[
+    "bool", "u8", "u16", "u32", "u64", "i8", "i16", "i32", "i64", "u24", "u40", "u48", "u56",
+    "i24", "i40", "i48", "i56", "f32", "f64", "string", "octets",
+];
+
+const UNITS: &[&str] = &[
+    "V", "mV", "A", "rpm", "rpm/s", "°C", "%", "‰", "s", "ms", "µs", "Hz", "W", "Nm", "Ω",
+    "kg·cm²", "bit/s",
+];
+
+const INTEGER_TYPES: &[&str] = &["u8", "u16", "u32", "i8", "i16", "i32"];
+
+/// Names that are awkward as Rust identifiers, or plain ones.
+fn name() -> impl Strategy<Value = String> {
+    prop_oneof![
+        "[a-z][a-z0-9_]{0,12}",
+        proptest::sample::select(
+            &[
+                "type", "self", "crate", "super", "r", "new", "read", "write", "value", "raw",
+                "default", "range", "unknown", "bits", "all", "empty", "from_raw", "to_raw",
+            ][..]
+        )
+        .prop_map(str::to_owned),
+    ]
+}
+
+/// A value in `0..=100` as written for `ty`: a float for float types, 0/1 for `bool`.
+fn raw(ty: &str, n: u8) -> String {
+    match ty {
+        "bool" => (n % 2).to_string(),
+        "f32" | "f64" => format!("{n}.5"),
+        _ => n.to_string(),
+    }
+}
+
+/// An `[[enum]]` over an integer type with one to four values.
+fn enumeration(index: usize) -> impl Strategy<Value = (String, String)> {
+    let values = proptest::collection::btree_map(name(), 0u8..=100, 1..=4);
+    (proptest::sample::select(INTEGER_TYPES), name(), values).prop_map(move |(ty, name, values)| {
+        let name = format!("{name}_e{index}");
+        let values: Vec<String> = values
+            .into_iter()
+            .map(|(n, v)| format!("{{ name = \"{n}\", value = {v}, doc = \"Value {v}.\" }}"))
+            .collect();
+        let toml = format!(
+            "[[enum]]\nname = \"{name}\"\ntype = \"{ty}\"\ndoc = \"An enum.\"\nsource = {{ doc = \"m\", line = 1 }}\nvalues = [{}]\n\n",
+            values.join(", ")
+        );
+        (ty.to_owned(), toml)
+    })
+}
+
+/// A `[[flags]]` over an unsigned type with named bits and maybe a two-bit field.
+fn flags(index: usize) -> impl Strategy<Value = (String, String)> {
+    let bits = proptest::collection::btree_map(0u8..8, name(), 1..=4);
+    (
+        proptest::sample::select(&["u8", "u16", "u32"][..]),
+        name(),
+        bits,
+        any::<bool>(),
+    )
+        .prop_map(move |(ty, name, bits, field)| {
+            let name = format!("{name}_f{index}");
+            let bits: Vec<String> = bits
+                .into_iter()
+                .map(|(bit, n)| format!("{{ name = \"{n}_{bit}\", bit = {bit}, doc = \"Bit.\" }}"))
+                .collect();
+            let fields = if field {
+                "fields = [{ name = \"two_bits\", lsb = 8, width = 2, doc = \"A field.\" }]\n"
+            } else {
+                ""
+            };
+            let ty = if field && ty == "u8" { "u16" } else { ty };
+            let toml = format!(
+                "[[flags]]\nname = \"{name}\"\ntype = \"{ty}\"\ndoc = \"Flags.\"\nsource = {{ doc = \"m\", line = 1 }}\nbits = [{}]\n{fields}\n",
+                bits.join(", ")
+            );
+            (ty.to_owned(), toml)
+        })
+}
+
+/// What a parameter may say besides its name, type and addresses.
+#[derive(Debug, Clone)]
+struct Extras {
+    unit: Option<&'static str>,
+    scale: Option<&'static str>,
+    range: Option<(u8, u8)>,
+    default: Option<u8>,
+    allowed: Option<Vec<u8>>,
+    typed_by: u8,
+    effect: &'static str,
+    command: bool,
+    variant: Option<u8>,
+    access: &'static str,
+}
+
+fn extras() -> impl Strategy<Value = Extras> {
+    (
+        (
+            proptest::option::of(proptest::sample::select(UNITS)),
+            proptest::option::of(proptest::sample::select(
+                &[
+                    "\"1/100\"",
+                    "\"0.1\"",
+                    "10",
+                    "{ factor = \"1/10\", offset = \"-40\" }",
+                ][..],
+            )),
+            proptest::option::of((0u8..=50, 50u8..=100)),
+            proptest::option::of(0u8..=100),
+            proptest::option::of(proptest::collection::vec(0u8..=100, 1..=3)),
+        ),
+        (
+            0u8..4,
+            proptest::sample::select(&["immediate", "after-reset", "after-store-reset"][..]),
+            proptest::bool::weighted(0.1),
+            proptest::option::of(0u8..2),
+            proptest::sample::select(&["r", "w", "rw"][..]),
+        ),
+    )
+        .prop_map(
+            |(
+                (unit, scale, range, default, allowed),
+                (typed_by, effect, command, variant, access),
+            )| {
+                Extras {
+                    unit,
+                    scale,
+                    range,
+                    default,
+                    allowed,
+                    typed_by,
+                    effect,
+                    command,
+                    variant,
+                    access,
+                }
+            },
+        )
+}
+
+/// Words a type takes in Modbus registers.
+fn words(ty: &str) -> u16 {
+    match ty {
+        "bool" | "u8" | "i8" | "u16" | "i16" => 1,
+        "u24" | "i24" | "u32" | "i32" | "f32" => 2,
+        "string" | "octets" => 4,
+        "u40" | "i40" | "u48" | "i48" => 3,
+        _ => 4,
+    }
+}
+
+/// One `[[parameter]]` at Modbus register `address` and CANopen index `0x2000 + index`.
+fn parameter(
+    index: usize,
+    address: u16,
+    name: &str,
+    ty: &str,
+    x: &Extras,
+    enums: &[(String, String)],
+    flags: &[(String, String)],
+) -> String {
+    let mut toml =
+        format!("[[parameter]]\nname = \"{name}_{index}\"\ndoc = \"Parameter {index}.\"\n");
+    // An enum or flags type gives the parameter its own type.
+    let typed = match x.typed_by {
+        1 => enums
+            .get(index % enums.len().max(1))
+            .map(|(t, e)| ("enum", t, e)),
+        2 => flags
+            .get(index % flags.len().max(1))
+            .map(|(t, f)| ("flags", t, f)),
+        _ => None,
+    };
+    let ty = match typed {
+        Some((key, ty, toml_of_type)) => {
+            let type_name = toml_of_type.split('"').nth(1).unwrap_or_default();
+            let _ = writeln!(toml, "{key} = \"{type_name}\"");
+            ty.as_str()
+        }
+        None => ty,
+    };
+    let _ = writeln!(toml, "type = \"{ty}\"");
+    let numeric = !matches!(ty, "string" | "octets");
+    if !numeric {
+        toml += "length = 8\n";
+    }
+    if typed.is_none() && numeric && ty != "bool" {
+        if let Some(unit) = x.unit {
+            let _ = writeln!(toml, "unit = \"{unit}\"");
+        }
+        if let Some(scale) = x.scale {
+            let _ = writeln!(toml, "scale = {scale}");
+        }
+    }
+    if typed.is_none() && numeric {
+        if let Some((lo, hi)) = x.range {
+            let _ = writeln!(toml, "range = [{}, {}]", raw(ty, lo), raw(ty, hi));
+        }
+        if let Some(allowed) = &x.allowed {
+            let values: Vec<String> = allowed.iter().map(|&v| raw(ty, v)).collect();
+            let _ = writeln!(toml, "allowed = [{}]", values.join(", "));
+        }
+        if let Some(default) = x.default {
+            let _ = writeln!(toml, "default = {}", raw(ty, default));
+        }
+    }
+    if x.command && INTEGER_TYPES.contains(&ty) {
+        toml += "command = { kind = \"store\", value = 1 }\n";
+    }
+    let _ = writeln!(toml, "effect = \"{}\"", x.effect);
+    if let Some(v) = x.variant {
+        let _ = writeln!(toml, "variants = [\"v{v}\"]");
+    }
+    let table = if x.access == "r" { "input" } else { "holding" };
+    let _ = writeln!(
+        toml,
+        "modbus = {{ table = \"{table}\", address = {address}, words = {}, access = \"{}\" }}",
+        words(ty),
+        x.access
+    );
+    let _ = writeln!(
+        toml,
+        "canopen = {{ index = 0x{:04X}, subindex = 0, access = \"{}\" }}",
+        0x2000 + index,
+        x.access
+    );
+    toml + "source = { doc = \"m\", section = \"1\", line = 1 }\n\n"
+}
+
+/// A whole description: device, Modbus and CANopen capabilities, two variants, enums, flags and
+/// one to eight parameters.
+pub fn description() -> impl Strategy<Value = String> {
+    let enums = (0usize..3).prop_flat_map(|n| (0..n).map(enumeration).collect::<Vec<_>>());
+    let flags = (0usize..3).prop_flat_map(|n| (0..n).map(flags).collect::<Vec<_>>());
+    let parameters =
+        proptest::collection::vec((name(), proptest::sample::select(TYPES), extras()), 1..=8);
+    (
+        enums,
+        flags,
+        parameters,
+        proptest::sample::select(&["high-first", "low-first"][..]),
+        any::<bool>(),
+    )
+        .prop_map(|(enums, flags, parameters, word_order, read_gaps)| {
+            let mut toml = format!(
+                "format = 1\n\n[device]\nname = \"Random\"\nhandle = \"Random\"\nvendor = \"ACME\"\nsource = {{ doc = \"m\", line = 1 }}\n\n\
+                 [[source]]\nid = \"m\"\nfile = \"m.txt\"\ntitle = \"Manual\"\n\n\
+                 [modbus]\nword_order = \"{word_order}\"\nread_gaps = {read_gaps}\nsource = {{ doc = \"m\", line = 1 }}\n\n\
+                 [canopen]\ndefault_node_id = 5\nsource = {{ doc = \"m\", line = 1 }}\n\n"
+            );
+            for v in 0..2 {
+                let _ = write!(
+                    toml,
+                    "[[variant]]\nname = \"v{v}\"\ndoc = \"Variant {v}.\"\nsource = {{ doc = \"m\", line = 1 }}\n\n"
+                );
+            }
+            for (_, t) in enums.iter().chain(&flags) {
+                toml += t;
+            }
+            let mut address = 0;
+            for (i, (name, ty, x)) in parameters.iter().enumerate() {
+                toml += &parameter(i, address, name, ty, x, &enums, &flags);
+                address += 8;
+            }
+            toml
+        })
+}
+
+/// `count` valid random descriptions written into `dir` as `random_N.toml`, the same on every run.
+pub fn valid_descriptions(count: usize, dir: &Path) -> Vec<PathBuf> {
+    let mut runner = TestRunner::deterministic();
+    let strategy = description();
+    let mut paths = Vec::new();
+    while paths.len() < count {
+        let text = strategy.new_tree(&mut runner).unwrap().current();
+        let path = dir.join(format!("random_{}.toml", paths.len()));
+        std::fs::write(&path, text).unwrap();
+        if drivegen::check(&path).device.is_some() {
+            paths.push(path);
+        }
+    }
+    paths
+}
