@@ -21,21 +21,19 @@ pub fn limits(device: &Device) -> ModbusLimits {
             max_write_registers: m.max_write_registers,
             write_multiple: m.writes_multiple_registers(),
             read_gaps: m.read_gaps,
-            readable: readable_registers(device),
+            readable: register_spans(device.registers_to_read_past()),
+            unreadable: register_spans(device.unreadable_register_runs()),
         })
 }
 
-/// The registers the planner may read past. Limits hold them as `'static` (as generated crates
-/// do); a command opens one session, so leaking one list per run is bounded.
-fn readable_registers(device: &Device) -> &'static [RegisterSpan] {
-    let spans = device
-        .registers_to_read_past()
-        .into_iter()
-        .map(|run| RegisterSpan {
-            table: registers::table(run.table),
-            start: run.start,
-            count: run.count,
-        });
+/// Register runs as limits hold them: `'static` (as generated crates do); a command opens one
+/// session, so leaking two lists per run is bounded.
+fn register_spans(runs: Vec<ir::RegisterRun>) -> &'static [RegisterSpan] {
+    let spans = runs.into_iter().map(|run| RegisterSpan {
+        table: registers::table(run.table),
+        start: run.start,
+        count: run.count,
+    });
     Vec::leak(spans.collect())
 }
 

@@ -1,7 +1,8 @@
-//! The registers a device lets a client read, as runs: what a request planner may read past when
-//! the device refuses reads over addresses it does not list (`read_gaps = false`).
+//! The registers a device lets a client read, and those it lists as write-only, as runs: what a
+//! request planner may read past when the device refuses reads over addresses it does not list
+//! (`read_gaps = false`), and what it must never read past.
 
-use super::{Device, Table};
+use super::{Device, ModbusAddress, Table};
 
 /// Consecutive readable registers of one table.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -29,36 +30,54 @@ impl Device {
     /// Addresses limited to some variants are left out: a planner must not read past a register
     /// the drive at hand may not have.
     pub fn readable_register_runs(&self) -> Vec<RegisterRun> {
-        let mut spans: Vec<(Table, u32, u32)> = self
-            .parameters
-            .iter()
-            .filter(|p| p.variants.is_empty())
-            .flat_map(|p| &p.modbus)
-            .filter(|a| a.access.read && a.variant.is_none() && a.words > 0)
-            .map(|a| {
-                let start = u32::from(a.address);
-                (a.table, start, start + u32::from(a.words))
-            })
-            .collect();
-        spans.sort_unstable();
-        let mut runs: Vec<(Table, u32, u32)> = Vec::with_capacity(spans.len());
-        for (table, start, end) in spans {
-            match runs.last_mut() {
-                Some(run) if run.0 == table && start <= run.2 => run.2 = run.2.max(end),
-                _ => runs.push((table, start, end)),
-            }
-        }
-        runs.into_iter()
-            .filter_map(|(table, start, end)| {
-                // Runs past register 0xFFFF are cut (such addresses fail validation anyway).
-                let start = u16::try_from(start).ok()?;
-                let count = (end.min(0x1_0000) - u32::from(start)).min(u16::MAX.into()) as u16;
-                Some(RegisterRun {
-                    table,
-                    start,
-                    count,
-                })
-            })
-            .collect()
+        let in_every_variant = self.parameters.iter().filter(|p| p.variants.is_empty());
+        runs(
+            in_every_variant
+                .flat_map(|p| &p.modbus)
+                .filter(|a| a.access.read && a.variant.is_none()),
+        )
     }
+
+    /// The registers listed without read access (write-only ones) in any variant, merged into
+    /// runs sorted by table and address: a planner must not read past them even where the device
+    /// reads unlisted addresses, since it would refuse the whole request.
+    pub fn unreadable_register_runs(&self) -> Vec<RegisterRun> {
+        runs(
+            self.parameters
+                .iter()
+                .flat_map(|p| &p.modbus)
+                .filter(|a| !a.access.read),
+        )
+    }
+}
+
+/// The registers of `addresses`, merged into runs sorted by table and address.
+fn runs<'a>(addresses: impl Iterator<Item = &'a ModbusAddress>) -> Vec<RegisterRun> {
+    let mut spans: Vec<(Table, u32, u32)> = addresses
+        .filter(|a| a.words > 0)
+        .map(|a| {
+            let start = u32::from(a.address);
+            (a.table, start, start + u32::from(a.words))
+        })
+        .collect();
+    spans.sort_unstable();
+    let mut runs: Vec<(Table, u32, u32)> = Vec::with_capacity(spans.len());
+    for (table, start, end) in spans {
+        match runs.last_mut() {
+            Some(run) if run.0 == table && start <= run.2 => run.2 = run.2.max(end),
+            _ => runs.push((table, start, end)),
+        }
+    }
+    runs.into_iter()
+        .filter_map(|(table, start, end)| {
+            // Runs past register 0xFFFF are cut (such addresses fail validation anyway).
+            let start = u16::try_from(start).ok()?;
+            let count = (end.min(0x1_0000) - u32::from(start)).min(u16::MAX.into()) as u16;
+            Some(RegisterRun {
+                table,
+                start,
+                count,
+            })
+        })
+        .collect()
 }

@@ -72,6 +72,10 @@ pub struct ModbusLimits {
     /// sorted by table and address, which a read may cover besides the requested ones. Empty:
     /// a read covers requested registers only.
     pub readable: &'static [RegisterSpan],
+    /// The registers the description lists without read access (write-only ones), as runs: no
+    /// read covers them besides the requested ones, even where `read_gaps` allows unlisted
+    /// addresses — the device would refuse the whole request.
+    pub unreadable: &'static [RegisterSpan],
 }
 
 /// Consecutive registers of one table.
@@ -118,6 +122,7 @@ impl ModbusLimits {
         write_multiple: true,
         read_gaps: true,
         readable: &[],
+        unreadable: &[],
     };
 }
 

@@ -9,8 +9,11 @@
 //!
 //! Rules: input and holding registers are never mixed; a multi-word value is always read whole by
 //! one request, so its words arrive in their word order; a read never exceeds
-//! `max_read_registers`; and without `read_gaps` a read only covers registers some value occupies
-//! (adjacent and overlapping values still coalesce).
+//! `max_read_registers`; without `read_gaps` a read only covers registers some value occupies
+//! (adjacent and overlapping values still coalesce); and a read never covers a register listed as
+//! unreadable that no requested value occupies. The greedy choice stays optimal under these rules:
+//! they only forbid registers, and a read moved up to start at the lowest value covers a subset of
+//! what it covered before.
 
 use crate::error::BusError;
 
@@ -115,6 +118,9 @@ pub fn next_read(
         }
         limit = limit.min(reach);
     }
+    if let Some(barrier) = first_unreadable(limits, first.table, start, len, &item) {
+        limit = limit.min(barrier);
+    }
     let last = (0..len)
         .map(&item)
         .filter(|(a, done)| {
@@ -127,6 +133,30 @@ pub fn next_read(
         start: first.address,
         count: (last - start) as u16,
     }))
+}
+
+/// The first register of `table` at or after `from` that the device lists as unreadable and no
+/// item occupies: a read from `from` must stop before it. (Past the first item, since the
+/// registers of an item are never such a barrier.)
+fn first_unreadable(
+    limits: &ModbusLimits,
+    table: Table,
+    from: usize,
+    len: usize,
+    item: impl Fn(usize) -> (ModbusAddress, bool),
+) -> Option<usize> {
+    let occupied = |register: usize| {
+        (0..len).any(|i| {
+            let a = item(i).0;
+            a.table == table && (a.address as usize..end(&a)).contains(&register)
+        })
+    };
+    limits
+        .unreadable
+        .iter()
+        .filter(|span| span.table == table && span.end() > from)
+        .filter_map(|span| ((span.start as usize).max(from)..span.end()).find(|&r| !occupied(r)))
+        .min()
 }
 
 /// The whole plan for `items`: every item lies inside one of the returned reads.
@@ -278,6 +308,47 @@ mod tests {
     }
 
     #[test]
+    fn reads_stop_before_unreadable_registers_even_where_gaps_may_be_read() {
+        // A write-only holding register at 16 between readable ones at 0 and 56.
+        const WRITE_ONLY: &[RegisterSpan] = &[RegisterSpan::holding(16, 1)];
+        let items = [at(Table::Holding, 0, 1), at(Table::Holding, 56, 1)];
+        for read_gaps in [true, false] {
+            let limits = ModbusLimits {
+                unreadable: WRITE_ONLY,
+                ..limits(125, read_gaps)
+            };
+            assert_eq!(
+                plan(&limits, &items).unwrap(),
+                [read(Table::Holding, 0, 1), read(Table::Holding, 56, 1)]
+            );
+        }
+        let limits = ModbusLimits {
+            unreadable: WRITE_ONLY,
+            ..limits(125, true)
+        };
+        // Up to the register, and from just after it, gaps are still read.
+        let items = [at(Table::Holding, 10, 1), at(Table::Holding, 15, 1)];
+        assert_eq!(
+            plan(&limits, &items).unwrap(),
+            [read(Table::Holding, 10, 6)]
+        );
+        let items = [at(Table::Holding, 17, 1), at(Table::Holding, 20, 1)];
+        assert_eq!(
+            plan(&limits, &items).unwrap(),
+            [read(Table::Holding, 17, 4)]
+        );
+        // A requested value on the register itself is read, and bridges nothing unreadable.
+        let items = [at(Table::Holding, 14, 1), at(Table::Holding, 16, 1)];
+        assert_eq!(
+            plan(&limits, &items).unwrap(),
+            [read(Table::Holding, 14, 3)]
+        );
+        // The other table is not affected.
+        let items = [at(Table::Input, 0, 1), at(Table::Input, 56, 1)];
+        assert_eq!(plan(&limits, &items).unwrap(), [read(Table::Input, 0, 57)]);
+    }
+
+    #[test]
     fn single_register_devices_get_one_read_per_register() {
         let items = [
             at(Table::Input, 1, 1),
@@ -311,7 +382,8 @@ mod tests {
                 let ok = s.table == e.table
                     && stop > start
                     && stop - start <= read_limit(limits)
-                    && (limits.read_gaps || (start..stop).all(|r| requested(s.table, r)));
+                    && (limits.read_gaps || (start..stop).all(|r| requested(s.table, r)))
+                    && !(start..stop).any(|r| forbidden(limits, items, s.table, r));
                 if ok {
                     let cover = read(s.table, s.address, (stop - start) as u16);
                     let mask = (0..n).filter(|&i| cover.offset_of(&items[i]).is_some());
@@ -350,6 +422,23 @@ mod tests {
         requested || listed
     }
 
+    /// Whether no plan may read `register`: listed as unreadable, and no item occupies it.
+    fn forbidden(
+        limits: &ModbusLimits,
+        items: &[ModbusAddress],
+        table: Table,
+        register: usize,
+    ) -> bool {
+        let occupied = items
+            .iter()
+            .any(|a| a.table == table && (a.address as usize..end(a)).contains(&register));
+        let unreadable = limits
+            .unreadable
+            .iter()
+            .any(|s| s.table == table && (s.start as usize..s.end()).contains(&register));
+        unreadable && !occupied
+    }
+
     fn any_item() -> impl Strategy<Value = ModbusAddress> {
         (
             prop_oneof![Just(Table::Input), Just(Table::Holding)],
@@ -366,10 +455,15 @@ mod tests {
             max in 3u16..10,
             read_gaps in any::<bool>(),
             listed in proptest::collection::vec(any_item(), 0..3),
+            write_only in proptest::collection::vec(any_item(), 0..3),
         ) {
-            let listed = listed.iter().map(|a| RegisterSpan { table: a.table, start: a.address, count: a.words * 2 });
+            let spans = |items: &[ModbusAddress], scale: u16| -> &'static [RegisterSpan] {
+                let spans = items.iter().map(|a| RegisterSpan { table: a.table, start: a.address, count: a.words * scale });
+                Vec::leak(spans.collect())
+            };
             let limits = ModbusLimits {
-                readable: Vec::leak(listed.collect()),
+                readable: spans(&listed, 2),
+                unreadable: spans(&write_only, 1),
                 ..limits(max, read_gaps)
             };
             let plan = plan(&limits, &items).unwrap();
@@ -378,6 +472,9 @@ mod tests {
             }
             for r in &plan {
                 prop_assert!(r.count >= 1 && r.count <= max);
+                for register in r.start as usize..r.start as usize + r.count as usize {
+                    prop_assert!(!forbidden(&limits, &items, r.table, register), "{:?} reads {}", r, register);
+                }
                 if !read_gaps {
                     for register in r.start as usize..r.start as usize + r.count as usize {
                         prop_assert!(readable(&limits, &items, r.table, register));

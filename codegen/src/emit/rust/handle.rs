@@ -6,7 +6,7 @@ use quote::quote;
 use super::addresses::hex;
 use super::{doc_attrs, ident};
 use crate::emit::{doc, ident as names};
-use crate::ir::{Device, Table};
+use crate::ir::{Device, RegisterRun, Table};
 
 fn modbus_limits(device: &Device) -> TokenStream {
     let Some(m) = &device.modbus else {
@@ -14,7 +14,8 @@ fn modbus_limits(device: &Device) -> TokenStream {
     };
     let (read, write, gaps) = (m.max_read_registers, m.max_write_registers, m.read_gaps);
     let multiple = m.writes_multiple_registers();
-    let readable = readable_registers(device);
+    let readable = register_spans(device.registers_to_read_past());
+    let unreadable = register_spans(device.unreadable_register_runs());
     quote! {
         ::drivebus::modbus::ModbusLimits {
             max_read_registers: #read,
@@ -22,13 +23,14 @@ fn modbus_limits(device: &Device) -> TokenStream {
             write_multiple: #multiple,
             read_gaps: #gaps,
             readable: #readable,
+            unreadable: #unreadable,
         }
     }
 }
 
-/// The registers the planner may read past ([`Device::registers_to_read_past`]).
-fn readable_registers(device: &Device) -> TokenStream {
-    let runs = device.registers_to_read_past().into_iter().map(|run| {
+/// Register runs as a `&[RegisterSpan]` expression.
+fn register_spans(runs: Vec<RegisterRun>) -> TokenStream {
+    let runs = runs.into_iter().map(|run| {
         let table = match run.table {
             Table::Input => quote! { input },
             Table::Holding => quote! { holding },
