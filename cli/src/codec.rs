@@ -4,8 +4,12 @@
 
 use std::fmt;
 
+use std::cmp::Ordering;
+
 use drivegen::ir::{DataType, Device, Parameter, Scale};
 use drivesim::raw;
+
+use crate::raw_value::RawValue;
 
 /// Why a value typed by the user was refused (nothing has been sent).
 #[derive(Debug, Clone, PartialEq)]
@@ -62,6 +66,13 @@ struct Affine {
     decimals: usize,
 }
 
+impl Affine {
+    /// Whether engineering values are the raw values themselves.
+    fn is_identity(&self) -> bool {
+        self.factor == 1.0 && self.offset == 0.0
+    }
+}
+
 fn affine(parameter: &Parameter) -> Option<Affine> {
     match &parameter.scale {
         None => Some(Affine {
@@ -111,26 +122,37 @@ pub fn parse(device: &Device, parameter: &Parameter, text: &str) -> Result<Vec<u
         return Ok(text.as_bytes().to_vec());
     }
     let raw = match symbolic(device, parameter, text)? {
-        Some(raw) => raw,
+        Some(raw) => RawValue::Int(raw),
         None => numeric(parameter, text)?,
     };
     check(parameter, raw)?;
-    Ok(match data_type {
-        DataType::F32 => (raw as f32).to_le_bytes().to_vec(),
-        DataType::F64 => raw.to_le_bytes().to_vec(),
-        _ => raw::from_int(data_type, raw as i128),
+    Ok(match (data_type, raw) {
+        (DataType::F32, raw) => (raw.as_f64() as f32).to_le_bytes().to_vec(),
+        (DataType::F64, raw) => raw.as_f64().to_le_bytes().to_vec(),
+        // `check` has kept the integer within the type's bounds, so no byte is cut off.
+        (_, RawValue::Int(raw)) => raw::from_int(data_type, raw),
+        (_, RawValue::Float(raw)) => {
+            return Err(CodecError::NotRepresentable(format!(
+                "{raw} is not a whole raw value of {}",
+                parameter.name
+            )))
+        }
     })
 }
 
 /// An enum value name, flag names, a boolean word or an explicit raw integer.
-fn symbolic(device: &Device, parameter: &Parameter, text: &str) -> Result<Option<f64>, CodecError> {
+fn symbolic(
+    device: &Device,
+    parameter: &Parameter,
+    text: &str,
+) -> Result<Option<i128>, CodecError> {
     if let Some(raw) = raw_integer(text) {
         return raw.map(Some);
     }
     if parameter.data_type == DataType::Bool {
         match text {
-            "true" | "on" => return Ok(Some(1.0)),
-            "false" | "off" => return Ok(Some(0.0)),
+            "true" | "on" => return Ok(Some(1)),
+            "false" | "off" => return Ok(Some(0)),
             _ => {}
         }
     }
@@ -140,7 +162,7 @@ fn symbolic(device: &Device, parameter: &Parameter, text: &str) -> Result<Option
         .and_then(|e| device.enumeration(e))
     {
         if let Some(v) = e.values.iter().find(|v| v.name.eq_ignore_ascii_case(text)) {
-            return Ok(Some(v.value as f64));
+            return Ok(Some(i128::from(v.value)));
         }
         if text.starts_with(|c: char| c.is_alphabetic()) {
             let names: Vec<&str> = e.values.iter().map(|v| v.name.as_str()).collect();
@@ -168,14 +190,14 @@ fn symbolic(device: &Device, parameter: &Parameter, text: &str) -> Result<Option
                     })?;
                 raw |= 1 << bit.bit;
             }
-            return Ok(Some(raw as f64));
+            return Ok(Some(i128::from(raw)));
         }
     }
     Ok(None)
 }
 
-/// `raw:N`, `0xNN` or `0bNN`: a raw value, no scaling.
-fn raw_integer(text: &str) -> Option<Result<f64, CodecError>> {
+/// `raw:N`, `0xNN` or `0bNN`: a raw value, no scaling, exact.
+fn raw_integer(text: &str) -> Option<Result<i128, CodecError>> {
     let bad = || CodecError::Unparsable(format!("`{text}` is not a raw integer"));
     let (digits, radix) = if let Some(rest) = text.strip_prefix("raw:") {
         (rest.trim(), 10)
@@ -192,13 +214,14 @@ fn raw_integer(text: &str) -> Option<Result<f64, CodecError>> {
     };
     Some(
         i128::from_str_radix(&digits.replace('_', ""), radix)
-            .map(|v| if negative { -v } else { v } as f64)
+            .map(|v| if negative { -v } else { v })
             .map_err(|_| bad()),
     )
 }
 
-/// A number in engineering units, with an optional unit that must be the parameter's.
-fn numeric(parameter: &Parameter, text: &str) -> Result<f64, CodecError> {
+/// A number in engineering units, with an optional unit that must be the parameter's: a whole
+/// raw value for integer types (exact where the scale is one), a float for float types.
+fn numeric(parameter: &Parameter, text: &str) -> Result<RawValue, CodecError> {
     let split = text
         .char_indices()
         .find(|&(i, c)| !(c.is_ascii_digit() || c == '.' || ((c == '-' || c == '+') && i == 0)))
@@ -216,7 +239,16 @@ fn numeric(parameter: &Parameter, text: &str) -> Result<f64, CodecError> {
             parameter.name
         )));
     };
+    let integer = parameter.data_type.integer_bounds().is_some();
+    if integer && scale.is_identity() {
+        if let Ok(exact) = number.trim_start_matches('+').parse::<i128>() {
+            return Ok(RawValue::Int(exact));
+        }
+    }
     let raw = (value - scale.offset) / scale.factor;
+    if !integer {
+        return Ok(RawValue::Float(raw));
+    }
     if (raw - raw.round()).abs() > 1e-6 {
         return Err(CodecError::NotRepresentable(format!(
             "{text} is not a multiple of the parameter's step {}{}",
@@ -224,7 +256,13 @@ fn numeric(parameter: &Parameter, text: &str) -> Result<f64, CodecError> {
             unit_suffix(parameter)
         )));
     }
-    Ok(raw.round())
+    RawValue::whole(raw.round())
+        .map(RawValue::Int)
+        .ok_or_else(|| {
+            CodecError::NotRepresentable(format!(
+                "{text} is beyond the integers a float holds exactly; give the raw value (raw:N)"
+            ))
+        })
 }
 
 fn check_unit(parameter: &Parameter, given: &str) -> Result<(), CodecError> {
@@ -249,37 +287,45 @@ fn unit_suffix(parameter: &Parameter) -> String {
 }
 
 /// Checks a raw value against the type's bounds, the range and the allowed values.
-fn check(parameter: &Parameter, raw: f64) -> Result<(), CodecError> {
-    let shown = |r: f64| show_number(parameter, r);
-    if let Some((min, max)) = parameter.data_type.integer_bounds() {
-        if raw < min as f64 || raw > max as f64 {
+fn check(parameter: &Parameter, raw: RawValue) -> Result<(), CodecError> {
+    let shown = |r: RawValue| show_number(parameter, r);
+    let shown_number = |n: drivegen::ir::Number| match n {
+        drivegen::ir::Number::Int(i) => shown(RawValue::Int(i.into())),
+        drivegen::ir::Number::Float(f) => shown(RawValue::Float(f)),
+    };
+    if let (Some((min, max)), RawValue::Int(int)) = (parameter.data_type.integer_bounds(), raw) {
+        if int < min || int > max {
             return Err(CodecError::OutOfRange(format!(
                 "{} does not fit {} ({}..={})",
                 shown(raw),
                 parameter.data_type.name(),
-                shown(min as f64),
-                shown(max as f64)
+                shown(RawValue::Int(min)),
+                shown(RawValue::Int(max))
             )));
         }
     }
     if let Some(range) = &parameter.range {
-        let (min, max) = (range.min.as_f64(), range.max.as_f64());
-        if raw < min || raw > max {
+        let from_min = matches!(
+            raw.compare(range.min),
+            Some(Ordering::Greater | Ordering::Equal)
+        );
+        let to_max = matches!(
+            raw.compare(range.max),
+            Some(Ordering::Less | Ordering::Equal)
+        );
+        if !(from_min && to_max) {
             return Err(CodecError::OutOfRange(format!(
                 "{} is outside the range of {}: {}..={}",
                 shown(raw),
                 parameter.name,
-                shown(min),
-                shown(max)
+                shown_number(range.min),
+                shown_number(range.max)
             )));
         }
     }
-    if !parameter.allowed.is_empty() && !parameter.allowed.iter().any(|a| a.as_f64() == raw) {
-        let allowed: Vec<String> = parameter
-            .allowed
-            .iter()
-            .map(|a| shown(a.as_f64()))
-            .collect();
+    let is_allowed = |a: &drivegen::ir::Number| raw.compare(*a) == Some(Ordering::Equal);
+    if !parameter.allowed.is_empty() && !parameter.allowed.iter().any(is_allowed) {
+        let allowed: Vec<String> = parameter.allowed.iter().map(|a| shown_number(*a)).collect();
         return Err(CodecError::NotAllowed(format!(
             "{} is not allowed for {}; allowed: {}",
             shown(raw),
@@ -290,16 +336,20 @@ fn check(parameter: &Parameter, raw: f64) -> Result<(), CodecError> {
     Ok(())
 }
 
-/// A raw number in engineering units with the unit (raw when the scale is run-time).
-fn show_number(parameter: &Parameter, raw: f64) -> String {
-    match affine(parameter) {
-        Some(scale) => format!(
+/// A raw number in engineering units with the unit (raw when the scale is run-time); an
+/// unscaled integer exactly.
+fn show_number(parameter: &Parameter, raw: RawValue) -> String {
+    match (affine(parameter), raw) {
+        (Some(scale), RawValue::Int(int)) if scale.is_identity() => {
+            format!("{int}{}", unit_suffix(parameter))
+        }
+        (Some(scale), raw) => format!(
             "{:.*}{}",
             scale.decimals,
-            raw * scale.factor + scale.offset,
+            raw.as_f64() * scale.factor + scale.offset,
             unit_suffix(parameter)
         ),
-        None => format!("raw {raw}"),
+        (None, raw) => format!("raw {raw}"),
     }
 }
 
@@ -334,9 +384,8 @@ pub fn show(device: &Device, parameter: &Parameter, bytes: &[u8]) -> Shown {
             value: serde_json::Value::Null,
         };
     };
-    let raw_json = raw::to_int(data_type, bytes)
-        .and_then(|i| i64::try_from(i).ok())
-        .map_or(serde_json::Value::from(raw), serde_json::Value::from);
+    let int = raw::to_int(data_type, bytes);
+    let raw_json = int.map_or(serde_json::Value::from(raw), exact_json);
     if let Some(name) = enum_name(device, parameter, raw) {
         return Shown {
             value: serde_json::Value::from(name.clone()),
@@ -351,13 +400,26 @@ pub fn show(device: &Device, parameter: &Parameter, bytes: &[u8]) -> Shown {
             raw: raw_json,
         };
     }
-    let value = affine(parameter).map_or(serde_json::Value::Null, |s| {
-        serde_json::Value::from(raw * s.factor + s.offset)
-    });
+    let value = match (affine(parameter), int) {
+        (Some(scale), Some(int)) if scale.is_identity() => exact_json(int),
+        (Some(scale), _) => serde_json::Value::from(raw * scale.factor + scale.offset),
+        (None, _) => serde_json::Value::Null,
+    };
+    let exact = int.map_or(RawValue::Float(raw), RawValue::Int);
     Shown {
-        text: show_number(parameter, raw),
+        text: show_number(parameter, exact),
         raw: raw_json,
         value,
+    }
+}
+
+/// An integer as a JSON number, exact for every 64-bit value (JSON readers that parse numbers
+/// as doubles may still round it; those that keep integers get it whole).
+fn exact_json(int: i128) -> serde_json::Value {
+    match (i64::try_from(int), u64::try_from(int)) {
+        (Ok(i), _) => serde_json::Value::from(i),
+        (_, Ok(u)) => serde_json::Value::from(u),
+        _ => serde_json::Value::from(int as f64),
     }
 }
 
@@ -466,6 +528,70 @@ mod tests {
             parsed("operation_mode", "fast"),
             Err(CodecError::Unparsable(_))
         ));
+    }
+
+    /// A description of one unscaled and one scaled `u64`: values beyond 2^53 must not pass
+    /// through a float.
+    fn wide() -> Device {
+        let mut device = lafert();
+        let template = device.parameter("speed_setpoint").unwrap().clone();
+        device.parameters = ["plain", "scaled"]
+            .into_iter()
+            .map(|name| Parameter {
+                name: name.into(),
+                data_type: DataType::Unsigned(8),
+                range: None,
+                allowed: Vec::new(),
+                unit: None,
+                scale: (name == "scaled").then_some(Scale::Fixed {
+                    numerator: 1,
+                    denominator: 10,
+                    offset: drivegen::ir::RatioJson {
+                        numerator: 0,
+                        denominator: 1,
+                    },
+                }),
+                ..template.clone()
+            })
+            .collect();
+        device
+    }
+
+    #[test]
+    fn wide_integers_stay_exact() {
+        let device = wide();
+        let plain = device.parameter("plain").unwrap();
+        for text in [
+            "raw:18446744073709551610",
+            "18446744073709551610",
+            "0xFFFFFFFFFFFFFFFA",
+        ] {
+            let bytes = parse(&device, plain, text).unwrap();
+            assert_eq!(bytes, (u64::MAX - 5).to_le_bytes(), "{text}");
+            let shown = show(&device, plain, &bytes);
+            assert_eq!(shown.text, "18446744073709551610");
+            assert_eq!(shown.raw, serde_json::json!(u64::MAX - 5));
+            assert_eq!(shown.value, serde_json::json!(u64::MAX - 5));
+        }
+        assert!(matches!(
+            parse(&device, plain, "raw:18446744073709551616"),
+            Err(CodecError::OutOfRange(_))
+        ));
+        assert!(matches!(
+            parse(&device, plain, "raw:-1"),
+            Err(CodecError::OutOfRange(_))
+        ));
+        let scaled = device.parameter("scaled").unwrap();
+        assert_eq!(
+            parse(&device, scaled, "raw:18446744073709551610").unwrap(),
+            (u64::MAX - 5).to_le_bytes()
+        );
+        // Scaled input beyond 2^53 raw steps cannot be converted exactly: refused, not rounded.
+        assert!(matches!(
+            parse(&device, scaled, "1844674407370955161"),
+            Err(CodecError::NotRepresentable(_))
+        ));
+        assert_eq!(parse(&device, scaled, "1.5").unwrap(), 15u64.to_le_bytes());
     }
 
     #[test]
