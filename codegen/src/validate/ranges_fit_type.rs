@@ -49,9 +49,27 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
             for n in p.allowed.iter().filter(|n| !fits(p, **n)) {
                 out.push(out_of_type(p, *n, span));
             }
+            out.extend(allowed_outside_range(p, span));
         }
     }
     out
+}
+
+/// Allowed values the range refuses: no write could ever use them.
+fn allowed_outside_range(p: &Parameter, span: &Span) -> Vec<Diagnostic> {
+    let Some(r) = &p.range else {
+        return Vec::new();
+    };
+    let outside = |n: &&Number| n.as_f64() < r.min.as_f64() || n.as_f64() > r.max.as_f64();
+    let refuse = |n: &Number| {
+        let message = format!(
+            "allowed value {n} of `{}` is outside its range {}..={}",
+            p.name, r.min, r.max
+        );
+        Diagnostic::error(RULE, span.clone(), message)
+            .help("a write of it would be refused; drop the value or widen the range")
+    };
+    p.allowed.iter().filter(outside).map(refuse).collect()
 }
 
 #[cfg(test)]
@@ -71,6 +89,23 @@ source = { doc = "m", line = 1 }
         assert_eq!(
             messages("ranges_fit_type", body),
             ["-3000 does not fit `speed`, a u16"]
+        );
+    }
+
+    #[test]
+    fn allowed_values_outside_the_range_are_reported() {
+        let body = r#"
+[[parameter]]
+name = "mode"
+type = "u8"
+range = [1, 5]
+allowed = [1, 7]
+modbus = { table = "holding", address = 1 }
+source = { doc = "m", line = 1 }
+"#;
+        assert_eq!(
+            messages("ranges_fit_type", body),
+            ["allowed value 7 of `mode` is outside its range 1..=5"]
         );
     }
 

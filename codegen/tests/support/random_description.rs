@@ -1,7 +1,7 @@
 //! Random TOML descriptions for property tests: every type, units, fixed scales, ranges,
 //! defaults, allowed values, enums, flags, variants, commands, effects, Modbus and CANopen
-//! addresses and awkward names. About half of them are valid (the rest mostly have a default
-//! outside their range).
+//! addresses and awkward names. Most of them are valid (the rest have, for instance, a bool
+//! default the range refuses or two enum values that name the same Rust identifier).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -209,11 +209,14 @@ fn parameter(
         if let Some((lo, hi)) = x.range {
             let _ = writeln!(toml, "range = [{}, {}]", raw(ty, lo), raw(ty, hi));
         }
+        // Allowed values and defaults inside the range: most descriptions then check valid.
+        let (lo, hi) = x.range.unwrap_or((0, 100));
         if let Some(allowed) = &x.allowed {
-            let values: Vec<String> = allowed.iter().map(|&v| raw(ty, v)).collect();
+            let values: Vec<String> = allowed.iter().map(|&v| raw(ty, v.clamp(lo, hi))).collect();
             let _ = writeln!(toml, "allowed = [{}]", values.join(", "));
         }
         if let Some(default) = x.default {
+            let default = x.allowed.as_ref().map_or(default, |a| a[0]).clamp(lo, hi);
             let _ = writeln!(toml, "default = {}", raw(ty, default));
         }
     }
