@@ -67,11 +67,16 @@ impl ObjectDictionary for Dictionary {
         }
     }
 
-    fn write(&mut self, index: u16, subindex: u8, data: &[u8]) -> Result<(), AbortCode> {
-        let (id, access) = self.object(index, subindex).map_err(Refusal::sdo_abort)?;
-        if !access.write {
-            return Err(Refusal::ReadOnly.sdo_abort());
+    fn check_writable(&mut self, index: u16, subindex: u8) -> Result<(), AbortCode> {
+        match self.object(index, subindex).map_err(Refusal::sdo_abort)? {
+            (_, access) if !access.write => Err(Refusal::ReadOnly.sdo_abort()),
+            _ => Ok(()),
         }
+    }
+
+    fn write(&mut self, index: u16, subindex: u8, data: &[u8]) -> Result<(), AbortCode> {
+        self.check_writable(index, subindex)?;
+        let (id, _) = self.object(index, subindex).map_err(Refusal::sdo_abort)?;
         self.sim
             .with(|drive| drive.write(id, data))
             .map_err(Refusal::sdo_abort)

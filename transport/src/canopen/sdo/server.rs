@@ -18,6 +18,13 @@ pub trait ObjectDictionary {
     fn read(&mut self, index: u16, subindex: u8) -> Result<Vec<u8>, AbortCode>;
     /// Stores `data` at `index:subindex`.
     fn write(&mut self, index: u16, subindex: u8, data: &[u8]) -> Result<(), AbortCode>;
+    /// Whether `index:subindex` takes downloads at all (it exists and is writable): asked before
+    /// the data of a block download is accepted, so that the client learns early. By default
+    /// every object may; [`ObjectDictionary::write`] still decides once the data is in.
+    fn check_writable(&mut self, index: u16, subindex: u8) -> Result<(), AbortCode> {
+        let _ = (index, subindex);
+        Ok(())
+    }
 }
 
 /// Objects in a map; unknown ones abort with "object does not exist".
@@ -26,6 +33,12 @@ impl ObjectDictionary for BTreeMap<(u16, u8), Vec<u8>> {
         self.get(&(index, subindex))
             .cloned()
             .ok_or(AbortCode::ObjectDoesNotExist)
+    }
+    fn check_writable(&mut self, index: u16, subindex: u8) -> Result<(), AbortCode> {
+        match self.contains_key(&(index, subindex)) {
+            true => Ok(()),
+            false => Err(AbortCode::ObjectDoesNotExist),
+        }
     }
     fn write(&mut self, index: u16, subindex: u8, data: &[u8]) -> Result<(), AbortCode> {
         let slot = self
@@ -357,8 +370,9 @@ impl<D: ObjectDictionary> SdoServer<D> {
         match (data[0] & 0b1, state) {
             (0, _) => {
                 self.mux = (u16::from_le_bytes([data[1], data[2]]), data[3]);
-                // Check the object exists before accepting data for it.
-                self.dictionary.read(self.mux.0, self.mux.1)?;
+                // Check the object takes downloads before accepting data for it (not by reading
+                // it: a write-only object cannot be read).
+                self.dictionary.check_writable(self.mux.0, self.mux.1)?;
                 out.push(self.response(self.with_mux(
                     (scs::BLOCK_DOWNLOAD << 5) | 0x04,
                     [self.block_size, 0, 0, 0],

@@ -7,7 +7,7 @@ use std::vec::Vec;
 
 use proptest::prelude::*;
 
-use super::server::SdoServer;
+use super::server::{ObjectDictionary, SdoServer};
 use super::*;
 use crate::canopen::{CanFrame, NodeId};
 
@@ -47,9 +47,9 @@ struct Outcome {
 
 /// Moves frames between `transfer` and `server`, passing each through `fault`, and advances
 /// time to the transfer's deadline whenever the bus falls silent.
-fn pump<T: Transfer>(
+fn pump<T: Transfer, D: ObjectDictionary>(
     transfer: &mut T,
-    server: &mut SdoServer<Dictionary>,
+    server: &mut SdoServer<D>,
     mut fault: impl FnMut(Dir, CanFrame) -> Vec<CanFrame>,
 ) -> Outcome {
     let mut now = Duration::ZERO;
@@ -500,6 +500,48 @@ fn block_download_resends_after_a_partial_acknowledgement() {
     );
     assert_eq!(outcome.progress, Progress::Done(60));
     assert_eq!(server.dictionary()[&(0x2102, 0)], value);
+}
+
+/// One write-only object, as a device keeps a command register: downloads only.
+#[derive(Default)]
+struct WriteOnlyObject(Vec<u8>);
+
+impl ObjectDictionary for WriteOnlyObject {
+    fn read(&mut self, _: u16, _: u8) -> Result<Vec<u8>, AbortCode> {
+        Err(AbortCode::WriteOnly)
+    }
+    fn write(&mut self, _: u16, _: u8, data: &[u8]) -> Result<(), AbortCode> {
+        self.0 = data.to_vec();
+        Ok(())
+    }
+}
+
+#[test]
+fn block_downloads_reach_write_only_objects() {
+    let mut server = SdoServer::new(NODE, WriteOnlyObject::default());
+    let value: Vec<u8> = (0..20).collect();
+    let outcome = pump(
+        &mut client().block_download(0x2106, 0, &value, Duration::ZERO),
+        &mut server,
+        clean,
+    );
+    assert_eq!(outcome.progress, Progress::Done(20));
+    assert_eq!(server.dictionary().0, value);
+}
+
+#[test]
+fn block_downloads_to_unknown_objects_abort_before_the_data() {
+    let mut server = server(&[]);
+    let outcome = pump(
+        &mut client().block_download(0x2107, 0, &[1; 20], Duration::ZERO),
+        &mut server,
+        clean,
+    );
+    assert_eq!(
+        outcome.progress,
+        Progress::Failed(SdoError::Server(AbortCode::ObjectDoesNotExist))
+    );
+    assert_eq!(outcome.sent.len(), 1, "only the initiate request went out");
 }
 
 #[test]
