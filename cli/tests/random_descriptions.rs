@@ -3,40 +3,20 @@
 //! type (high bits set, negative for signed types, the edge of its range or its last allowed
 //! value) and gives it back unchanged — whatever its width, odd width, word count and word order.
 
+#[allow(dead_code)] // Shared with codegen's tests; each uses part of it.
 #[path = "../../codegen/tests/support/random_description.rs"]
 mod random_description;
+
+use random_description::{plain_modbus_integer, telling_integer};
 
 use std::path::Path;
 use std::process::Command;
 
 use drivebus::modbus::UnitId;
-use drivegen::ir::{DataType, Parameter, Table};
+use drivegen::ir::Table;
 use drivesim::Simulator;
 
 const BIN: &str = env!("CARGO_BIN_EXE_drivegen");
-
-/// A raw value that exercises `p`'s whole width and still passes its checks.
-fn telling_value(p: &Parameter) -> Option<i128> {
-    if let Some(last) = p.allowed.last() {
-        return last.as_int().map(i128::from);
-    }
-    if let Some(range) = &p.range {
-        return range.max.as_int().map(i128::from);
-    }
-    if p.data_type == DataType::Bool {
-        return Some(1);
-    }
-    let (lo, hi) = p.data_type.integer_bounds()?;
-    Some(if lo < 0 { lo + 5 } else { hi - 5 })
-}
-
-/// Whether the test can write and read `p` by raw value over Modbus in the default variant `v0`.
-fn tested(p: &Parameter) -> bool {
-    let in_default_variant = p.variants.is_empty() || p.variants.iter().any(|v| v == "v0");
-    let integer = p.data_type.integer_bounds().is_some();
-    let plain = p.enumeration.is_none() && p.flags.is_none() && p.command.is_none();
-    in_default_variant && integer && plain && !p.modbus.is_empty()
-}
 
 fn run(args: &[&str]) -> String {
     let output = Command::new(BIN).args(args).output().unwrap();
@@ -81,8 +61,8 @@ fn every_integer_parameter_round_trips_through_the_simulator() {
         let addr = server.local_addr().to_string();
         let description = path.to_str().unwrap();
         let mut expected = Vec::new();
-        for p in device.parameters.iter().filter(|p| tested(p)) {
-            let Some(value) = telling_value(p) else {
+        for p in device.parameters.iter().filter(|p| plain_modbus_integer(p)) {
+            let Some(value) = telling_integer(p) else {
                 continue;
             };
             let address = &p.modbus[0];

@@ -3,6 +3,7 @@
 //! last allowed value, a full-length string) by SDO download, holds it, and gives it back by SDO
 //! upload — expedited, segmented and block transfers alike, for every width and odd width.
 
+#[allow(dead_code)] // Shared with codegen's tests; each uses part of it.
 #[path = "../../codegen/tests/support/random_description.rs"]
 mod random_description;
 
@@ -27,13 +28,12 @@ fn telling_bytes(p: &Parameter) -> Vec<u8> {
     if let Some(number) = described {
         return raw::from_number(p.data_type, number);
     }
-    match (p.data_type, p.data_type.integer_bounds()) {
-        (DataType::Bool, _) => vec![1],
-        (DataType::String(n) | DataType::Octets(n), _) => {
-            (0..n).map(|i| b'a' + i as u8 % 26).collect()
-        }
-        (ty, Some((lo, hi))) => raw::from_int(ty, if lo < 0 { lo + 5 } else { hi - 5 }),
-        (ty, None) => raw::from_number(ty, Number::Float(-1.5)),
+    if let Some(int) = random_description::telling_integer(p) {
+        return raw::from_int(p.data_type, int);
+    }
+    match p.data_type {
+        DataType::String(n) | DataType::Octets(n) => (0..n).map(|i| b'a' + i as u8 % 26).collect(),
+        ty => raw::from_number(ty, Number::Float(-1.5)),
     }
 }
 

@@ -297,3 +297,30 @@ pub fn valid_descriptions(count: usize, dir: &Path) -> Vec<PathBuf> {
     }
     paths
 }
+
+/// A raw integer that exercises `p`'s whole width and still passes its checks: its last allowed
+/// value, the top of its range, `true`, or else near the type's edge (high bits set; negative for
+/// signed types). `None` for non-integer types.
+pub fn telling_integer(p: &drivegen::ir::Parameter) -> Option<i128> {
+    if let Some(last) = p.allowed.last() {
+        return last.as_int().map(i128::from);
+    }
+    if let Some(range) = &p.range {
+        return range.max.as_int().map(i128::from);
+    }
+    let (lo, hi) = p.data_type.integer_bounds()?;
+    Some(match p.data_type {
+        drivegen::ir::DataType::Bool => 1,
+        _ if lo < 0 => lo + 5,
+        _ => hi - 5,
+    })
+}
+
+/// Whether `p` is a plain integer (or boolean) parameter of the default variant `v0` on Modbus:
+/// one whose raw value a test can write and read back.
+pub fn plain_modbus_integer(p: &drivegen::ir::Parameter) -> bool {
+    let in_default_variant = p.variants.is_empty() || p.variants.iter().any(|v| v == "v0");
+    let integer = p.data_type.integer_bounds().is_some();
+    let plain = p.enumeration.is_none() && p.flags.is_none() && p.command.is_none();
+    in_default_variant && integer && plain && !p.modbus.is_empty()
+}
