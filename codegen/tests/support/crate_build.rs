@@ -14,22 +14,51 @@ pub struct Built {
 }
 
 /// Writes `lib_rs` as the `src/lib.rs` of a scratch crate `name` depending on `drivebus`, with a
-/// default `std` feature as drive crates have, builds it and runs its doctests. All scratch crates share one target directory, so `drivebus` is built
-/// once.
+/// default `std` feature as drive crates have, builds it and runs its doctests. All scratch crates
+/// share one target directory, so `drivebus` is built once.
 pub fn build_and_doctest(name: &str, lib_rs: &str) -> Built {
+    let dir = scratch_crate(name, lib_rs, "");
+    cargo_test(&dir, &["--doc"])
+}
+
+/// Like [`build_and_doctest`], with `test_rs` as an integration test that may use the simulator
+/// (`drivesim`), and runs every test.
+pub fn build_and_test(name: &str, lib_rs: &str, test_rs: &str) -> Built {
+    let simulator = format!(
+        "drivesim = {{ path = {:?} }}\n",
+        workspace_root().join("simulator")
+    );
+    let dir = scratch_crate(name, lib_rs, &simulator);
+    std::fs::create_dir_all(dir.join("tests")).unwrap();
+    std::fs::write(dir.join("tests/generated.rs"), test_rs).unwrap();
+    cargo_test(&dir, &[])
+}
+
+/// The folder of scratch crate `name`, written with `lib_rs` and `dev_dependencies` (TOML lines).
+fn scratch_crate(name: &str, lib_rs: &str, dev_dependencies: &str) -> PathBuf {
     let workspace = workspace_root();
     let dir = workspace.join("target/fixtures").join(name);
     std::fs::create_dir_all(dir.join("src")).unwrap();
     let manifest = format!(
-        "[package]\nname = \"{name}\"\nversion = \"0.0.0\"\nedition = \"2021\"\n[dependencies]\ndrivebus = {{ path = {:?} }}\n[features]\ndefault = [\"std\"]\nstd = [\"drivebus/std\"]\n[workspace]\n",
+        "[package]\nname = \"{name}\"\nversion = \"0.0.0\"\nedition = \"2021\"\n[dependencies]\ndrivebus = {{ path = {:?} }}\n[dev-dependencies]\n{dev_dependencies}[features]\ndefault = [\"std\"]\nstd = [\"drivebus/std\"]\n[workspace]\n",
         workspace.join("transport")
     );
     std::fs::write(dir.join("Cargo.toml"), manifest).unwrap();
     std::fs::write(dir.join("src/lib.rs"), lib_rs).unwrap();
+    dir
+}
+
+/// `cargo test --offline <args>` in the scratch crate at `dir`.
+fn cargo_test(dir: &Path, args: &[&str]) -> Built {
     let output = Command::new(env!("CARGO"))
-        .args(["test", "--offline", "--doc", "--manifest-path"])
+        .args(["test", "--offline"])
+        .args(args)
+        .arg("--manifest-path")
         .arg(dir.join("Cargo.toml"))
-        .env("CARGO_TARGET_DIR", workspace.join("target/fixtures/target"))
+        .env(
+            "CARGO_TARGET_DIR",
+            workspace_root().join("target/fixtures/target"),
+        )
         .output()
         .unwrap();
     Built {
