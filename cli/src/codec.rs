@@ -6,6 +6,7 @@ use std::fmt;
 
 use std::cmp::Ordering;
 
+use drivebus::Ratio;
 use drivegen::ir::{DataType, Device, Parameter, Scale};
 use drivesim::raw;
 
@@ -57,9 +58,11 @@ impl fmt::Display for CodecError {
     }
 }
 
-/// An exact affine scale: `value = raw × factor + offset`.
+/// An exact affine scale: `value = raw × factor + offset`, converted as generated crates convert
+/// (`drivebus::Scale`), plus how to print it.
 #[derive(Debug, Clone, Copy)]
 struct Affine {
+    exact: drivebus::Scale,
     factor: f64,
     offset: f64,
     /// Decimal places that show one raw step.
@@ -71,29 +74,41 @@ impl Affine {
     fn is_identity(&self) -> bool {
         self.factor == 1.0 && self.offset == 0.0
     }
+
+    /// The engineering value of `raw`; exact fractions for integers (3 × 1/10 shows as 0.3).
+    fn engineering(&self, raw: RawValue) -> f64 {
+        match raw {
+            RawValue::Int(int) => i64::try_from(int).map_or_else(
+                |_| self.exact.to_engineering(int as f64),
+                |int| self.exact.to_engineering(int),
+            ),
+            RawValue::Float(float) => self.exact.to_engineering(float),
+        }
+    }
 }
 
+/// The fixed scale of `parameter` (identity without one); `None` for a run-time scale.
 fn affine(parameter: &Parameter) -> Option<Affine> {
-    match &parameter.scale {
-        None => Some(Affine {
-            factor: 1.0,
-            offset: 0.0,
-            decimals: 0,
-        }),
+    let (exact, decimals) = match &parameter.scale {
+        None => (drivebus::Scale::IDENTITY, 0),
         Some(Scale::Fixed {
             numerator,
             denominator,
             offset,
         }) => {
-            let factor = *numerator as f64 / *denominator as f64;
-            Some(Affine {
-                factor,
-                offset: offset.numerator as f64 / offset.denominator as f64,
-                decimals: decimals_of(factor),
-            })
+            let factor = Ratio::new(*numerator, *denominator)?;
+            let offset = Ratio::new(offset.numerator, offset.denominator)?;
+            let scale = drivebus::Scale { factor, offset };
+            (scale, decimals_of(factor.to_f64()))
         }
-        Some(Scale::Runtime { .. }) => None,
-    }
+        Some(Scale::Runtime { .. }) => return None,
+    };
+    Some(Affine {
+        exact,
+        factor: exact.factor.to_f64(),
+        offset: exact.offset.to_f64(),
+        decimals,
+    })
 }
 
 /// Decimal places needed to show multiples of `step` (at most 6).
@@ -346,7 +361,7 @@ fn show_number(parameter: &Parameter, raw: RawValue) -> String {
         (Some(scale), raw) => format!(
             "{:.*}{}",
             scale.decimals,
-            raw.as_f64() * scale.factor + scale.offset,
+            scale.engineering(raw),
             unit_suffix(parameter)
         ),
         (None, raw) => format!("raw {raw}"),
@@ -400,12 +415,12 @@ pub fn show(device: &Device, parameter: &Parameter, bytes: &[u8]) -> Shown {
             raw: raw_json,
         };
     }
+    let exact = int.map_or(RawValue::Float(raw), RawValue::Int);
     let value = match (affine(parameter), int) {
         (Some(scale), Some(int)) if scale.is_identity() => exact_json(int),
-        (Some(scale), _) => serde_json::Value::from(raw * scale.factor + scale.offset),
+        (Some(scale), _) => serde_json::Value::from(scale.engineering(exact)),
         (None, _) => serde_json::Value::Null,
     };
-    let exact = int.map_or(RawValue::Float(raw), RawValue::Int);
     Shown {
         text: show_number(parameter, exact),
         raw: raw_json,
@@ -592,6 +607,16 @@ mod tests {
             Err(CodecError::NotRepresentable(_))
         ));
         assert_eq!(parse(&device, scaled, "1.5").unwrap(), 15u64.to_le_bytes());
+    }
+
+    #[test]
+    fn decimal_steps_show_as_written() {
+        let device = lafert();
+        let torque = device.parameter("torque_setpoint").unwrap();
+        // 1/100 Arms: raw 35 is 0.35 Arms (35 × 0.01 would be 0.35000000000000003).
+        let shown = show(&device, torque, &35i16.to_le_bytes());
+        assert_eq!(shown.value, serde_json::json!(0.35));
+        assert_eq!(shown.text, "0.35 Arms");
     }
 
     #[test]

@@ -6,6 +6,9 @@
 use crate::error::ValueError;
 use crate::value::Numeric;
 
+/// Below this magnitude every integer is exact in `f64` (2^53).
+const EXACT_INTEGERS: f64 = 9_007_199_254_740_992.0;
+
 /// An exact rational number `num / den` with `den > 0`, kept in lowest terms.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Ratio {
@@ -145,9 +148,21 @@ impl Scale {
         }
     }
 
-    /// Engineering value of a raw value.
+    /// Engineering value of a raw value: `raw × factor + offset`. Where every term is an exact
+    /// `f64` integer it is computed as one fraction, rounded once, so that decimal steps read back
+    /// as written (3 × 1/10 is 0.3, not 0.30000000000000004).
     pub fn to_engineering<R: Numeric>(self, raw: R) -> f64 {
-        raw.to_f64() * self.factor.to_f64() + self.offset.to_f64()
+        let raw = raw.to_f64();
+        let int = |r: Ratio| (r.numerator() as f64, r.denominator() as f64);
+        let ((num, den), (offset_num, offset_den)) = (int(self.factor), int(self.offset));
+        // (raw·num·offset_den + offset_num·den) / (den·offset_den)
+        let terms = [raw * num * offset_den, offset_num * den, den * offset_den];
+        let exact = R::IS_INTEGER && terms.iter().all(|t| t.abs() < EXACT_INTEGERS);
+        let numerator = terms[0] + terms[1];
+        if exact && numerator.abs() < EXACT_INTEGERS {
+            return numerator / terms[2];
+        }
+        raw * self.factor.to_f64() + self.offset.to_f64()
     }
 
     /// Raw value of an engineering value; refuses values that would have to be rounded or do not
@@ -178,6 +193,40 @@ impl Scale {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn decimal_steps_read_back_as_written() {
+        let tenths = Scale::fixed(1, 10, 0, 1);
+        assert_eq!(tenths.to_engineering(3i32), 0.3);
+        assert_eq!(tenths.to_engineering(-7i16), -0.7);
+        let celsius = Scale::fixed(1, 10, -40, 1);
+        assert_eq!(celsius.to_engineering(253u16), -14.7);
+        // Beyond 2^53 the fraction is not exact: the plain product is used.
+        let big = Scale::fixed(3, 7, 0, 1);
+        assert_eq!(big.to_engineering(i64::MAX), i64::MAX as f64 * (3.0 / 7.0));
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn engineering_values_round_trip_and_are_correctly_rounded(
+            raw in -1_000_000i32..1_000_000,
+            num in 1i64..1000,
+            den in 1i64..1000,
+            offset_num in -1000i64..1000,
+            offset_den in 1i64..100,
+        ) {
+            let scale = Scale::fixed(num, den, offset_num, offset_den);
+            let value = scale.to_engineering(raw);
+            // The nearest f64 to the exact rational: compare against a wide integer fraction.
+            let (n, d) = (
+                i128::from(raw) * i128::from(num) * i128::from(offset_den)
+                    + i128::from(offset_num) * i128::from(den),
+                i128::from(den) * i128::from(offset_den),
+            );
+            proptest::prop_assert_eq!(value, n as f64 / d as f64);
+            proptest::prop_assert_eq!(scale.to_raw::<i32>("p", value), Ok(raw));
+        }
+    }
 
     #[test]
     fn ratios_are_reduced_and_sign_normalised() {
