@@ -188,11 +188,52 @@ pub fn emit(p: &Parameter, device: &Device) -> TokenStream {
                     addresses::canopen(p, device, d).filter(|_| on_canopen),
                 ),
             ]
-        });
+        })
+        .flatten()
+        .collect::<Vec<_>>();
     let declaration = quote! {
         #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
         pub struct #name;
         db::parameter!(#name = #param_name: #raw => #value_type, #codec #clauses #( #capabilities )*);
     };
-    concat([docs, declaration, runtime_scale(p)])
+    // Without a capability nothing would call the scale (an unused function warns).
+    let scale = match capabilities.is_empty() {
+        true => quote! {},
+        false => runtime_scale(p),
+    };
+    concat([docs, declaration, scale])
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::validate::test_support::device;
+
+    /// A parameter scaled by `resolution`, whose own access is `access`.
+    fn scaled_by_resolution(access: &str) -> String {
+        let device = device(&format!(
+            r#"
+[[parameter]]
+name = "resolution"
+type = "u32"
+modbus = {{ table = "holding", address = 1, words = 2, access = "{access}" }}
+source = {{ doc = "m", line = 1 }}
+
+[[parameter]]
+name = "speed"
+type = "i32"
+scale = {{ expr = "2 * resolution" }}
+modbus = {{ table = "holding", address = 3, words = 2 }}
+source = {{ doc = "m", line = 1 }}
+"#
+        ));
+        super::emit(device.parameter("speed").unwrap(), &device).to_string()
+    }
+
+    #[test]
+    fn a_runtime_scale_is_emitted_only_where_the_parameter_can_be_reached() {
+        assert!(scaled_by_resolution("rw").contains("runtime_scale"));
+        // The input cannot be read: the parameter is left out of Modbus, and nothing would call
+        // its scale (an unused function is a warning in the user's crate).
+        assert!(!scaled_by_resolution("w").contains("runtime_scale"));
+    }
 }
