@@ -104,6 +104,12 @@ struct Extras {
     command: bool,
     variant: Option<u8>,
     access: &'static str,
+    /// A scale computed at run time from the first parameter, instead of a fixed one.
+    runtime_scale: bool,
+    /// A member of record `members` (CANopen 0x3000) instead of an object of its own.
+    member: bool,
+    /// Also a Kinco RS-232 address.
+    rs232: bool,
 }
 
 fn extras() -> impl Strategy<Value = Extras> {
@@ -129,13 +135,22 @@ fn extras() -> impl Strategy<Value = Extras> {
             proptest::option::of(0u8..2),
             proptest::sample::select(&["r", "w", "rw"][..]),
         ),
+        (
+            proptest::bool::weighted(0.2),
+            proptest::bool::weighted(0.25),
+            proptest::bool::weighted(0.2),
+        ),
     )
         .prop_map(
             |(
                 (unit, scale, range, default, allowed),
                 (typed_by, effect, command, variant, access),
+                (runtime_scale, member, rs232),
             )| {
                 Extras {
+                    runtime_scale,
+                    member,
+                    rs232,
                     unit,
                     scale,
                     range,
@@ -162,16 +177,18 @@ fn words(ty: &str) -> u16 {
     }
 }
 
-/// One `[[parameter]]` at Modbus register `address` and CANopen index `0x2000 + index`.
-fn parameter(
-    index: usize,
-    address: u16,
-    name: &str,
-    ty: &str,
-    x: &Extras,
-    enums: &[(String, String)],
-    flags: &[(String, String)],
-) -> String {
+/// What parameters may refer to: the description's enums and flags (type, TOML), and the name of
+/// its first parameter (the input of run-time scales).
+struct Context<'a> {
+    enums: &'a [(String, String)],
+    flags: &'a [(String, String)],
+    first: String,
+}
+
+/// One `[[parameter]]` at Modbus register `address` and CANopen index `0x2000 + index` (or
+/// sub-index `index + 1` of record `members`).
+fn parameter(index: usize, address: u16, name: &str, ty: &str, x: &Extras, cx: &Context) -> String {
+    let Context { enums, flags, .. } = cx;
     let mut toml =
         format!("[[parameter]]\nname = \"{name}_{index}\"\ndoc = \"Parameter {index}.\"\n");
     // An enum or flags type gives the parameter its own type.
@@ -201,8 +218,14 @@ fn parameter(
         if let Some(unit) = x.unit {
             let _ = writeln!(toml, "unit = \"{unit}\"");
         }
-        if let Some(scale) = x.scale {
-            let _ = writeln!(toml, "scale = {scale}");
+        match x.scale {
+            Some(_) if x.runtime_scale && index > 0 => {
+                let _ = writeln!(toml, "scale = {{ expr = \"2 * {}\" }}", cx.first);
+            }
+            Some(scale) => {
+                let _ = writeln!(toml, "scale = {scale}");
+            }
+            None => {}
         }
     }
     if typed.is_none() && numeric {
@@ -234,12 +257,25 @@ fn parameter(
         words(ty),
         x.access
     );
+    let (object, subindex) = match x.member {
+        true => (0x3000, index + 1),
+        false => (0x2000 + index, 0),
+    };
+    if x.member {
+        toml += "record = \"members\"\n";
+    }
     let _ = writeln!(
         toml,
-        "canopen = {{ index = 0x{:04X}, subindex = 0, access = \"{}\" }}",
-        0x2000 + index,
+        "canopen = {{ index = 0x{object:04X}, subindex = {subindex}, access = \"{}\" }}",
         x.access
     );
+    if x.rs232 {
+        let _ = writeln!(
+            toml,
+            "rs232 = {{ index = 0x{object:04X}, subindex = {subindex}, access = \"{}\" }}",
+            x.access
+        );
+    }
     toml + "source = { doc = \"m\", section = \"1\", line = 1 }\n\n"
 }
 
@@ -273,9 +309,17 @@ pub fn description() -> impl Strategy<Value = String> {
             for (_, t) in enums.iter().chain(&flags) {
                 toml += t;
             }
+            if parameters.iter().any(|(_, _, x)| x.member) {
+                toml += "[[record]]\nname = \"members\"\nkind = \"record\"\nindex = 0x3000\ndoc = \"A record.\"\nsource = { doc = \"m\", line = 1 }\n\n";
+            }
+            let cx = Context {
+                enums: &enums,
+                flags: &flags,
+                first: format!("{}_0", parameters[0].0),
+            };
             let mut address = 0;
             for (i, (name, ty, x)) in parameters.iter().enumerate() {
-                toml += &parameter(i, address, name, ty, x, &enums, &flags);
+                toml += &parameter(i, address, name, ty, x, &cx);
                 address += 8;
             }
             toml
