@@ -110,6 +110,8 @@ struct Extras {
     member: bool,
     /// Also a Kinco RS-232 address.
     rs232: bool,
+    /// PDO-mappable in the directions its access allows (and then maybe mapped).
+    pdo: bool,
 }
 
 fn extras() -> impl Strategy<Value = Extras> {
@@ -139,18 +141,20 @@ fn extras() -> impl Strategy<Value = Extras> {
             proptest::bool::weighted(0.2),
             proptest::bool::weighted(0.25),
             proptest::bool::weighted(0.2),
+            proptest::bool::weighted(0.4),
         ),
     )
         .prop_map(
             |(
                 (unit, scale, range, default, allowed),
                 (typed_by, effect, command, variant, access),
-                (runtime_scale, member, rs232),
+                (runtime_scale, member, rs232, pdo),
             )| {
                 Extras {
                     runtime_scale,
                     member,
                     rs232,
+                    pdo,
                     unit,
                     scale,
                     range,
@@ -185,30 +189,49 @@ struct Context<'a> {
     first: String,
 }
 
+/// The enum or flags type parameter `index` takes, if any: key (`enum` / `flags`), its integer
+/// type and its name.
+fn typing<'c>(
+    index: usize,
+    x: &Extras,
+    cx: &'c Context,
+) -> Option<(&'static str, &'c str, &'c str)> {
+    let (key, types) = match x.typed_by {
+        1 => ("enum", cx.enums),
+        2 => ("flags", cx.flags),
+        _ => return None,
+    };
+    let (ty, toml) = types.get(index % types.len().max(1))?;
+    Some((key, ty, toml.split('"').nth(1).unwrap_or_default()))
+}
+
+/// The type parameter `index` ends up with: its own, or its enum's or flags'.
+fn effective_type<'a>(index: usize, ty: &'a str, x: &Extras, cx: &'a Context) -> &'a str {
+    typing(index, x, cx).map_or(ty, |(_, ty, _)| ty)
+}
+
+/// Bits a value of `ty` takes in a PDO; `None` for strings.
+fn pdo_bits(ty: &str) -> Option<u32> {
+    match ty {
+        "bool" => Some(1),
+        "string" | "octets" => None,
+        "f32" => Some(32),
+        "f64" => Some(64),
+        _ => ty[1..].parse().ok(),
+    }
+}
+
 /// One `[[parameter]]` at Modbus register `address` and CANopen index `0x2000 + index` (or
 /// sub-index `index + 1` of record `members`).
 fn parameter(index: usize, address: u16, name: &str, ty: &str, x: &Extras, cx: &Context) -> String {
-    let Context { enums, flags, .. } = cx;
     let mut toml =
         format!("[[parameter]]\nname = \"{name}_{index}\"\ndoc = \"Parameter {index}.\"\n");
     // An enum or flags type gives the parameter its own type.
-    let typed = match x.typed_by {
-        1 => enums
-            .get(index % enums.len().max(1))
-            .map(|(t, e)| ("enum", t, e)),
-        2 => flags
-            .get(index % flags.len().max(1))
-            .map(|(t, f)| ("flags", t, f)),
-        _ => None,
-    };
-    let ty = match typed {
-        Some((key, ty, toml_of_type)) => {
-            let type_name = toml_of_type.split('"').nth(1).unwrap_or_default();
-            let _ = writeln!(toml, "{key} = \"{type_name}\"");
-            ty.as_str()
-        }
-        None => ty,
-    };
+    let typed = typing(index, x, cx);
+    if let Some((key, _, type_name)) = typed {
+        let _ = writeln!(toml, "{key} = \"{type_name}\"");
+    }
+    let ty = effective_type(index, ty, x, cx);
     let _ = writeln!(toml, "type = \"{ty}\"");
     let numeric = !matches!(ty, "string" | "octets");
     if !numeric {
@@ -264,9 +287,15 @@ fn parameter(index: usize, address: u16, name: &str, ty: &str, x: &Extras, cx: &
     if x.member {
         toml += "record = \"members\"\n";
     }
+    let pdo = match (x.pdo, x.access) {
+        (false, _) => "false",
+        (true, "r") => "\"tx\"",
+        (true, "w") => "\"rx\"",
+        (true, _) => "\"both\"",
+    };
     let _ = writeln!(
         toml,
-        "canopen = {{ index = 0x{object:04X}, subindex = {subindex}, access = \"{}\" }}",
+        "canopen = {{ index = 0x{object:04X}, subindex = {subindex}, access = \"{}\", pdo = {pdo} }}",
         x.access
     );
     if x.rs232 {
@@ -277,6 +306,36 @@ fn parameter(index: usize, address: u16, name: &str, ty: &str, x: &Extras, cx: &
         );
     }
     toml + "source = { doc = \"m\", section = \"1\", line = 1 }\n\n"
+}
+
+/// A `[[pdo]]` in `direction` mapping the first parameters whose access has `access` and whose
+/// address is mappable, within 64 bits; nothing without such parameters.
+fn pdo(
+    number: u16,
+    direction: &str,
+    cob_id: u16,
+    access: char,
+    parameters: &[(String, &str, Extras)],
+    cx: &Context,
+) -> String {
+    let mut bits = 0;
+    let mut entries = Vec::new();
+    for (i, (name, ty, x)) in parameters.iter().enumerate() {
+        let Some(size) = pdo_bits(effective_type(i, ty, x, cx)) else {
+            continue;
+        };
+        if x.pdo && x.access.contains(access) && bits + size <= 64 && entries.len() < 4 {
+            bits += size;
+            entries.push(format!("\"{name}_{i}\""));
+        }
+    }
+    if entries.is_empty() {
+        return String::new();
+    }
+    format!(
+        "[[pdo]]\nname = \"{direction}pdo{number}\"\ndirection = \"{direction}\"\nnumber = {number}\ncob_id = \"$NODEID+0x{cob_id:X}\"\ntransmission_type = 1\nentries = [{}]\nsource = {{ doc = \"m\", line = 1 }}\n\n",
+        entries.join(", ")
+    )
 }
 
 /// A whole description: device, Modbus and CANopen capabilities, two variants, enums, flags and
@@ -321,6 +380,9 @@ pub fn description() -> impl Strategy<Value = String> {
             for (i, (name, ty, x)) in parameters.iter().enumerate() {
                 toml += &parameter(i, address, name, ty, x, &cx);
                 address += 8;
+            }
+            for (number, direction, cob_id, access) in [(1, "tx", 0x180, 'r'), (1, "rx", 0x200, 'w')] {
+                toml += &pdo(number, direction, cob_id, access, &parameters, &cx);
             }
             toml
         })
