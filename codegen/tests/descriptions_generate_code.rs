@@ -34,4 +34,3 @@ fn code_generated_from_random_valid_descriptions_compiles_without_warnings() {
     // The descriptions stay for reading after a failure with DRIVEGEN_KEEP_SCRATCH set.
     assert_descriptions_compile("random_toml", &valid_descriptions(24, &scratch.0));
 }
-

@@ -1,7 +1,8 @@
 //! TOML → EDS → IR equals TOML → IR for every shipped CANopen description and for random valid
 //! ones, on the fields an EDS carries: object addresses, names, types, access, PDO mapping,
 //! defaults, limits and records, plus the communication and mapping objects of the description's
-//! declared PDOs.
+//! declared PDOs. The overlay skeleton `drivegen eds import` writes for each exported EDS checks
+//! as written and keeps its objects.
 
 mod support;
 
@@ -83,6 +84,25 @@ fn in_default_variant(device: &Device, p: &Parameter) -> bool {
     p.variants.is_empty() || default.is_some_and(|d| p.variants.contains(d))
 }
 
+/// `drivegen eds import`'s overlay skeleton of `eds` checks as written, with the objects of the
+/// EDS alone (`alone`).
+fn imported_overlay_keeps_the_objects(eds: &Path, alone: &Device) -> Result<(), String> {
+    let overlay = drivegen::eds::import_overlay(eds).map_err(|e| format!("import: {e}"))?;
+    let path = eds.with_extension("toml");
+    std::fs::write(&path, overlay).unwrap();
+    let checked = drivegen::check(&path);
+    let Some(imported) = checked.device else {
+        return Err(format!(
+            "the imported overlay does not check:\n{}",
+            checked.render()
+        ));
+    };
+    match canopen_view(&imported) == canopen_view(alone) {
+        true => Ok(()),
+        false => Err("the imported overlay changes the EDS's objects".into()),
+    }
+}
+
 /// The members of `record` in the default variant.
 fn members<'d>(device: &'d Device, record: &'d Record) -> impl Iterator<Item = &'d Parameter> {
     let named = |p: &&Parameter| p.record.as_ref() == Some(&record.name);
@@ -102,6 +122,7 @@ fn round_trip(original: Device, eds: &Path) -> Result<(), String> {
         ));
     }
     let again = checked.device.expect("no findings means a device");
+    imported_overlay_keeps_the_objects(eds, &again)?;
     // What the EDS carries of the description: its objects and those its PDOs imply.
     let mut original = original;
     let derived = drivegen::eds::pdo_objects(&original);
