@@ -2,9 +2,8 @@
 //! bytes, and raw bytes become a value with its unit, enum name or flag names. It works from the
 //! description at run time, not from a generated crate.
 
-use std::fmt;
-
 use std::cmp::Ordering;
+use std::fmt;
 
 use drivebus::Ratio;
 use drivegen::ir::{DataType, Device, Parameter, Scale};
@@ -87,7 +86,8 @@ impl Affine {
     }
 }
 
-/// The fixed scale of `parameter` (identity without one); `None` for a run-time scale.
+/// The fixed scale of `parameter` (identity without one); `None` for a run-time scale (or a zero
+/// denominator, which validation refuses).
 fn affine(parameter: &Parameter) -> Option<Affine> {
     let (exact, decimals) = match &parameter.scale {
         None => (drivebus::Scale::IDENTITY, 0),
