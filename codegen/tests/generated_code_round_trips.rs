@@ -82,7 +82,7 @@ fn generated_code_round_trips_values_through_the_simulator() {
     let mut modules = String::new();
     let mut tests = String::from(TEST_PRELUDE);
     let mut read_back = 0;
-    for path in valid_descriptions(16, &scratch.0) {
+    for path in valid_descriptions(32, &scratch.0) {
         let module = short_name(&path);
         let device = drivegen::check(&path).device.unwrap();
         let _ = write!(
