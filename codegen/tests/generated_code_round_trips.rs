@@ -15,7 +15,7 @@ use drivebus::Ratio;
 use drivegen::emit::ident;
 use drivegen::ir::{DataType, Device, Parameter, Scale, ValueType};
 use support::crate_build::{build_and_test, generated, no_std_lib};
-use support::random_description::{plain_modbus_integer, telling_integer, valid_descriptions};
+use support::random_description::{modbus_integer, telling_integer, valid_descriptions};
 use support::{short_name, Scratch};
 
 /// The Rust literal of raw value `value` of `data_type`.
@@ -53,6 +53,31 @@ fn engineering(p: &Parameter, raw: i128) -> Option<String> {
     })
 }
 
+/// The raw value the test gives `p`, and the Rust expression of its engineering value where it
+/// has one: an enum's last value, a flags type's first bit, a unit newtype or scaled `f64` (within
+/// ±10^6 raw steps, so that the engineering value is exact); `None` for raw-valued parameters.
+fn typed_value(module: &str, device: &Device, p: &Parameter) -> Option<(i128, Option<String>)> {
+    let types = format!("random_round_trips::{module}::types");
+    if let Some(e) = p.enumeration.as_deref().and_then(|e| device.enumeration(e)) {
+        let last = e.values.last()?;
+        let constant = ident::constant(&last.name);
+        let typed = format!("{types}::{}::{constant}", ident::camel(&e.name));
+        return Some((i128::from(last.value), Some(typed)));
+    }
+    if let Some(f) = p.flags.as_deref().and_then(|f| device.flags_type(f)) {
+        let first = f.bits.first()?;
+        let constant = ident::constant(&first.name);
+        let typed = format!("{types}::{}::{constant}", ident::camel(&f.name));
+        return Some((1 << first.bit, Some(typed)));
+    }
+    let telling = telling_integer(p)?;
+    let steps = telling.clamp(-1_000_000, 1_000_000);
+    Some(match engineering(p, steps) {
+        Some(typed) => (steps, Some(typed)),
+        None => (telling, None),
+    })
+}
+
 /// One `#[test]` writing and reading back every plain integer parameter of `device`, whose
 /// generated code is module `module` of crate `random_round_trips`. Returns the test and how many
 /// values it reads back.
@@ -68,29 +93,24 @@ fn round_trip_test(module: &str, path: &Path, device: &Device) -> (String, usize
     // A run-time scaled parameter is on Modbus only where its inputs can be read there
     // (`scale_inputs_exist`): left out here.
     let fixed_scale = |p: &&Parameter| !matches!(p.scale, Some(Scale::Runtime { .. }));
-    let tested = device.parameters.iter().filter(|p| plain_modbus_integer(p));
+    let tested = device.parameters.iter().filter(|p| modbus_integer(p));
     for p in tested.filter(fixed_scale) {
-        let Some(telling) = telling_integer(p) else {
-            continue;
-        };
         let name = &p.name;
         let marker = format!(
             "random_round_trips::{module}::params::{}",
             ident::camel(name)
         );
-        // In engineering units where the value has a unit or a fixed scale (within ±10^6 raw
-        // steps, so that the engineering value is exact), else raw.
-        let steps = telling.clamp(-1_000_000, 1_000_000);
-        let (value, write, read) = match engineering(p, steps) {
+        let Some((value, typed)) = typed_value(module, device, p) else {
+            continue;
+        };
+        let (write, read) = match typed {
             Some(typed) => (
-                steps,
                 format!("write::<{marker}>({typed})"),
                 format!("read::<{marker}>().unwrap(), {typed}"),
             ),
             None => {
-                let raw = literal(p.data_type, telling);
+                let raw = literal(p.data_type, value);
                 (
-                    telling,
                     format!("write_raw::<{marker}>({raw})"),
                     format!("read_raw::<{marker}>().unwrap(), {raw}"),
                 )

@@ -422,11 +422,15 @@ pub fn telling_integer(p: &drivegen::ir::Parameter) -> Option<i128> {
     })
 }
 
-/// Whether `p` is a plain integer (or boolean) parameter of the default variant `v0` on Modbus:
-/// one whose raw value a test can write and read back.
-pub fn plain_modbus_integer(p: &drivegen::ir::Parameter) -> bool {
+/// Whether `p` is an integer (or boolean) parameter of the default variant `v0` on Modbus, not a
+/// command: one whose value a test can write and read back.
+pub fn modbus_integer(p: &drivegen::ir::Parameter) -> bool {
     let in_default_variant = p.variants.is_empty() || p.variants.iter().any(|v| v == "v0");
     let integer = p.data_type.integer_bounds().is_some();
-    let plain = p.enumeration.is_none() && p.flags.is_none() && p.command.is_none();
-    in_default_variant && integer && plain && !p.modbus.is_empty()
+    in_default_variant && integer && p.command.is_none() && !p.modbus.is_empty()
+}
+
+/// [`modbus_integer`], and valued by its raw number (no enum or flags type).
+pub fn plain_modbus_integer(p: &drivegen::ir::Parameter) -> bool {
+    modbus_integer(p) && p.enumeration.is_none() && p.flags.is_none()
 }
