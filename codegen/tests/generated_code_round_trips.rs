@@ -3,7 +3,8 @@
 //! has a unit or a fixed scale, `write_raw` / `read_raw` otherwise, with its marker type), every
 //! plain integer or boolean parameter of the default variant takes a value filling its type,
 //! which the simulator holds and the generated code reads back unchanged — every width, odd
-//! width, word count, word order and table. The generated code and the simulator decode registers
+//! width, word count, word order and table. Each generated PDO struct of integer entries encodes
+//! to the payload packed independently here, and decodes back. The generated code and the simulator decode registers
 //! independently (drivebus's `parameter!` codecs against drivesim's IR-driven store).
 
 mod support;
@@ -13,7 +14,7 @@ use std::path::Path;
 
 use drivebus::Ratio;
 use drivegen::emit::ident;
-use drivegen::ir::{DataType, Device, Parameter, Scale, ValueType};
+use drivegen::ir::{pdo_bits, DataType, Device, Parameter, Scale, ValueType};
 use support::crate_build::{build_and_test, generated, no_std_lib};
 use support::random_description::{modbus_integer, telling_integer, valid_descriptions};
 use support::{short_name, Scratch};
@@ -135,6 +136,58 @@ fn round_trip_test(module: &str, path: &Path, device: &Device) -> (String, usize
     (test, read_back)
 }
 
+/// One `#[test]` per description with PDO mappings of integer entries: each generated PDO struct,
+/// filled with the values the register tests use, encodes to the payload packed here from the
+/// raw values (little-endian, from bit 0, in entry order) and decodes back to itself.
+fn pdo_test(module: &str, device: &Device) -> Option<(String, usize)> {
+    let mut test = format!("#[test]\nfn {module}_pdos() {{\n");
+    let mut checked = 0;
+    for pdo in &device.pdos {
+        let Some(fields) = pdo_fields(module, device, &pdo.entries) else {
+            continue;
+        };
+        let (mut packed, mut bits) = (0u64, 0);
+        let mut init = String::new();
+        for (field, raw, typed, width) in fields {
+            packed |= (raw as u64 & (u64::MAX >> (64 - width))) << bits;
+            bits += width;
+            let _ = write!(init, "{field}: {typed}, ");
+        }
+        let bytes = &packed.to_le_bytes()[..(bits as usize).div_ceil(8)];
+        let ty = format!(
+            "random_round_trips::{module}::pdo::{}",
+            ident::camel(&pdo.name)
+        );
+        let _ = write!(
+            test,
+            "    let pdo = {ty} {{ {init}}};\n    let payload = pdo.encode().unwrap();\n    \
+             assert_eq!(payload.as_bytes(), &{bytes:?}, \"{name} payload\");\n    \
+             assert_eq!({ty}::decode(payload.as_bytes()).unwrap(), pdo, \"{name} decoded\");\n",
+            name = pdo.name
+        );
+        checked += 1;
+    }
+    (checked > 0).then(|| (test + "}\n\n", checked))
+}
+
+/// The fields of a PDO struct mapping `entries`: field name, raw value, value expression and
+/// bits; `None` if some entry has no integer value to give.
+fn pdo_fields(
+    module: &str,
+    device: &Device,
+    entries: &[String],
+) -> Option<Vec<(String, i128, String, u32)>> {
+    entries
+        .iter()
+        .map(|entry| {
+            let p = device.parameter(entry)?;
+            let (raw, typed) = typed_value(module, device, p)?;
+            let typed = typed.unwrap_or_else(|| literal(p.data_type, raw));
+            Some((ident::snake(entry), raw, typed, pdo_bits(p.data_type)))
+        })
+        .collect()
+}
+
 const TEST_PRELUDE: &str = "//! Generated round trips.\n\
 #![allow(unused_variables)] // A description may have no parameter to test.\n\
 use drivebus::modbus::transport::{ModbusTcpClient, TcpConfig};\n\
@@ -148,7 +201,7 @@ fn generated_code_round_trips_values_through_the_simulator() {
     let scratch = Scratch::new("generated-round-trips");
     let mut modules = String::new();
     let mut tests = String::from(TEST_PRELUDE);
-    let mut read_back = 0;
+    let (mut read_back, mut pdos) = (0, 0);
     for path in valid_descriptions(32, &scratch.0) {
         let module = short_name(&path);
         let device = drivegen::check(&path).device.unwrap();
@@ -160,8 +213,13 @@ fn generated_code_round_trips_values_through_the_simulator() {
         let (test, count) = round_trip_test(&module, &path, &device);
         tests += &test;
         read_back += count;
+        if let Some((test, count)) = pdo_test(&module, &device) {
+            tests += &test;
+            pdos += count;
+        }
     }
     assert!(read_back >= 10, "only {read_back} values are read back");
+    assert!(pdos >= 5, "only {pdos} PDO mappings are encoded");
     let built = build_and_test("random_round_trips", &no_std_lib(&modules), &tests);
     assert!(
         built.success,
