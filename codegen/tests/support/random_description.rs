@@ -339,23 +339,52 @@ fn pdo(
     )
 }
 
-/// A whole description: device, Modbus and CANopen capabilities, two variants, enums, flags and
-/// one to eight parameters.
+/// Parameters of the shipped CiA 402 profile a description may include.
+pub const CIA402: &[&str] = &[
+    "controlword",
+    "statusword",
+    "modes_of_operation",
+    "modes_of_operation_display",
+];
+
+/// The `include` line of the CiA 402 profile restricted to `only`; nothing without.
+fn include(only: Option<&[&str]>) -> String {
+    let Some(only) = only else {
+        return String::new();
+    };
+    // Every crate including this module has its manifest one level below the workspace root.
+    let profile = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../descriptions/profiles/cia402.toml"
+    );
+    let only: Vec<String> = only.iter().map(|n| format!("{n:?}")).collect();
+    format!(
+        "include = [{{ path = {profile:?}, only = [{}] }}]\n",
+        only.join(", ")
+    )
+}
+
+/// A whole description: device, Modbus and CANopen capabilities, two variants, enums, flags,
+/// one to eight parameters, and maybe some CiA 402 profile parameters.
 pub fn description() -> impl Strategy<Value = String> {
     let enums = (0usize..3).prop_flat_map(|n| (0..n).map(enumeration).collect::<Vec<_>>());
     let flags = (0usize..3).prop_flat_map(|n| (0..n).map(flags).collect::<Vec<_>>());
     let parameters =
         proptest::collection::vec((name(), proptest::sample::select(TYPES), extras()), 1..=8);
+    let included = proptest::option::weighted(0.3, proptest::sample::subsequence(CIA402, 1..=4));
     (
         enums,
         flags,
         parameters,
         proptest::sample::select(&["high-first", "low-first"][..]),
         any::<bool>(),
+        included,
     )
-        .prop_map(|(enums, flags, parameters, word_order, read_gaps)| {
-            let mut toml = format!(
-                "format = 1\n\n[device]\nname = \"Random\"\nhandle = \"Random\"\nvendor = \"ACME\"\nsource = {{ doc = \"m\", line = 1 }}\n\n\
+        .prop_map(|(enums, flags, parameters, word_order, read_gaps, included)| {
+            let mut toml = format!("format = 1\n{}", include(included.as_deref()));
+            let _ = write!(
+                toml,
+                "\n[device]\nname = \"Random\"\nhandle = \"Random\"\nvendor = \"ACME\"\nsource = {{ doc = \"m\", line = 1 }}\n\n\
                  [[source]]\nid = \"m\"\nfile = \"m.txt\"\ntitle = \"Manual\"\n\n\
                  [modbus]\nword_order = \"{word_order}\"\nread_gaps = {read_gaps}\nsource = {{ doc = \"m\", line = 1 }}\n\n\
                  [canopen]\ndefault_node_id = 5\nsource = {{ doc = \"m\", line = 1 }}\n\n"
