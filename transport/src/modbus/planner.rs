@@ -405,6 +405,20 @@ mod tests {
         best[(1 << n) - 1]
     }
 
+    /// Whether some item occupies `register` of `table`.
+    fn occupied(items: &[ModbusAddress], table: Table, register: usize) -> bool {
+        items
+            .iter()
+            .any(|a| a.table == table && (a.address as usize..end(a)).contains(&register))
+    }
+
+    /// Whether some span covers `register` of `table`.
+    fn covered(spans: &[RegisterSpan], table: Table, register: usize) -> bool {
+        spans
+            .iter()
+            .any(|s| s.table == table && (s.start as usize..s.end()).contains(&register))
+    }
+
     /// Whether a plan may read `register` where gaps may not be read: requested or listed.
     fn readable(
         limits: &ModbusLimits,
@@ -412,14 +426,7 @@ mod tests {
         table: Table,
         register: usize,
     ) -> bool {
-        let requested = items
-            .iter()
-            .any(|a| a.table == table && (a.address as usize..end(a)).contains(&register));
-        let listed = limits
-            .readable
-            .iter()
-            .any(|s| s.table == table && (s.start as usize..s.end()).contains(&register));
-        requested || listed
+        occupied(items, table, register) || covered(limits.readable, table, register)
     }
 
     /// Whether no plan may read `register`: listed as unreadable, and no item occupies it.
@@ -429,14 +436,7 @@ mod tests {
         table: Table,
         register: usize,
     ) -> bool {
-        let occupied = items
-            .iter()
-            .any(|a| a.table == table && (a.address as usize..end(a)).contains(&register));
-        let unreadable = limits
-            .unreadable
-            .iter()
-            .any(|s| s.table == table && (s.start as usize..s.end()).contains(&register));
-        unreadable && !occupied
+        covered(limits.unreadable, table, register) && !occupied(items, table, register)
     }
 
     fn any_item() -> impl Strategy<Value = ModbusAddress> {
