@@ -96,12 +96,7 @@ mod tests {
     use drivebus::modbus::{Table, WordOrder};
 
     fn input(address: u16, words: u16) -> ModbusAddress {
-        ModbusAddress {
-            table: Table::Input,
-            address,
-            words,
-            word_order: WordOrder::LowFirst,
-        }
+        ModbusAddress::input(address, words, WordOrder::LowFirst)
     }
 
     fn bus() -> MemoryBus {

@@ -209,12 +209,7 @@ mod tests {
     use crate::modbus::WordOrder;
 
     fn input(address: u16, words: u16) -> ModbusAddress {
-        ModbusAddress {
-            table: Table::Input,
-            address,
-            words,
-            word_order: WordOrder::LowFirst,
-        }
+        ModbusAddress::input(address, words, WordOrder::LowFirst)
     }
 
     fn lafert_bus() -> MemoryBus {
