@@ -62,8 +62,6 @@ impl fmt::Display for CodecError {
 #[derive(Debug, Clone, Copy)]
 struct Affine {
     exact: drivebus::Scale,
-    factor: f64,
-    offset: f64,
     /// Decimal places that show one raw step.
     decimals: usize,
 }
@@ -71,7 +69,12 @@ struct Affine {
 impl Affine {
     /// Whether engineering values are the raw values themselves.
     fn is_identity(&self) -> bool {
-        self.factor == 1.0 && self.offset == 0.0
+        self.exact == drivebus::Scale::IDENTITY
+    }
+
+    /// The factor, as a float.
+    fn factor(&self) -> f64 {
+        self.exact.factor.to_f64()
     }
 
     /// The engineering value of `raw`; exact fractions for integers (3 × 1/10 shows as 0.3).
@@ -103,12 +106,7 @@ fn affine(parameter: &Parameter) -> Option<Affine> {
         }
         Some(Scale::Runtime { .. }) => return None,
     };
-    Some(Affine {
-        exact,
-        factor: exact.factor.to_f64(),
-        offset: exact.offset.to_f64(),
-        decimals,
-    })
+    Some(Affine { exact, decimals })
 }
 
 /// Decimal places needed to show multiples of `step` (at most 6).
@@ -260,14 +258,14 @@ fn numeric(parameter: &Parameter, text: &str) -> Result<RawValue, CodecError> {
             return Ok(RawValue::Int(exact));
         }
     }
-    let raw = (value - scale.offset) / scale.factor;
+    let raw = (value - scale.exact.offset.to_f64()) / scale.factor();
     if !integer {
         return Ok(RawValue::Float(raw));
     }
     if (raw - raw.round()).abs() > 1e-6 {
         return Err(CodecError::NotRepresentable(format!(
             "{text} is not a multiple of the parameter's step {}{}",
-            scale.factor,
+            scale.factor(),
             unit_suffix(parameter)
         )));
     }
