@@ -4,6 +4,7 @@
 use std::cmp::Ordering;
 use std::fmt;
 
+use drivebus::scale::EXACT_INTEGERS;
 use drivegen::ir::Number;
 
 /// A raw value: an exact integer, or a float for float parameters and scaled input.
@@ -14,9 +15,6 @@ pub enum RawValue {
     /// A float.
     Float(f64),
 }
-
-/// Integers of this magnitude or more are not all exact as `f64` (2^53).
-const EXACT_FLOAT_INTEGERS: f64 = 9_007_199_254_740_992.0;
 
 impl RawValue {
     /// The value as a float (rounded for integers beyond 2^53).
@@ -30,7 +28,7 @@ impl RawValue {
     /// The integer a whole float stands for, if the float is exact: `None` for a fraction or a
     /// magnitude of 2^53 or more, where a float may already have been rounded.
     pub fn whole(value: f64) -> Option<i128> {
-        (value.fract() == 0.0 && value.abs() < EXACT_FLOAT_INTEGERS).then_some(value as i128)
+        (value.fract() == 0.0 && value.abs() < EXACT_INTEGERS).then_some(value as i128)
     }
 
     /// How the value compares with a described number (a range bound or an allowed value);

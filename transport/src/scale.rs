@@ -7,7 +7,7 @@ use crate::error::ValueError;
 use crate::value::Numeric;
 
 /// Below this magnitude every integer is exact in `f64` (2^53).
-const EXACT_INTEGERS: f64 = 9_007_199_254_740_992.0;
+pub const EXACT_INTEGERS: f64 = 9_007_199_254_740_992.0;
 
 /// An exact rational number `num / den` with `den > 0`, kept in lowest terms.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
