@@ -83,7 +83,11 @@ pub fn read_wire(
         })
         .collect();
     if let Err(cause) = ModbusLink::new(bus, unit, limits).read_many(&mut requests) {
-        let value = requests.iter().position(|r| r.len == 0).unwrap_or(0);
+        // The link reads in (table, address) order, not in the order values were asked for: the
+        // lowest unread address is the read that failed.
+        let unread = (0..requests.len()).filter(|&i| requests[i].len == 0);
+        let address = |i: &usize| (addresses[*i].table, addresses[*i].address);
+        let value = unread.min_by_key(address).unwrap_or(0);
         return Err(Failure { value, cause });
     }
     Ok(wire)
@@ -115,6 +119,11 @@ mod tests {
             ..ModbusLimits::SPEC
         };
         let addresses = [input(0x60, 1), input(0x71, 1)];
+        let failure = read_wire(&mut bus, UnitId(1), two_at_a_time, &addresses);
+        assert_eq!(failure.unwrap_err().value, 1);
+        // Reads go by address, not by the order values were asked for: the failing read of 0x50
+        // leaves 0x60 unread too, yet 0x50 is named.
+        let addresses = [input(0x60, 1), input(0x50, 1)];
         let failure = read_wire(&mut bus, UnitId(1), two_at_a_time, &addresses);
         assert_eq!(failure.unwrap_err().value, 1);
         let too_wide = [input(0x60, 1), input(0x61, 3)];
