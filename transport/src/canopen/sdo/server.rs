@@ -19,11 +19,14 @@ pub trait ObjectDictionary {
     /// Stores `data` at `index:subindex`.
     fn write(&mut self, index: u16, subindex: u8, data: &[u8]) -> Result<(), AbortCode>;
     /// Whether `index:subindex` takes downloads at all (it exists and is writable): asked before
-    /// the data of a block download is accepted, so that the client learns early. By default
-    /// every object may; [`ObjectDictionary::write`] still decides once the data is in.
+    /// the data of a block download is accepted, so that the client learns early. By default the
+    /// object must be readable or write-only; [`ObjectDictionary::write`] still decides once the
+    /// data is in.
     fn check_writable(&mut self, index: u16, subindex: u8) -> Result<(), AbortCode> {
-        let _ = (index, subindex);
-        Ok(())
+        match self.read(index, subindex) {
+            Ok(_) | Err(AbortCode::WriteOnly) => Ok(()),
+            Err(refusal) => Err(refusal),
+        }
     }
 }
 
@@ -33,12 +36,6 @@ impl ObjectDictionary for BTreeMap<(u16, u8), Vec<u8>> {
         self.get(&(index, subindex))
             .cloned()
             .ok_or(AbortCode::ObjectDoesNotExist)
-    }
-    fn check_writable(&mut self, index: u16, subindex: u8) -> Result<(), AbortCode> {
-        match self.contains_key(&(index, subindex)) {
-            true => Ok(()),
-            false => Err(AbortCode::ObjectDoesNotExist),
-        }
     }
     fn write(&mut self, index: u16, subindex: u8, data: &[u8]) -> Result<(), AbortCode> {
         let slot = self
