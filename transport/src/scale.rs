@@ -107,7 +107,7 @@ impl Ratio {
         let value = raw.to_f64();
         let whole = i64::from_f64(value)?;
         // `to_f64` is exact only up to 2^53; refuse larger values rather than use a rounded one.
-        (value.abs() < 9_007_199_254_740_992.0).then_some(Ratio::int(whole))
+        (value.abs() < EXACT_INTEGERS).then_some(Ratio::int(whole))
     }
 
     /// The nearest `f64`.
