@@ -399,14 +399,11 @@ pub fn show(device: &Device, parameter: &Parameter, bytes: &[u8]) -> Shown {
     };
     let int = raw::to_int(data_type, bytes);
     let raw_json = int.map_or(serde_json::Value::from(raw), exact_json);
-    if let Some(name) = enum_name(device, parameter, raw) {
-        return Shown {
-            value: serde_json::Value::from(name.clone()),
-            text: name,
-            raw: raw_json,
-        };
-    }
-    if let Some(names) = flag_names(device, parameter, raw as u64) {
+    // Enums and flags are over integer types: named from the exact integer, not the float.
+    let names = int.and_then(|int| {
+        enum_name(device, parameter, int).or_else(|| flag_names(device, parameter, int as u64))
+    });
+    if let Some(names) = names {
         return Shown {
             value: serde_json::Value::from(names.clone()),
             text: names,
@@ -436,12 +433,12 @@ fn exact_json(int: i128) -> serde_json::Value {
     }
 }
 
-fn enum_name(device: &Device, parameter: &Parameter, raw: f64) -> Option<String> {
+fn enum_name(device: &Device, parameter: &Parameter, raw: i128) -> Option<String> {
     let e = device.enumeration(parameter.enumeration.as_deref()?)?;
     Some(
         e.values
             .iter()
-            .find(|v| v.value as f64 == raw)
+            .find(|v| i128::from(v.value) == raw)
             .map_or_else(|| format!("unknown ({raw})"), |v| v.name.clone()),
     )
 }
@@ -568,6 +565,30 @@ mod tests {
             })
             .collect();
         device
+    }
+
+    #[test]
+    fn wide_enum_values_are_named_exactly() {
+        let mut device = lafert();
+        let e = device
+            .enums
+            .iter_mut()
+            .find(|e| e.name == "operation_mode")
+            .unwrap();
+        e.data_type = DataType::Signed(8);
+        e.values.truncate(2);
+        (e.values[0].name, e.values[0].value) = ("near".into(), i64::MAX - 1);
+        (e.values[1].name, e.values[1].value) = ("top".into(), i64::MAX);
+        let mut mode = device.parameter("operation_mode").unwrap().clone();
+        mode.data_type = DataType::Signed(8);
+        mode.allowed.clear();
+        // As floats both values are 2^63: only an exact comparison tells them apart.
+        let shown = show(&device, &mode, &i64::MAX.to_le_bytes());
+        assert_eq!(shown.text, "top");
+        assert_eq!(
+            parse(&device, &mode, "top"),
+            Ok(i64::MAX.to_le_bytes().to_vec())
+        );
     }
 
     #[test]
