@@ -137,8 +137,11 @@ macro_rules! float_wire_value {
             fn to_f64(self) -> f64 {
                 self as f64
             }
+            /// `None` where the value is infinite in this width (an `f32` beyond `f32::MAX`):
+            /// it would reach the drive as infinity.
             fn from_f64(value: f64) -> Option<Self> {
-                Some(value as $ty)
+                let narrowed = value as $ty;
+                narrowed.is_finite().then_some(narrowed)
             }
         }
     )*};
@@ -253,6 +256,18 @@ mod tests {
         assert_eq!(0x0100_0000u32.encode_le(&mut three), Err(ERR_OVERFLOW));
         assert_eq!((-1i32).encode_le(&mut three), Ok(()));
         assert_eq!(three, [0xFF; 3]);
+    }
+
+    #[test]
+    fn floats_refuse_what_their_width_makes_infinite() {
+        assert_eq!(f32::from_f64(1e39), None);
+        assert_eq!(f32::from_f64(-1e39), None);
+        assert_eq!(f32::from_f64(3.0e38), Some(3.0e38));
+        assert_eq!(f64::from_f64(f64::INFINITY), None);
+        assert_eq!(
+            crate::Scale::IDENTITY.to_raw::<f32>("gain", 1e39),
+            Err(ValueError::Overflow { parameter: "gain" })
+        );
     }
 
     #[test]
