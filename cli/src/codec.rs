@@ -5,7 +5,8 @@
 use std::cmp::Ordering;
 use std::fmt;
 
-use drivebus::Ratio;
+use drivebus::scale::EXACT_INTEGERS;
+use drivebus::{Ratio, ValueError};
 use drivegen::ir::{DataType, Device, Parameter, Scale};
 use drivesim::raw;
 
@@ -258,24 +259,41 @@ fn numeric(parameter: &Parameter, text: &str) -> Result<RawValue, CodecError> {
             return Ok(RawValue::Int(exact));
         }
     }
-    let raw = (value - scale.exact.offset.to_f64()) / scale.factor();
-    if !integer {
-        return Ok(RawValue::Float(raw));
-    }
-    if (raw - raw.round()).abs() > 1e-6 {
-        return Err(CodecError::NotRepresentable(format!(
+    // Otherwise converted as generated crates convert (`drivebus::Scale::to_raw`).
+    let refused = |error: ValueError| match error {
+        ValueError::NotRepresentable { .. } => CodecError::NotRepresentable(format!(
             "{text} is not a multiple of the parameter's step {}{}",
             scale.factor(),
             unit_suffix(parameter)
-        )));
+        )),
+        _ => CodecError::OutOfRange(format!(
+            "{text} does not fit {}",
+            parameter.data_type.name()
+        )),
+    };
+    let exact = scale.exact;
+    let raw = match parameter.data_type {
+        DataType::F32 => exact
+            .to_raw::<f32>("", value)
+            .map(f64::from)
+            .map(RawValue::Float),
+        DataType::F64 => exact.to_raw::<f64>("", value).map(RawValue::Float),
+        DataType::Signed(_) => exact
+            .to_raw::<i64>("", value)
+            .map(|r| RawValue::Int(r.into())),
+        _ => exact
+            .to_raw::<u64>("", value)
+            .map(|r| RawValue::Int(r.into())),
     }
-    RawValue::whole(raw.round())
-        .map(RawValue::Int)
-        .ok_or_else(|| {
-            CodecError::NotRepresentable(format!(
+    .map_err(refused)?;
+    match raw {
+        RawValue::Int(int) if int.unsigned_abs() as f64 >= EXACT_INTEGERS => {
+            Err(CodecError::NotRepresentable(format!(
                 "{text} is beyond the integers a float holds exactly; give the raw value (raw:N)"
-            ))
-        })
+            )))
+        }
+        raw => Ok(raw),
+    }
 }
 
 fn check_unit(parameter: &Parameter, given: &str) -> Result<(), CodecError> {
@@ -565,6 +583,22 @@ mod tests {
             })
             .collect();
         device
+    }
+
+    #[test]
+    fn floats_beyond_their_width_are_refused_not_sent_as_infinity() {
+        let device = lafert();
+        let mut gain = device.parameter("speed_setpoint").unwrap().clone();
+        (gain.data_type, gain.range, gain.unit) = (DataType::F32, None, None);
+        let huge = format!("1{}", "0".repeat(40));
+        assert!(matches!(
+            parse(&device, &gain, &huge),
+            Err(CodecError::OutOfRange(_))
+        ));
+        assert_eq!(
+            parse(&device, &gain, "1.5"),
+            Ok(1.5f32.to_le_bytes().to_vec())
+        );
     }
 
     #[test]

@@ -4,7 +4,6 @@
 use std::cmp::Ordering;
 use std::fmt;
 
-use drivebus::scale::EXACT_INTEGERS;
 use drivegen::ir::Number;
 
 /// A raw value: an exact integer, or a float for float parameters and scaled input.
@@ -23,12 +22,6 @@ impl RawValue {
             RawValue::Int(i) => i as f64,
             RawValue::Float(f) => f,
         }
-    }
-
-    /// The integer a whole float stands for, if the float is exact: `None` for a fraction or a
-    /// magnitude of 2^53 or more, where a float may already have been rounded.
-    pub fn whole(value: f64) -> Option<i128> {
-        (value.fract() == 0.0 && value.abs() < EXACT_INTEGERS).then_some(value as i128)
     }
 
     /// How the value compares with a described number (a range bound or an allowed value);
@@ -66,13 +59,5 @@ mod tests {
             Some(Ordering::Greater)
         );
         assert_eq!(RawValue::Float(f64::NAN).compare(Number::Int(1)), None);
-    }
-
-    #[test]
-    fn only_exact_whole_floats_become_integers() {
-        assert_eq!(RawValue::whole(1500.0), Some(1500));
-        assert_eq!(RawValue::whole(-2.0), Some(-2));
-        assert_eq!(RawValue::whole(0.5), None);
-        assert_eq!(RawValue::whole(2f64.powi(60)), None);
     }
 }
