@@ -597,6 +597,15 @@ pub struct Range {
     pub max: Number,
 }
 
+impl Range {
+    /// Whether `n` lies within the range, compared exactly ([`Number::compare`]).
+    pub fn contains(&self, n: Number) -> bool {
+        use std::cmp::Ordering::{Equal, Greater, Less};
+        matches!(n.compare(self.min), Some(Greater | Equal))
+            && matches!(n.compare(self.max), Some(Less | Equal))
+    }
+}
+
 /// A parameter.
 #[derive(Debug, Clone, Serialize)]
 pub struct Parameter {

@@ -1,5 +1,6 @@
 //! Raw numbers of defaults, ranges and allowed values: exact integers, or floats for float types.
 
+use std::cmp::Ordering;
 use std::fmt;
 
 use serde::{Serialize, Serializer};
@@ -21,6 +22,15 @@ impl Number {
             Number::Float(f) => f,
         }
     }
+    /// How two raw values compare: integers exactly (as floats, neighbours near ±2^63 are
+    /// equal), anything else as floats; `None` with NaN.
+    pub fn compare(self, other: Number) -> Option<Ordering> {
+        match (self, other) {
+            (Number::Int(a), Number::Int(b)) => Some(a.cmp(&b)),
+            _ => self.as_f64().partial_cmp(&other.as_f64()),
+        }
+    }
+
     /// The value as an integer, if it is one.
     pub fn as_int(self) -> Option<i64> {
         match self {

@@ -20,20 +20,17 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
                 format!("default of `{}` {why}", p.name),
             ))
         };
-        let value = default.as_f64();
         if !fits(p, default) {
             refuse(format!("does not fit its type {}", p.data_type.name()));
-        } else if let Some(r) = &p.range {
-            if value < r.min.as_f64() || value > r.max.as_f64() {
-                refuse(format!(
-                    "{value} is outside its range {}..={}",
-                    r.min.as_f64(),
-                    r.max.as_f64()
-                ));
-            }
+        } else if let Some(r) = p.range.as_ref().filter(|r| !r.contains(default)) {
+            refuse(format!(
+                "{default} is outside its range {}..={}",
+                r.min, r.max
+            ));
         }
-        if !p.allowed.is_empty() && !p.allowed.iter().any(|a| a.as_f64() == value) {
-            refuse(format!("{value} is not one of its allowed values"));
+        let is_default = |a: &Number| a.compare(default) == Some(std::cmp::Ordering::Equal);
+        if !p.allowed.is_empty() && !p.allowed.iter().any(is_default) {
+            refuse(format!("{default} is not one of its allowed values"));
         }
         if let (Some(e), Number::Int(i)) = (
             p.enumeration.as_deref().and_then(|n| device.enumeration(n)),

@@ -37,7 +37,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
             for n in [range.min, range.max].into_iter().filter(|n| !fits(p, *n)) {
                 out.push(out_of_type(p, n, span));
             }
-            if range.min.as_f64() > range.max.as_f64() {
+            if range.min.compare(range.max) == Some(std::cmp::Ordering::Greater) {
                 out.push(Diagnostic::error(
                     RULE,
                     span.clone(),
@@ -60,7 +60,8 @@ fn allowed_outside_range(p: &Parameter, span: &Span) -> Vec<Diagnostic> {
     let Some(r) = &p.range else {
         return Vec::new();
     };
-    let outside = |n: &&Number| n.as_f64() < r.min.as_f64() || n.as_f64() > r.max.as_f64();
+    // Values that do not fit the type are reported already.
+    let outside = |n: &&Number| fits(p, **n) && !r.contains(**n);
     let refuse = |n: &Number| {
         let message = format!(
             "allowed value {n} of `{}` is outside its range {}..={}",
@@ -106,6 +107,24 @@ source = { doc = "m", line = 1 }
         assert_eq!(
             messages("ranges_fit_type", body),
             ["allowed value 7 of `mode` is outside its range 1..=5"]
+        );
+    }
+
+    #[test]
+    fn wide_integers_are_compared_exactly() {
+        // As floats, 2^63 - 1 and 2^63 - 2 are equal.
+        let body = r#"
+[[parameter]]
+name = "big"
+type = "i64"
+range = [0, 9223372036854775806]
+allowed = [9223372036854775807]
+modbus = { table = "holding", address = 1, words = 4 }
+source = { doc = "m", line = 1 }
+"#;
+        assert_eq!(
+            messages("ranges_fit_type", body),
+            ["allowed value 9223372036854775807 of `big` is outside its range 0..=9223372036854775806"]
         );
     }
 
