@@ -1,9 +1,7 @@
 //! Short texts kept without a heap allocation: an EDS has thousands of values like `0x1000`,
 //! `rw` or `$NODEID+0x180`, and allocating each one dominated reading large files.
 
-use std::borrow::Borrow;
 use std::fmt;
-use std::hash::{Hash, Hasher};
 use std::ops::Deref;
 
 /// Bytes stored inline; longer texts go to the heap. 22 keeps a `ShortText` at 24 bytes (a `String`'s
@@ -14,7 +12,7 @@ const INLINE: usize = 22;
 #[derive(Clone)]
 pub struct ShortText(Repr);
 
-/// Private, so that only [`ShortText::from`] and [`ShortText::lowercase`] make inline bytes:
+/// Private, so that only [`ShortText::from`] makes inline bytes:
 /// they are always valid UTF-8, which [`ShortText`]'s `Deref` relies on.
 #[derive(Clone)]
 enum Repr {
@@ -39,19 +37,6 @@ impl From<&str> for ShortText {
     }
 }
 
-impl ShortText {
-    /// `text` in ASCII lower case.
-    pub fn lowercase(text: &str) -> Self {
-        let mut short = Self::from(text);
-        // ASCII case changes keep UTF-8 valid: multi-byte sequences are left alone.
-        match &mut short.0 {
-            Repr::Inline(bytes, len) => bytes[..usize::from(*len)].make_ascii_lowercase(),
-            Repr::Heap(text) => text.make_ascii_lowercase(),
-        }
-        short
-    }
-}
-
 impl Deref for ShortText {
     type Target = str;
 
@@ -59,9 +44,9 @@ impl Deref for ShortText {
         match &self.0 {
             Repr::Inline(bytes, len) => {
                 let bytes = &bytes[..usize::from(*len)];
-                // SAFETY: inline bytes are only written by `from` (a copy of a whole `&str`) and
-                // `lowercase` (ASCII case changes of such a copy), so they are valid UTF-8; the
-                // representation is private, so nothing else can write them. Checking again on
+                // SAFETY: inline bytes are only written by `from`, a copy of a whole `&str`, so
+                // they are valid UTF-8; the representation is private, so nothing else can write
+                // them. Checking again on
                 // every read cost more than copying the text (tens of thousands of reads per
                 // EDS).
                 unsafe { std::str::from_utf8_unchecked(bytes) }
@@ -71,7 +56,7 @@ impl Deref for ShortText {
     }
 }
 
-// Equal and hashed as its text, so that maps keyed by it can be searched with a `&str`.
+// Equal as its text.
 impl PartialEq for ShortText {
     fn eq(&self, other: &Self) -> bool {
         **self == **other
@@ -79,18 +64,6 @@ impl PartialEq for ShortText {
 }
 
 impl Eq for ShortText {}
-
-impl Hash for ShortText {
-    fn hash<H: Hasher>(&self, state: &mut H) {
-        (**self).hash(state)
-    }
-}
-
-impl Borrow<str> for ShortText {
-    fn borrow(&self) -> &str {
-        self
-    }
-}
 
 impl fmt::Debug for ShortText {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -119,10 +92,5 @@ mod tests {
         let inline = |text: &str| matches!(ShortText::from(text).0, Repr::Inline(..));
         assert!(inline("$NODEID+0x180"));
         assert!(!inline(long));
-        assert_eq!(&*ShortText::lowercase("1A00Sub1"), "1a00sub1");
-        assert_eq!(
-            &*ShortText::lowercase(&long.to_uppercase()),
-            long.to_uppercase().to_ascii_lowercase()
-        );
     }
 }
