@@ -620,6 +620,8 @@ fn compact(
 ) {
     let names = ini.section(&format!("{index:04x}name"));
     let values = ini.section(&format!("{index:04x}value"));
+    // The up-front reservation counted one variable for this section; it holds count + 1.
+    variables.reserve(usize::from(count) + 1);
     let template = variable(section, keys, 1, String::new(), diagnostics);
     let count_text = Text::new(ShortText::from(count.to_string().as_str()), section.span);
     variables.push(Variable {
