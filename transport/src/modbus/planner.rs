@@ -118,7 +118,7 @@ pub fn next_read(
         }
         limit = limit.min(reach);
     }
-    if let Some(barrier) = first_unreadable(limits, first.table, start, len, &item) {
+    if let Some(barrier) = first_unreadable(limits, first.table, start..limit, len, &item) {
         limit = limit.min(barrier);
     }
     let last = (0..len)
@@ -135,13 +135,13 @@ pub fn next_read(
     }))
 }
 
-/// The first register of `table` at or after `from` that the device lists as unreadable and no
-/// item occupies: a read from `from` must stop before it. (Past the first item, since the
+/// The first register of `table` in `within` that the device lists as unreadable and no item
+/// occupies: a read over `within` must stop before it. (Past the first item, since the
 /// registers of an item are never such a barrier.)
 fn first_unreadable(
     limits: &ModbusLimits,
     table: Table,
-    from: usize,
+    within: core::ops::Range<usize>,
     len: usize,
     item: impl Fn(usize) -> (ModbusAddress, bool),
 ) -> Option<usize> {
@@ -154,8 +154,12 @@ fn first_unreadable(
     limits
         .unreadable
         .iter()
-        .filter(|span| span.table == table && span.end() > from)
-        .filter_map(|span| ((span.start as usize).max(from)..span.end()).find(|&r| !occupied(r)))
+        .filter(|span| span.table == table && span.end() > within.start)
+        .filter(|span| (span.start as usize) < within.end)
+        .filter_map(|span| {
+            let mut registers = (span.start as usize).max(within.start)..span.end().min(within.end);
+            registers.find(|&r| !occupied(r))
+        })
         .min()
 }
 
