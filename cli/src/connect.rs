@@ -11,7 +11,7 @@ use drivebus::canopen::blocking::BlockingSdo;
 use drivebus::canopen::{CanBus, CanFrame, NodeId, SdoBus};
 use drivebus::modbus::rtu::{Parity, StopBits};
 use drivebus::modbus::transport::{ModbusTcpClient, SerialConfig, SerialRtuClient, TcpConfig};
-use drivebus::modbus::{ModbusLimits, RegisterBus, UnitId, WordOrder};
+use drivebus::modbus::{ModbusLimits, RegisterBus, UnitId, WordOrder, MAX_IN_FLIGHT};
 use drivebus::BusError;
 use drivegen::ir::{self, Device, Parameter};
 use drivesim::registers;
@@ -53,7 +53,7 @@ pub struct BusArgs {
     /// Modbus TCP: how many read requests may await their answers at once (1 to 16). Above 1,
     /// the requests for several parameters go out together; the server must read its
     /// connection request by request.
-    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u8).range(1..=16))]
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u8).range(1..=MAX_IN_FLIGHT as i64))]
     pub max_in_flight: u8,
 }
 

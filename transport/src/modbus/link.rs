@@ -103,7 +103,7 @@ impl<B: RegisterBus> Link for ModbusLink<B> {
     }
 
     /// Reads the batch with the fewest requests the device's limits allow (see
-    /// [`planner`](super::planner)), handed to the bus eight reads at a time
+    /// [`planner`](super::planner)), handed to the bus [`MAX_IN_FLIGHT`](super::MAX_IN_FLIGHT) reads at a time
     /// ([`RegisterBus::read_register_batch`]) so a client that pipelines sends them together. On an error, the values already read keep their `len`;
     /// the others have `len == 0`.
     fn read_many(
@@ -143,8 +143,9 @@ impl<B: RegisterBus> Link for ModbusLink<B> {
     }
 }
 
-/// Reads handed to the bus at once by [`ModbusLink::read_many`].
-const MAX_BATCH: usize = 8;
+/// Reads handed to the bus at once by [`ModbusLink::read_many`]: as many as a pipelining client
+/// keeps in flight, so that a larger window is never cut into round trips here.
+const MAX_BATCH: usize = super::MAX_IN_FLIGHT;
 
 /// Marks a value planned but not read yet; `len == 0` means "not planned", any other length
 /// "read" — a value is never zero bytes long.
@@ -261,6 +262,26 @@ mod tests {
                 count: 17
             }]
         );
+    }
+
+    #[test]
+    fn a_batch_fills_a_whole_pipelining_window() {
+        let limits = ModbusLimits {
+            max_read_registers: 1,
+            ..ModbusLimits::SPEC
+        };
+        let mut bufs = [[0u8; 2]; 20];
+        let mut requests: std::vec::Vec<_> = (0u16..)
+            .zip(bufs.iter_mut())
+            .map(|(a, buf)| ReadRequest {
+                address: input(2 * a, 1),
+                buf,
+                len: 0,
+            })
+            .collect();
+        let mut planned = [None; MAX_BATCH];
+        let count = plan_batch(&limits, &mut requests, &mut planned).unwrap();
+        assert_eq!(count, crate::modbus::MAX_IN_FLIGHT);
     }
 
     #[test]

@@ -57,7 +57,7 @@ mod tcp;
 use core::ops::Range;
 use std::time::{Duration, Instant};
 
-pub use pipeline::MAX_IN_FLIGHT;
+pub use super::MAX_IN_FLIGHT;
 pub use rtu_over_tcp::RtuOverTcpClient;
 pub use serial::{SerialConfig, SerialRtuClient, SerialStream};
 pub use tcp::{ModbusTcpClient, NetStream, TcpConfig};

@@ -10,11 +10,7 @@ use super::{count, ByteStream, Client};
 use crate::error::BusError;
 use crate::modbus::framing::{Framing, Scan};
 use crate::modbus::pdu::{decode_registers, Request};
-use crate::modbus::{RegisterRead, UnitId};
-
-/// Most reads in flight at once: as many MBAP read requests (12 bytes) as the client's transmit
-/// buffer holds, rounded down to a power of two.
-pub const MAX_IN_FLIGHT: usize = 16;
+use crate::modbus::{RegisterRead, UnitId, MAX_IN_FLIGHT};
 
 /// A request awaiting its answer.
 #[derive(Clone, Copy)]
