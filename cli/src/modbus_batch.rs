@@ -14,15 +14,14 @@ use drivesim::registers;
 /// The device's Modbus limits as described; the specification's where it says nothing.
 pub fn limits(device: &Device) -> ModbusLimits {
     device
-        .modbus
-        .as_ref()
-        .map_or(ModbusLimits::SPEC, |m| ModbusLimits {
-            max_read_registers: m.max_read_registers,
-            max_write_registers: m.max_write_registers,
-            write_multiple: m.writes_multiple_registers(),
-            read_gaps: m.read_gaps,
-            readable: register_spans(device.registers_to_read_past()),
-            unreadable: register_spans(device.unreadable_register_runs()),
+        .planner_limits()
+        .map_or(ModbusLimits::SPEC, |limits| ModbusLimits {
+            max_read_registers: limits.max_read_registers,
+            max_write_registers: limits.max_write_registers,
+            write_multiple: limits.write_multiple,
+            read_gaps: limits.read_gaps,
+            readable: register_spans(limits.readable),
+            unreadable: register_spans(limits.unreadable),
         })
 }
 

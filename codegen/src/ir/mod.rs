@@ -14,7 +14,7 @@ pub use data_type::DataType;
 pub use expr::{Expr, ExprError, Op};
 pub use number::Number;
 pub use pdo::{pdo_bits, CobId, PdoDirection, PdoMapping};
-pub use readable_registers::RegisterRun;
+pub use readable_registers::{PlannerLimits, RegisterRun};
 pub use value_type::ValueType;
 
 use std::sync::Arc;

@@ -1,6 +1,6 @@
-//! The registers a device lets a client read, and those it lists as write-only, as runs: what a
-//! request planner may read past when the device refuses reads over addresses it does not list
-//! (`read_gaps = false`), and what it must never read past.
+//! What a Modbus request planner needs from a description: the device's limits, the registers it
+//! lets a client read past when it refuses reads over unlisted addresses (`read_gaps = false`),
+//! and those it lists as write-only, which no read may cover.
 
 use super::{Device, ModbusAddress, Table};
 
@@ -15,7 +15,39 @@ pub struct RegisterRun {
     pub count: u16,
 }
 
+/// A device's Modbus limits as a request planner takes them (`drivebus::modbus::ModbusLimits`),
+/// derived once for the generated `MODBUS_LIMITS` and the CLI alike.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct PlannerLimits {
+    /// Most registers one read request may ask for.
+    pub max_read_registers: u16,
+    /// Most registers one write request may carry.
+    pub max_write_registers: u16,
+    /// Whether the device implements FC 0x10.
+    pub write_multiple: bool,
+    /// Whether a read may span addresses the description does not list.
+    pub read_gaps: bool,
+    /// What a read may cover besides the requested registers ([`Device::registers_to_read_past`]).
+    pub readable: Vec<RegisterRun>,
+    /// What no read may cover ([`Device::unreadable_register_runs`]).
+    pub unreadable: Vec<RegisterRun>,
+}
+
 impl Device {
+    /// The planner's limits; `None` where the description has no `[modbus]` (the Modbus
+    /// specification's limits then apply).
+    pub fn planner_limits(&self) -> Option<PlannerLimits> {
+        let m = self.modbus.as_ref()?;
+        Some(PlannerLimits {
+            max_read_registers: m.max_read_registers,
+            max_write_registers: m.max_write_registers,
+            write_multiple: m.writes_multiple_registers(),
+            read_gaps: m.read_gaps,
+            readable: self.registers_to_read_past(),
+            unreadable: self.unreadable_register_runs(),
+        })
+    }
+
     /// What a request planner may read past besides the registers it was asked for: nothing
     /// where the device reads unlisted addresses too (`read_gaps`, the planner then need not
     /// know), else [`Device::readable_register_runs`].

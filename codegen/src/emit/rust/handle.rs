@@ -9,13 +9,13 @@ use crate::emit::{doc, ident as names};
 use crate::ir::{Device, RegisterRun, Table};
 
 fn modbus_limits(device: &Device) -> TokenStream {
-    let Some(m) = &device.modbus else {
+    let Some(limits) = device.planner_limits() else {
         return quote! { ::drivebus::modbus::ModbusLimits::SPEC };
     };
-    let (read, write, gaps) = (m.max_read_registers, m.max_write_registers, m.read_gaps);
-    let multiple = m.writes_multiple_registers();
-    let readable = register_spans(device.registers_to_read_past());
-    let unreadable = register_spans(device.unreadable_register_runs());
+    let (read, write) = (limits.max_read_registers, limits.max_write_registers);
+    let (multiple, gaps) = (limits.write_multiple, limits.read_gaps);
+    let readable = register_spans(limits.readable);
+    let unreadable = register_spans(limits.unreadable);
     quote! {
         ::drivebus::modbus::ModbusLimits {
             max_read_registers: #read,
