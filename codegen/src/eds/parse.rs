@@ -8,7 +8,7 @@ use std::collections::hash_map::Entry as MapEntry;
 use std::ops::Range;
 
 use super::trim::{trim_end, trim_start};
-use super::word_hash::{caseless_hash, WordMap};
+use super::word_hash::{Caseless, WordMap};
 use crate::diagnostic::{Diagnostic, FileId, Span};
 
 const RULE: &str = "eds_syntax";
@@ -75,8 +75,6 @@ struct Header<'t> {
     span: Span,
     line: u32,
     entries: Range<usize>,
-    /// The next header whose name has the same [`caseless_hash`].
-    same_hash: Option<usize>,
 }
 
 /// A whole file: sections in file order, names unique regardless of ASCII case. The entries of
@@ -86,9 +84,9 @@ struct Header<'t> {
 pub struct Ini<'t> {
     headers: Vec<Header<'t>>,
     entries: Vec<Entry<'t>>,
-    /// The [`caseless_hash`] of a name → the first header with that hash. Hashes rather than
-    /// lower-cased copies of the names: copying thousands of names cost more than the lookups.
-    by_hash: WordMap<u64, usize>,
+    /// Header by name, in any ASCII case: keyed by the names as written rather than lower-cased
+    /// copies (copying thousands of names cost more than the lookups).
+    by_name: WordMap<Caseless<'t>, usize>,
 }
 
 impl<'t> Ini<'t> {
@@ -99,20 +97,8 @@ impl<'t> Ini<'t> {
 
     /// The section of a name, in any ASCII case.
     pub fn section(&self, name: &str) -> Option<Section<'_, 't>> {
-        self.find(name, caseless_hash(name))
-            .map(|i| self.view(&self.headers[i]))
-    }
-
-    /// The header named `name` (whose hash is `hash`).
-    fn find(&self, name: &str, hash: u64) -> Option<usize> {
-        let mut next = self.by_hash.get(&hash).copied();
-        while let Some(i) = next {
-            if self.headers[i].name.eq_ignore_ascii_case(name) {
-                return Some(i);
-            }
-            next = self.headers[i].same_hash;
-        }
-        None
+        let i = *self.by_name.get(&Caseless(name))?;
+        Some(self.view(&self.headers[i]))
     }
 
     fn view<'i>(&'i self, header: &'i Header<'t>) -> Section<'i, 't> {
@@ -160,7 +146,7 @@ pub fn parse_ini<'t>(file: FileId, text: &'t str, diagnostics: &mut Vec<Diagnost
         ini: Ini {
             headers: Vec::with_capacity(headers),
             entries: Vec::with_capacity(entries),
-            by_hash: WordMap::with_capacity_and_hasher(headers, Default::default()),
+            by_name: WordMap::with_capacity_and_hasher(headers, Default::default()),
         },
         runs: Vec::with_capacity(headers),
         current: None,
@@ -217,25 +203,12 @@ impl<'t> Reader<'t> {
         self.close_run();
         let run_start = self.ini.entries.len();
         let i = self.ini.headers.len();
-        // One probe of the map: a new hash takes the header; a known one chains it first, unless
-        // a header of its chain has the name.
-        let same_hash = match self.ini.by_hash.entry(caseless_hash(name)) {
-            MapEntry::Vacant(slot) => {
-                slot.insert(i);
-                None
-            }
-            MapEntry::Occupied(mut chain) => {
-                let headers = &self.ini.headers;
-                let mut next = Some(*chain.get());
-                while let Some(at) = next.filter(|&at| !headers[at].name.eq_ignore_ascii_case(name))
-                {
-                    next = headers[at].same_hash;
-                }
-                if let Some(first) = next {
-                    self.reopen(first, name, span, run_start, diagnostics);
-                    return;
-                }
-                Some(chain.insert(i))
+        match self.ini.by_name.entry(Caseless(name)) {
+            MapEntry::Vacant(slot) => slot.insert(i),
+            MapEntry::Occupied(first) => {
+                let first = *first.get();
+                self.reopen(first, name, span, run_start, diagnostics);
+                return;
             }
         };
         self.ini.headers.push(Header {
@@ -243,7 +216,6 @@ impl<'t> Reader<'t> {
             span,
             line,
             entries: 0..0,
-            same_hash,
         });
         self.current = Some(Run {
             section: i,

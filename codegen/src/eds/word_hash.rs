@@ -2,12 +2,30 @@
 //! eight bytes per step, where FNV took one byte per multiply and spent a third of a millisecond
 //! on the names of a large EDS. Not meant to resist crafted collisions, which only cost time.
 
-use std::hash::Hasher;
+use std::hash::{Hash, Hasher};
 
 use rustc_hash::FxHasher;
 
 /// A map keyed by short texts, hashed a word at a time.
 pub type WordMap<K, V> = rustc_hash::FxHashMap<K, V>;
+
+/// A map key compared and hashed regardless of ASCII case: EDS files spell names in any case.
+#[derive(Debug, Clone, Copy)]
+pub struct Caseless<'t>(pub &'t str);
+
+impl PartialEq for Caseless<'_> {
+    fn eq(&self, other: &Self) -> bool {
+        self.0.eq_ignore_ascii_case(other.0)
+    }
+}
+
+impl Eq for Caseless<'_> {}
+
+impl Hash for Caseless<'_> {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        state.write_u64(caseless_hash(self.0));
+    }
+}
 
 /// A hash of `text` that ignores ASCII case: bit 5 is set on every byte first (`A` | 0x20 is `a`),
 /// so texts equal regardless of case hash alike; the rare other texts that also do (`@` and `` ` ``)
