@@ -44,8 +44,8 @@ use crate::error::BusError;
 use crate::Protocol;
 
 /// Most reads in flight at once: as many MBAP read requests (12 bytes) as a pipelining client's
-/// transmit buffer holds, rounded down to a power of two. [`ModbusLink::read_many`] hands the bus
-/// this many reads at a time.
+/// transmit buffer holds, rounded down to a power of two. [`ModbusLink`]'s `read_many` hands the
+/// bus this many reads at a time.
 pub const MAX_IN_FLIGHT: usize = 16;
 
 /// The Modbus protocol marker.
