@@ -6,7 +6,7 @@ use std::cmp::Ordering;
 use std::fmt;
 
 use drivebus::scale::EXACT_INTEGERS;
-use drivebus::{Ratio, ValueError};
+use drivebus::ValueError;
 use drivegen::ir::{DataType, Device, Parameter, Scale};
 use drivesim::raw;
 
@@ -90,21 +90,11 @@ impl Affine {
     }
 }
 
-/// The fixed scale of `parameter` (identity without one); `None` for a run-time scale (or a zero
-/// denominator, which validation refuses).
+/// The fixed scale of `parameter` (identity without one); `None` for a run-time scale.
 fn affine(parameter: &Parameter) -> Option<Affine> {
     let (exact, decimals) = match &parameter.scale {
         None => (drivebus::Scale::IDENTITY, 0),
-        Some(Scale::Fixed {
-            numerator,
-            denominator,
-            offset,
-        }) => {
-            let factor = Ratio::new(*numerator, *denominator)?;
-            let offset = Ratio::new(offset.numerator, offset.denominator)?;
-            let scale = drivebus::Scale { factor, offset };
-            (scale, decimals_of(factor.to_f64()))
-        }
+        Some(Scale::Fixed(scale)) => (*scale, decimals_of(scale.factor.to_f64())),
         Some(Scale::Runtime { .. }) => return None,
     };
     Some(Affine { exact, decimals })
@@ -571,14 +561,8 @@ mod tests {
                 range: None,
                 allowed: Vec::new(),
                 unit: None,
-                scale: (name == "scaled").then_some(Scale::Fixed {
-                    numerator: 1,
-                    denominator: 10,
-                    offset: drivegen::ir::RatioJson {
-                        numerator: 0,
-                        denominator: 1,
-                    },
-                }),
+                scale: (name == "scaled")
+                    .then_some(Scale::Fixed(drivebus::Scale::fixed(1, 10, 0, 1))),
                 ..template.clone()
             })
             .collect();

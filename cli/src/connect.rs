@@ -11,7 +11,7 @@ use drivebus::canopen::blocking::BlockingSdo;
 use drivebus::canopen::{CanBus, CanFrame, NodeId, SdoBus};
 use drivebus::modbus::rtu::{Parity, StopBits};
 use drivebus::modbus::transport::{ModbusTcpClient, SerialConfig, SerialRtuClient, TcpConfig};
-use drivebus::modbus::{ModbusLimits, RegisterBus, UnitId, WordOrder, MAX_IN_FLIGHT};
+use drivebus::modbus::{ModbusLimits, RegisterBus, UnitId, MAX_IN_FLIGHT};
 use drivebus::BusError;
 use drivegen::ir::{self, Device, Parameter};
 use drivesim::registers;
@@ -199,7 +199,7 @@ impl Session {
             Link::Modbus { bus, unit, limits } => {
                 let wire = parameters
                     .iter()
-                    .map(|p| modbus_address(p, true).map(modbus_batch::wire_address))
+                    .map(|p| modbus_address(p, true).map(|a| a.wire))
                     .collect::<Result<Vec<_>, _>>()?;
                 let values = modbus_batch::read_wire(&mut **bus, *unit, *limits, &wire).map_err(
                     |failure| bus_error(target, parameters[failure.value], failure.cause),
@@ -227,7 +227,7 @@ impl Session {
                     parameter.data_type,
                     bytes,
                     address.words,
-                    order(address),
+                    address.word_order,
                 );
                 if regs.len() > 1 && limits.write_multiple {
                     bus.write_registers(*unit, address.address, &regs)
@@ -322,8 +322,4 @@ fn object_address(parameter: &Parameter, read: bool) -> Result<&ir::ObjectAddres
         .iter()
         .find(|a| if read { a.access.read } else { a.access.write })
         .ok_or_else(|| no_access(parameter, "CANopen", read))
-}
-
-fn order(address: &ir::ModbusAddress) -> WordOrder {
-    registers::word_order(address.word_order)
 }

@@ -9,7 +9,6 @@ use drivebus::modbus::{
 };
 use drivebus::BusError;
 use drivegen::ir::{self, Device};
-use drivesim::registers;
 
 /// The device's Modbus limits as described; the specification's where it says nothing.
 pub fn limits(device: &Device) -> ModbusLimits {
@@ -29,21 +28,11 @@ pub fn limits(device: &Device) -> ModbusLimits {
 /// session, so leaking two lists per run is bounded.
 fn register_spans(runs: Vec<ir::RegisterRun>) -> &'static [RegisterSpan] {
     let spans = runs.into_iter().map(|run| RegisterSpan {
-        table: registers::table(run.table),
+        table: run.table,
         start: run.start,
         count: run.count,
     });
     Vec::leak(spans.collect())
-}
-
-/// The wire address of a described Modbus address.
-pub fn wire_address(address: &ir::ModbusAddress) -> ModbusAddress {
-    ModbusAddress {
-        table: registers::table(address.table),
-        address: address.address,
-        words: address.words,
-        word_order: registers::word_order(address.word_order),
-    }
 }
 
 /// A batch read that failed: the first value it could not read, and why.

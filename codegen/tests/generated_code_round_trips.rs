@@ -12,7 +12,6 @@ mod support;
 use std::fmt::Write as _;
 use std::path::Path;
 
-use drivebus::Ratio;
 use drivegen::emit::ident;
 use drivegen::ir::{pdo_bits, DataType, Device, Parameter, Scale, ValueType};
 use support::crate_build::{build_and_test, generated, no_std_lib};
@@ -37,14 +36,7 @@ fn engineering(p: &Parameter, raw: i128) -> Option<String> {
     };
     let scale = match &p.scale {
         None => drivebus::Scale::IDENTITY,
-        Some(Scale::Fixed {
-            numerator,
-            denominator,
-            offset,
-        }) => drivebus::Scale {
-            factor: Ratio::new(*numerator, *denominator)?,
-            offset: Ratio::new(offset.numerator, offset.denominator)?,
-        },
+        Some(Scale::Fixed(scale)) => *scale,
         Some(Scale::Runtime { .. }) => return None,
     };
     let value = scale.to_engineering(i64::try_from(raw).ok()?);

@@ -1,8 +1,8 @@
 //! Parameter values ↔ Modbus registers, for any IR type: integers are sign-extended into and
 //! range-checked out of their registers, other types are copied byte for byte.
 
-use drivebus::modbus::{le_to_registers, registers_to_le, Table, WordOrder};
-use drivegen::ir::{self, DataType};
+use drivebus::modbus::{le_to_registers, registers_to_le, WordOrder};
+use drivegen::ir::DataType;
 
 use crate::raw;
 use crate::refusal::Refusal;
@@ -53,22 +53,6 @@ pub fn from_wire(data_type: DataType, mut wire: Vec<u8>) -> Result<Vec<u8>, Refu
         return Err(Refusal::TooLow);
     }
     Ok(raw::from_int(data_type, value))
-}
-
-/// The register table of an IR address.
-pub fn table(table: ir::Table) -> Table {
-    match table {
-        ir::Table::Input => Table::Input,
-        ir::Table::Holding => Table::Holding,
-    }
-}
-
-/// The word order of an IR address.
-pub fn word_order(order: ir::WordOrder) -> WordOrder {
-    match order {
-        ir::WordOrder::HighFirst => WordOrder::HighFirst,
-        ir::WordOrder::LowFirst => WordOrder::LowFirst,
-    }
 }
 
 #[cfg(test)]

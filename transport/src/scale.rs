@@ -114,6 +114,62 @@ impl Ratio {
     pub fn to_f64(self) -> f64 {
         self.num as f64 / self.den as f64
     }
+
+    /// Parses an exact number as descriptions write it: an integer (`-40`), a decimal (`0.1`,
+    /// never rounded) or a quotient of those (`1/100`, `2.5/0.5`). `None` for anything else,
+    /// a zero denominator, or a value beyond `i64`.
+    pub fn parse(text: &str) -> Option<Ratio> {
+        match text.split_once('/') {
+            None => Self::parse_decimal(text),
+            Some((num, den)) => Self::parse_decimal(num)?.checked_div(Self::parse_decimal(den)?),
+        }
+    }
+
+    /// Parses `12` or `-0.25` exactly: the digits after the point are the numerator over a power
+    /// of ten.
+    pub fn parse_decimal(text: &str) -> Option<Ratio> {
+        let text = text.trim();
+        let (negative, digits) = match text.strip_prefix('-') {
+            Some(rest) => (true, rest),
+            None => (false, text),
+        };
+        let (whole, fraction) = digits.split_once('.').unwrap_or((digits, ""));
+        if whole.is_empty() || fraction.len() > 18 {
+            return None;
+        }
+        let mut numerator: i64 = 0;
+        for byte in whole.bytes().chain(fraction.bytes()) {
+            let digit = byte.is_ascii_digit().then(|| i64::from(byte - b'0'))?;
+            numerator = numerator.checked_mul(10)?.checked_add(digit)?;
+        }
+        let denominator = 10i64.checked_pow(fraction.len() as u32)?;
+        Ratio::new(if negative { -numerator } else { numerator }, denominator)
+    }
+}
+
+/// `{ "numerator": n, "denominator": d }`, the IR JSON's spelling of an exact number.
+#[cfg(feature = "serde")]
+impl serde::Serialize for Ratio {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let mut out = serializer.serialize_struct("Ratio", 2)?;
+        out.serialize_field("numerator", &self.num)?;
+        out.serialize_field("denominator", &self.den)?;
+        out.end()
+    }
+}
+
+/// The factor's `numerator` and `denominator` beside an `offset` ratio, as the IR JSON has it.
+#[cfg(feature = "serde")]
+impl serde::Serialize for Scale {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let mut out = serializer.serialize_struct("Scale", 3)?;
+        out.serialize_field("numerator", &self.factor.num)?;
+        out.serialize_field("denominator", &self.factor.den)?;
+        out.serialize_field("offset", &self.offset)?;
+        out.end()
+    }
 }
 
 /// `engineering = raw × factor + offset`.
@@ -225,6 +281,36 @@ mod tests {
             );
             proptest::prop_assert_eq!(value, n as f64 / d as f64);
             proptest::prop_assert_eq!(scale.to_raw::<i32>("p", value), Ok(raw));
+        }
+    }
+
+    #[test]
+    fn parses_rationals_and_decimals_exactly() {
+        let ratio = |n, d| Ratio::new(n, d);
+        assert_eq!(Ratio::parse("1/100"), ratio(1, 100));
+        assert_eq!(Ratio::parse("0.1"), ratio(1, 10));
+        assert_eq!(Ratio::parse("-40"), ratio(-40, 1));
+        assert_eq!(Ratio::parse("1875/512"), ratio(1875, 512));
+        assert_eq!(Ratio::parse("2.5/0.5"), ratio(5, 1));
+        assert_eq!(Ratio::parse(" -0.25 "), ratio(-1, 4));
+    }
+
+    #[test]
+    fn parse_refuses_garbage_zero_denominators_and_overflow() {
+        for bad in [
+            "",
+            "1/0",
+            "abc",
+            "1/2/3",
+            "0x10",
+            "1e3",
+            "--1",
+            ".5",
+            "+1",
+            "99999999999999999999",
+            "1.0000000000000000001",
+        ] {
+            assert_eq!(Ratio::parse(bad), None, "{bad}");
         }
     }
 

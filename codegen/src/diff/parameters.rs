@@ -176,28 +176,16 @@ fn variants(p: &Parameter) -> String {
 fn scale(scale: &Option<Scale>) -> String {
     match scale {
         None => "none".into(),
-        Some(Scale::Fixed {
-            numerator,
-            denominator,
-            offset,
-        }) if offset.numerator == 0 => ratio(*numerator, *denominator),
-        Some(Scale::Fixed {
-            numerator,
-            denominator,
-            offset,
-        }) => format!(
-            "{} + {}",
-            ratio(*numerator, *denominator),
-            ratio(offset.numerator, offset.denominator)
-        ),
+        Some(Scale::Fixed(scale)) if scale.offset == drivebus::Ratio::ZERO => ratio(scale.factor),
+        Some(Scale::Fixed(scale)) => format!("{} + {}", ratio(scale.factor), ratio(scale.offset)),
         Some(Scale::Runtime { expr, .. }) => format!("`{expr}`"),
     }
 }
 
-fn ratio(numerator: i64, denominator: i64) -> String {
-    match denominator {
-        1 => numerator.to_string(),
-        _ => format!("{numerator}/{denominator}"),
+fn ratio(ratio: drivebus::Ratio) -> String {
+    match (ratio.numerator(), ratio.denominator()) {
+        (numerator, 1) => numerator.to_string(),
+        (numerator, denominator) => format!("{numerator}/{denominator}"),
     }
 }
 

@@ -4,11 +4,13 @@
 
 use std::fmt;
 
+use drivebus::Ratio;
+
 /// A parsed scale expression.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub enum Expr {
-    /// An exact rational literal `numerator / denominator`.
-    Number(i64, i64),
+    /// An exact rational literal.
+    Number(Ratio),
     /// The raw value of another parameter.
     Parameter(String),
     /// Binary operation.
@@ -181,8 +183,8 @@ impl Parser<'_> {
         let literal = self
             .take_while(|c| c.is_ascii_digit() || c == '.')
             .to_owned();
-        crate::load::exact::parse_decimal(&literal)
-            .map(|(n, d)| Expr::Number(n, d))
+        drivebus::Ratio::parse_decimal(&literal)
+            .map(Expr::Number)
             .ok_or(ExprError {
                 at: start,
                 message: format!("`{literal}` is not a number"),
@@ -208,10 +210,10 @@ mod tests {
         assert_eq!(
             e,
             Expr::Binary(
-                Box::new(Expr::Number(1875, 1)),
+                Box::new(Expr::Number(Ratio::int(1875))),
                 Op::Div,
                 Box::new(Expr::Binary(
-                    Box::new(Expr::Number(512, 1)),
+                    Box::new(Expr::Number(Ratio::int(512))),
                     Op::Mul,
                     Box::new(Expr::Parameter("encoder_resolution".into()))
                 ))

@@ -17,6 +17,9 @@ pub use pdo::{pdo_bits, CobId, PdoDirection, PdoMapping};
 pub use readable_registers::{PlannerLimits, RegisterRun};
 pub use value_type::ValueType;
 
+/// The Modbus vocabulary is the runtime's own: the IR names the types generated code uses.
+pub use drivebus::modbus::{Table, WordOrder};
+
 use std::sync::Arc;
 
 use serde::Serialize;
@@ -435,26 +438,6 @@ pub struct Record {
     pub span: Span,
 }
 
-/// Word order of multi-register values.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum WordOrder {
-    /// Most significant word first.
-    HighFirst,
-    /// Least significant word first.
-    LowFirst,
-}
-
-/// Modbus register table.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Table {
-    /// Input registers (FC 0x04).
-    Input,
-    /// Holding registers (FC 0x03, 0x06, 0x10).
-    Holding,
-}
-
 /// Access over one protocol address.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub struct Access {
@@ -464,17 +447,13 @@ pub struct Access {
     pub write: bool,
 }
 
-/// A Modbus address of a parameter.
+/// A Modbus address of a parameter: the wire address generated code uses, plus what the
+/// description says of it.
 #[derive(Debug, Clone, Serialize)]
 pub struct ModbusAddress {
-    /// Table.
-    pub table: Table,
-    /// PDU address.
-    pub address: u16,
-    /// Registers occupied.
-    pub words: u16,
-    /// Word order.
-    pub word_order: WordOrder,
+    /// Table, PDU address, registers occupied and word order.
+    #[serde(flatten)]
+    pub wire: drivebus::modbus::ModbusAddress,
     /// Access.
     pub access: Access,
     /// Variant this address is limited to.
@@ -482,6 +461,15 @@ pub struct ModbusAddress {
     /// Where it is declared.
     #[serde(skip)]
     pub span: Span,
+}
+
+/// `address.table`, `address.words`, ...: a described address is first of all its wire address.
+impl std::ops::Deref for ModbusAddress {
+    type Target = drivebus::modbus::ModbusAddress;
+
+    fn deref(&self) -> &Self::Target {
+        &self.wire
+    }
 }
 
 /// PDO mappability.
@@ -518,28 +506,13 @@ pub struct ObjectAddress {
     pub span: Span,
 }
 
-/// An exact rational in JSON.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-pub struct RatioJson {
-    /// Numerator.
-    pub numerator: i64,
-    /// Denominator (positive).
-    pub denominator: i64,
-}
-
 /// How raw values become engineering values.
 #[derive(Debug, Clone, Serialize)]
 #[serde(untagged)]
 pub enum Scale {
-    /// `raw × numerator / denominator + offset`.
-    Fixed {
-        /// Factor numerator.
-        numerator: i64,
-        /// Factor denominator.
-        denominator: i64,
-        /// Offset.
-        offset: RatioJson,
-    },
+    /// `raw × factor + offset`, exact; serialized as the factor's `numerator` and
+    /// `denominator` beside the `offset` ratio.
+    Fixed(drivebus::Scale),
     /// A factor computed at run time from other parameters.
     Runtime {
         /// The expression as written.

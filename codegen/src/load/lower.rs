@@ -12,13 +12,13 @@ mod pdo;
 
 use toml::Spanned;
 
-use super::exact::{float_ratio, parse_ratio};
 use super::overlay::Overlay;
 use super::raw::*;
 use super::LoadedFile;
 use crate::diagnostic::{Diagnostic, FileId, Files, Span};
 use crate::eds::EdsModel;
 use crate::ir::{self, DataType, Expr, Number};
+use drivebus::Ratio;
 
 /// Turns loaded files into one device model. Returns `None` if the root file has neither
 /// `[device]` nor `[profile]`. With `eds`, the root file is an overlay of that EDS: its
@@ -623,14 +623,14 @@ impl Lowering<'_> {
     fn scale(&mut self, raw: &Spanned<RawScale>) -> Option<ir::Scale> {
         let span = self.span(raw);
         let exact = |s: &RawScalar| match s {
-            RawScalar::Int(i) => Some((*i, 1)),
+            RawScalar::Int(i) => Some(Ratio::int(*i)),
             RawScalar::Float(f) => float_ratio(*f),
-            RawScalar::Text(t) => parse_ratio(t),
+            RawScalar::Text(t) => Ratio::parse(t),
         };
         let (factor, offset) = match raw.get_ref() {
-            RawScale::Int(i) => (Some((*i, 1)), Some((0, 1))),
-            RawScale::Float(f) => (float_ratio(*f), Some((0, 1))),
-            RawScale::Text(t) => (parse_ratio(t), Some((0, 1))),
+            RawScale::Int(i) => (Some(Ratio::int(*i)), Some(Ratio::ZERO)),
+            RawScale::Float(f) => (float_ratio(*f), Some(Ratio::ZERO)),
+            RawScale::Text(t) => (Ratio::parse(t), Some(Ratio::ZERO)),
             RawScale::Table(RawScaleTable {
                 expr: Some(expr),
                 factor: None,
@@ -657,8 +657,8 @@ impl Lowering<'_> {
                 factor,
                 offset,
             }) => (
-                factor.as_ref().map_or(Some((1, 1)), exact),
-                offset.as_ref().map_or(Some((0, 1)), exact),
+                factor.as_ref().map_or(Some(Ratio::ONE), exact),
+                offset.as_ref().map_or(Some(Ratio::ZERO), exact),
             ),
             RawScale::Table(_) => {
                 self.error_help(
@@ -671,14 +671,9 @@ impl Lowering<'_> {
             }
         };
         match (factor, offset) {
-            (Some((numerator, denominator)), Some((on, od))) => Some(ir::Scale::Fixed {
-                numerator,
-                denominator,
-                offset: ir::RatioJson {
-                    numerator: on,
-                    denominator: od,
-                },
-            }),
+            (Some(factor), Some(offset)) => {
+                Some(ir::Scale::Fixed(drivebus::Scale { factor, offset }))
+            }
             _ => {
                 self.error_help(
                     "scales_are_valid",
@@ -777,10 +772,12 @@ impl Lowering<'_> {
         };
         let access = self.modbus_access(raw.access.as_deref(), span, default_access)?;
         Some(ir::ModbusAddress {
-            table,
-            address,
-            words,
-            word_order,
+            wire: drivebus::modbus::ModbusAddress {
+                table,
+                address,
+                words,
+                word_order,
+            },
             access,
             variant: raw.variant.clone(),
             span: span.clone(),
@@ -996,4 +993,12 @@ impl Lowering<'_> {
             None => parameter,
         })
     }
+}
+
+/// The exact value of a float as its shortest decimal representation (`0.1` → 1/10).
+fn float_ratio(value: f64) -> Option<Ratio> {
+    value
+        .is_finite()
+        .then(|| Ratio::parse(&value.to_string()))
+        .flatten()
 }

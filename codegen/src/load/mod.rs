@@ -1,6 +1,5 @@
 //! Loading: read a description's files (following `include`), keep spans, lower to the IR.
 
-pub mod exact;
 mod lower;
 mod overlay;
 mod raw;

@@ -10,14 +10,16 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
         .parameters
         .iter()
         .filter_map(|p| match (&p.scale, &p.spans.scale) {
-            (Some(Scale::Fixed { numerator: 0, .. }), Some(span)) => Some(
-                Diagnostic::error(
-                    "scale_is_representable",
-                    span.clone(),
-                    format!("scale of `{}` is zero", p.name),
+            (Some(Scale::Fixed(scale)), Some(span)) if scale.factor == drivebus::Ratio::ZERO => {
+                Some(
+                    Diagnostic::error(
+                        "scale_is_representable",
+                        span.clone(),
+                        format!("scale of `{}` is zero", p.name),
+                    )
+                    .help("a zero factor would make every value 0 and writes impossible"),
                 )
-                .help("a zero factor would make every value 0 and writes impossible"),
-            ),
+            }
             _ => None,
         })
         .collect()

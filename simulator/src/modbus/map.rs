@@ -6,7 +6,7 @@ use drivebus::modbus::{Table, WordOrder};
 use drivegen::ir::{Access, Device};
 
 use crate::refusal::Refusal;
-use crate::registers::{self, table, word_order};
+use crate::registers;
 use crate::store::{ParamId, Store};
 
 /// One register of a parameter.
@@ -44,11 +44,11 @@ impl RegisterMap {
                     id,
                     first: address.address,
                     words: address.words,
-                    order: word_order(address.word_order),
+                    order: address.word_order,
                     access: address.access,
                 };
                 for word in 0..address.words {
-                    let key = (table(address.table), address.address.wrapping_add(word));
+                    let key = (address.table, address.address.wrapping_add(word));
                     cells.insert(key, cell);
                 }
             }

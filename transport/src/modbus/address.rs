@@ -2,6 +2,8 @@
 
 /// A Modbus data table. Input and holding registers are separate address spaces.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "kebab-case"))]
 pub enum Table {
     /// Read-only 16-bit registers (FC 0x04).
     Input,
@@ -11,6 +13,8 @@ pub enum Table {
 
 /// Order of the 16-bit words of a multi-register value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "kebab-case"))]
 pub enum WordOrder {
     /// Most significant word at the lowest address (Modbus convention).
     HighFirst,
@@ -20,6 +24,7 @@ pub enum WordOrder {
 
 /// Where a parameter lives on a Modbus device.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct ModbusAddress {
     /// Register table.
     pub table: Table,

@@ -61,16 +61,12 @@ fn codec(p: &Parameter) -> Ident {
 /// The optional clauses of the declaration: fixed scale, range and allowed raw values.
 fn clauses(p: &Parameter) -> TokenStream {
     let scale = match &p.scale {
-        Some(Scale::Fixed {
-            numerator,
-            denominator,
-            offset,
-        }) => {
+        Some(Scale::Fixed(scale)) => {
             let [n, d, on, od] = [
-                *numerator,
-                *denominator,
-                offset.numerator,
-                offset.denominator,
+                scale.factor.numerator(),
+                scale.factor.denominator(),
+                scale.offset.numerator(),
+                scale.offset.denominator(),
             ]
             .map(Literal::i64_unsuffixed);
             quote! { , scale(#n, #d, #on, #od) }
@@ -90,7 +86,10 @@ fn clauses(p: &Parameter) -> TokenStream {
 
 fn expr_tokens(expr: &Expr) -> TokenStream {
     match expr {
-        Expr::Number(n, d) => quote! { db::Ratio::new(#n, #d)? },
+        Expr::Number(ratio) => {
+            let (n, d) = (ratio.numerator(), ratio.denominator());
+            quote! { db::Ratio::new(#n, #d)? }
+        }
         Expr::Parameter(name) => {
             let var = ident(&format!("input_{}", names::snake(name)));
             quote! { #var }

@@ -76,14 +76,21 @@ pub fn text(p: &Parameter, device: &Device) -> String {
         let _ = write!(ty, ", unit {}", doc::escape(unit));
     }
     match &p.scale {
-        Some(Scale::Fixed {
-            numerator,
-            denominator,
-            offset,
-        }) => {
-            let _ = write!(ty, ", scale {numerator}/{denominator}");
-            if offset.numerator != 0 {
-                let _ = write!(ty, ", offset {}/{}", offset.numerator, offset.denominator);
+        Some(Scale::Fixed(scale)) => {
+            let (factor, offset) = (scale.factor, scale.offset);
+            let _ = write!(
+                ty,
+                ", scale {}/{}",
+                factor.numerator(),
+                factor.denominator()
+            );
+            if offset != drivebus::Ratio::ZERO {
+                let _ = write!(
+                    ty,
+                    ", offset {}/{}",
+                    offset.numerator(),
+                    offset.denominator()
+                );
             }
         }
         Some(Scale::Runtime { expr, .. }) => {
