@@ -98,6 +98,18 @@ pub struct StateMachine {
     pub status: String,
     /// The parameter commands are written to.
     pub command: String,
+    /// The state the drive powers up in: the declared one, else the first state no transition
+    /// enters, else the first state.
+    pub initial: String,
+    /// The state a drive fault leads to, if the description names one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fault: Option<String>,
+    /// The parameter that shows the active fault's code.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fault_code: Option<String>,
+    /// The setpoint the motor follows in states whose motion is `follow`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub setpoint: Option<String>,
     /// States, in recognition order (the first match wins).
     pub states: Vec<MachineState>,
     /// Transitions.
@@ -118,6 +130,8 @@ pub struct MachineState {
     pub doc: Option<String>,
     /// The state shows when `status & mask == value` for any pattern.
     pub status: Vec<StatusPattern>,
+    /// What the power stage does in this state.
+    pub motion: Motion,
     /// Citation.
     pub source: Option<Citation>,
     /// Where it is declared.
@@ -126,12 +140,38 @@ pub struct MachineState {
 }
 
 /// One way a state shows in the status parameter.
-#[derive(Debug, Clone, Copy, Serialize)]
+#[derive(Debug, Clone, Serialize)]
 pub struct StatusPattern {
     /// Bits that decide.
     pub mask: u16,
     /// Their values.
     pub value: u16,
+    /// The pattern a drive shows only while another parameter has a given value (Lafert: RUN in
+    /// torque mode shows bit 5 instead of bit 0).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub when: Option<Condition>,
+}
+
+/// `parameter == value`, on the raw value.
+#[derive(Debug, Clone, Serialize)]
+pub struct Condition {
+    /// The parameter.
+    pub parameter: String,
+    /// Its raw value.
+    pub value: i64,
+}
+
+/// What the power stage does in a state of a vendor state machine.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Motion {
+    /// Disabled: the motor follows nothing.
+    #[default]
+    Disabled,
+    /// Enabled, following the machine's setpoint.
+    Follow,
+    /// Stopping at once, holding with maximum torque.
+    QuickStop,
 }
 
 /// What causes a transition.

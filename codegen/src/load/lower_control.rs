@@ -55,16 +55,23 @@ impl Lowering<'_> {
         transitions: &[Spanned<RawTransition>],
     ) -> ir::StateMachine {
         let m = raw.get_ref();
+        let states: Vec<ir::MachineState> = states.iter().map(|s| self.machine_state(s)).collect();
+        let transitions: Vec<ir::Transition> = transitions
+            .iter()
+            .filter_map(|t| self.transition(t))
+            .collect();
+        let name = |n: &Option<Spanned<String>>| n.as_ref().map(|n| n.get_ref().clone());
         ir::StateMachine {
             name: m.name.get_ref().clone(),
             doc: m.doc.clone(),
             status: m.status.get_ref().clone(),
             command: m.command.get_ref().clone(),
-            states: states.iter().map(|s| self.machine_state(s)).collect(),
-            transitions: transitions
-                .iter()
-                .filter_map(|t| self.transition(t))
-                .collect(),
+            initial: name(&m.initial).unwrap_or_else(|| power_on_state(&states, &transitions)),
+            fault: name(&m.fault),
+            fault_code: name(&m.fault_code),
+            setpoint: name(&m.setpoint),
+            states,
+            transitions,
             source: m.source.as_ref().and_then(|s| self.citation(s)),
             span: self.span(&m.name),
         }
@@ -76,9 +83,14 @@ impl Lowering<'_> {
         let mut status = Vec::new();
         for pattern in s.status.iter() {
             match (u16::try_from(pattern.mask), u16::try_from(pattern.value)) {
-                (Ok(mask), Ok(value)) if value & !mask == 0 => {
-                    status.push(ir::StatusPattern { mask, value })
-                }
+                (Ok(mask), Ok(value)) if value & !mask == 0 => status.push(ir::StatusPattern {
+                    mask,
+                    value,
+                    when: pattern.when.as_ref().map(|w| ir::Condition {
+                        parameter: w.parameter.clone(),
+                        value: w.value,
+                    }),
+                }),
                 _ => self.error_help(
                     VALUE_RULE,
                     span.clone(),
@@ -87,10 +99,26 @@ impl Lowering<'_> {
                 ),
             }
         }
+        let motion = match s.motion.as_ref().map(|m| (m.get_ref().as_str(), m)) {
+            None | Some(("disabled", _)) => ir::Motion::Disabled,
+            Some(("follow", _)) => ir::Motion::Follow,
+            Some(("quick-stop", _)) => ir::Motion::QuickStop,
+            Some((other, m)) => {
+                let span = self.span(m);
+                self.error_help(
+                    VALUE_RULE,
+                    span,
+                    format!("unknown motion `{other}`"),
+                    "use \"disabled\", \"follow\" or \"quick-stop\"",
+                );
+                ir::Motion::Disabled
+            }
+        };
         ir::MachineState {
             name: s.name.get_ref().clone(),
             doc: s.doc.clone(),
             status,
+            motion,
             source: s.source.as_ref().and_then(|c| self.citation(c)),
             span: self.span(&s.name),
         }
@@ -128,4 +156,14 @@ impl Lowering<'_> {
             span: self.span(&t.name),
         })
     }
+}
+
+/// The first state no transition enters (a drive's power-on state), else the first state.
+fn power_on_state(states: &[ir::MachineState], transitions: &[ir::Transition]) -> String {
+    let entered = |state: &&ir::MachineState| transitions.iter().any(|t| t.to == state.name);
+    states
+        .iter()
+        .find(|s| !entered(s))
+        .or(states.first())
+        .map_or_else(String::new, |s| s.name.clone())
 }

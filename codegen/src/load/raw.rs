@@ -345,6 +345,10 @@ pub struct RawStateMachine {
     pub doc: Option<String>,
     pub status: Spanned<String>,
     pub command: Spanned<String>,
+    pub initial: Option<Spanned<String>>,
+    pub fault: Option<Spanned<String>>,
+    pub fault_code: Option<Spanned<String>>,
+    pub setpoint: Option<Spanned<String>>,
     pub source: Option<Spanned<RawCitation>>,
 }
 
@@ -354,6 +358,7 @@ pub struct RawState {
     pub name: Spanned<String>,
     pub doc: Option<String>,
     pub status: OneOrMany<RawStatusPattern>,
+    pub motion: Option<Spanned<String>>,
     pub source: Option<Spanned<RawCitation>>,
 }
 
@@ -361,6 +366,15 @@ pub struct RawState {
 #[serde(deny_unknown_fields)]
 pub struct RawStatusPattern {
     pub mask: i64,
+    pub value: i64,
+    pub when: Option<RawCondition>,
+}
+
+/// `{ parameter, value }`: a raw value another parameter must have.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawCondition {
+    pub parameter: String,
     pub value: i64,
 }
 

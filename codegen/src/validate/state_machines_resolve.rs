@@ -84,6 +84,44 @@ fn vendor(device: &Device) -> Vec<Diagnostic> {
             ));
         }
     }
+    let named_states = [("initial", Some(&m.initial)), ("fault", m.fault.as_ref())];
+    for (role, state) in named_states {
+        match state {
+            Some(state) if !names.contains(state.as_str()) => found.push(
+                Diagnostic::error(
+                    RULE,
+                    m.span.clone(),
+                    format!("`{role}` names state `{state}`, which is not declared"),
+                )
+                .help("declare it with `[[state]]` or fix the spelling"),
+            ),
+            _ => {}
+        }
+    }
+    let when = m
+        .states
+        .iter()
+        .flat_map(|s| &s.status)
+        .filter_map(|p| p.when.as_ref());
+    let parameters = [
+        ("fault_code", m.fault_code.as_ref()),
+        ("setpoint", m.setpoint.as_ref()),
+    ]
+    .into_iter()
+    .filter_map(|(role, name)| Some((role, name?)))
+    .chain(when.map(|c| ("status pattern `when`", &c.parameter)));
+    for (role, name) in parameters {
+        if device.parameter(name).is_none() {
+            found.push(
+                Diagnostic::error(
+                    RULE,
+                    m.span.clone(),
+                    format!("{role} `{name}` is not a parameter of this description"),
+                )
+                .help("name a `[[parameter]]` declared (or included) here"),
+            );
+        }
+    }
     for t in &m.transitions {
         for state in t.from.iter().chain(std::iter::once(&t.to)) {
             if !names.contains(state.as_str()) {
@@ -148,6 +186,36 @@ source = {{ doc = "m", line = 3 }}
             [
                 "command register `control` is not a parameter of this description",
                 "transition `T2` names state `running`, which is not declared",
+            ]
+        );
+    }
+
+    #[test]
+    fn named_states_and_parameters_must_exist() {
+        let body = format!(
+            r#"{STATUS}
+[state_machine]
+name = "run"
+status = "status"
+command = "status"
+initial = "boot"
+fault = "alarm"
+fault_code = "error_code"
+setpoint = "speed"
+[[state]]
+name = "standby"
+status = {{ mask = 2, value = 2, when = {{ parameter = "mode", value = 1 }} }}
+source = {{ doc = "m", line = 2 }}
+"#
+        );
+        assert_eq!(
+            messages("state_machines_resolve", &body),
+            [
+                "`initial` names state `boot`, which is not declared",
+                "`fault` names state `alarm`, which is not declared",
+                "fault_code `error_code` is not a parameter of this description",
+                "setpoint `speed` is not a parameter of this description",
+                "status pattern `when` `mode` is not a parameter of this description",
             ]
         );
     }

@@ -3,6 +3,9 @@
 //! (T2/T5), set the speed or torque setpoint, and stop with the ramp, stop (T4) or go to standby
 //! (T3/T6). Each step checks the drive status and says what is wrong when it cannot go on.
 //!
+//! The control word values and the states each command leaves come from the description's
+//! `[state_machine]` (the generated [`modbus_run::MACHINE`]), not from this file.
+//!
 //! The manual reads the drive status with "func. 0x03" (ERRATA.md M12); it is input register
 //! 0x0060, read with FC 0x04, as the generated `drive_status` accessor does.
 
@@ -12,6 +15,7 @@ use drivebus::modbus::Modbus;
 use drivebus::units::{AmperesRms, Rpm};
 use drivebus::{Error, Link};
 
+use crate::modbus_run::{self, MACHINE};
 use crate::types::{ControlWord, DriveStatus, ErrorCode, OperationMode};
 use crate::Smartris;
 
@@ -125,9 +129,7 @@ impl<L: Link<Protocol = Modbus>> Smartris<L> {
     /// drive now runs in `mode`. Returns the drive status read last.
     pub fn enable(&mut self, mode: ControlMode) -> Result<DriveStatus, RunError> {
         self.check_operation_mode(mode)?;
-        self.status_in(DriveStatus::STANDBY | DriveStatus::STOP)?;
-        self.control_word()
-            .write(ControlWord::RUN | ControlWord::STOP_DISABLED)?;
+        self.command_into(modbus_run::State::Run)?;
         self.status_in(mode.run_status())
     }
 
@@ -151,18 +153,37 @@ impl<L: Link<Protocol = Modbus>> Smartris<L> {
         self.set_speed(Rpm(0.0))
     }
 
-    /// Step 9, stop command (T4): control word 0x0001 (RUN, STOP enabled); the drive stops at
-    /// once with maximum torque, like a quick stop, and must report STOP.
+    /// Step 9, stop command (T4): control word 0x0001 (RUN, STOP enabled) while running; the
+    /// drive stops at once with maximum torque, like a quick stop, and must report STOP.
     pub fn stop(&mut self) -> Result<DriveStatus, RunError> {
-        self.control_word().write(ControlWord::RUN)?;
+        self.command_into(modbus_run::State::Stop)?;
         self.status_in(DriveStatus::STOP)
     }
 
     /// Step 9, standby command (T3 from run, T6 from stop; the manual labels it T4, ERRATA.md
     /// M14): control word 0x0002; the drive is disabled and must report STANDBY.
     pub fn standby(&mut self) -> Result<DriveStatus, RunError> {
-        self.control_word().write(ControlWord::STOP_DISABLED)?;
+        self.command_into(modbus_run::State::Standby)?;
         self.status_in(DriveStatus::STANDBY)
+    }
+
+    /// Writes the control word of the described transition from the drive's present state
+    /// straight into `target`; refuses (nothing written) in alarm, on STO, or in a state no
+    /// command leads from into `target`.
+    fn command_into(&mut self, target: modbus_run::State) -> Result<(), RunError> {
+        let to = MACHINE.state_index(target.name());
+        let sources = to.into_iter().flat_map(|to| MACHINE.commanded_from(to));
+        let shown = sources.flat_map(|state| state.patterns).map(|p| p.value);
+        let expected = DriveStatus::from_bits_retain(shown.fold(0, |all, bits| all | bits));
+        let status = self.status_in(expected)?;
+        let from = MACHINE.recognise(status.bits());
+        let command = from
+            .zip(to)
+            .and_then(|(from, to)| MACHINE.command_between(from, to))
+            .ok_or(RunError::WrongState { expected, status })?;
+        self.control_word()
+            .write(ControlWord::from_bits_retain(command))?;
+        Ok(())
     }
 
     /// Reads the drive status; fails with the decoded error code in alarm, on STO, or when none

@@ -10,8 +10,8 @@ use crate::store::{ParamId, Store};
 
 pub mod cia402;
 pub mod commands;
-pub mod lafert_modbus;
 pub mod motor;
+pub mod state_machine;
 
 /// What the power stage is doing, as the active state machine commands it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -57,7 +57,7 @@ pub fn for_device(store: &mut Store) -> Vec<Box<dyn Behaviour>> {
     if let Some(b) = commands::Commands::detect(store) {
         behaviours.push(Box::new(b));
     }
-    if let Some(b) = lafert_modbus::LafertModbus::detect(store) {
+    if let Some(b) = state_machine::DescribedMachine::detect(store) {
         behaviours.push(Box::new(b));
     }
     if let Some(b) = cia402::Cia402::detect(store) {
@@ -76,11 +76,4 @@ pub(crate) fn object(store: &Store, index: u16, subindex: u8) -> Option<ParamId>
             .iter()
             .any(|a| a.index == index && a.subindex == subindex)
     })
-}
-
-/// The number of the bit named `bit` of the flags type of parameter `id`.
-pub(crate) fn flag_bit(store: &Store, id: ParamId, bit: &str) -> Option<u32> {
-    let flags = store.parameter(id).flags.as_deref()?;
-    let flags = store.device().flags_type(flags)?;
-    flags.bits.iter().find(|b| b.name == bit).map(|b| b.bit)
 }

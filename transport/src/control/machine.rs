@@ -105,6 +105,23 @@ impl Machine {
         u8::try_from(index).ok()
     }
 
+    /// The value to write to go from state `from` straight into state `to`, if one command
+    /// transition does it.
+    pub fn command_between(&self, from: u8, to: u8) -> Option<u16> {
+        self.transitions.iter().find_map(|t| match t.kind {
+            TransitionKind::Command(value) if t.from == from && t.to == to => Some(value),
+            _ => None,
+        })
+    }
+
+    /// The states one command transition leads from straight into state `to`.
+    pub fn commanded_from(&self, to: u8) -> impl Iterator<Item = &StateDef> + '_ {
+        self.transitions
+            .iter()
+            .filter(move |t| t.to == to && matches!(t.kind, TransitionKind::Command(_)))
+            .filter_map(|t| self.states.get(usize::from(t.from)))
+    }
+
     /// The next hop from state `from` towards state `to`, using only transitions `allowed` accepts.
     pub fn next(&self, from: u8, to: u8, allowed: impl Fn(&TransitionDef) -> bool) -> Plan {
         if from == to {
@@ -264,6 +281,16 @@ mod tests {
         assert!(matches!(TOY.next(0, 2, |_| true), Plan::Command(t) if t.name == "a"));
         assert!(matches!(TOY.next(1, 2, |_| true), Plan::Await(t) if t.name == "b"));
         assert_eq!(TOY.next(2, 2, |_| true), Plan::Done);
+    }
+
+    #[test]
+    fn one_command_hops_are_found_by_their_ends() {
+        assert_eq!(TOY.command_between(0, 1), Some(1));
+        assert_eq!(TOY.command_between(2, 0), Some(0));
+        assert_eq!(TOY.command_between(1, 2), None, "automatic, not commanded");
+        assert_eq!(TOY.command_between(0, 2), None, "two hops");
+        let into_idle: std::vec::Vec<&str> = TOY.commanded_from(0).map(|s| s.name).collect();
+        assert_eq!(into_idle, ["done"], "stuck leaves by an external hop only");
     }
 
     #[test]
