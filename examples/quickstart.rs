@@ -10,10 +10,7 @@ use std::error::Error;
 use std::thread::sleep;
 use std::time::Duration;
 
-use drivebus::modbus::rtu::{Parity, StopBits};
-use drivebus::modbus::transport::{ModbusTcpClient, SerialConfig, SerialRtuClient, TcpConfig};
-use drivebus::modbus::{ModbusLink, RegisterBus, UnitId};
-use drivebus::units::Rpm;
+use drivebus::prelude::*;
 use lafert_smartris::types::{ControlWord, OperationMode};
 use lafert_smartris::{params, Smartris};
 

@@ -78,7 +78,7 @@ const LAFERT: &str = concat!(
 
 fn abort(result: Result<(), BusError>) -> u32 {
     match result {
-        Err(BusError::SdoAbort { code, .. }) => code,
+        Err(BusError::SdoAbort { code, .. }) => code.code(),
         other => panic!("expected an abort, got {other:?}"),
     }
 }

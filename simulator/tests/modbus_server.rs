@@ -21,7 +21,7 @@ fn fixture() -> (Simulator, ModbusTcpClient, drivesim::modbus::tcp::TcpServer) {
 
 fn exception(result: Result<(), BusError>) -> u8 {
     match result {
-        Err(BusError::ModbusException { code, .. }) => code,
+        Err(BusError::ModbusException { code, .. }) => code.code(),
         other => panic!("expected an exception, got {other:?}"),
     }
 }

@@ -2,6 +2,9 @@
 
 use core::fmt;
 
+use crate::canopen::sdo::AbortCode;
+use crate::modbus::ExceptionCode;
+
 /// A value could not be converted between its engineering form and its raw wire form.
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
@@ -89,8 +92,8 @@ pub enum BusError {
     ModbusException {
         /// Function code of the request.
         function: u8,
-        /// Exception code (1 illegal function, 2 illegal data address, 3 illegal data value, ...).
-        code: u8,
+        /// Exception code (illegal function, illegal data address, illegal data value, ...).
+        code: ExceptionCode,
     },
     /// The CANopen device aborted an SDO transfer.
     SdoAbort {
@@ -99,7 +102,7 @@ pub enum BusError {
         /// Object subindex of the transfer.
         subindex: u8,
         /// CiA 301 abort code.
-        code: u32,
+        code: AbortCode,
     },
     /// The CANopen client aborted an SDO transfer (toggle or sequence error, unexpected command,
     /// CRC error, buffer too small) and told the server so.
@@ -109,7 +112,7 @@ pub enum BusError {
         /// Object subindex of the transfer.
         subindex: u8,
         /// CiA 301 abort code the client sent.
-        code: u32,
+        code: AbortCode,
     },
     /// A frame arrived but is malformed or does not match the request.
     Frame(&'static str),
@@ -124,54 +127,27 @@ impl fmt::Display for BusError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Self::Timeout => write!(f, "no answer within the timeout"),
-            Self::ModbusException { function, code } => write!(
-                f,
-                "Modbus exception {code:#04x} ({}) to function {function:#04x}",
-                modbus_exception_meaning(*code)
-            ),
+            Self::ModbusException { function, code } => {
+                write!(f, "Modbus exception {code} to function {function:#04x}")
+            }
             Self::SdoAbort {
                 index,
                 subindex,
                 code,
-            } => {
-                let meaning = crate::canopen::sdo::AbortCode::from_u32(*code).meaning();
-                write!(
-                    f,
-                    "SDO abort {code:#010x} ({meaning}) on {index:#06x}:{subindex}"
-                )
-            }
+            } => write!(f, "SDO abort {code} on {index:#06x}:{subindex}"),
             Self::SdoClientAbort {
                 index,
                 subindex,
                 code,
-            } => {
-                let meaning = crate::canopen::sdo::AbortCode::from_u32(*code).meaning();
-                write!(
-                    f,
-                    "SDO transfer of {index:#06x}:{subindex} aborted by the client with {code:#010x} ({meaning})"
-                )
-            }
+            } => write!(
+                f,
+                "SDO transfer of {index:#06x}:{subindex} aborted by the client with {code}"
+            ),
             Self::Frame(why) => write!(f, "bad frame: {why}"),
             Self::Unsupported(what) => write!(f, "not supported by the device: {what}"),
             #[cfg(feature = "std")]
             Self::Io(kind) => write!(f, "I/O error: {kind}"),
         }
-    }
-}
-
-/// The meaning of a standard Modbus exception code.
-pub fn modbus_exception_meaning(code: u8) -> &'static str {
-    match code {
-        0x01 => "illegal function",
-        0x02 => "illegal data address",
-        0x03 => "illegal data value",
-        0x04 => "server device failure",
-        0x05 => "acknowledge",
-        0x06 => "server device busy",
-        0x08 => "memory parity error",
-        0x0A => "gateway path unavailable",
-        0x0B => "gateway target device failed to respond",
-        _ => "unknown exception",
     }
 }
 

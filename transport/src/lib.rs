@@ -9,6 +9,7 @@
 //! * [`scale`] / [`units`] — exact rational scaling and the unit newtypes values are returned in.
 //! * [`link`] — the one trait a protocol binding implements; [`device`] drives it.
 //! * [`modbus`] / [`canopen`] — protocol addresses and the bus traits transports implement.
+//! * [`prelude`] — the names an application uses most, in one `use drivebus::prelude::*;`.
 //!
 //! The core is `#![no_std]`; the `std` feature adds the in-memory bus used by tests and examples.
 #![no_std]
@@ -32,6 +33,7 @@ pub mod modbus;
 mod open_enum_macro;
 pub mod parameter;
 mod parameter_macro;
+pub mod prelude;
 pub mod read_set;
 pub mod scale;
 pub mod units;

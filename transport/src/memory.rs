@@ -42,9 +42,6 @@ pub struct MemoryBus {
     log: Vec<Request>,
 }
 
-const ILLEGAL_DATA_ADDRESS: u8 = 0x02;
-const OBJECT_DOES_NOT_EXIST: u32 = 0x0602_0000;
-
 impl MemoryBus {
     /// An empty bus.
     pub fn new() -> Self {
@@ -81,7 +78,7 @@ impl MemoryBus {
     fn exception(function: u8) -> BusError {
         BusError::ModbusException {
             function,
-            code: ILLEGAL_DATA_ADDRESS,
+            code: crate::modbus::ExceptionCode::IllegalDataAddress,
         }
     }
 }
@@ -152,7 +149,7 @@ impl SdoBus for MemoryBus {
         let value = self.object(index, subindex).ok_or(BusError::SdoAbort {
             index,
             subindex,
-            code: OBJECT_DOES_NOT_EXIST,
+            code: crate::canopen::sdo::AbortCode::ObjectDoesNotExist,
         })?;
         let target = out
             .get_mut(..value.len())
@@ -176,7 +173,7 @@ impl SdoBus for MemoryBus {
             .ok_or(BusError::SdoAbort {
                 index,
                 subindex,
-                code: OBJECT_DOES_NOT_EXIST,
+                code: crate::canopen::sdo::AbortCode::ObjectDoesNotExist,
             })?;
         *slot = data.to_vec();
         Ok(())

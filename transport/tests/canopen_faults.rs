@@ -184,7 +184,7 @@ fn a_wrong_toggle_bit_is_detected_and_aborted() {
         Err(BusError::SdoClientAbort {
             index: 0x2003,
             subindex: 0,
-            code: code.code()
+            code
         })
     );
     assert!(drain(&mut sniffer).contains(&abort_frame(0x2003, 0, code)));
@@ -212,7 +212,7 @@ fn an_unexpected_server_command_is_detected_and_aborted() {
         Err(BusError::SdoClientAbort {
             index: 0x2004,
             subindex: 0,
-            code: code.code()
+            code
         })
     );
     assert!(drain(&mut sniffer).contains(&abort_frame(0x2004, 0, code)));

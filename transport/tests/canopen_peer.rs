@@ -80,7 +80,7 @@ fn abort(index: u16, subindex: u8, code: AbortCode) -> BusError {
     BusError::SdoAbort {
         index,
         subindex,
-        code: code.code(),
+        code,
     }
 }
 

@@ -704,7 +704,7 @@ fn an_exception_fails_its_read_while_the_others_of_the_window_complete() {
         client.read_register_batch(UNIT, &mut reads),
         Err(BusError::ModbusException {
             function: 3,
-            code: 2
+            code: drivebus::modbus::ExceptionCode::IllegalDataAddress
         })
     );
     assert_eq!(reads.map(|read| read.done), [true, false, true]);

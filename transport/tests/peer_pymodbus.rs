@@ -112,7 +112,7 @@ fn exercise<B: RegisterBus + BitBus>(bus: &mut B) {
         missing,
         BusError::ModbusException {
             function: 0x03,
-            code: 0x02
+            code: drivebus::modbus::ExceptionCode::IllegalDataAddress
         }
     );
     assert_eq!(
@@ -133,7 +133,7 @@ fn exercise<B: RegisterBus + BitBus>(bus: &mut B) {
         refused,
         BusError::ModbusException {
             function: 0x10,
-            code: 0x03
+            code: drivebus::modbus::ExceptionCode::IllegalDataValue
         }
     );
     // The client is still in step after the exceptions.
@@ -204,7 +204,7 @@ fn exercise_link<B: RegisterBus>(bus: B) {
         link.read(&one(Table::Input, 0x71), &mut bad),
         Err(BusError::ModbusException {
             function: 0x04,
-            code: 0x02
+            code: drivebus::modbus::ExceptionCode::IllegalDataAddress
         })
     );
 }
@@ -240,7 +240,7 @@ fn pipelined_modbus_tcp_against_pymodbustcp() {
         client.read_register_batch(UNIT, &mut reads),
         Err(BusError::ModbusException {
             function: 0x03,
-            code: 0x02
+            code: drivebus::modbus::ExceptionCode::IllegalDataAddress
         })
     );
     assert_eq!(reads.map(|read| read.done), [true, true, false, true]);

@@ -103,7 +103,7 @@ fn sdo_transfers_and_aborts_over_slcan_tcp() {
         Err(BusError::SdoAbort {
             index: 0x3000,
             subindex: 0,
-            code: AbortCode::ObjectDoesNotExist.code()
+            code: AbortCode::ObjectDoesNotExist
         })
     );
 }

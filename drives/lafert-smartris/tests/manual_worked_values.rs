@@ -111,7 +111,7 @@ fn unknown_register_surfaces_the_exception() {
         error.bus(),
         Some(&BusError::ModbusException {
             function: 0x04,
-            code: 0x02
+            code: drivebus::modbus::ExceptionCode::IllegalDataAddress
         })
     );
 }

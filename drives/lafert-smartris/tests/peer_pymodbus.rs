@@ -10,7 +10,7 @@ use std::process::{Child, ChildStdin, Command, Stdio};
 use std::time::Duration;
 
 use drivebus::modbus::transport::{ModbusTcpClient, TcpConfig};
-use drivebus::modbus::{ModbusLink, UnitId};
+use drivebus::modbus::{ExceptionCode, ModbusLink, UnitId};
 use drivebus::units::{Rpm, Volts};
 use drivebus::BusError;
 use lafert_smartris::types::{ControlWord, DriveStatus, WarningCode};
@@ -72,7 +72,7 @@ fn connect(server: &Server) -> Smartris<ModbusLink<ModbusTcpClient>> {
     Smartris::modbus(client, UnitId(1))
 }
 
-fn exception(function: u8, code: u8) -> Option<BusError> {
+fn exception(function: u8, code: ExceptionCode) -> Option<BusError> {
     Some(BusError::ModbusException { function, code })
 }
 
@@ -130,7 +130,10 @@ fn an_unknown_register_is_exception_0x02() {
     let mut drive = connect(&server);
     // FEEDBACK TYPE, input 0x0100: the server has no input registers there.
     let error = drive.feedback_type_actual().read().unwrap_err();
-    assert_eq!(error.bus().cloned(), exception(0x04, 0x02));
+    assert_eq!(
+        error.bus().cloned(),
+        exception(0x04, ExceptionCode::IllegalDataAddress)
+    );
 }
 
 #[test]
@@ -139,7 +142,10 @@ fn a_write_the_drive_refuses_is_exception_0x03() {
     let mut drive = connect(&server);
     // 3500 rpm fits the register, but not the full-scale velocity (3000 rpm) the server enforces.
     let error = drive.speed_setpoint().write(Rpm(3500.0)).unwrap_err();
-    assert_eq!(error.bus().cloned(), exception(0x06, 0x03));
+    assert_eq!(
+        error.bus().cloned(),
+        exception(0x06, ExceptionCode::IllegalDataValue)
+    );
 }
 
 #[test]
@@ -153,5 +159,8 @@ fn store_and_reset_reports_the_refused_reset() {
     let StoreResetError::Reset(cause) = &error else {
         panic!("expected the reset step to fail, got {error:?}");
     };
-    assert_eq!(cause.bus().cloned(), exception(0x06, 0x02));
+    assert_eq!(
+        cause.bus().cloned(),
+        exception(0x06, ExceptionCode::IllegalDataAddress)
+    );
 }

@@ -91,7 +91,7 @@ fn a_failed_store_does_not_reset() {
         cause.bus(),
         Some(&BusError::ModbusException {
             function: 0x06,
-            code: 0x02
+            code: drivebus::modbus::ExceptionCode::IllegalDataAddress
         })
     );
     assert!(error.to_string().contains("store command (0x0000)"));

@@ -5,7 +5,7 @@
 
 use core::fmt;
 
-use crate::error::{modbus_exception_meaning, BusError};
+use crate::error::BusError;
 
 /// A Modbus exception code (Modbus Application Protocol v1.1b3, §7).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -51,8 +51,19 @@ impl ExceptionCode {
     }
 
     /// What the code means, in words.
-    pub fn meaning(self) -> &'static str {
-        modbus_exception_meaning(self.code())
+    pub const fn meaning(self) -> &'static str {
+        match self {
+            Self::IllegalFunction => "illegal function",
+            Self::IllegalDataAddress => "illegal data address",
+            Self::IllegalDataValue => "illegal data value",
+            Self::ServerDeviceFailure => "server device failure",
+            Self::Acknowledge => "acknowledge",
+            Self::ServerDeviceBusy => "server device busy",
+            Self::MemoryParityError => "memory parity error",
+            Self::GatewayPathUnavailable => "gateway path unavailable",
+            Self::GatewayTargetFailedToRespond => "gateway target device failed to respond",
+            Self::Other(_) => "unknown exception",
+        }
     }
 }
 
@@ -83,7 +94,7 @@ impl BusError {
     /// The exception code, if this error is a Modbus exception response.
     pub fn modbus_exception(&self) -> Option<ExceptionCode> {
         match self {
-            Self::ModbusException { code, .. } => Some(ExceptionCode::from(*code)),
+            Self::ModbusException { code, .. } => Some(*code),
             _ => None,
         }
     }
@@ -102,7 +113,7 @@ mod tests {
         assert_eq!(ExceptionCode::from(3).meaning(), "illegal data value");
         let error = BusError::ModbusException {
             function: 3,
-            code: 2,
+            code: ExceptionCode::from(2),
         };
         assert_eq!(
             error.modbus_exception(),

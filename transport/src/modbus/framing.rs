@@ -211,7 +211,7 @@ mod tests {
             scan_registers(&framing, UNIT, &READ, &wrap(transaction, 1, &pdu), &mut out),
             Err(BusError::ModbusException {
                 function: 3,
-                code: 2
+                code: crate::modbus::ExceptionCode::IllegalDataAddress
             })
         );
         assert!(matches!(

@@ -328,7 +328,7 @@ mod tests {
             link.read_many(&mut requests),
             Err(BusError::ModbusException {
                 function: 4,
-                code: 2
+                code: crate::modbus::ExceptionCode::IllegalDataAddress
             })
         );
         assert_eq!(requests[0].len, 0);

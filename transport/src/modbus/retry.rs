@@ -155,7 +155,7 @@ mod tests {
         assert!(is_transient(&BusError::Frame("CRC mismatch")));
         assert!(!is_transient(&BusError::ModbusException {
             function: 3,
-            code: 2
+            code: crate::modbus::ExceptionCode::IllegalDataAddress
         }));
         assert!(!is_transient(&BusError::Unsupported("x")));
     }

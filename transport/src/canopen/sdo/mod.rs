@@ -89,12 +89,12 @@ impl SdoError {
             Self::Server(code) => BusError::SdoAbort {
                 index,
                 subindex,
-                code: code.code(),
+                code,
             },
             Self::Client(code) => BusError::SdoClientAbort {
                 index,
                 subindex,
-                code: code.code(),
+                code,
             },
         }
     }

@@ -180,7 +180,7 @@ fn a_server_abort_ends_the_transfer_with_its_code() {
         crate::BusError::SdoAbort {
             index: 0x2000,
             subindex: 1,
-            code: 0x0609_0011
+            code: crate::canopen::sdo::AbortCode::from_u32(0x0609_0011)
         }
     );
 }

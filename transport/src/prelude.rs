@@ -1,0 +1,25 @@
+//! The names an application driving a generated crate uses most, in one import:
+//!
+//! ```
+//! use drivebus::prelude::*;
+//! ```
+//!
+//! Values and errors are always here; each protocol's addressing, links and (with `std`)
+//! blocking transports come with the feature that enables them.
+
+pub use crate::error::{BusError, Error, ValueError};
+pub use crate::link::Link;
+pub use crate::parameter::{Readable, Writable};
+pub use crate::units::*;
+
+pub use crate::canopen::{CanBus, CanFrame, CanOpenLink, NodeId};
+#[cfg(feature = "canopen")]
+pub use crate::canopen::{backend::in_process::InProcessBus, blocking::BlockingSdo};
+
+pub use crate::modbus::{ExceptionCode, ModbusLink, RegisterBus, UnitId};
+#[cfg(feature = "modbus-core")]
+pub use crate::modbus::rtu::{Parity, StopBits};
+#[cfg(feature = "modbus")]
+pub use crate::modbus::transport::{
+    ModbusTcpClient, RtuOverTcpClient, SerialConfig, SerialRtuClient, TcpConfig,
+};
