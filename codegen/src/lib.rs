@@ -18,6 +18,8 @@ pub mod eds;
 pub mod emit;
 pub mod ir;
 pub mod load;
+#[cfg(test)]
+mod test_support;
 pub mod validate;
 
 use std::path::Path;

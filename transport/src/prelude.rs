@@ -12,14 +12,14 @@ pub use crate::link::Link;
 pub use crate::parameter::{Readable, Writable};
 pub use crate::units::*;
 
-pub use crate::canopen::{CanBus, CanFrame, CanOpenLink, NodeId};
 #[cfg(feature = "canopen")]
 pub use crate::canopen::{backend::in_process::InProcessBus, blocking::BlockingSdo};
+pub use crate::canopen::{CanBus, CanFrame, CanOpenLink, NodeId};
 
-pub use crate::modbus::{ExceptionCode, ModbusLink, RegisterBus, UnitId};
 #[cfg(feature = "modbus-core")]
 pub use crate::modbus::rtu::{Parity, StopBits};
 #[cfg(feature = "modbus")]
 pub use crate::modbus::transport::{
     ModbusTcpClient, RtuOverTcpClient, SerialConfig, SerialRtuClient, TcpConfig,
 };
+pub use crate::modbus::{ExceptionCode, ModbusLink, RegisterBus, UnitId};

@@ -8,6 +8,7 @@ mod expr;
 mod number;
 mod pdo;
 mod readable_registers;
+mod scale_inputs;
 mod value_type;
 
 pub use data_type::DataType;

@@ -1,7 +1,6 @@
 //! Loading: read a description's files (following `include`), keep spans, lower to the IR.
 
 mod lower;
-mod overlay;
 mod raw;
 
 use std::path::{Path, PathBuf};

@@ -4,29 +4,9 @@
 //! return unscaled values.
 
 use crate::diagnostic::Diagnostic;
-use crate::ir::{Device, Parameter, Scale};
+use crate::ir::{Device, Scale};
 
 const RULE: &str = "scale_inputs_exist";
-
-/// Whether `p` has a readable Modbus address.
-pub fn readable_modbus(p: &Parameter) -> bool {
-    p.modbus.iter().any(|a| a.access.read)
-}
-
-/// Whether `p` has a readable CANopen address.
-pub fn readable_canopen(p: &Parameter) -> bool {
-    p.canopen.iter().any(|a| a.access.read)
-}
-
-/// Whether every run-time scale input of `p` is readable by `readable` (true without one).
-pub fn inputs_readable(p: &Parameter, device: &Device, readable: fn(&Parameter) -> bool) -> bool {
-    match &p.scale {
-        Some(Scale::Runtime { inputs, .. }) => inputs
-            .iter()
-            .all(|i| device.parameter(i).is_some_and(readable)),
-        _ => true,
-    }
-}
 
 /// Reports run-time scale inputs that do not exist or cannot be read.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
@@ -54,8 +34,14 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
                 )));
             }
             let missing = [
-                ("Modbus", !p.modbus.is_empty() && !readable_modbus(input)),
-                ("CANopen", !p.canopen.is_empty() && !readable_canopen(input)),
+                (
+                    "Modbus",
+                    !p.modbus.is_empty() && !input.readable_over_modbus(),
+                ),
+                (
+                    "CANopen",
+                    !p.canopen.is_empty() && !input.readable_over_canopen(),
+                ),
             ];
             for (protocol, _) in missing.iter().filter(|(_, m)| *m) {
                 let message = format!(

@@ -269,7 +269,7 @@ pub fn emit(device: &Device, handle: &Ident) -> TokenStream {
 
 #[cfg(test)]
 mod tests {
-    use crate::validate::test_support::HEADER;
+    use crate::test_support::HEADER;
 
     /// The generated source of `HEADER + body`.
     fn generated(name: &str, body: &str) -> String {

@@ -12,7 +12,6 @@ use super::enums::int_literal;
 use super::{concat, doc_attrs, ident, parameter_doc, raw_type};
 use crate::emit::ident as names;
 use crate::ir::{DataType, Device, Expr, Number, Op, Parameter, Scale, ValueType};
-use crate::validate::scale_inputs_exist::{inputs_readable, readable_canopen, readable_modbus};
 
 /// A raw value as a literal of the parameter's raw type (validation keeps floats finite and
 /// within that type's width).
@@ -168,8 +167,8 @@ pub fn emit(p: &Parameter, device: &Device) -> TokenStream {
     let (value_type, codec) = (value_type(p, &quote! { types }), codec(p));
     let clauses = clauses(p);
     // A run-time factor that cannot be read over a protocol leaves the parameter out of it.
-    let on_modbus = inputs_readable(p, device, readable_modbus);
-    let on_canopen = inputs_readable(p, device, readable_canopen);
+    let on_modbus = device.scale_inputs_readable(p, Parameter::readable_over_modbus);
+    let on_canopen = device.scale_inputs_readable(p, Parameter::readable_over_canopen);
     let capabilities = [Direction::Read, Direction::Write]
         .into_iter()
         .flat_map(|d| {
@@ -205,7 +204,7 @@ pub fn emit(p: &Parameter, device: &Device) -> TokenStream {
 
 #[cfg(test)]
 mod tests {
-    use crate::validate::test_support::device;
+    use crate::test_support::device;
 
     /// A parameter scaled by `resolution`, whose own access is `access`.
     fn scaled_by_resolution(access: &str) -> String {

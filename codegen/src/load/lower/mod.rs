@@ -5,20 +5,19 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::sync::Arc;
 
-#[path = "lower_control.rs"]
 mod control;
-#[path = "lower_pdo.rs"]
+mod overlay;
 mod pdo;
 
 use toml::Spanned;
 
-use super::overlay::Overlay;
 use super::raw::*;
 use super::LoadedFile;
 use crate::diagnostic::{Diagnostic, FileId, Files, Span};
 use crate::eds::EdsModel;
 use crate::ir::{self, DataType, Expr, Number};
 use drivebus::Ratio;
+use overlay::Overlay;
 
 /// Turns loaded files into one device model. Returns `None` if the root file has neither
 /// `[device]` nor `[profile]`. With `eds`, the root file is an overlay of that EDS: its

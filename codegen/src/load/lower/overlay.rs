@@ -4,11 +4,11 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use super::lower::Lowering;
-use super::raw::{OneOrMany, RawCanOpenAddress, RawParameter};
+use super::Lowering;
 use crate::diagnostic::{Diagnostic, FileId};
 use crate::eds::EdsModel;
 use crate::ir::{self, DataType};
+use crate::load::raw::{OneOrMany, RawCanOpenAddress, RawParameter};
 
 const RULE: &str = "overlay_matches_eds";
 
