@@ -5,10 +5,10 @@
 use std::cmp::Ordering;
 use std::fmt;
 
+use drivebus::interpret::raw;
 use drivebus::scale::EXACT_INTEGERS;
 use drivebus::ValueError;
 use drivegen::ir::{DataType, Device, Parameter, Scale};
-use drivesim::raw;
 
 use crate::raw_value::RawValue;
 

@@ -9,12 +9,12 @@ use drivebus::canopen::backend::candump::CandumpBus;
 use drivebus::canopen::backend::slcan::{Bitrate, SlcanBus};
 use drivebus::canopen::blocking::BlockingSdo;
 use drivebus::canopen::{CanBus, CanFrame, NodeId, SdoBus};
+use drivebus::interpret::registers;
 use drivebus::modbus::rtu::{Parity, StopBits};
 use drivebus::modbus::transport::{ModbusTcpClient, SerialConfig, SerialRtuClient, TcpConfig};
 use drivebus::modbus::{ModbusLimits, RegisterBus, UnitId, MAX_IN_FLIGHT};
 use drivebus::BusError;
 use drivegen::ir::{self, Device, Parameter};
-use drivesim::registers;
 
 use crate::error::CliError;
 use crate::modbus_batch;

@@ -66,7 +66,7 @@ fn canopen_view(device: &Device) -> BTreeMap<(u16, u8), Kept> {
                 .map(|r| format!("{}..={}", number(r.min), number(r.max)));
             view.entry((a.index, a.subindex)).or_insert((
                 rust(&p.name),
-                p.data_type.name(),
+                p.data_type.name().to_owned(),
                 format!("{:?}", a.access),
                 a.constant,
                 format!("{:?}", a.pdo),

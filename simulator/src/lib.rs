@@ -2,7 +2,7 @@
 //!
 //! The [`Drive`] holds every parameter's raw value (described defaults, 0 where none) and runs
 //! the behaviours the description calls for ([`behaviour`]): the CiA 402 state machine, the
-//! Lafert Modbus-mode state machine, command registers and a motor whose speed follows the
+//! description's own `[state_machine]`, command registers and a motor whose speed follows the
 //! setpoint along the described ramp. Protocol fronts expose it:
 //!
 //! * [`modbus`] — a sans-I/O server core ([`modbus::ModbusServer`]) enforcing access, ranges,
@@ -32,7 +32,6 @@ pub mod drive;
 pub mod modbus;
 pub mod raw;
 pub mod refusal;
-pub mod registers;
 mod simulator;
 pub mod store;
 

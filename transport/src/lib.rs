@@ -9,6 +9,8 @@
 //! * [`scale`] / [`units`] — exact rational scaling and the unit newtypes values are returned in.
 //! * [`link`] — the one trait a protocol binding implements; [`device`] drives it.
 //! * [`modbus`] / [`canopen`] — protocol addresses and the bus traits transports implement.
+//! * `interpret` (feature `std`) — byte and register codecs for tools that read a description at
+//!   run time (the CLI, the simulator).
 //! * [`prelude`] — the names an application uses most, in one `use drivebus::prelude::*;`.
 //!
 //! The core is `#![no_std]`; the `std` feature adds the in-memory bus used by tests and examples.
@@ -23,9 +25,12 @@ pub mod canopen;
 pub mod check;
 pub mod codec;
 pub mod control;
+pub mod data_type;
 pub mod device;
 pub mod error;
 pub mod error_class;
+#[cfg(feature = "std")]
+pub mod interpret;
 pub mod link;
 #[cfg(feature = "std")]
 pub mod memory;
@@ -39,6 +44,7 @@ pub mod scale;
 pub mod units;
 pub mod value;
 
+pub use data_type::DataType;
 pub use device::{Accessor, Device};
 pub use error::{BusError, Error, ValueError};
 pub use error_class::ErrorClass;

@@ -74,7 +74,7 @@ fn row(p: &Parameter) -> Vec<String> {
         .collect();
     vec![
         p.name.clone(),
-        p.data_type.name(),
+        p.data_type.name().to_owned(),
         p.unit.clone().unwrap_or_default(),
         modbus.join(", "),
         canopen.join(", "),

@@ -47,7 +47,10 @@ impl fmt::Display for ValueType<'_> {
             ValueType::Flags(name) => write!(f, "flags `{name}`"),
             ValueType::Unit(name) => write!(f, "`{name}`"),
             ValueType::Scaled => f.write_str("`f64`"),
-            ValueType::Raw(data_type) => write!(f, "`{}`", data_type.rust_type()),
+            ValueType::Raw(data_type) => match data_type.rust_scalar() {
+                Some(scalar) => write!(f, "`{scalar}`"),
+                None => write!(f, "`::drivebus::value::Text<{}>`", data_type.bytes()),
+            },
         }
     }
 }

@@ -6,8 +6,8 @@ use drivebus::modbus::{Table, WordOrder};
 use drivegen::ir::{Access, Device};
 
 use crate::refusal::Refusal;
-use crate::registers;
 use crate::store::{ParamId, Store};
+use drivebus::interpret::registers::{self, Unfit};
 
 /// One register of a parameter.
 #[derive(Debug, Clone, Copy)]
@@ -71,5 +71,11 @@ pub fn registers(store: &Store, cell: Cell) -> Vec<u16> {
 /// The parameter bytes the registers `regs` (wire order) stand for; integers that do not fit the
 /// parameter's type are refused.
 pub fn parameter_bytes(store: &Store, cell: Cell, regs: &[u16]) -> Result<Vec<u8>, Refusal> {
-    registers::from_registers(store.parameter(cell.id).data_type, regs, cell.order)
+    registers::from_registers(store.parameter(cell.id).data_type, regs, cell.order).map_err(
+        |unfit| match unfit {
+            Unfit::TooHigh => Refusal::TooHigh,
+            Unfit::TooLow => Refusal::TooLow,
+            Unfit::WrongLength => Refusal::WrongLength,
+        },
+    )
 }

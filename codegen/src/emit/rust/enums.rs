@@ -11,7 +11,7 @@ use crate::ir::{DataType, Enum, EnumValue, ValueClass};
 
 /// An integer literal of the given type, so negative and wide values print exactly.
 pub fn int_literal(value: i128, ty: DataType) -> TokenStream {
-    let lit = match ty.rust_type().as_str() {
+    let lit = match ty.rust_scalar().unwrap_or_default() {
         "u8" => Literal::u8_unsuffixed(value as u8),
         "u16" => Literal::u16_unsuffixed(value as u16),
         "u32" => Literal::u32_unsuffixed(value as u32),

@@ -24,14 +24,14 @@ pub(crate) fn ident(name: &str) -> Ident {
 
 /// The Rust type of a raw value, built as tokens (no string parsing on the hot path).
 pub(crate) fn raw_type(data_type: DataType) -> TokenStream {
-    match data_type {
-        DataType::String(n) | DataType::Octets(n) => {
-            let n = Literal::usize_unsuffixed(n as usize);
-            quote! { ::drivebus::value::Text<#n> }
-        }
-        scalar => {
-            let name = ident(&scalar.rust_type());
+    match data_type.rust_scalar() {
+        Some(scalar) => {
+            let name = ident(scalar);
             quote! { #name }
+        }
+        None => {
+            let n = Literal::usize_unsuffixed(data_type.bytes() as usize);
+            quote! { ::drivebus::value::Text<#n> }
         }
     }
 }

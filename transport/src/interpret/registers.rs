@@ -1,11 +1,34 @@
 //! Parameter values ↔ Modbus registers, for any IR type: integers are sign-extended into and
 //! range-checked out of their registers, other types are copied byte for byte.
 
-use drivebus::modbus::{le_to_registers, registers_to_le, WordOrder};
-use drivegen::ir::DataType;
+use core::fmt;
+use std::vec;
+use std::vec::Vec;
 
-use crate::raw;
-use crate::refusal::Refusal;
+use super::raw;
+use crate::modbus::{le_to_registers, registers_to_le, WordOrder};
+use crate::DataType;
+
+/// Why registers do not hold a value of the parameter's type.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Unfit {
+    /// An integer above the type's largest value.
+    TooHigh,
+    /// An integer below the type's smallest value.
+    TooLow,
+    /// More bytes than any integer type holds.
+    WrongLength,
+}
+
+impl fmt::Display for Unfit {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::TooHigh => "the registers hold a value above the parameter's type",
+            Self::TooLow => "the registers hold a value below the parameter's type",
+            Self::WrongLength => "the registers are wider than any integer type",
+        })
+    }
+}
 
 /// The `words` registers (wire order) holding the little-endian value `bytes` of `data_type`.
 pub fn to_registers(data_type: DataType, bytes: &[u8], words: u16, order: WordOrder) -> Vec<u16> {
@@ -26,16 +49,16 @@ pub fn from_registers(
     data_type: DataType,
     regs: &[u16],
     order: WordOrder,
-) -> Result<Vec<u8>, Refusal> {
+) -> Result<Vec<u8>, Unfit> {
     let mut wire = vec![0u8; 2 * regs.len()];
     registers_to_le(regs, order, &mut wire);
     from_wire(data_type, wire)
 }
 
 /// The little-endian value of `data_type` in `wire`, the little-endian bytes of its registers
-/// (what [`drivebus::modbus::ModbusLink`] reads); an integer that does not fit the type is
+/// (what [`ModbusLink`](crate::modbus::ModbusLink) reads); an integer that does not fit the type is
 /// refused.
-pub fn from_wire(data_type: DataType, mut wire: Vec<u8>) -> Result<Vec<u8>, Refusal> {
+pub fn from_wire(data_type: DataType, mut wire: Vec<u8>) -> Result<Vec<u8>, Unfit> {
     let Some((min, max)) = data_type.integer_bounds() else {
         wire.truncate(data_type.bytes() as usize);
         return Ok(wire);
@@ -45,12 +68,12 @@ pub fn from_wire(data_type: DataType, mut wire: Vec<u8>) -> Result<Vec<u8>, Refu
         DataType::Signed(_) => DataType::Signed(width),
         _ => DataType::Unsigned(width),
     };
-    let value = raw::to_int(wire_type, &wire).ok_or(Refusal::WrongLength)?;
+    let value = raw::to_int(wire_type, &wire).ok_or(Unfit::WrongLength)?;
     if value > max {
-        return Err(Refusal::TooHigh);
+        return Err(Unfit::TooHigh);
     }
     if value < min {
-        return Err(Refusal::TooLow);
+        return Err(Unfit::TooLow);
     }
     Ok(raw::from_int(data_type, value))
 }
@@ -94,11 +117,11 @@ mod tests {
     fn integers_that_do_not_fit_are_refused() {
         assert_eq!(
             from_registers(DataType::Unsigned(1), &[0x0100], WordOrder::LowFirst),
-            Err(Refusal::TooHigh)
+            Err(Unfit::TooHigh)
         );
         assert_eq!(
             from_registers(DataType::Signed(1), &[0xFF7F], WordOrder::LowFirst),
-            Err(Refusal::TooLow)
+            Err(Unfit::TooLow)
         );
     }
 }
