@@ -17,7 +17,7 @@ fn ms(n: u64) -> Duration {
 }
 
 /// SRDO1 at the quick start's node 0x10: COB-IDs FFh + 2 × 10h and 100h + 2 × 10h, SCT 50 ms,
-/// SRVT 20 ms, one byte (SWD manual lines 1738-1742, 1750, 4104, 4111).
+/// SRVT 20 ms, one byte (SWD manual lines 1738-1746, 4100, 4111).
 fn srdo1() -> SrdoConsumer {
     let ids = SrdoCobIds::new(0x11F, 0x120).unwrap();
     SrdoConsumer::new(ids, SrdoTiming::from_millis(50, 20).unwrap(), 8).unwrap()

@@ -1,5 +1,5 @@
 //! SRDO mappings: the mapping object (1381h..) lists the entries interleaved, normal data at the
-//! odd sub-indices, its inverted copy at the even ones (SWD manual lines 1749-1751, 1767-1782).
+//! odd sub-indices, its inverted copy at the even ones (SWD manual lines 1745-1746, 1767-1782).
 //!
 //! The normal entries are packed into the normal frame exactly as a PDO is, so the normal data
 //! decodes with a [`PdoLayout`](crate::canopen::pdo::PdoLayout) of the normal entries.
@@ -82,13 +82,13 @@ pub const fn pair_bits(entries: &[MappedObject]) -> u32 {
 mod tests {
     use super::*;
 
-    /// SRDO1's default mapping, SWD manual lines 1750-1751.
+    /// SRDO1's default mapping, SWD manual lines 1745-1746.
     const SRDO1: [MappedObject; 2] = [
         MappedObject::from_entry(0x6620_0108),
         MappedObject::from_entry(0x6622_0108),
     ];
 
-    /// SRDO10's default mapping, SWD manual lines 1818-1821: two i32 and their inverted copies,
+    /// SRDO10's default mapping, SWD manual lines 1817-1820: two i32 and their inverted copies,
     /// 128 bits for the pair.
     const SRDO10: [MappedObject; 4] = [
         MappedObject::from_entry(0x6611_0020),

@@ -4,14 +4,15 @@
 //! [`SrdoConsumer`] releases a value only when both frames arrive, agree and lie within the SRDO
 //! valid time (SRVT) of each other, and reports a safeguard cycle time (SCT) expiry between
 //! pairs; everything else is an [`SrdoError`] and no value. The [`SrdoProducer`] emits the pair.
-//! Time is an input, as in every core of this crate.
+//! Time is an input, as in every core of this crate. [`signature()`] computes the safety
+//! configuration signature (13FFh) of an [`SrdoConfig`].
 //!
 //! ```
 //! use core::time::Duration;
 //! use drivebus::canopen::srdo::{SrdoCobIds, SrdoConsumer, SrdoError, SrdoProducer, SrdoTiming};
 //!
 //! // SRDO1 of the ez-Wheel SWD at node 0x10: COB-IDs 11Fh / 120h, SCT 50 ms, SRVT 20 ms,
-//! // one byte of data (SWD manual lines 1738-1751, 4111).
+//! // one byte of data (SWD manual lines 1736-1746, 4100, 4111).
 //! let ids = SrdoCobIds::new(0x11F, 0x120).unwrap();
 //! let timing = SrdoTiming::from_millis(50, 20).unwrap();
 //! let producer = SrdoProducer::new(ids, timing.sct(), 8).unwrap();
@@ -28,15 +29,19 @@
 
 mod cob_ids;
 mod complement;
+mod config;
 mod consumer;
 mod error;
 pub mod mapping;
 mod producer;
+pub mod signature;
 mod timing;
 
 pub use cob_ids::SrdoCobIds;
 pub use complement::is_complement;
+pub use config::{SrdoCommunication, SrdoConfig, SrdoDirection, MAX_SRDO};
 pub use consumer::SrdoConsumer;
 pub use error::SrdoError;
 pub use producer::SrdoProducer;
+pub use signature::{signature, verify, SignatureMismatch, VerifyError};
 pub use timing::SrdoTiming;
