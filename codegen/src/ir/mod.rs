@@ -8,6 +8,7 @@ mod expr;
 mod number;
 mod pdo;
 mod readable_registers;
+mod srdo;
 mod value_type;
 
 pub use data_type::DataType;
@@ -15,6 +16,7 @@ pub use expr::{Expr, ExprError, Op};
 pub use number::Number;
 pub use pdo::{pdo_bits, CobId, PdoDirection, PdoMapping};
 pub use readable_registers::{PlannerLimits, RegisterRun};
+pub use srdo::{SrdoCobId, SrdoMapping};
 pub use value_type::ValueType;
 
 use std::sync::Arc;
@@ -56,6 +58,9 @@ pub struct Device {
     /// Declared PDO mappings (left out of the JSON when there are none).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub pdos: Vec<PdoMapping>,
+    /// Declared SRDOs (left out of the JSON when there are none).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub srdos: Vec<SrdoMapping>,
 }
 
 /// How the drive deviates from the CiA 402 state machine.

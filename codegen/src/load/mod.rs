@@ -4,6 +4,7 @@ pub mod exact;
 mod lower;
 mod overlay;
 mod raw;
+mod raw_srdo;
 
 use std::path::{Path, PathBuf};
 
@@ -136,6 +137,10 @@ const SHAPES: &[(&str, &str)] = &[
     ),
     ("RawNumber", "expected a number"),
     ("RawPdo", "`pdo` is false, \"rx\", \"tx\" or \"both\""),
+    (
+        "RawSrdoCobId",
+        "an SRDO COB-ID is a number or `{ base, node_id_factor }`",
+    ),
 ];
 
 fn syntax_error(id: FileId, error: &toml::de::Error) -> Diagnostic {
