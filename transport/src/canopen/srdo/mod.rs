@@ -5,7 +5,8 @@
 //! valid time (SRVT) of each other, and reports a safeguard cycle time (SCT) expiry between
 //! pairs; everything else is an [`SrdoError`] and no value. The [`SrdoProducer`] emits the pair.
 //! Time is an input, as in every core of this crate. [`signature()`] computes the safety
-//! configuration signature (13FFh) of an [`SrdoConfig`].
+//! configuration signature (13FFh) of an [`SrdoConfig`]; [`write_safety_configuration`] is the
+//! only writer of safety configuration (Pre-Operational only, signature and validity flag after).
 //!
 //! ```
 //! use core::time::Duration;
@@ -34,6 +35,7 @@ mod consumer;
 mod error;
 pub mod mapping;
 mod producer;
+pub mod safety_write;
 pub mod signature;
 mod timing;
 
@@ -43,5 +45,6 @@ pub use config::{SrdoCommunication, SrdoConfig, SrdoDirection, MAX_SRDO};
 pub use consumer::SrdoConsumer;
 pub use error::SrdoError;
 pub use producer::SrdoProducer;
+pub use safety_write::{write_safety_configuration, MappingWrite, SafetyPlan, SafetyWriteError};
 pub use signature::{signature, verify, SignatureMismatch, VerifyError};
 pub use timing::SrdoTiming;
