@@ -11,7 +11,7 @@ use crate::canopen::frame::CanFrame;
 /// Largest number of segments in one block.
 pub const MAX_BLOCK_SIZE: u8 = 127;
 
-pub(crate) const CRC16: crc::Crc<u16> = crc::Crc::<u16>::new(&crc::CRC_16_XMODEM);
+const CRC16: crc::Crc<u16> = crc::Crc::<u16>::new(&crc::CRC_16_XMODEM);
 
 /// The block-transfer CRC (CRC-16/XMODEM, the CCITT polynomial 0x1021 from 0) of a value.
 pub fn crc16(data: &[u8]) -> u16 {
