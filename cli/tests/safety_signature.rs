@@ -47,6 +47,22 @@ fn quick_start_disabled_srdo1() {
 }
 
 #[test]
+fn a_described_communication_object_can_be_set_by_name() {
+    // The fixture describes 1301h sub 1 as `srdo1_information_direction`.
+    assert_eq!(
+        stdout(&drivegen(&[
+            "--srdo",
+            "1",
+            "--set",
+            "srdo1_information_direction=0"
+        ])),
+        "0xBABD"
+    );
+    let refused = drivegen(&["--srdo", "2", "--set", "srdo1_information_direction=0"]);
+    assert!(!refused.status.success(), "1301h is not SRDO 2's");
+}
+
+#[test]
 fn another_node_id_moves_srdo1_cob_ids() {
     let mapping = [
         MappedObject::from_entry(0x6620_0108),

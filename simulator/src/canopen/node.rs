@@ -95,11 +95,14 @@ impl Node {
             }
             NmtCommand::ResetCommunication => vec![self.boot(now)],
             other => {
-                let was = self.state;
-                self.state = other.target_state();
-                if self.state == NmtState::Operational && was != NmtState::Operational {
-                    self.srdos.start(now);
+                let target = other.target_state();
+                if target == NmtState::Operational && self.state != NmtState::Operational {
+                    if !self.safety_configuration_holds() {
+                        return Vec::new();
+                    }
+                    self.start_srdos(now);
                 }
+                self.state = target;
                 Vec::new()
             }
         }
@@ -150,6 +153,23 @@ impl Node {
         }
         self.next_heartbeat = now + period;
         Some(heartbeat_frame(self.config.node, self.state))
+    }
+
+    /// Whether the safety configuration lets the node enter Operational (signatures and 13FEh,
+    /// SWD manual line 3568: "A signature error prevents the transition to the operational NMT
+    /// state").
+    fn safety_configuration_holds(&self) -> bool {
+        let node = self.config.node;
+        self.sim
+            .with(|drive| Srdos::configuration_error(drive.store(), node))
+            .is_none()
+    }
+
+    /// The SRDOs as the drive is now configured, SCT monitoring from `now`.
+    fn start_srdos(&mut self, now: Duration) {
+        let (srdos, node) = (&mut self.srdos, self.config.node);
+        self.sim.with(|drive| srdos.configure(drive.store(), node));
+        self.srdos.start(now);
     }
 
     /// The SRDO pairs due at `now` (Operational only), after checking the RX SRDOs' timers.

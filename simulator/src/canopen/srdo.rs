@@ -1,5 +1,9 @@
-//! The SRDOs of a simulated node, from the description's `[[srdo]]` defaults, with the same rules
-//! as a real consumer and producer (drivebus's sans-I/O SRDO core): while Operational, each valid
+//! The SRDOs of a simulated node, with the same rules as a real consumer and producer (drivebus's
+//! sans-I/O SRDO core). Each `[[srdo]]` of the description runs with the communication parameters
+//! the drive holds when it enters Operational: a sub-index of 1300h + n the description has as an
+//! object is read from the store (a master may have written it), the others are the `[[srdo]]`
+//! defaults. Entering Operational needs every described signature (13FFh sub n) to match its
+//! configuration and 13FEh to be A5h (SWD manual lines 3568, 3574-3581). While Operational, each
 //! TX SRDO is sent every SCT (normal data from the mapped parameters, then the inverted frame);
 //! each valid RX SRDO goes through an `SrdoConsumer`, so a parameter changes only for a
 //! consistent pair received within SRVT, and every refusal (SCT, SRVT, inconsistent, lone,
@@ -11,10 +15,13 @@
 use std::time::Duration;
 
 use drivebus::canopen::srdo::mapping::{data_bits, frame_bytes};
-use drivebus::canopen::srdo::{SrdoConsumer, SrdoError, SrdoProducer};
+use drivebus::canopen::srdo::{
+    signature, SrdoCommunication, SrdoConfig, SrdoConsumer, SrdoDirection, SrdoError, SrdoProducer,
+};
 use drivebus::canopen::{CanFrame, NodeId};
-use drivegen::ir::{Device, PdoDirection, SrdoMapping};
+use drivegen::ir::{Device, SrdoMapping};
 
+use crate::behaviour::object;
 use crate::drive::Drive;
 use crate::store::{ParamId, Store};
 
@@ -84,44 +91,83 @@ pub struct Srdos {
 }
 
 impl Srdos {
-    /// The valid-by-default SRDOs of the drive's description on `node`.
+    /// The SRDOs of the drive's description on `node`, as its store configures them now.
     pub fn new(store: &Store, node: NodeId) -> Self {
-        let device = store.device();
         let mut srdos = Self::default();
-        for srdo in device.srdos.iter().filter(|s| s.enabled) {
-            if !srdos.add(srdo, device, store, node) {
-                srdos.skipped.push(srdo.number);
-            }
-        }
+        srdos.configure(store, node);
         srdos
     }
 
+    /// Rebuilds the SRDOs from the configuration the store holds now; refusals are kept.
+    pub fn configure(&mut self, store: &Store, node: NodeId) {
+        self.produced.clear();
+        self.consumed.clear();
+        self.skipped.clear();
+        let device = store.device();
+        for srdo in &device.srdos {
+            let Some(communication) = communication(store, srdo, node) else {
+                self.skipped.push(srdo.number);
+                continue;
+            };
+            if communication.direction != SrdoDirection::Invalid
+                && !self.add(srdo, communication, device, store)
+            {
+                self.skipped.push(srdo.number);
+            }
+        }
+    }
+
+    /// Why the node may not enter Operational, if it may not: a described signature (13FFh sub
+    /// n) that is not its SRDO's configuration's, or 13FEh not A5h.
+    pub fn configuration_error(store: &Store, node: NodeId) -> Option<String> {
+        if let Some(valid) = object(store, 0x13FE, 0) {
+            let value = store.int(valid);
+            if value != Some(0xA5) {
+                return Some(format!("13FEh is {value:?}, not A5h"));
+            }
+        }
+        let device = store.device();
+        device.srdos.iter().find_map(|srdo| {
+            let stored = store.int(object(store, 0x13FF, srdo.number)?)?;
+            let mapping = srdo.mapped_objects(device)?;
+            let config = SrdoConfig {
+                number: srdo.number,
+                communication: communication(store, srdo, node)?,
+                mapping: &mapping,
+            };
+            let computed = signature(&config).ok()?;
+            (i128::from(computed) != stored).then(|| {
+                format!(
+                    "SRDO {} signature: 13FFh holds {stored:#06X}, the configuration gives {computed:#06X}",
+                    srdo.number
+                )
+            })
+        })
+    }
+
     /// Adds one SRDO; false if the simulator cannot carry it.
-    fn add(&mut self, srdo: &SrdoMapping, device: &Device, store: &Store, node: NodeId) -> bool {
+    fn add(
+        &mut self,
+        srdo: &SrdoMapping,
+        communication: SrdoCommunication,
+        device: &Device,
+        store: &Store,
+    ) -> bool {
         let (Some(fields), Some(objects)) =
             (Fields::of(srdo, device, store), srdo.mapped_objects(device))
         else {
             return false;
         };
-        let [normal, inverted] = srdo.cob_ids.map(|c| c.resolve(Some(node.0)));
-        let (Some(normal), Some(inverted)) = (normal, inverted) else {
-            return false;
-        };
-        let Ok(ids) = drivebus::canopen::srdo::SrdoCobIds::from_objects(normal, inverted) else {
-            return false;
-        };
-        let Ok(timing) =
-            drivebus::canopen::srdo::SrdoTiming::from_millis(srdo.sct_ms, srdo.srvt_ms)
-        else {
+        let (Ok(ids), Ok(timing)) = (communication.cob_ids(), communication.timing()) else {
             return false;
         };
         let bits = data_bits(&objects);
-        match srdo.direction {
-            PdoDirection::Tx => match SrdoProducer::new(ids, timing.sct(), bits) {
+        match communication.direction {
+            SrdoDirection::Transmit => match SrdoProducer::new(ids, timing.sct(), bits) {
                 Ok(producer) => self.produced.push(Produced { producer, fields }),
                 Err(_) => return false,
             },
-            PdoDirection::Rx => match SrdoConsumer::new(ids, timing, bits) {
+            SrdoDirection::Receive => match SrdoConsumer::new(ids, timing, bits) {
                 Ok(consumer) => self.consumed.push(Consumed {
                     number: srdo.number,
                     consumer,
@@ -129,6 +175,7 @@ impl Srdos {
                 }),
                 Err(_) => return false,
             },
+            SrdoDirection::Invalid => {}
         }
         true
     }
@@ -178,8 +225,33 @@ impl Srdos {
         &self.refusals
     }
 
-    /// Valid SRDOs the simulator cannot carry (bit-sized entries or unusable COB-IDs or times).
+    /// Valid SRDOs the simulator cannot carry (bit-sized entries, unusable COB-IDs or times).
     pub fn skipped(&self) -> &[u8] {
         &self.skipped
     }
+}
+
+/// SRDO `srdo`'s communication parameters as the drive holds them: each sub-index from its object
+/// when the description has one, else the `[[srdo]]` default. `None` if the COB-IDs depend on
+/// the node-ID beyond 11 bits or a held value does not fit.
+fn communication(store: &Store, srdo: &SrdoMapping, node: NodeId) -> Option<SrdoCommunication> {
+    let index = 0x1300 + u16::from(srdo.number);
+    let held = |sub: u8, default: i128| -> Option<i128> {
+        match object(store, index, sub) {
+            Some(id) => store.int(id),
+            None => Some(default),
+        }
+    };
+    let [normal, inverted] = srdo.cob_ids.map(|c| c.resolve(Some(node.0)));
+    Some(SrdoCommunication {
+        direction: SrdoDirection::from_u8(
+            u8::try_from(held(1, srdo.information_direction().into())?).ok()?,
+        )?,
+        sct_ms: u16::try_from(held(2, srdo.sct_ms.into())?).ok()?,
+        srvt_ms: u16::try_from(held(3, srdo.srvt_ms.into())?).ok()?,
+        transmission_type: u8::try_from(held(4, srdo.transmission_type.unwrap_or(0xFE).into())?)
+            .ok()?,
+        cob_id_normal: u32::try_from(held(5, normal?.into())?).ok()?,
+        cob_id_inverted: u32::try_from(held(6, inverted?.into())?).ok()?,
+    })
 }
