@@ -8,6 +8,7 @@ mod expr;
 mod number;
 mod pdo;
 mod readable_registers;
+mod safety;
 mod srdo;
 mod value_type;
 
@@ -16,6 +17,7 @@ pub use expr::{Expr, ExprError, Op};
 pub use number::Number;
 pub use pdo::{pdo_bits, CobId, PdoDirection, PdoMapping};
 pub use readable_registers::{PlannerLimits, RegisterRun};
+pub use safety::is_safety_configuration;
 pub use srdo::{SrdoCobId, SrdoMapping};
 pub use value_type::ValueType;
 
