@@ -16,8 +16,9 @@ use drivebus::canopen::nmt::NmtState;
 use drivebus::canopen::pdo::MappedObject;
 use drivebus::canopen::sdo::server::SdoServer;
 use drivebus::canopen::srdo::{
-    write_safety_configuration, MappingWrite, SafetyPlan, SafetyWriteError, SrdoCommunication,
-    SrdoConfig, SrdoDirection, SrdoError,
+    check_stored_signature, write_safety_configuration, MappingWrite, SafetyPlan, SafetyWriteError,
+    SignatureMismatch, SrdoCommunication, SrdoConfig, SrdoDirection, SrdoError,
+    StoredSignatureError, VerifyError,
 };
 use drivebus::canopen::{CanBus, CanFrame, NodeId, SdoBus};
 use drivebus::BusError;
@@ -298,5 +299,29 @@ fn the_mapping_is_written_between_the_communication_object_and_the_signature() {
             (0x13FF, 1, vec![0xAB, 0x70]),
             (0x13FE, 0, vec![0xA5]),
         ]
+    );
+}
+
+#[test]
+fn a_stored_signature_mismatch_reports_both_values() {
+    let bus = InProcessBus::new();
+    let dictionary: Dictionary = Arc::new(Mutex::new(swd_objects()));
+    let _server = Server::spawn(&bus, Arc::clone(&dictionary));
+    let mut sdo = BlockingSdo::new(bus.endpoint()).with_timeout(Duration::from_millis(500));
+    // The drive holds the default 70ABh (line 3588): right for SRDO1 as it is, wrong once
+    // disabled (BABDh, line 4111).
+    assert_eq!(
+        check_stored_signature(&mut sdo, NODE, &srdo1(SrdoDirection::Receive)),
+        Ok(())
+    );
+    assert_eq!(
+        check_stored_signature(&mut sdo, NODE, &srdo1(SrdoDirection::Invalid)),
+        Err(StoredSignatureError::Verify(VerifyError::Mismatch(
+            SignatureMismatch {
+                srdo: 1,
+                computed: 0xBABD,
+                stored: 0x70AB
+            }
+        )))
     );
 }

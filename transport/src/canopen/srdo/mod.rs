@@ -37,6 +37,7 @@ pub mod mapping;
 mod producer;
 pub mod safety_write;
 pub mod signature;
+mod stored_signature;
 mod timing;
 
 pub use cob_ids::SrdoCobIds;
@@ -47,4 +48,5 @@ pub use error::SrdoError;
 pub use producer::SrdoProducer;
 pub use safety_write::{write_safety_configuration, MappingWrite, SafetyPlan, SafetyWriteError};
 pub use signature::{signature, verify, SignatureMismatch, VerifyError};
+pub use stored_signature::{check_stored_signature, StoredSignatureError};
 pub use timing::SrdoTiming;
