@@ -25,7 +25,11 @@ fn a_safety_object_has_a_getter_but_no_setter() {
         "    let _ = drive.srdo1_information_direction().read();\n    let _ = drive.safety_controlword_1().write(0u8);",
     );
     let built = build_and_test("safety_no_setter", &lib, &allowed);
-    assert!(built.success, "reads and plain writes must build:\n{}", built.stderr);
+    assert!(
+        built.success,
+        "reads and plain writes must build:\n{}",
+        built.stderr
+    );
 
     let refused = uses("    let _ = drive.srdo1_information_direction().write(0u8);");
     let built = build_and_test("safety_no_setter", &lib, &refused);
@@ -37,5 +41,10 @@ fn a_safety_object_has_a_getter_but_no_setter() {
         "{}",
         built.stderr
     );
-    assert_eq!(built.stderr.matches("error[").count(), 1, "{}", built.stderr);
+    assert_eq!(
+        built.stderr.matches("error[").count(),
+        1,
+        "{}",
+        built.stderr
+    );
 }
