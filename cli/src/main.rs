@@ -46,6 +46,8 @@ enum Command {
     Decode(commands::decode::Args),
     /// Export a description as a CiA 306 EDS, or import a vendor EDS as a TOML overlay.
     Eds(commands::eds::Args),
+    /// CANopen Safety: the safety configuration signature of an SRDO.
+    Safety(commands::safety::Args),
 }
 
 fn main() -> ExitCode {
@@ -60,6 +62,7 @@ fn main() -> ExitCode {
         Command::Watch(args) => commands::watch::run(args),
         Command::Decode(args) => commands::decode::run(args),
         Command::Eds(args) => commands::eds::run(args),
+        Command::Safety(args) => commands::safety::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

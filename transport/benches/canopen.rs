@@ -1,5 +1,6 @@
 //! CANopen benchmarks: SDO expedited encode/decode, and decoding a 1,000,000-frame candump log
-//! into typed values, compared with python-can + python-canopen on the same log.
+//! into typed values, compared with python-can + python-canopen on the same log; SRDO pair check
+//! and safety signature (`canopen/srdo.rs`).
 //!
 //! `cargo bench -p drivebus --features canopen --bench canopen`
 
@@ -16,6 +17,9 @@ use drivebus::canopen::message::Message;
 use drivebus::canopen::pdo::{MappedObject, PdoLayout};
 use drivebus::canopen::sdo::{Progress, SdoClient, Transfer};
 use drivebus::canopen::{CanFrame, NodeId};
+
+#[path = "canopen/srdo.rs"]
+mod srdo;
 
 const FRAMES: usize = 1_000_000;
 /// Frames the python decoder reads from the start of the same log; it runs ~100 times slower.
@@ -198,7 +202,7 @@ fn compare_with_python() {
 criterion_group! {
     name = benches;
     config = Criterion::default().warm_up_time(Duration::from_millis(500)).measurement_time(Duration::from_secs(2));
-    targets = sdo_expedited, candump_decode
+    targets = sdo_expedited, candump_decode, srdo::srdo
 }
 
 fn main() {

@@ -7,6 +7,7 @@ pub mod dump;
 pub mod eds;
 pub mod generate;
 pub mod read;
+pub mod safety;
 pub mod sim;
 pub mod watch;
 pub mod write;

@@ -8,6 +8,7 @@
 
 mod parameters;
 mod pdos;
+mod srdos;
 #[cfg(test)]
 mod tests;
 mod types;
@@ -55,6 +56,7 @@ pub fn diff(old: &Device, new: &Device) -> Vec<Change> {
     types::device(old, new, &mut changes);
     parameters::compare(&old.parameters, &new.parameters, &mut changes);
     pdos::compare(&old.pdos, &new.pdos, &mut changes);
+    srdos::compare(&old.srdos, &new.srdos, &mut changes);
     types::enums(&old.enums, &new.enums, &mut changes);
     types::flags(&old.flags, &new.flags, &mut changes);
     changes.sort_by(|a, b| (a.impact, &a.subject).cmp(&(b.impact, &b.subject)));

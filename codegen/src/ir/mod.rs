@@ -8,7 +8,9 @@ mod expr;
 mod number;
 mod pdo;
 mod readable_registers;
+mod safety;
 mod scale_inputs;
+mod srdo;
 mod value_type;
 
 pub use data_type::DataType;
@@ -16,6 +18,8 @@ pub use expr::{Expr, ExprError, Op};
 pub use number::Number;
 pub use pdo::{pdo_bits, CobId, PdoDirection, PdoMapping};
 pub use readable_registers::{PlannerLimits, RegisterRun};
+pub use safety::is_safety_configuration;
+pub use srdo::{SrdoCobId, SrdoMapping};
 pub use value_type::ValueType;
 
 /// The Modbus vocabulary is the runtime's own: the IR names the types generated code uses.
@@ -60,6 +64,9 @@ pub struct Device {
     /// Declared PDO mappings (left out of the JSON when there are none).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub pdos: Vec<PdoMapping>,
+    /// Declared SRDOs (left out of the JSON when there are none).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub srdos: Vec<SrdoMapping>,
 }
 
 /// How the drive deviates from the CiA 402 state machine.

@@ -2,6 +2,7 @@
 
 mod lower;
 mod raw;
+mod raw_srdo;
 
 use std::path::{Path, PathBuf};
 
@@ -134,6 +135,10 @@ const SHAPES: &[(&str, &str)] = &[
     ),
     ("RawNumber", "expected a number"),
     ("RawPdo", "`pdo` is false, \"rx\", \"tx\" or \"both\""),
+    (
+        "RawSrdoCobId",
+        "an SRDO COB-ID is a number or `{ base, node_id_factor }`",
+    ),
 ];
 
 fn syntax_error(id: FileId, error: &toml::de::Error) -> Diagnostic {

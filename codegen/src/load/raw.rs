@@ -38,6 +38,8 @@ pub struct RawFile {
     pub transition: Vec<Spanned<RawTransition>>,
     #[serde(default)]
     pub pdo: Vec<RawPdoMapping>,
+    #[serde(default)]
+    pub srdo: Vec<super::raw_srdo::RawSrdo>,
 }
 
 #[derive(Debug, Clone, Deserialize)]

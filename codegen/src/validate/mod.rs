@@ -18,6 +18,10 @@ mod records_hold_their_members;
 mod references_resolve;
 pub(crate) mod scale_inputs_exist;
 mod scale_is_representable;
+mod srdo_entries_are_mappable;
+mod srdo_mappings_pair_and_fit;
+mod srdo_numbers_are_unique;
+mod srdo_timings_are_valid;
 mod state_machines_resolve;
 mod strings_have_length;
 mod units_are_known;
@@ -63,6 +67,16 @@ pub const PASSES: &[(&str, Pass)] = &[
         pdo_mappings_fit_eight_bytes::check,
     ),
     ("pdo_numbers_are_unique", pdo_numbers_are_unique::check),
+    (
+        "srdo_entries_are_mappable",
+        srdo_entries_are_mappable::check,
+    ),
+    (
+        "srdo_mappings_pair_and_fit",
+        srdo_mappings_pair_and_fit::check,
+    ),
+    ("srdo_timings_are_valid", srdo_timings_are_valid::check),
+    ("srdo_numbers_are_unique", srdo_numbers_are_unique::check),
 ];
 
 /// Runs every pass.

@@ -1,4 +1,4 @@
-//! Every parameter, PDO mapping, enum, flags type, record and control table cites the manual line
+//! Every parameter, PDO mapping, SRDO, enum, flags type, record and control table cites the manual line
 //! it comes from.
 
 use crate::diagnostic::{Diagnostic, Span};
@@ -58,8 +58,13 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
         .pdos
         .iter()
         .map(|m| ("PDO", &m.name, &m.span, &m.source));
+    let srdos = device
+        .srdos
+        .iter()
+        .map(|s| ("SRDO", &s.name, &s.span, &s.source));
     parameters
         .chain(pdos)
+        .chain(srdos)
         .chain(enums)
         .chain(flags)
         .chain(records)

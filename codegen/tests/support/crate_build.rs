@@ -40,7 +40,7 @@ fn scratch_crate(name: &str, lib_rs: &str, dev_dependencies: &str) -> PathBuf {
     let dir = workspace.join("target/fixtures").join(name);
     std::fs::create_dir_all(dir.join("src")).unwrap();
     let manifest = format!(
-        "[package]\nname = \"{name}\"\nversion = \"0.0.0\"\nedition = \"2021\"\n[dependencies]\ndrivebus = {{ path = {:?} }}\n[dev-dependencies]\n{dev_dependencies}[features]\ndefault = [\"std\"]\nstd = [\"drivebus/std\"]\n[workspace]\n",
+        "[package]\nname = \"{name}\"\nversion = \"0.0.0\"\nedition = \"2021\"\n[dependencies]\ndrivebus = {{ path = {:?}, features = [\"srdo\"] }}\n[dev-dependencies]\n{dev_dependencies}[features]\ndefault = [\"std\"]\nstd = [\"drivebus/std\"]\n[workspace]\n",
         workspace.join("transport")
     );
     std::fs::write(dir.join("Cargo.toml"), manifest).unwrap();

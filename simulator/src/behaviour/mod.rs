@@ -11,6 +11,7 @@ use crate::store::{ParamId, Store};
 pub mod cia402;
 pub mod commands;
 pub mod motor;
+pub mod srdo_validity;
 pub mod state_machine;
 
 /// What the power stage is doing, as the active state machine commands it.
@@ -51,7 +52,7 @@ pub trait Behaviour: Debug + Send {
 }
 
 /// The behaviours a description calls for, in the order they run: commands, state machines, the
-/// motor.
+/// motor, the SRDO configuration-valid flag.
 pub fn for_device(store: &mut Store) -> Vec<Box<dyn Behaviour>> {
     let mut behaviours: Vec<Box<dyn Behaviour>> = Vec::new();
     if let Some(b) = commands::Commands::detect(store) {
@@ -64,6 +65,9 @@ pub fn for_device(store: &mut Store) -> Vec<Box<dyn Behaviour>> {
         behaviours.push(Box::new(b));
     }
     if let Some(b) = motor::Motor::detect(store) {
+        behaviours.push(Box::new(b));
+    }
+    if let Some(b) = srdo_validity::SrdoValidity::detect(store) {
         behaviours.push(Box::new(b));
     }
     behaviours

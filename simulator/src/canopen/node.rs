@@ -1,5 +1,5 @@
-//! A CANopen node: boot-up, NMT state, heartbeat producer and the SDO server, sans-I/O, plus a
-//! blocking loop over any CAN backend.
+//! A CANopen node: boot-up, NMT state, heartbeat producer, the SDO server and the SRDOs, sans-I/O,
+//! plus a blocking loop over any CAN backend.
 
 use std::time::{Duration, Instant};
 
@@ -10,6 +10,7 @@ use drivebus::canopen::sdo::server::SdoServer;
 use drivebus::canopen::{CanBus, CanFrame, NodeId};
 use drivebus::BusError;
 
+use super::srdo::Srdos;
 use super::Dictionary;
 use crate::behaviour::object;
 use crate::Simulator;
@@ -32,6 +33,7 @@ pub struct Node {
     state: NmtState,
     next_heartbeat: Duration,
     reported_fault: Option<u16>,
+    srdos: Srdos,
 }
 
 impl Node {
@@ -39,6 +41,7 @@ impl Node {
     pub fn new(sim: Simulator, config: NodeConfig, variant: Option<&str>) -> Self {
         let dictionary =
             sim.with(|drive| Dictionary::new(sim.clone(), drive.store().device(), variant));
+        let srdos = sim.with(|drive| Srdos::new(drive.store(), config.node));
         Self {
             config,
             sim,
@@ -46,6 +49,7 @@ impl Node {
             state: NmtState::Initializing,
             next_heartbeat: Duration::ZERO,
             reported_fault: None,
+            srdos,
         }
     }
 
@@ -69,6 +73,12 @@ impl Node {
             }
             return Vec::new();
         }
+        if self.state == NmtState::Operational {
+            let srdos = &mut self.srdos;
+            if self.sim.with(|drive| srdos.handle(frame, now, drive)) {
+                return Vec::new();
+            }
+        }
         if frame.id() == cob::SDO_RX + u16::from(self.config.node.0)
             && self.state != NmtState::Stopped
         {
@@ -85,7 +95,14 @@ impl Node {
             }
             NmtCommand::ResetCommunication => vec![self.boot(now)],
             other => {
-                self.state = other.target_state();
+                let target = other.target_state();
+                if target == NmtState::Operational && self.state != NmtState::Operational {
+                    if !self.safety_configuration_holds() {
+                        return Vec::new();
+                    }
+                    self.start_srdos(now);
+                }
+                self.state = target;
                 Vec::new()
             }
         }
@@ -138,6 +155,37 @@ impl Node {
         Some(heartbeat_frame(self.config.node, self.state))
     }
 
+    /// Whether the safety configuration lets the node enter Operational (signatures and 13FEh,
+    /// SWD manual line 3568: "A signature error prevents the transition to the operational NMT
+    /// state").
+    fn safety_configuration_holds(&self) -> bool {
+        let node = self.config.node;
+        self.sim
+            .with(|drive| Srdos::configuration_error(drive.store(), node))
+            .is_none()
+    }
+
+    /// The SRDOs as the drive is now configured, SCT monitoring from `now`.
+    fn start_srdos(&mut self, now: Duration) {
+        let (srdos, node) = (&mut self.srdos, self.config.node);
+        self.sim.with(|drive| srdos.configure(drive.store(), node));
+        self.srdos.start(now);
+    }
+
+    /// The SRDO pairs due at `now` (Operational only), after checking the RX SRDOs' timers.
+    pub fn poll_srdo(&mut self, now: Duration) -> Vec<CanFrame> {
+        if self.state != NmtState::Operational {
+            return Vec::new();
+        }
+        let srdos = &mut self.srdos;
+        self.sim.with(|drive| srdos.poll(now, drive.store()))
+    }
+
+    /// The node's SRDOs: refusals and the SRDOs it cannot carry.
+    pub fn srdos(&self) -> &Srdos {
+        &self.srdos
+    }
+
     /// Runs the node on `bus` until the bus fails (e.g. the candump stream ends).
     pub fn run<B: CanBus>(&mut self, bus: &mut B) -> Result<(), BusError> {
         self.run_while(bus, || true)
@@ -164,6 +212,9 @@ impl Node {
             }
             if let Some(heartbeat) = self.poll(now) {
                 bus.send(&heartbeat)?;
+            }
+            for srdo in self.poll_srdo(now) {
+                bus.send(&srdo)?;
             }
         }
         Ok(())

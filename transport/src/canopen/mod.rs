@@ -7,6 +7,7 @@
 //! * [`frame`] — the [`CanFrame`] type and the predefined connection set (COB-IDs).
 //! * [`sdo`] — SDO client transfers (expedited, segmented, block) and the abort codes.
 //! * [`nmt`], [`heartbeat`], [`emcy`], [`sync`], [`pdo`] — the other CiA 301 services.
+//! * `srdo` — (`srdo`, in `canopen`) CANopen Safety SRDOs: consumer, producer, signature, safety writes.
 //! * [`message`] — classifies any frame of the predefined connection set into typed values.
 //! * [`backend`] — the [`CanBus`] trait; with `canopen`: SocketCAN, SLCAN, candump streams and an
 //!   in-process bus.
@@ -63,6 +64,8 @@ pub mod message;
 pub mod nmt;
 pub mod pdo;
 pub mod sdo;
+#[cfg(feature = "srdo")]
+pub mod srdo;
 pub mod sync;
 
 pub use address::{CanOpen, NodeId, ObjectAddress};

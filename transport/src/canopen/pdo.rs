@@ -378,7 +378,7 @@ pub struct SdoWrite {
 }
 
 impl SdoWrite {
-    fn u8(index: u16, subindex: u8, value: u8) -> Self {
+    pub(crate) fn u8(index: u16, subindex: u8, value: u8) -> Self {
         Self {
             index,
             subindex,
@@ -386,7 +386,17 @@ impl SdoWrite {
             len: 1,
         }
     }
-    fn u32(index: u16, subindex: u8, value: u32) -> Self {
+    #[cfg(feature = "srdo")]
+    pub(crate) fn u16(index: u16, subindex: u8, value: u16) -> Self {
+        let [lo, hi] = value.to_le_bytes();
+        Self {
+            index,
+            subindex,
+            value: [lo, hi, 0, 0],
+            len: 2,
+        }
+    }
+    pub(crate) fn u32(index: u16, subindex: u8, value: u32) -> Self {
         Self {
             index,
             subindex,

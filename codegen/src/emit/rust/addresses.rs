@@ -101,8 +101,14 @@ pub fn modbus(p: &Parameter, device: &Device, direction: Direction) -> Option<To
     )
 }
 
-/// The CANopen placement for reads or writes.
+/// The CANopen placement for reads or writes. Safety configuration objects get no write
+/// placement: only the deliberate safety write changes them (`ir::is_safety_configuration`).
 pub fn canopen(p: &Parameter, device: &Device, direction: Direction) -> Option<TokenStream> {
+    if matches!(direction, Direction::Write)
+        && p.canopen.iter().any(crate::ir::is_safety_configuration)
+    {
+        return None;
+    }
     let bytes = p.data_type.bytes();
     placement(
         p,

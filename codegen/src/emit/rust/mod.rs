@@ -10,6 +10,7 @@ mod handle;
 mod parameter;
 mod parameter_doc;
 mod pdo;
+mod srdo;
 mod variants;
 
 use proc_macro2::{Delimiter, Group, Ident, Literal, Span, TokenStream, TokenTree};
@@ -96,6 +97,7 @@ pub fn tokens(device: &Device) -> TokenStream {
         braced(params),
         handle::emit(device),
         pdo::emit(device),
+        srdo::emit(device),
         control.unwrap_or_default(),
     ])
 }

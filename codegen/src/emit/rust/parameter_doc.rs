@@ -44,6 +44,14 @@ pub fn text(p: &Parameter, device: &Device) -> String {
             .replace("0X", "0x"),
         );
     }
+    if p.canopen.iter().any(crate::ir::is_safety_configuration) {
+        row(
+            &mut out,
+            "Safety",
+            "written only through `drivebus::canopen::srdo::write_safety_configuration` (no setter)"
+                .into(),
+        );
+    }
     for a in &p.canopen {
         row(
             &mut out,

@@ -26,15 +26,15 @@ pub fn emit(device: &Device) -> TokenStream {
     }
 }
 
-/// One mapped parameter as the struct sees it.
-struct Field<'a> {
-    parameter: &'a Parameter,
+/// One mapped parameter as the struct sees it (SRDO structs use it too).
+pub(super) struct Field<'a> {
+    pub(super) parameter: &'a Parameter,
     /// Whether the field holds the raw value (run-time scale) instead of the engineering one.
-    raw: bool,
+    pub(super) raw: bool,
 }
 
 impl Field<'_> {
-    fn name(&self) -> Ident {
+    pub(super) fn name(&self) -> Ident {
         ident(&names::method(&self.parameter.name))
     }
 
@@ -43,7 +43,7 @@ impl Field<'_> {
         quote! { super::params::#marker }
     }
 
-    fn ty(&self) -> TokenStream {
+    pub(super) fn ty(&self) -> TokenStream {
         if self.raw {
             raw_type(self.parameter.data_type)
         } else {
@@ -128,7 +128,7 @@ fn per_field(
         .collect()
 }
 
-fn decode(fields: &[Field], count: &Literal) -> Vec<TokenStream> {
+pub(super) fn decode(fields: &[Field], count: &Literal) -> Vec<TokenStream> {
     per_field(fields, |f, field, marker, i| {
         if f.raw {
             quote! { #field: Self::LAYOUT.get(payload, #i)?, }
@@ -138,7 +138,7 @@ fn decode(fields: &[Field], count: &Literal) -> Vec<TokenStream> {
     })
 }
 
-fn encode(fields: &[Field], count: &Literal) -> Vec<TokenStream> {
+pub(super) fn encode(fields: &[Field], count: &Literal) -> Vec<TokenStream> {
     per_field(fields, |f, field, marker, i| {
         if f.raw {
             quote! { Self::LAYOUT.set(&mut payload, #i, self.#field)?; }
@@ -231,7 +231,7 @@ fn struct_doc(m: &PdoMapping, fields: &[Field], device: &Device) -> String {
     text
 }
 
-fn field_doc(f: &Field) -> String {
+pub(super) fn field_doc(f: &Field) -> String {
     let p = f.parameter;
     let object = p.pdo_object().expect("validated: mapped objects exist");
     let summary = doc::escape(p.doc.as_deref().unwrap_or(&p.name))

@@ -8,6 +8,7 @@ use std::sync::Arc;
 mod control;
 mod overlay;
 mod pdo;
+mod srdo;
 
 use toml::Spanned;
 
@@ -58,6 +59,7 @@ pub fn lower(
             cx.root_items(&file.raw, &mut device);
         } else {
             cx.refuse_included_pdos(&file.raw);
+            cx.refuse_included_srdos(&file.raw);
         }
         cx.items(&file.raw, &keep, &mut device);
     }
@@ -216,6 +218,7 @@ impl Lowering<'_> {
             cia402: None,
             state_machine: None,
             pdos: Vec::new(),
+            srdos: Vec::new(),
         })
     }
 
@@ -258,6 +261,7 @@ impl Lowering<'_> {
         device.variants = raw.variant.iter().map(|v| self.variant(v)).collect();
         device.cia402 = raw.cia402.as_ref().map(|c| self.cia402(c));
         device.pdos = raw.pdo.iter().filter_map(|p| self.pdo_mapping(p)).collect();
+        device.srdos = raw.srdo.iter().filter_map(|s| self.srdo(s)).collect();
         device.state_machine = raw
             .state_machine
             .as_ref()

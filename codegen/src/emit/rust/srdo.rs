@@ -1,0 +1,225 @@
+//! Declared SRDOs as typed structs: one field per normal-data entry (the inverted entries are
+//! the runtime's business), the mapping and the normal-data layout as constants checked by the
+//! compiler, the COB-IDs as a function of the node-ID, the default configuration (for the safety
+//! signature and the safety write), and a consumer / producer with the declared times.
+
+use proc_macro2::{Literal, TokenStream};
+use quote::quote;
+
+use super::addresses::hex;
+use super::pdo::{decode, encode, field_doc, Field};
+use super::{doc_attrs, ident};
+use crate::emit::{doc, ident as names};
+use crate::ir::{pdo_bits, Device, Parameter, PdoDirection, Scale, SrdoCobId, SrdoMapping};
+
+/// `pub mod srdo { ... }`, or nothing when the description declares no SRDO.
+pub fn emit(device: &Device) -> TokenStream {
+    if device.srdos.is_empty() {
+        return quote! {};
+    }
+    let srdos = device.srdos.iter().map(|s| srdo(s, device));
+    quote! {
+        /// The SRDOs (CANopen Safety, EN 50325-5) the description declares, as typed safety
+        /// payloads. Needs `drivebus`'s `srdo` feature.
+        pub mod srdo {
+            #( #srdos )*
+        }
+    }
+}
+
+fn field(parameter: &Parameter) -> Field<'_> {
+    Field {
+        parameter,
+        raw: matches!(parameter.scale, Some(Scale::Runtime { .. })),
+    }
+}
+
+fn srdo(s: &SrdoMapping, device: &Device) -> TokenStream {
+    let parameters: Vec<&Parameter> = s
+        .entries
+        .iter()
+        .filter_map(|e| device.parameter(e))
+        .collect();
+    let fields: Vec<Field> = parameters.iter().step_by(2).map(|p| field(p)).collect();
+    let name = ident(&names::camel(&s.name));
+    let docs = doc_attrs(&struct_doc(s, &fields, device));
+    let declarations = fields.iter().map(|f| {
+        let (field, ty) = (f.name(), f.ty());
+        let docs = doc_attrs(&field_doc(f));
+        quote! { #docs pub #field: #ty, }
+    });
+    let mapping = mapping(&parameters);
+    let total = Literal::usize_unsuffixed(parameters.len());
+    let count = Literal::usize_unsuffixed(fields.len());
+    let (decode, encode) = (decode(&fields, &count), encode(&fields, &count));
+    let configuration = configuration(s);
+    quote! {
+        #docs
+        #[derive(Debug, Clone, Copy, PartialEq)]
+        pub struct #name {
+            #( #declarations )*
+        }
+
+        const _: () = assert!(
+            ::drivebus::canopen::srdo::mapping::mapping_is_valid(&#name::MAPPING),
+            "SRDO mapping does not pair or does not fit 8 bytes"
+        );
+
+        impl #name {
+            /// The mapping object's entries in sub-index order: normal, inverted, normal, ...
+            pub const MAPPING: [::drivebus::canopen::pdo::MappedObject; #total] = #mapping;
+
+            /// The normal data, packed from bit 0 as a PDO is.
+            pub const LAYOUT: ::drivebus::canopen::pdo::PdoLayout<#count> =
+                ::drivebus::canopen::pdo::PdoLayout::new(
+                    ::drivebus::canopen::srdo::mapping::normal_entries::<#count>(&Self::MAPPING),
+                );
+
+            #configuration
+
+            /// Decodes released normal data (from
+            /// [`SrdoConsumer::handle`](::drivebus::canopen::srdo::SrdoConsumer::handle)).
+            pub fn decode(payload: &[u8]) -> Result<Self, ::drivebus::ValueError> {
+                Ok(Self { #( #decode )* })
+            }
+
+            /// Encodes the values, range-checked, into the normal data (the producer sends it
+            /// with its inverted copy).
+            pub fn encode(&self) -> Result<::drivebus::canopen::pdo::Payload, ::drivebus::ValueError> {
+                let mut payload = [0u8; 8];
+                #( #encode )*
+                Ok(::drivebus::canopen::pdo::Payload::new(payload, Self::LAYOUT.len()))
+            }
+        }
+    }
+}
+
+fn mapping(parameters: &[&Parameter]) -> TokenStream {
+    let entries = parameters.iter().map(|p| {
+        let object = p.pdo_object().expect("validated: mapped objects exist");
+        let index = hex(object.index);
+        let subindex = Literal::u8_unsuffixed(object.subindex);
+        let bits = Literal::u32_unsuffixed(pdo_bits(p.data_type));
+        quote! { ::drivebus::canopen::pdo::MappedObject::new(#index, #subindex, #bits) }
+    });
+    quote! { [#( #entries ),*] }
+}
+
+fn cob_id_expr(id: &SrdoCobId) -> TokenStream {
+    let base = Literal::u32_unsuffixed(id.base);
+    if id.node_id_factor == 0 {
+        return quote! { #base };
+    }
+    let factor = Literal::u32_unsuffixed(id.node_id_factor);
+    quote! { #base + #factor * node.get() as u32 }
+}
+
+fn cob_id_text(id: &SrdoCobId) -> String {
+    match id.node_id_factor {
+        0 => format!("0x{:X}", id.base),
+        1 => format!("0x{:X} + node-ID", id.base),
+        f => format!("0x{:X} + {f} × node-ID", id.base),
+    }
+}
+
+/// `NUMBER`, `communication(node)`, `config(node)`, `consumer(node)`, `producer(node)`.
+fn configuration(s: &SrdoMapping) -> TokenStream {
+    let number = Literal::u8_unsuffixed(s.number);
+    let direction = ident(match s.information_direction() {
+        0 => "Invalid",
+        1 => "Transmit",
+        _ => "Receive",
+    });
+    let (sct, srvt) = (
+        Literal::u16_unsuffixed(s.sct_ms),
+        Literal::u16_unsuffixed(s.srvt_ms),
+    );
+    let transmission_type = Literal::u8_unsuffixed(s.transmission_type.unwrap_or(0xFE));
+    let [normal, inverted] = s.cob_ids.each_ref().map(cob_id_expr);
+    let uses_node = s.cob_ids.iter().any(|c| c.node_id_factor != 0);
+    let ignore_node = (!uses_node).then(|| quote! { let _ = node; });
+    quote! {
+        /// The SRDO number (communication object 1300h + number, mapping 1380h + number,
+        /// signature 13FFh sub number).
+        pub const NUMBER: u8 = #number;
+
+        /// The default communication parameters on `node`.
+        pub fn communication(node: ::drivebus::canopen::NodeId) -> ::drivebus::canopen::srdo::SrdoCommunication {
+            #ignore_node
+            ::drivebus::canopen::srdo::SrdoCommunication {
+                direction: ::drivebus::canopen::srdo::SrdoDirection::#direction,
+                sct_ms: #sct,
+                srvt_ms: #srvt,
+                transmission_type: #transmission_type,
+                cob_id_normal: #normal,
+                cob_id_inverted: #inverted,
+            }
+        }
+
+        /// The default configuration on `node`: what
+        /// [`signature`](::drivebus::canopen::srdo::signature) signs and the safety write writes.
+        pub fn config(node: ::drivebus::canopen::NodeId) -> ::drivebus::canopen::srdo::SrdoConfig<'static> {
+            ::drivebus::canopen::srdo::SrdoConfig {
+                number: Self::NUMBER,
+                communication: Self::communication(node),
+                mapping: &Self::MAPPING,
+            }
+        }
+
+        /// A consumer of this SRDO from `node`, with the default times.
+        pub fn consumer(node: ::drivebus::canopen::NodeId) -> Result<::drivebus::canopen::srdo::SrdoConsumer, ::drivebus::canopen::srdo::SrdoError> {
+            let c = Self::communication(node);
+            ::drivebus::canopen::srdo::SrdoConsumer::new(
+                c.cob_ids()?,
+                c.timing()?,
+                ::drivebus::canopen::srdo::mapping::data_bits(&Self::MAPPING),
+            )
+        }
+
+        /// A producer of this SRDO for `node`, sending every SCT.
+        pub fn producer(node: ::drivebus::canopen::NodeId) -> Result<::drivebus::canopen::srdo::SrdoProducer, ::drivebus::canopen::srdo::SrdoError> {
+            let c = Self::communication(node);
+            ::drivebus::canopen::srdo::SrdoProducer::new(
+                c.cob_ids()?,
+                c.timing()?.sct(),
+                ::drivebus::canopen::srdo::mapping::data_bits(&Self::MAPPING),
+            )
+        }
+    }
+}
+
+fn struct_doc(s: &SrdoMapping, fields: &[Field], device: &Device) -> String {
+    let way = match s.direction {
+        PdoDirection::Tx => "transmitted by the drive",
+        PdoDirection::Rx => "received by the drive",
+    };
+    let state = if s.enabled {
+        "valid"
+    } else {
+        "invalid (information direction 0)"
+    };
+    let intro = doc::escape(s.doc.as_deref().unwrap_or(&s.name));
+    let bits: u32 = fields.iter().map(|f| pdo_bits(f.parameter.data_type)).sum();
+    let mut text = format!(
+        "{intro}\n\n| | |\n|---|---|\n| SRDO | {}, {way}, {state} by default; objects `0x{:04X}` / `0x{:04X}` |\n| COB-IDs | {} (normal), {} (inverted) |\n| SCT / SRVT | {} ms / {} ms |\n| Normal data | {} bytes, {} entries |",
+        s.number,
+        0x1300 + u16::from(s.number),
+        0x1380 + u16::from(s.number),
+        cob_id_text(&s.cob_ids[0]),
+        cob_id_text(&s.cob_ids[1]),
+        s.sct_ms,
+        s.srvt_ms,
+        bits.div_ceil(8),
+        fields.len(),
+    );
+    if let Some(c) = &s.source {
+        text += &format!(
+            "\n| Source | {} |",
+            super::parameter_doc::citation(c, device)
+        );
+    }
+    if let Some(e) = &s.erratum {
+        text += &format!("\n\nErratum: {}", doc::escape(e));
+    }
+    text
+}
