@@ -155,6 +155,7 @@ pub fn empty_device(name: &str, model: &EdsModel) -> ir::Device {
         cia402: None,
         state_machine: None,
         pdos: Vec::new(),
+        indexed: Vec::new(),
     }
 }
 

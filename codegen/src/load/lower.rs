@@ -9,6 +9,8 @@ use std::sync::Arc;
 mod control;
 #[path = "lower_pdo.rs"]
 mod pdo;
+#[path = "lower_subindex_range.rs"]
+mod subindex_range;
 
 use toml::Spanned;
 
@@ -217,6 +219,7 @@ impl Lowering<'_> {
             cia402: None,
             state_machine: None,
             pdos: Vec::new(),
+            indexed: Vec::new(),
         })
     }
 
@@ -305,8 +308,8 @@ impl Lowering<'_> {
             .iter()
             .filter(|p| keep.keeps(p.name.get_ref()))
         {
-            if let Some(p) = self.parameter(p, modbus_order) {
-                device.parameters.push(p);
+            if let Some(lowered) = self.parameter(p, modbus_order) {
+                self.push_expanded(p, lowered, device);
             }
         }
     }
@@ -794,7 +797,8 @@ impl Lowering<'_> {
     ) -> Option<ir::ObjectAddress> {
         let spanned = |v: i64| Spanned::new(span.range.clone(), v);
         let index = self.int_in::<u16>(&spanned(raw.index), "object index")?;
-        let subindex = self.int_in::<u8>(&spanned(raw.subindex.unwrap_or(0)), "subindex")?;
+        let first = self.first_subindex(raw, span)?;
+        let subindex = self.int_in::<u8>(&spanned(first), "subindex")?;
         let (access, constant) = self.object_access(raw.access.as_deref(), span)?;
         let pdo = match &raw.pdo {
             None | Some(RawPdo::Flag(false)) => ir::Pdo::None,

@@ -4,6 +4,7 @@ pub mod exact;
 mod lower;
 mod overlay;
 mod raw;
+pub mod subindex_range;
 
 use std::path::{Path, PathBuf};
 

@@ -298,10 +298,31 @@ pub struct RawModbusAddress {
 #[serde(deny_unknown_fields)]
 pub struct RawCanOpenAddress {
     pub index: i64,
-    pub subindex: Option<i64>,
+    pub subindex: Option<RawSubindex>,
     pub access: Option<String>,
     pub pdo: Option<RawPdo>,
     pub variant: Option<String>,
+}
+
+/// A sub-index: a number, or a run such as `"1..=8"` (see `lower_subindex_range.rs`).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(untagged)]
+pub enum RawSubindex {
+    Number(i64),
+    Range(String),
+}
+
+impl RawSubindex {
+    /// The sub-index itself, or the first of a well-formed run (0 when the run is malformed:
+    /// lowering reports it).
+    pub fn first(&self) -> i64 {
+        match self {
+            Self::Number(n) => *n,
+            Self::Range(text) => {
+                crate::load::subindex_range::parse(text).map_or(0, |(first, _)| i64::from(first))
+            }
+        }
+    }
 }
 
 #[derive(Debug, Deserialize)]
