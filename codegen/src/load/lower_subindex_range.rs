@@ -97,3 +97,72 @@ fn member(run: &ir::Parameter, subindex: u8) -> ir::Parameter {
     }
     p
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::validate::test_support::{device, messages};
+
+    const RUN: &str = r#"
+[[parameter]]
+name = "sls_limit"
+doc = "SLS limit."
+type = "u32"
+default = 7
+canopen = { index = 0x6693, subindex = "1..=3", access = "rw" }
+source = { doc = "m", line = 1 }
+"#;
+
+    #[test]
+    fn a_run_expands_into_one_parameter_per_sub_index_and_is_kept_as_a_run() {
+        let device = device(RUN);
+        let names: Vec<_> = device.parameters.iter().map(|p| p.name.as_str()).collect();
+        assert_eq!(names, ["sls_limit_1", "sls_limit_2", "sls_limit_3"]);
+        let subs: Vec<_> = device
+            .parameters
+            .iter()
+            .map(|p| p.canopen[0].subindex)
+            .collect();
+        assert_eq!(subs, [1, 2, 3]);
+        assert!(device.parameters.iter().all(|p| p.default.is_some()));
+        let run = &device.indexed[0];
+        assert_eq!(
+            (run.name.as_str(), run.index, run.first, run.last),
+            ("sls_limit", 0x6693, 1, 3)
+        );
+        assert_eq!(run.members, names);
+        assert_eq!(
+            device.parameters[1].doc.as_deref(),
+            Some("SLS limit. Sub-index 2.")
+        );
+    }
+
+    #[test]
+    fn a_malformed_run_is_reported_at_its_address() {
+        let bad = RUN.replace("1..=3", "3..=1");
+        let found = messages("values_are_well_formed", &bad);
+        assert!(found.iter().any(|m| m.contains("empty")), "{found:?}");
+        let zero = RUN.replace("1..=3", "0..=3");
+        assert!(!messages("values_are_well_formed", &zero).is_empty());
+    }
+
+    #[test]
+    fn a_run_has_exactly_one_address() {
+        let two = RUN.replace(
+            r#"canopen = { index = 0x6693, subindex = "1..=3", access = "rw" }"#,
+            r#"canopen = [{ index = 0x6693, subindex = "1..=3", access = "rw" }, { index = 0x2000, access = "rw" }]"#,
+        );
+        let found = messages("values_are_well_formed", &two);
+        assert!(
+            found.iter().any(|m| m.contains("exactly one address")),
+            "{found:?}"
+        );
+    }
+
+    #[test]
+    fn a_member_name_taken_by_another_parameter_is_a_name_clash() {
+        let clash = format!(
+            "{RUN}\n[[parameter]]\nname = \"sls_limit_2\"\ntype = \"u8\"\ncanopen = {{ index = 0x2000, access = \"rw\" }}\nsource = {{ doc = \"m\", line = 1 }}\n"
+        );
+        assert!(!messages("names_are_unique", &clash).is_empty());
+    }
+}

@@ -405,8 +405,11 @@ pub struct RawPdoMapping {
     pub doc: Option<String>,
     pub direction: Spanned<String>,
     pub number: Spanned<i64>,
-    pub cob_id: Spanned<RawCobId>,
+    pub cob_id: Option<Spanned<RawCobId>>,
+    pub enabled: Option<Spanned<bool>>,
     pub transmission_type: Option<Spanned<i64>>,
+    pub inhibit_time: Option<Spanned<i64>>,
+    pub event_timer: Option<Spanned<i64>>,
     pub entries: Spanned<Vec<String>>,
     pub source: Option<Spanned<RawCitation>>,
 }

@@ -8,6 +8,7 @@ mod addresses_do_not_overlap;
 mod bit_fields_fit;
 mod defaults_within_range;
 mod enum_values_fit_type;
+mod indexed_names_are_unique;
 mod names_are_unique;
 mod parameters_have_addresses;
 mod pdo_entries_are_mappable;
@@ -63,6 +64,7 @@ pub const PASSES: &[(&str, Pass)] = &[
         pdo_mappings_fit_eight_bytes::check,
     ),
     ("pdo_numbers_are_unique", pdo_numbers_are_unique::check),
+    ("indexed_names_are_unique", indexed_names_are_unique::check),
 ];
 
 /// Runs every pass.

@@ -7,9 +7,11 @@ mod control;
 mod enums;
 mod flags;
 mod handle;
+mod indexed;
 mod parameter;
 mod parameter_doc;
 mod pdo;
+mod pdo_communication;
 mod variants;
 
 use proc_macro2::{Delimiter, Group, Ident, Literal, Span, TokenStream, TokenTree};
@@ -95,6 +97,10 @@ pub fn tokens(device: &Device) -> TokenStream {
         },
         braced(params),
         handle::emit(device),
+        indexed::emit(
+            device,
+            &ident(&crate::emit::ident::camel(&device.device.handle)),
+        ),
         pdo::emit(device),
         control.unwrap_or_default(),
     ])
