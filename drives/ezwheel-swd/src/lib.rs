@@ -8,5 +8,9 @@ extern crate std;
 include!(concat!(env!("OUT_DIR"), "/drive.rs"));
 
 mod emcy;
+#[cfg(feature = "std")]
+mod velocity_mode;
 
 pub use emcy::EmcyCodes;
+#[cfg(feature = "std")]
+pub use velocity_mode::{HALT, VL_OPERATION_ENABLED};

@@ -12,6 +12,7 @@ pub mod cia402;
 pub mod commands;
 pub mod lafert_modbus;
 pub mod motor;
+pub mod vl_ramp;
 
 /// What the power stage is doing, as the active state machine commands it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

@@ -9,6 +9,7 @@
 
 use std::time::Duration;
 
+use super::vl_ramp::VlRamp;
 use super::{object, Behaviour, Motion, Shared};
 use crate::store::{ParamId, Store};
 
@@ -37,6 +38,7 @@ pub struct Motor {
     actuals: Vec<ParamId>,
     times: Option<RampTimes>,
     rates: Option<RampRates>,
+    vl: Option<VlRamp>,
     speed: f64,
 }
 
@@ -67,6 +69,7 @@ impl Motor {
             actuals,
             times,
             rates,
+            vl: VlRamp::detect(store),
             speed: 0.0,
         })
     }
@@ -77,7 +80,9 @@ impl Motor {
         let speeding_up = target.abs() > self.speed.abs();
         let value = |id| store.int(id).unwrap_or(0) as f64;
         if store.parameter(setpoint).modbus.is_empty() {
-            let rates = self.rates?;
+            let Some(rates) = self.rates else {
+                return self.vl?.rate(store, speeding_up);
+            };
             return Some(value(if speeding_up { rates.up } else { rates.down }))
                 .filter(|r| *r > 0.0);
         }
