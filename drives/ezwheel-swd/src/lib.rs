@@ -7,6 +7,8 @@ extern crate std;
 
 include!(concat!(env!("OUT_DIR"), "/drive.rs"));
 
+#[cfg(doctest)]
+mod compile_guarantees;
 mod emcy;
 #[cfg(feature = "std")]
 mod velocity_mode;
