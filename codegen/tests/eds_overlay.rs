@@ -124,8 +124,8 @@ fn an_overlay_adds_pdo_layouts_over_eds_objects() {
         .map(|m| {
             (
                 m.name.as_str(),
-                m.cob_id.value,
-                m.cob_id.plus_node_id,
+                m.default_cob_id().value,
+                m.default_cob_id().plus_node_id,
                 m.entries.clone(),
             )
         })

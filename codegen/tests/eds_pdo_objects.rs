@@ -1,6 +1,7 @@
-//! The PDO objects derived from the ez-Wheel description equal the manual's own tables of its
-//! default PDOs (SWD user manual v2.0.3, `../shared/seeds/002_7f0dd2fb8f792336.txt`, section 9.7,
-//! lines 1338–1390).
+//! The PDO objects derived from the ez-Wheel description (SWD user manual v2.0.3,
+//! `../shared/seeds/002_7f0dd2fb8f792336.txt`, section 9.7): the description tabulates the
+//! objects of its valid default PDOs itself (lines 1338-1439), so only the PDOs the manual ships
+//! mapped but disabled (TPDO 2, 5-8, lines 1322-1331) are derived, with COB-ID bit 31 set.
 
 mod support;
 
@@ -28,65 +29,102 @@ fn default(derived: &[Parameter], index: u16, subindex: u8) -> (i64, bool) {
 }
 
 #[test]
-fn mapping_objects_hold_the_manuals_mapping_entries() {
+fn mapping_objects_of_disabled_pdos_hold_the_manuals_mapping() {
     let derived = drivegen::eds::pdo_objects(&ez_wheel()).parameters;
-    // Line 1347-1348: 1600h sub 0 = 01h, sub 1 = 6040 0010h (Controlword).
-    assert_eq!(default(&derived, 0x1600, 0), (1, false));
-    assert_eq!(default(&derived, 0x1600, 1), (0x6040_0010, false));
-    // Lines 1368-1370: 1603h sub 0 = 02h, Controlword and vl target velocity 6042 0010h.
-    assert_eq!(default(&derived, 0x1603, 0), (2, false));
-    assert_eq!(default(&derived, 0x1603, 1), (0x6040_0010, false));
-    assert_eq!(default(&derived, 0x1603, 2), (0x6042_0010, false));
-    // Lines 1387-1388: 1A00h sub 0 = 01h, sub 1 = 6041 0010h (Statusword).
-    assert_eq!(default(&derived, 0x1A00, 0), (1, false));
-    assert_eq!(default(&derived, 0x1A00, 1), (0x6041_0010, false));
+    // Lines 1325, 1328-1331: TPDO 2 and 5-8 map the statusword 6041 0010h.
+    for mapping in [0x1A01, 0x1A04, 0x1A05, 0x1A06, 0x1A07] {
+        assert_eq!(default(&derived, mapping, 0), (1, false));
+        assert_eq!(default(&derived, mapping, 1), (0x6041_0010, false));
+    }
 }
 
 #[test]
-fn communication_objects_keep_cob_ids_relative_to_the_node() {
+fn a_pdo_disabled_by_default_has_cob_id_bit_31_set() {
     let derived = drivegen::eds::pdo_objects(&ez_wheel()).parameters;
-    // Line 1339: 1400h sub 1 = 0000 0210h at the manual's node 10h, i.e. $NODEID + 200h.
-    assert_eq!(default(&derived, 0x1400, 1), (0x200, true));
-    // Line 1384: 1800h sub 1 = 4000 0190h (no RTR) at node 10h.
-    assert_eq!(default(&derived, 0x1800, 1), (0x4000_0180, true));
-    // Lines 1338 and 1340: two entries, transmission type 01h.
-    assert_eq!(default(&derived, 0x1400, 0), (2, false));
-    assert_eq!(default(&derived, 0x1400, 2), (1, false));
-    assert!(!object(&derived, 0x1400, 0).canopen[0].access.write);
-    assert!(object(&derived, 0x1400, 1).canopen[0].access.write);
+    // The manual gives no COB-ID for TPDO 2: not valid, no identifier, not node-relative.
+    assert_eq!(default(&derived, 0x1801, 1), (0x8000_0000, false));
+    // Only sub 1 is given: the highest sub-index is 1.
+    assert_eq!(default(&derived, 0x1801, 0), (1, false));
+    assert!(object(&derived, 0x1801, 1).canopen[0].access.write);
 }
 
 #[test]
 fn objects_the_description_defines_itself_are_not_derived_again() {
-    let mut device = ez_wheel();
-    let derived = drivegen::eds::pdo_objects(&device);
-    let rpdo1_mapping = derived
-        .parameters
-        .iter()
-        .find(|p| p.canopen[0].index == 0x1600)
-        .cloned()
-        .expect("derived 0x1600");
-    device.parameters.push(rpdo1_mapping);
-    let again = drivegen::eds::pdo_objects(&device);
-    assert!(again
-        .parameters
-        .iter()
-        .all(|p| p.canopen[0].index != 0x1600));
-    assert!(again.records.iter().all(|r| r.index != 0x1600));
-    assert!(again
-        .parameters
-        .iter()
-        .any(|p| p.canopen[0].index == 0x1400));
+    let derived = drivegen::eds::pdo_objects(&ez_wheel());
+    for described in [
+        0x1400, 0x1403, 0x1600, 0x1603, 0x1800, 0x1802, 0x1803, 0x1A00, 0x1A02,
+    ] {
+        assert!(derived
+            .parameters
+            .iter()
+            .all(|p| p.canopen[0].index != described));
+        assert!(derived.records.iter().all(|r| r.index != described));
+    }
+    assert_eq!(
+        derived.records.len(),
+        2 * 5,
+        "TPDO 2 and 5-8: communication and mapping"
+    );
 }
 
 #[test]
 fn pdos_validation_would_refuse_are_skipped_not_panicked_on() {
     let mut device = ez_wheel();
-    let pdos = device.pdos.len();
-    assert!(pdos >= 3, "ez-Wheel declares its default PDOs");
-    device.pdos[0].number = 0;
-    device.pdos[1].number = 600;
-    device.pdos[2].entries.push("no_such_parameter".into());
+    let disabled: Vec<usize> = (0..device.pdos.len())
+        .filter(|&i| !device.pdos[i].enabled)
+        .collect();
+    assert_eq!(disabled.len(), 5);
+    device.pdos[disabled[0]].number = 0;
+    device.pdos[disabled[1]].number = 600;
+    device.pdos[disabled[2]]
+        .entries
+        .push("no_such_parameter".into());
     let derived = drivegen::eds::pdo_objects(&device);
-    assert_eq!(derived.records.len(), 2 * (pdos - 3));
+    assert_eq!(derived.records.len(), 2 * 2);
+}
+
+#[test]
+fn inhibit_time_and_event_timer_become_sub_indices_3_and_5() {
+    let dir = std::env::temp_dir().join(format!("drivegen-pdo-timers-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("device.toml");
+    std::fs::write(
+        &path,
+        r#"format = 1
+[device]
+name = "Timers"
+handle = "Timers"
+[[source]]
+id = "m"
+file = "m.txt"
+title = "Manual"
+
+[[parameter]]
+name = "statusword"
+type = "u16"
+canopen = { index = 0x6041, access = "ro", pdo = "tx" }
+source = { doc = "m", line = 1 }
+
+[[pdo]]
+name = "tpdo1"
+direction = "tx"
+number = 1
+cob_id = "$NODEID+0x180"
+enabled = false
+transmission_type = 254
+inhibit_time = 100
+event_timer = 500
+entries = ["statusword"]
+source = { doc = "m", line = 2 }
+"#,
+    )
+    .unwrap();
+    let device = device(&path);
+    std::fs::remove_dir_all(&dir).unwrap();
+    let derived = drivegen::eds::pdo_objects(&device).parameters;
+    assert_eq!(default(&derived, 0x1800, 0), (5, false));
+    assert_eq!(default(&derived, 0x1800, 1), (0x8000_0180, true));
+    assert_eq!(default(&derived, 0x1800, 2), (254, false));
+    assert_eq!(default(&derived, 0x1800, 3), (100, false));
+    assert_eq!(default(&derived, 0x1800, 5), (500, false));
 }

@@ -68,8 +68,10 @@ impl Simulator {
         }
     }
 
-    /// A drive built from a device model, in its default variant.
+    /// A drive built from a device model, in its default variant. The communication and mapping
+    /// objects of its declared PDOs are served too, as the exported EDS lists them.
     pub fn new(device: Device) -> Self {
+        let device = with_pdo_objects(device);
         let variant = device.variants.first().map(|v| v.name.clone());
         Self {
             inner: Arc::new(Mutex::new(Inner {
@@ -120,4 +122,13 @@ impl Simulator {
     ) -> Result<TcpServer, SimError> {
         Ok(TcpServer::start(self.clone(), addr, unit)?)
     }
+}
+
+/// `device` plus the PDO communication and mapping objects its `[[pdo]]` tables imply and it does
+/// not describe itself (`drivegen::eds::pdo_objects`, the same objects the EDS export writes).
+fn with_pdo_objects(mut device: Device) -> Device {
+    let derived = drivegen::eds::pdo_objects(&device);
+    device.records.extend(derived.records);
+    device.parameters.extend(derived.parameters);
+    device
 }

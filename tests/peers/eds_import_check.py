@@ -99,12 +99,21 @@ def pdo_objects(ir, taken, node_id):
         communication = (0x1400 if rx else 0x1800) + offset
         mapping = (0x1600 if rx else 0x1A00) + offset
         if communication not in taken:
-            cob_id = pdo["cob_id"]["value"] + (node_id if pdo["cob_id"]["plus_node_id"] else 0)
+            given = pdo["cob_id"]
+            if given is None:
+                cob_id = 0x80000000  # disabled, no identifier given
+            else:
+                cob_id = given["value"] + (node_id if given["plus_node_id"] else 0)
+                cob_id |= 0 if pdo["enabled"] else 0x80000000
             kind = pdo["transmission_type"]
-            var(communication, 0, 0x05, "ro", 1 if kind is None else 2)
+            highest = 5 if pdo["event_timer"] is not None else 3 if pdo["inhibit_time"] is not None else 1 if kind is None else 2
+            var(communication, 0, 0x05, "ro", highest)
             var(communication, 1, 0x07, "rw", cob_id)
             if kind is not None:
                 var(communication, 2, 0x05, "rw", kind)
+            for sub, key in ((3, "inhibit_time"), (5, "event_timer")):
+                if pdo[key] is not None:
+                    var(communication, sub, 0x06, "rw", pdo[key])
         if mapping not in taken:
             var(mapping, 0, 0x05, "rw", len(pdo["entries"]))
             for sub, name in enumerate(pdo["entries"], start=1):

@@ -23,14 +23,15 @@ pub(super) fn compare(old: &[PdoMapping], new: &[PdoMapping], out: &mut Vec<Chan
             out.push(Change::new(Impact::Breaking, subject(o), what));
         }
         let wire = |m: &PdoMapping| {
-            let base = if m.cob_id.plus_node_id {
+            let cob_id = m.default_cob_id();
+            let base = if cob_id.plus_node_id {
                 " + node id"
             } else {
                 ""
             };
             format!(
-                "{:?} {}, COB-ID 0x{:X}{base}, transmission type {:?}",
-                m.direction, m.number, m.cob_id.value, m.transmission_type
+                "{:?} {}, COB-ID 0x{:X}{base}, transmission type {:?}, inhibit time {:?}, event timer {:?}",
+                m.direction, m.number, cob_id.value, m.transmission_type, m.inhibit_time, m.event_timer
             )
         };
         if wire(o) != wire(n) {

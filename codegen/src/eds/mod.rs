@@ -156,6 +156,7 @@ pub fn empty_device(name: &str, model: &EdsModel) -> ir::Device {
         state_machine: None,
         pdos: Vec::new(),
         srdos: Vec::new(),
+        indexed: Vec::new(),
     }
 }
 

@@ -79,11 +79,14 @@ fn label(pdo: &PdoMapping) -> String {
 
 fn communication_object(pdo: &PdoMapping, index: u16, out: &mut PdoObjects) {
     let record = record(pdo, index, "communication", "communication parameter", out);
-    let highest = if pdo.transmission_type.is_some() {
-        2
-    } else {
-        1
-    };
+    let highest = [
+        (5, pdo.event_timer.is_some()),
+        (3, pdo.inhibit_time.is_some()),
+        (2, pdo.transmission_type.is_some()),
+    ]
+    .into_iter()
+    .find_map(|(sub, given)| given.then_some(sub))
+    .unwrap_or(1);
     let member = Member {
         pdo,
         record: &record,
@@ -91,13 +94,24 @@ fn communication_object(pdo: &PdoMapping, index: u16, out: &mut PdoObjects) {
     };
     let u8_type = DataType::Unsigned(1);
     let highest = member.sub(0, "highest_sub_index", u8_type, ir::Access::READ, highest);
-    let cob_id = i64::from(pdo.cob_id.value);
+    let default_cob_id = pdo.default_cob_id();
+    let cob_id = i64::from(default_cob_id.value);
     let mut cob_id = member.sub(1, "cob_id", DataType::Unsigned(4), READ_WRITE, cob_id);
-    cob_id.default_plus_node_id = pdo.cob_id.plus_node_id;
+    cob_id.default_plus_node_id = default_cob_id.plus_node_id;
     out.parameters.extend([highest, cob_id]);
     if let Some(kind) = pdo.transmission_type {
         let kind = member.sub(2, "transmission_type", u8_type, READ_WRITE, i64::from(kind));
         out.parameters.push(kind);
+    }
+    let u16_type = DataType::Unsigned(2);
+    for (sub, name, value) in [
+        (3, "inhibit_time", pdo.inhibit_time),
+        (5, "event_timer", pdo.event_timer),
+    ] {
+        if let Some(value) = value {
+            out.parameters
+                .push(member.sub(sub, name, u16_type, READ_WRITE, i64::from(value)));
+        }
     }
 }
 

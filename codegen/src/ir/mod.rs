@@ -5,6 +5,7 @@
 
 mod data_type;
 mod expr;
+mod indexed;
 mod number;
 mod pdo;
 mod readable_registers;
@@ -15,6 +16,7 @@ mod value_type;
 
 pub use data_type::DataType;
 pub use expr::{Expr, ExprError, Op};
+pub use indexed::IndexedParameter;
 pub use number::Number;
 pub use pdo::{pdo_bits, CobId, PdoDirection, PdoMapping};
 pub use readable_registers::{PlannerLimits, RegisterRun};
@@ -67,6 +69,9 @@ pub struct Device {
     /// Declared SRDOs (left out of the JSON when there are none).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub srdos: Vec<SrdoMapping>,
+    /// Members described once over a run of sub-indices (left out of the JSON when there are none).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub indexed: Vec<IndexedParameter>,
 }
 
 /// How the drive deviates from the CiA 402 state machine.

@@ -36,10 +36,17 @@ pub struct PdoMapping {
     pub direction: PdoDirection,
     /// PDO number, 1..=512.
     pub number: u16,
-    /// COB-ID of the PDO (bit 30, no RTR, may be set).
-    pub cob_id: CobId,
+    /// COB-ID of the PDO (bit 30, no RTR, may be set; bit 31 is `enabled`), if the description
+    /// gives one (a PDO disabled by default may leave it to the user).
+    pub cob_id: Option<CobId>,
+    /// Whether the PDO is valid by default (COB-ID bit 31 clear).
+    pub enabled: bool,
     /// Transmission type (communication object sub-index 2), if the description gives one.
     pub transmission_type: Option<u8>,
+    /// Inhibit time (communication object sub-index 3, raw), if the description gives one.
+    pub inhibit_time: Option<u16>,
+    /// Event timer (communication object sub-index 5, raw), if the description gives one.
+    pub event_timer: Option<u16>,
     /// The mapped parameters, in payload order.
     pub entries: Vec<String>,
     /// Where the mapping is documented.
@@ -50,6 +57,25 @@ pub struct PdoMapping {
     /// Span of the entry list.
     #[serde(skip)]
     pub entries_span: Span,
+}
+
+impl PdoMapping {
+    /// The COB-ID the communication object holds by default, relative to the node id where the
+    /// description says so: bit 31 set for a PDO disabled by default; without a declared COB-ID
+    /// only bit 31 (not valid, no identifier assigned).
+    pub fn default_cob_id(&self) -> CobId {
+        let invalid = if self.enabled { 0 } else { 0x8000_0000 };
+        match self.cob_id {
+            Some(c) => CobId {
+                value: c.value | invalid,
+                plus_node_id: c.plus_node_id,
+            },
+            None => CobId {
+                value: 0x8000_0000,
+                plus_node_id: false,
+            },
+        }
+    }
 }
 
 /// Bits a value of `data_type` takes in a PDO: one for a boolean, its bytes otherwise.

@@ -3,6 +3,7 @@
 mod lower;
 mod raw;
 mod raw_srdo;
+pub mod subindex_range;
 
 use std::path::{Path, PathBuf};
 

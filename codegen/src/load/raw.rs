@@ -300,10 +300,31 @@ pub struct RawModbusAddress {
 #[serde(deny_unknown_fields)]
 pub struct RawCanOpenAddress {
     pub index: i64,
-    pub subindex: Option<i64>,
+    pub subindex: Option<RawSubindex>,
     pub access: Option<String>,
     pub pdo: Option<RawPdo>,
     pub variant: Option<String>,
+}
+
+/// A sub-index: a number, or a run such as `"1..=8"` (see `lower_subindex_range.rs`).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(untagged)]
+pub enum RawSubindex {
+    Number(i64),
+    Range(String),
+}
+
+impl RawSubindex {
+    /// The sub-index itself, or the first of a well-formed run (0 when the run is malformed:
+    /// lowering reports it).
+    pub fn first(&self) -> i64 {
+        match self {
+            Self::Number(n) => *n,
+            Self::Range(text) => {
+                crate::load::subindex_range::parse(text).map_or(0, |(first, _)| i64::from(first))
+            }
+        }
+    }
 }
 
 #[derive(Debug, Deserialize)]
@@ -400,8 +421,11 @@ pub struct RawPdoMapping {
     pub doc: Option<String>,
     pub direction: Spanned<String>,
     pub number: Spanned<i64>,
-    pub cob_id: Spanned<RawCobId>,
+    pub cob_id: Option<Spanned<RawCobId>>,
+    pub enabled: Option<Spanned<bool>>,
     pub transmission_type: Option<Spanned<i64>>,
+    pub inhibit_time: Option<Spanned<i64>>,
+    pub event_timer: Option<Spanned<i64>>,
     pub entries: Spanned<Vec<String>>,
     pub source: Option<Spanned<RawCitation>>,
 }

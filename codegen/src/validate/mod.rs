@@ -8,6 +8,7 @@ mod addresses_do_not_overlap;
 mod bit_fields_fit;
 mod defaults_within_range;
 mod enum_values_fit_type;
+mod indexed_names_are_unique;
 mod names_are_unique;
 mod parameters_have_addresses;
 mod pdo_entries_are_mappable;
@@ -77,6 +78,7 @@ pub const PASSES: &[(&str, Pass)] = &[
     ),
     ("srdo_timings_are_valid", srdo_timings_are_valid::check),
     ("srdo_numbers_are_unique", srdo_numbers_are_unique::check),
+    ("indexed_names_are_unique", indexed_names_are_unique::check),
 ];
 
 /// Runs every pass.

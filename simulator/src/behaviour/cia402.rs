@@ -1,6 +1,7 @@
 //! The CiA 402 power state machine on controlword (6040h) and statusword (6041h), with the mode
 //! display (6061h) mirroring the requested mode (6060h). Chosen when the description has both
-//! 6040h and 6041h. The velocity setpoint followed in OPERATION ENABLED is 60FFh.
+//! 6040h and 6041h. The velocity setpoint followed in OPERATION ENABLED is 60FFh, or the vl
+//! target velocity 6042h on a drive without 60FFh (velocity mode only, e.g. the ez-Wheel SWD).
 
 use std::time::Duration;
 
@@ -82,7 +83,7 @@ impl Cia402 {
             controlword: object(store, 0x6040, 0)?,
             statusword: object(store, 0x6041, 0)?,
             modes: object(store, 0x6060, 0).zip(object(store, 0x6061, 0)),
-            target_velocity: object(store, 0x60FF, 0),
+            target_velocity: object(store, 0x60FF, 0).or_else(|| object(store, 0x6042, 0)),
             state: State::SwitchOnDisabled,
             last_controlword: 0,
         };

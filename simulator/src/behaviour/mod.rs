@@ -13,6 +13,7 @@ pub mod commands;
 pub mod motor;
 pub mod srdo_validity;
 pub mod state_machine;
+pub mod vl_ramp;
 
 /// What the power stage is doing, as the active state machine commands it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

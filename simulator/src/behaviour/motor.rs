@@ -11,6 +11,7 @@
 
 use std::time::Duration;
 
+use super::vl_ramp::VlRamp;
 use super::{object, Behaviour, Motion, Shared};
 use crate::refusal::Refusal;
 use crate::store::{ParamId, Store};
@@ -42,6 +43,7 @@ pub struct Motor {
     rates: Option<RampRates>,
     /// The setpoint the description's state machine follows.
     setpoint: Option<ParamId>,
+    vl: Option<VlRamp>,
     speed: f64,
 }
 
@@ -79,6 +81,7 @@ impl Motor {
             times,
             rates,
             setpoint,
+            vl: VlRamp::detect(store),
             speed: 0.0,
         })
     }
@@ -89,7 +92,9 @@ impl Motor {
         let speeding_up = target.abs() > self.speed.abs();
         let value = |id| store.int(id).unwrap_or(0) as f64;
         if store.parameter(setpoint).modbus.is_empty() {
-            let rates = self.rates?;
+            let Some(rates) = self.rates else {
+                return self.vl?.rate(store, speeding_up);
+            };
             return Some(value(if speeding_up { rates.up } else { rates.down }))
                 .filter(|r| *r > 0.0);
         }

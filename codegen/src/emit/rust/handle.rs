@@ -75,25 +75,29 @@ pub fn emit(device: &Device) -> TokenStream {
     let handle = ident(&names::camel(&device.device.handle));
     let title = doc::escape(&device.device.name);
     let handle_doc = doc_attrs(&format!("A {title} drive, reached over the link `L`.\n\nEach parameter has an accessor: `drive.<parameter>().read()`, `.write(value)`, `.modify(f)`."));
-    let accessors = device.parameters.iter().map(|p| {
-        let method = ident(&names::method(&p.name));
-        let marker = ident(&names::camel(&p.name));
-        let summary = doc::escape(p.doc.as_deref().unwrap_or(&p.name))
-            .lines()
-            .next()
-            .unwrap_or_default()
-            .to_owned();
-        let docs = doc_attrs(&format!(
-            "{summary}\n\nSee [`params::{marker}`] for address, type, unit and source."
-        ));
-        quote! {
-            #docs
-            #[inline]
-            pub fn #method(&mut self) -> ::drivebus::Accessor<'_, L, params::#marker> {
-                self.device.parameter()
+    let accessors = device
+        .parameters
+        .iter()
+        .filter(|p| !super::indexed::is_member(p, device))
+        .map(|p| {
+            let method = ident(&names::method(&p.name));
+            let marker = ident(&names::camel(&p.name));
+            let summary = doc::escape(p.doc.as_deref().unwrap_or(&p.name))
+                .lines()
+                .next()
+                .unwrap_or_default()
+                .to_owned();
+            let docs = doc_attrs(&format!(
+                "{summary}\n\nSee [`params::{marker}`] for address, type, unit and source."
+            ));
+            quote! {
+                #docs
+                #[inline]
+                pub fn #method(&mut self) -> ::drivebus::Accessor<'_, L, params::#marker> {
+                    self.device.parameter()
+                }
             }
-        }
-    });
+        });
     let variant_setter = (!device.variants.is_empty()).then(|| {
         quote! {
             /// Selects the drive's firmware / configuration variant (the default is the first).

@@ -7,9 +7,11 @@ mod control;
 mod enums;
 mod flags;
 mod handle;
+mod indexed;
 mod parameter;
 mod parameter_doc;
 mod pdo;
+mod pdo_communication;
 mod srdo;
 mod variants;
 
@@ -96,6 +98,10 @@ pub fn tokens(device: &Device) -> TokenStream {
         },
         braced(params),
         handle::emit(device),
+        indexed::emit(
+            device,
+            &ident(&crate::emit::ident::camel(&device.device.handle)),
+        ),
         pdo::emit(device),
         srdo::emit(device),
         control.unwrap_or_default(),

@@ -126,6 +126,8 @@ fn runtime_scale(p: &Parameter) -> TokenStream {
     quote! {
         impl #name {
             /// Reads the factor's inputs and evaluates the run-time scale expression.
+            // `Some(a.checked_div(b)?)`: uniform for every expression, needless for a single one.
+            #[allow(clippy::needless_question_mark)]
             fn runtime_scale<L: db::Link>(
                 device: &mut db::Device<L>,
             ) -> Result<db::Scale, db::Error>

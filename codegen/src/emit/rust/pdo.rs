@@ -72,7 +72,7 @@ fn mapping(m: &PdoMapping, device: &Device) -> TokenStream {
     let layout = layout(&fields);
     let count = Literal::usize_unsuffixed(fields.len());
     let (decode, encode) = (decode(&fields, &count), encode(&fields, &count));
-    let config = config(m, &count);
+    let config = super::pdo_communication::emit(m, &count);
     quote! {
         #docs
         #[derive(Debug, Clone, Copy, PartialEq)]
@@ -148,59 +148,6 @@ pub(super) fn encode(fields: &[Field], count: &Literal) -> Vec<TokenStream> {
     })
 }
 
-/// `cob_id(node)` and `config(node)`.
-fn config(m: &PdoMapping, count: &Literal) -> TokenStream {
-    let value: Literal = format!("0x{:X}", m.cob_id.value)
-        .parse()
-        .expect("a hexadecimal integer is a literal");
-    let (cob_id, cob_doc) = if m.cob_id.plus_node_id {
-        (
-            quote! { #value + node.get() as u32 },
-            format!(
-                "The COB-ID on node `node`: 0x{:X} + node id.",
-                m.cob_id.value
-            ),
-        )
-    } else {
-        (
-            quote! { let _ = node; #value },
-            format!("The COB-ID: 0x{:X} on every node.", m.cob_id.value),
-        )
-    };
-    let kind = ident(match m.direction {
-        PdoDirection::Tx => "Transmit",
-        PdoDirection::Rx => "Receive",
-    });
-    let number = Literal::u16_unsuffixed(m.number);
-    let transmission_type = match m.transmission_type {
-        Some(t) => {
-            let t = Literal::u8_unsuffixed(t);
-            quote! { Some(#t) }
-        }
-        None => quote! { None },
-    };
-    let cob_doc = doc_attrs(&cob_doc);
-    quote! {
-        #cob_doc
-        pub const fn cob_id(node: ::drivebus::canopen::NodeId) -> u32 {
-            #cob_id
-        }
-
-        /// The configuration that maps this PDO on `node`, to apply over SDO in pre-operational
-        /// (`config(node).apply(bus, node)`: disable, map, enable, as CiA 301 orders it).
-        pub fn config(node: ::drivebus::canopen::NodeId) -> ::drivebus::canopen::pdo::PdoConfig<'static> {
-            let layout: &'static ::drivebus::canopen::pdo::PdoLayout<#count> = &Self::LAYOUT;
-            ::drivebus::canopen::pdo::PdoConfig {
-                kind: ::drivebus::canopen::pdo::PdoKind::#kind,
-                number: #number,
-                cob_id: Self::cob_id(node),
-                transmission_type: #transmission_type,
-                entries: layout.entries(),
-            }
-        }
-    }
-}
-
 fn struct_doc(m: &PdoMapping, fields: &[Field], device: &Device) -> String {
     let (way, base) = match m.direction {
         PdoDirection::Tx => ("Transmit PDO", 0x1800),
@@ -208,20 +155,14 @@ fn struct_doc(m: &PdoMapping, fields: &[Field], device: &Device) -> String {
     };
     let intro = doc::escape(m.doc.as_deref().unwrap_or(&m.name));
     let bits: u32 = fields.iter().map(|f| pdo_bits(f.parameter.data_type)).sum();
-    let cob_id = if m.cob_id.plus_node_id {
-        format!("0x{:X} + node id", m.cob_id.value)
-    } else {
-        format!("0x{:X}", m.cob_id.value)
-    };
+    let cob_id = super::pdo_communication::cob_id_text(m);
     let mut text = format!(
         "{intro}\n\n| | |\n|---|---|\n| PDO | {way} {}, communication object `0x{:04X}` |\n| COB-ID | {cob_id} |\n| Payload | {} bytes |",
         m.number,
         base + m.number - 1,
         bits.div_ceil(8)
     );
-    if let Some(t) = m.transmission_type {
-        text += &format!("\n| Transmission type | {t} |");
-    }
+    text += &super::pdo_communication::doc_rows(m);
     if let Some(c) = &m.source {
         text += &format!(
             "\n| Source | {} |",

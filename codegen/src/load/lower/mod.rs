@@ -9,6 +9,7 @@ mod control;
 mod overlay;
 mod pdo;
 mod srdo;
+mod subindex_range;
 
 use toml::Spanned;
 
@@ -219,6 +220,7 @@ impl Lowering<'_> {
             state_machine: None,
             pdos: Vec::new(),
             srdos: Vec::new(),
+            indexed: Vec::new(),
         })
     }
 
@@ -308,8 +310,8 @@ impl Lowering<'_> {
             .iter()
             .filter(|p| keep.keeps(p.name.get_ref()))
         {
-            if let Some(p) = self.parameter(p, modbus_order) {
-                device.parameters.push(p);
+            if let Some(lowered) = self.parameter(p, modbus_order) {
+                self.push_expanded(p, lowered, device);
             }
         }
     }
@@ -794,7 +796,8 @@ impl Lowering<'_> {
     ) -> Option<ir::ObjectAddress> {
         let spanned = |v: i64| Spanned::new(span.range.clone(), v);
         let index = self.int_in::<u16>(&spanned(raw.index), "object index")?;
-        let subindex = self.int_in::<u8>(&spanned(raw.subindex.unwrap_or(0)), "subindex")?;
+        let first = self.first_subindex(raw, span)?;
+        let subindex = self.int_in::<u8>(&spanned(first), "subindex")?;
         let (access, constant) = self.object_access(raw.access.as_deref(), span)?;
         let pdo = match &raw.pdo {
             None | Some(RawPdo::Flag(false)) => ir::Pdo::None,

@@ -8,7 +8,7 @@ use super::Lowering;
 use crate::diagnostic::{Diagnostic, FileId};
 use crate::eds::EdsModel;
 use crate::ir::{self, DataType};
-use crate::load::raw::{OneOrMany, RawCanOpenAddress, RawParameter};
+use crate::load::raw::{OneOrMany, RawCanOpenAddress, RawParameter, RawSubindex};
 
 const RULE: &str = "overlay_matches_eds";
 
@@ -123,7 +123,7 @@ impl Lowering<'_> {
         let (Some(overlay), Some(address)) = (&mut self.overlay, first_address(raw)) else {
             return Some(None);
         };
-        let subindex = address.subindex.unwrap_or(0);
+        let subindex = address.subindex.as_ref().map_or(0, RawSubindex::first);
         if let Some(i) = overlay.find(address.index, subindex) {
             overlay.matched[i] = true;
             return Some(Some(i));

@@ -13,9 +13,21 @@ impl Lowering<'_> {
     pub(super) fn pdo_mapping(&mut self, raw: &RawPdoMapping) -> Option<ir::PdoMapping> {
         let direction = self.pdo_direction(&raw.direction);
         let number = self.pdo_number(&raw.number);
-        let cob_id = self.cob_id(&raw.cob_id);
+        let enabled = raw.enabled.as_ref().is_none_or(|e| *e.get_ref());
+        let cob_id = match &raw.cob_id {
+            Some(c) => Some(self.cob_id(c)?),
+            None => self.missing_cob_id(raw, enabled)?,
+        };
         let transmission_type = match &raw.transmission_type {
             Some(t) => Some(self.int_in::<u8>(t, "transmission type")?),
+            None => None,
+        };
+        let inhibit_time = match &raw.inhibit_time {
+            Some(t) => Some(self.int_in::<u16>(t, "inhibit time")?),
+            None => None,
+        };
+        let event_timer = match &raw.event_timer {
+            Some(t) => Some(self.int_in::<u16>(t, "event timer")?),
             None => None,
         };
         Some(ir::PdoMapping {
@@ -23,8 +35,11 @@ impl Lowering<'_> {
             doc: raw.doc.clone(),
             direction: direction?,
             number: number?,
-            cob_id: cob_id?,
+            cob_id,
+            enabled,
             transmission_type,
+            inhibit_time,
+            event_timer,
             entries: raw.entries.get_ref().clone(),
             source: raw.source.as_ref().and_then(|s| self.citation(s)),
             span: self.span(&raw.name),
@@ -73,6 +88,25 @@ impl Lowering<'_> {
             span,
             format!("PDO number {} is out of range", raw.get_ref()),
             "CiA 301 numbers PDOs 1..=512 per direction",
+        );
+        None
+    }
+
+    /// A PDO without `cob_id`: allowed when it is disabled by default (the manual may not give
+    /// the identifier of a PDO it ships disabled); `Some(None)` then, `None` after an error.
+    fn missing_cob_id(&mut self, raw: &RawPdoMapping, enabled: bool) -> Option<Option<ir::CobId>> {
+        if !enabled {
+            return Some(None);
+        }
+        let span = self.span(&raw.name);
+        self.error_help(
+            VALUE_RULE,
+            span,
+            format!(
+                "PDO `{}` is enabled but has no `cob_id`",
+                raw.name.get_ref()
+            ),
+            "give its `cob_id`, or declare it `enabled = false` if the drive ships it disabled",
         );
         None
     }

@@ -1,0 +1,72 @@
+//! The name of a member described over a sub-index run becomes a handle method (`drive.<name>(n)`)
+//! and a type in `indexed`: it must not be the name of a parameter or of another run.
+
+use std::collections::HashMap;
+
+use crate::diagnostic::Diagnostic;
+use crate::emit::ident::{camel, method};
+use crate::ir::Device;
+
+const RULE: &str = "indexed_names_are_unique";
+
+/// Reports a run whose accessor name is already a parameter's or another run's.
+pub fn check(device: &Device) -> Vec<Diagnostic> {
+    let mut taken: HashMap<String, &str> = device
+        .parameters
+        .iter()
+        .map(|p| (method(&p.name), p.name.as_str()))
+        .collect();
+    let mut types: HashMap<String, &str> = HashMap::new();
+    let mut out = Vec::new();
+    for run in &device.indexed {
+        let clash = taken
+            .insert(method(&run.name), &run.name)
+            .or_else(|| types.insert(camel(&run.name), &run.name));
+        if let Some(first) = clash {
+            out.push(
+                Diagnostic::error(
+                    RULE,
+                    run.span.clone(),
+                    format!(
+                        "the sub-index run `{}` has the accessor name of `{first}`",
+                        run.name
+                    ),
+                )
+                .help("rename the run or the parameter"),
+            );
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::validate::test_support::messages;
+
+    #[test]
+    fn a_run_named_like_a_parameter_is_refused() {
+        let body = r#"
+[[parameter]]
+name = "limit"
+type = "u8"
+canopen = { index = 0x2000, access = "rw" }
+source = { doc = "m", line = 1 }
+
+[[parameter]]
+name = "limit"
+type = "u32"
+canopen = { index = 0x6693, subindex = "1..=2", access = "rw" }
+source = { doc = "m", line = 2 }
+"#;
+        let found = messages("indexed_names_are_unique", body);
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert!(messages(
+            "indexed_names_are_unique",
+            &body.replace(
+                "name = \"limit\"\ntype = \"u8\"",
+                "name = \"other\"\ntype = \"u8\""
+            )
+        )
+        .is_empty());
+    }
+}

@@ -1,0 +1,18 @@
+#![doc = include_str!("../README.md")]
+#![no_std]
+#![deny(warnings, missing_docs)]
+
+#[cfg(feature = "std")]
+extern crate std;
+
+include!(concat!(env!("OUT_DIR"), "/drive.rs"));
+
+#[cfg(doctest)]
+mod compile_guarantees;
+mod emcy;
+#[cfg(feature = "std")]
+mod velocity_mode;
+
+pub use emcy::EmcyCodes;
+#[cfg(feature = "std")]
+pub use velocity_mode::{HALT, VL_OPERATION_ENABLED};

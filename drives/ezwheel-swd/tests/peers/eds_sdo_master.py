@@ -1,0 +1,100 @@
+"""python canopen 2.4.1 as an independent SDO master of the simulated ez-Wheel SWD.
+
+    eds_sdo_master.py EDS NODE_ID
+
+Loads the EDS drivegen exported from descriptions/ezwheel-swd into a RemoteNode, relays frames
+between this process's stdio (candump compact lines, `123#DEADBEEF`) and python-can's virtual bus,
+and uploads every readable object of the EDS. Each value must decode with the EDS data type and
+equal the EDS DefaultValue where one is given (the simulator starts at the described defaults).
+Reports on stderr ("ok: N objects read, M defaults compared" last) and exits 0 on success, 1 on
+the first failed check. stdout carries frames only.
+"""
+
+import logging
+import os
+import sys
+import threading
+import time
+
+import can
+import canopen
+from canopen import objectdictionary as od
+
+READABLE = {"ro", "rw", "rwr", "rww", "const"}
+
+
+def parse(line):
+    can_id, _, payload = line.partition("#")
+    return can.Message(arbitration_id=int(can_id, 16), is_extended_id=False,
+                       data=bytes.fromhex(payload))
+
+
+def relay(bus):
+    """Copies frames between stdin/stdout and the virtual bus."""
+    def from_stdin():
+        for line in sys.stdin:
+            line = line.strip()
+            if "#" in line:
+                bus.send(parse(line))
+
+    def to_stdout():
+        while True:
+            msg = bus.recv(0.1)
+            if msg is not None:
+                sys.stdout.write(f"{msg.arbitration_id:03X}#{bytes(msg.data).hex().upper()}\n")
+                sys.stdout.flush()
+
+    for target in (from_stdin, to_stdout):
+        threading.Thread(target=target, daemon=True).start()
+
+
+def variables(dictionary):
+    for obj in dictionary.values():
+        if isinstance(obj, (od.ODRecord, od.ODArray)):
+            yield from obj.values()
+        else:
+            yield obj
+
+
+def check(node):
+    node.sdo.RESPONSE_TIMEOUT = 1.0
+    read = compared = 0
+    for var in variables(node.object_dictionary):
+        if var.access_type not in READABLE:
+            continue
+        data = node.sdo.upload(var.index, var.subindex)
+        value = var.decode_raw(data)
+        read += 1
+        if var.data_type in od.DATA_TYPES and var.data_type not in (od.VISIBLE_STRING, od.OCTET_STRING, od.DOMAIN):
+            size = len(var.encode_raw(value))
+            assert len(data) == size, f"{var.index:04X}:{var.subindex} {var.name}: {len(data)} bytes, type says {size}"
+        if var.default is not None and not var.relative:
+            assert value == var.default, f"{var.index:04X}:{var.subindex} {var.name}: read {value!r}, EDS default {var.default!r}"
+            compared += 1
+    return read, compared
+
+
+def main():
+    logging.basicConfig(level=logging.ERROR)
+    eds, node_id = sys.argv[1], int(sys.argv[2], 0)
+    channel = f"swd-eds-master-{os.getpid()}"
+    bus = can.Bus(interface="virtual", channel=channel)
+    network = canopen.Network()
+    network.connect(interface="virtual", channel=channel)
+    try:
+        relay(bus)
+        node = canopen.RemoteNode(node_id, eds)
+        network.add_node(node)
+        time.sleep(0.2)
+        read, compared = check(node)
+    except (AssertionError, canopen.SdoAbortedError, canopen.SdoCommunicationError) as failed:
+        print(f"FAILED: {failed}", file=sys.stderr, flush=True)
+        sys.exit(1)
+    finally:
+        network.disconnect()
+        bus.shutdown()
+    print(f"ok: {read} objects read, {compared} defaults compared", file=sys.stderr, flush=True)
+
+
+if __name__ == "__main__":
+    main()
