@@ -471,8 +471,11 @@ pub struct ModbusAddress {
     pub table: Table,
     /// PDU address.
     pub address: u16,
-    /// Registers occupied.
+    /// Words a read of the value returns (and a write carries).
     pub words: u16,
+    /// Registers of the map the value occupies from `address`: `words`, unless the device
+    /// answers a read of `words` words at this one address (Lenze smd C99: 4 words, 1 register).
+    pub occupies: u16,
     /// Word order.
     pub word_order: WordOrder,
     /// Access.

@@ -7,6 +7,8 @@ use std::sync::Arc;
 
 #[path = "lower_control.rs"]
 mod control;
+#[path = "lower_occupies.rs"]
+mod occupies;
 #[path = "lower_pdo.rs"]
 mod pdo;
 
@@ -766,6 +768,7 @@ impl Lowering<'_> {
         let natural_words = ty.bytes().div_ceil(2).max(1) as i64;
         let words =
             self.int_in::<u16>(&spanned(raw.words.unwrap_or(natural_words)), "word count")?;
+        let occupies = self.occupied_registers(raw.occupies, words, span)?;
         let word_order = match &raw.word_order {
             Some(w) => self.word_order(w, span.clone())?,
             None => default_order,
@@ -780,6 +783,7 @@ impl Lowering<'_> {
             table,
             address,
             words,
+            occupies,
             word_order,
             access,
             variant: raw.variant.clone(),

@@ -289,6 +289,7 @@ pub struct RawModbusAddress {
     pub table: String,
     pub address: i64,
     pub words: Option<i64>,
+    pub occupies: Option<i64>,
     pub word_order: Option<String>,
     pub access: Option<String>,
     pub variant: Option<String>,

@@ -25,10 +25,10 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
     for (i, p) in params.iter().enumerate() {
         for q in &params[..i] {
             for a in &p.modbus {
-                let end = a.address as u32 + a.words as u32;
+                let end = a.address as u32 + a.occupies as u32;
                 let clash = q.modbus.iter().find(|b| {
                     b.table == a.table
-                        && (a.address as u32) < b.address as u32 + b.words as u32
+                        && (a.address as u32) < b.address as u32 + b.occupies as u32
                         && (b.address as u32) < end
                         && variants_meet(&a.variant, &b.variant, p, q)
                 });

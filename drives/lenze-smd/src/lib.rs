@@ -1,0 +1,8 @@
+#![doc = include_str!("../README.md")]
+#![no_std]
+#![deny(warnings, missing_docs)]
+
+#[cfg(feature = "std")]
+extern crate std;
+
+include!(concat!(env!("OUT_DIR"), "/drive.rs"));
