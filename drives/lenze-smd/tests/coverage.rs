@@ -110,9 +110,12 @@ fn every_described_register_is_in_the_list() {
     );
 }
 
-/// The section 6.2 parameters, by code: (PC400 register, PC507 register).
-fn programming_parameters() -> BTreeMap<String, (Option<u16>, Option<u16>)> {
-    let mut out: BTreeMap<String, (Option<u16>, Option<u16>)> = BTreeMap::new();
+/// A parameter's register in PC400 and in PC507, if it exists there.
+type Registers = (Option<u16>, Option<u16>);
+
+/// The section 6.2 parameters, by code.
+fn programming_parameters() -> BTreeMap<String, Registers> {
+    let mut out: BTreeMap<String, Registers> = BTreeMap::new();
     for (_, entry) in manual_list() {
         let slot = out.entry(entry.code.clone()).or_default();
         match entry.configuration.as_str() {
@@ -137,7 +140,7 @@ fn the_two_configurations_count_as_the_manual_does() {
     assert_eq!(same, 19, "19 keep their register");
     assert_eq!(pc507_only, 16, "16 exist only in PC507");
     assert_eq!(pc400_only, 0, "none exists only in PC400");
-    let by_register = |pick: fn(&(Option<u16>, Option<u16>)) -> Option<u16>| {
+    let by_register = |pick: fn(&Registers) -> Option<u16>| {
         list.iter()
             .filter_map(|(code, r)| pick(r).map(|r| (r, code.clone())))
             .collect::<BTreeMap<u16, String>>()
