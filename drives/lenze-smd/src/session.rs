@@ -9,6 +9,28 @@
 //! be 10 or 11 (line 411). An unlock also ends without the master's doing when C01 changes, on
 //! power-down or on a serial timeout (lines 414, 425): the next write then fails with
 //! [`SmdError::Locked`] (exception 0x01, line 416) and a new unlock is needed.
+//!
+//! A parameters-only session cannot command the drive; this does not compile:
+//!
+//! ```compile_fail
+//! # use drivebus::memory::MemoryBus;
+//! # use drivebus::modbus::UnitId;
+//! # fn f(drive: &mut lenze_smd::LenzeSmd<drivebus::modbus::ModbusLink<MemoryBus>>) {
+//! let mut session = drive.unlock_parameter_writing(0).unwrap();
+//! session.command(lenze_smd::Command::Start); // no `command` on Session<Parameters>
+//! # }
+//! ```
+//!
+//! and a controls-only session cannot write parameters:
+//!
+//! ```compile_fail
+//! # use drivebus::memory::MemoryBus;
+//! # use drivebus::units::Seconds;
+//! # fn f(drive: &mut lenze_smd::LenzeSmd<drivebus::modbus::ModbusLink<MemoryBus>>) {
+//! let mut session = drive.unlock_controls().unwrap();
+//! session.write::<lenze_smd::params::AccelerationTime>(Seconds(1.0));
+//! # }
+//! ```
 
 use core::marker::PhantomData;
 
@@ -118,10 +140,15 @@ impl<'d, B: RegisterBus, A: Access> Session<'d, B, A> {
         self.drive
     }
 
-    /// Locks controls and parameters (#1 = 0x0002, lines 415 and 446) and ends the session.
+    /// Locks controls and parameters (#1 = 0x0002, lines 415, 446 and 801) and ends the
+    /// session. A drive that answers exception 01 is locked already (its unlock ended): that is
+    /// success too.
     pub fn lock(mut self) -> Result<(), SmdError> {
         self.locked = true;
-        self.write_lock()
+        match self.write_lock() {
+            Err(SmdError::Locked { .. }) => Ok(()),
+            other => other,
+        }
     }
 
     fn write_lock(&mut self) -> Result<(), SmdError> {
