@@ -35,6 +35,7 @@ pub mod refusal;
 pub mod registers;
 mod simulator;
 pub mod store;
+mod variant_selection;
 
 pub use drive::Drive;
 pub use refusal::Refusal;

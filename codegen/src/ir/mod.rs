@@ -9,6 +9,7 @@ mod number;
 mod pdo;
 mod readable_registers;
 mod value_type;
+mod variant_selector;
 
 pub use data_type::DataType;
 pub use expr::{Expr, ExprError, Op};
@@ -16,6 +17,7 @@ pub use number::Number;
 pub use pdo::{pdo_bits, CobId, PdoDirection, PdoMapping};
 pub use readable_registers::{PlannerLimits, RegisterRun};
 pub use value_type::ValueType;
+pub use variant_selector::VariantSelector;
 
 use std::sync::Arc;
 
@@ -291,6 +293,8 @@ pub struct Variant {
     pub name: String,
     /// Documentation.
     pub doc: Option<String>,
+    /// The value of a parameter by which the drive reports this variant.
+    pub selected_by: Option<VariantSelector>,
     /// Citation.
     pub source: Option<Citation>,
     /// Where it is declared.

@@ -443,6 +443,11 @@ impl Lowering<'_> {
         ir::Variant {
             name: raw.name.get_ref().clone(),
             doc: raw.doc.clone(),
+            selected_by: raw.selected_by.as_ref().map(|s| ir::VariantSelector {
+                parameter: s.get_ref().parameter.clone(),
+                value: s.get_ref().value,
+                span: self.span(s),
+            }),
             source: raw.source.as_ref().and_then(|c| self.citation(c)),
             span: self.span(&raw.name),
         }

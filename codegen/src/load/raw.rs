@@ -117,7 +117,16 @@ pub struct RawCanOpenCaps {
 pub struct RawVariant {
     pub name: Spanned<String>,
     pub doc: Option<String>,
+    pub selected_by: Option<Spanned<RawVariantSelector>>,
     pub source: Option<Spanned<RawCitation>>,
+}
+
+/// `selected_by = { parameter, value }`: the drive is in this variant when it reports `value`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawVariantSelector {
+    pub parameter: String,
+    pub value: i64,
 }
 
 #[derive(Debug, Deserialize)]

@@ -23,6 +23,7 @@ mod strings_have_length;
 mod units_are_known;
 mod value_types_are_consistent;
 mod values_cite_sources;
+mod variant_selectors_resolve;
 mod words_fit_type;
 
 /// A validation pass: reads the IR, returns what is wrong.
@@ -63,6 +64,10 @@ pub const PASSES: &[(&str, Pass)] = &[
         pdo_mappings_fit_eight_bytes::check,
     ),
     ("pdo_numbers_are_unique", pdo_numbers_are_unique::check),
+    (
+        "variant_selectors_resolve",
+        variant_selectors_resolve::check,
+    ),
 ];
 
 /// Runs every pass.

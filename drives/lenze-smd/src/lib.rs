@@ -17,7 +17,6 @@ mod software_version;
 mod status_block;
 
 pub use command::Command;
-pub use configuration::Configuration;
 pub use error::{SmdError, LOCKED_EXCEPTION};
 #[cfg(feature = "std")]
 pub use keep_alive::{KeepAlive, KeepAliveReport, MissedDeadline};

@@ -109,14 +109,14 @@ impl<B: RegisterBus> LenzeSmd<ModbusLink<B>> {
         &mut self,
         password: u16,
     ) -> Result<Session<'_, B, Parameters>, SmdError> {
-        self.detect_configuration()?.variant()?;
+        self.detect_variant()?.writable()?;
         self.unlock_parameters().write(password)?;
         Ok(Session::new(self))
     }
 
     /// The configuration is known and C01 allows serial control.
     fn check_serial_control(&mut self) -> Result<(), SmdError> {
-        self.detect_configuration()?.variant()?;
+        self.detect_variant()?.writable()?;
         let control_source = self.control_source().read()?;
         if SERIAL_CONTROL.contains(&control_source) {
             Ok(())

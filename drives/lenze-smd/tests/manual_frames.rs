@@ -18,7 +18,7 @@ use lenze_smd::types::{
     ControlSource, Direction, DriveControl, FaultCode, HardwareConfiguration, OperationalStatus,
     ParameterConfiguration, SpeedCommandSource, SpeedReference,
 };
-use lenze_smd::{Command, Configuration, LenzeSmd, SmdError, Variant};
+use lenze_smd::{Command, LenzeSmd, SmdError, Variant, VariantSelection};
 use scripted_line::{client, crc16_modbus, with_crc, with_crc_as_printed, ScriptedLine};
 
 const SA: u8 = 0x0A;
@@ -219,18 +219,18 @@ fn unlock_registers_48_and_49() {
 fn parameter_configuration_50_selects_the_variant() {
     // Lines 509-510: 0x0190 = 400, 0x01FB = 507, anything else unknown (line 314).
     for (word, expected) in [
-        (400u16, Configuration::Known(Variant::Pc400)),
-        (507, Configuration::Known(Variant::Pc507)),
-        (401, Configuration::Unknown(401)),
+        (400u16, VariantSelection::Known(Variant::Pc400)),
+        (507, VariantSelection::Known(Variant::Pc507)),
+        (401, VariantSelection::Unknown(401)),
     ] {
         let answer = [SA, 0x03, 0x02, (word >> 8) as u8, word as u8];
         let mut d = drive(&[&answer]);
-        assert_eq!(d.detect_configuration().unwrap(), expected);
+        assert_eq!(d.detect_variant().unwrap(), expected);
         assert_eq!(sent(d), frames(&[&[SA, 0x03, 0x00, 0x32, 0x00, 0x01]]));
     }
     assert_eq!(
-        Configuration::from_number(ParameterConfiguration::PC507),
-        Configuration::Known(Variant::Pc507)
+        Variant::selected_by(ParameterConfiguration::PC507.raw()),
+        Some(Variant::Pc507)
     );
 }
 

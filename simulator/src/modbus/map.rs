@@ -35,6 +35,9 @@ impl RegisterMap {
     pub fn new(device: &Device, variant: Option<&str>) -> Self {
         let mut cells = HashMap::new();
         for (id, parameter) in device.parameters.iter().enumerate() {
+            if !crate::variant_selection::exists_in(parameter, variant) {
+                continue;
+            }
             let addresses = parameter
                 .modbus
                 .iter()

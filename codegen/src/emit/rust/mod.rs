@@ -10,6 +10,7 @@ mod handle;
 mod parameter;
 mod parameter_doc;
 mod pdo;
+mod variant_selection;
 mod variants;
 
 use proc_macro2::{Delimiter, Group, Ident, Literal, Span, TokenStream, TokenTree};
@@ -95,6 +96,7 @@ pub fn tokens(device: &Device) -> TokenStream {
         },
         braced(params),
         handle::emit(device),
+        variant_selection::emit(device),
         pdo::emit(device),
         control.unwrap_or_default(),
     ])
