@@ -50,3 +50,35 @@ fn an_unknown_number_serves_the_default_variant() {
         );
     }
 }
+
+fn read_words(sim: &Simulator, register: u16, count: usize) -> Result<Vec<u16>, BusError> {
+    let server = sim.serve_modbus_tcp("127.0.0.1:0", UNIT).unwrap();
+    let mut client = ModbusTcpClient::connect(server.local_addr(), &TcpConfig::default()).unwrap();
+    let mut words = vec![0u16; count];
+    client.read_registers(UNIT, Table::Holding, register, &mut words)?;
+    Ok(words)
+}
+
+#[test]
+fn the_status_block_and_c99_are_the_only_multi_register_reads() {
+    let sim = lenze();
+    sim.preset("parameter_configuration", 507).unwrap();
+    sim.preset("command_speed", 513).unwrap();
+    sim.preset("actual_speed", 500).unwrap();
+    // #24 answers 1 or 6 words (manual line 617) ...
+    assert_eq!(read_words(&sim, 24, 6).unwrap()[..2], [513, 500]);
+    assert_eq!(read_words(&sim, 24, 1), Ok(vec![513]));
+    // ... and nothing else: 2 words at #24, 2 words at #25, 2 parameters at #51.
+    for (register, count) in [(24, 2), (25, 2), (51, 2)] {
+        assert!(
+            matches!(
+                read_words(&sim, register, count),
+                Err(BusError::ModbusException { code: 3, .. })
+            ),
+            "{count} words at #{register}"
+        );
+    }
+    // C99 is a 4-word read at its one register (#95 in PC507, line 926); #96 is c01.
+    assert_eq!(read_words(&sim, 95, 4).map(|w| w.len()), Ok(4));
+    assert_eq!(read_words(&sim, 96, 1), Ok(vec![50]), "c01 default 5.0 s");
+}

@@ -7,6 +7,7 @@ mod data_type;
 mod expr;
 mod number;
 mod pdo;
+mod read_block;
 mod readable_registers;
 mod value_type;
 mod variant_selector;
@@ -15,6 +16,7 @@ pub use data_type::DataType;
 pub use expr::{Expr, ExprError, Op};
 pub use number::Number;
 pub use pdo::{pdo_bits, CobId, PdoDirection, PdoMapping};
+pub use read_block::ReadBlock;
 pub use readable_registers::{PlannerLimits, RegisterRun};
 pub use value_type::ValueType;
 pub use variant_selector::VariantSelector;
@@ -265,6 +267,8 @@ pub struct ModbusCaps {
     pub illegal_address_exception: u8,
     /// Exception code for an illegal value.
     pub illegal_value_exception: u8,
+    /// Reads the device answers beyond `max_read_registers` (Lenze smd: 6 words at #24).
+    pub read_blocks: Vec<ReadBlock>,
     /// Citation.
     pub source: Option<Citation>,
 }

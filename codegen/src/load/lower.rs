@@ -11,6 +11,8 @@ mod control;
 mod occupies;
 #[path = "lower_pdo.rs"]
 mod pdo;
+#[path = "lower_read_blocks.rs"]
+mod read_blocks;
 
 use toml::Spanned;
 
@@ -423,6 +425,11 @@ impl Lowering<'_> {
             word_order,
             illegal_address_exception: exception(&raw.illegal_address_exception, 0x02, self),
             illegal_value_exception: exception(&raw.illegal_value_exception, 0x03, self),
+            read_blocks: raw
+                .read_blocks
+                .iter()
+                .filter_map(|b| self.read_block(b))
+                .collect(),
             source: raw.source.as_ref().and_then(|c| self.citation(c)),
         }
     }

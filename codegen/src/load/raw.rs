@@ -102,6 +102,18 @@ pub struct RawModbusCaps {
     pub word_order: Option<Spanned<String>>,
     pub illegal_address_exception: Option<Spanned<i64>>,
     pub illegal_value_exception: Option<Spanned<i64>>,
+    #[serde(default)]
+    pub read_blocks: Vec<Spanned<RawReadBlock>>,
+    pub source: Option<Spanned<RawCitation>>,
+}
+
+/// `{ table, address, words, source }`: a read the device answers beyond `max_read_registers`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawReadBlock {
+    pub table: String,
+    pub address: i64,
+    pub words: i64,
     pub source: Option<Spanned<RawCitation>>,
 }
 

@@ -14,6 +14,7 @@ mod pdo_entries_are_mappable;
 mod pdo_mappings_fit_eight_bytes;
 mod pdo_numbers_are_unique;
 mod ranges_fit_type;
+mod read_blocks_are_described;
 mod records_hold_their_members;
 mod references_resolve;
 pub(crate) mod scale_inputs_exist;
@@ -53,6 +54,10 @@ pub const PASSES: &[(&str, Pass)] = &[
     ("words_fit_type", words_fit_type::check),
     ("addresses_do_not_overlap", addresses_do_not_overlap::check),
     ("access_matches_functions", access_matches_functions::check),
+    (
+        "read_blocks_are_described",
+        read_blocks_are_described::check,
+    ),
     (
         "records_hold_their_members",
         records_hold_their_members::check,

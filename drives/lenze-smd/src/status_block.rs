@@ -1,7 +1,7 @@
 //! The drive status block: registers #24-#29 in one 6-word read at #24, the documented exception
 //! to one register per read (section 2.3 D, line 225; 5.4.1, lines 617-632; 7.4, line 1079).
 
-use drivebus::modbus::{ModbusLink, RegisterBus, Table};
+use drivebus::modbus::{ModbusLink, RegisterBus, RegisterSpan};
 use drivebus::units::Hertz;
 use drivebus::{Error, Parameter};
 
@@ -11,10 +11,13 @@ use crate::types::{
 };
 use crate::LenzeSmd;
 
+/// The block as the description lists it (`[modbus] read_blocks`).
+const BLOCK: RegisterSpan = crate::MODBUS_READ_BLOCKS[0];
 /// Register #24, where the block starts.
-pub const STATUS_BLOCK_START: u16 = 24;
+pub const STATUS_BLOCK_START: u16 = BLOCK.start;
 /// Words of the block: #24 answers a read of exactly 1 or 6 words (line 617).
 pub const STATUS_BLOCK_WORDS: usize = 6;
+const _: () = assert!(BLOCK.count as usize == STATUS_BLOCK_WORDS && STATUS_BLOCK_START == 24);
 
 /// The six words of the status block, decoded by the description's own types (Table 10).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -60,7 +63,7 @@ impl<B: RegisterBus> LenzeSmd<ModbusLink<B>> {
         let link = self.device().link_mut();
         let unit = link.unit();
         link.bus_mut()
-            .read_registers(unit, Table::Holding, STATUS_BLOCK_START, &mut words)
+            .read_registers(unit, BLOCK.table, STATUS_BLOCK_START, &mut words)
             .map_err(|cause| Error::Bus {
                 parameter: "status_block",
                 cause,

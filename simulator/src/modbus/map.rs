@@ -50,7 +50,7 @@ impl RegisterMap {
                     order: word_order(address.word_order),
                     access: address.access,
                 };
-                for word in 0..address.words {
+                for word in 0..address.occupies {
                     let key = (table(address.table), address.address.wrapping_add(word));
                     cells.insert(key, cell);
                 }

@@ -2,6 +2,7 @@
 //! TCP and RTU (serial) loops around it.
 
 pub mod map;
+pub mod read_blocks;
 pub mod rtu;
 pub mod server;
 pub mod tcp;

@@ -10,6 +10,7 @@ mod handle;
 mod parameter;
 mod parameter_doc;
 mod pdo;
+mod read_blocks;
 mod variant_selection;
 mod variants;
 
@@ -96,6 +97,7 @@ pub fn tokens(device: &Device) -> TokenStream {
         },
         braced(params),
         handle::emit(device),
+        read_blocks::emit(device),
         variant_selection::emit(device),
         pdo::emit(device),
         control.unwrap_or_default(),
