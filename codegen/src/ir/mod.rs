@@ -3,6 +3,7 @@
 //! `drivegen dump --json` serializes it; the schema is documented in `docs/ir-json.md` and is
 //! stable: fields are only ever added. Spans are kept for diagnostics and never serialized.
 
+mod bounds;
 mod data_type;
 mod expr;
 mod number;
@@ -12,6 +13,7 @@ mod readable_registers;
 mod value_type;
 mod variant_selector;
 
+pub use bounds::Bounds;
 pub use data_type::DataType;
 pub use expr::{Expr, ExprError, Op};
 pub use number::Number;
@@ -639,6 +641,8 @@ pub struct Parameter {
     pub default_plus_node_id: bool,
     /// Raw range.
     pub range: Option<Range>,
+    /// Parameters whose current values bound this one (checked at run time).
+    pub bounds: Option<Bounds>,
     /// Allowed raw values.
     pub allowed: Vec<Number>,
     /// Enumeration of the value.

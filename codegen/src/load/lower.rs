@@ -988,6 +988,11 @@ impl Lowering<'_> {
             default,
             default_plus_node_id: false,
             range,
+            bounds: raw.bounds.as_ref().map(|b| ir::Bounds {
+                min: b.get_ref().min.clone(),
+                max: b.get_ref().max.clone(),
+                span: self.span(b),
+            }),
             allowed,
             enumeration: raw.enumeration.as_ref().map(|e| e.get_ref().clone()),
             flags: raw.flags.as_ref().map(|f| f.get_ref().clone()),

@@ -288,6 +288,7 @@ pub struct RawParameter {
     pub scale: Option<Spanned<RawScale>>,
     pub default: Option<Spanned<RawNumber>>,
     pub range: Option<Spanned<Vec<RawNumber>>>,
+    pub bounds: Option<Spanned<RawBounds>>,
     pub allowed: Option<Spanned<Vec<RawNumber>>>,
     #[serde(rename = "enum")]
     pub enumeration: Option<Spanned<String>>,
@@ -302,6 +303,14 @@ pub struct RawParameter {
     pub variants: Option<Vec<Spanned<String>>>,
     pub source: Option<Spanned<RawCitation>>,
     pub erratum: Option<String>,
+}
+
+/// `bounds = { min, max }`: parameters whose current values bound this one.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawBounds {
+    pub min: Option<String>,
+    pub max: Option<String>,
 }
 
 #[derive(Debug, Deserialize)]

@@ -6,6 +6,7 @@ use crate::ir::Device;
 mod access_matches_functions;
 mod addresses_do_not_overlap;
 mod bit_fields_fit;
+mod bounds_resolve;
 mod defaults_within_range;
 mod enum_values_fit_type;
 mod names_are_unique;
@@ -47,6 +48,7 @@ pub const PASSES: &[(&str, Pass)] = &[
     ),
     ("ranges_fit_type", ranges_fit_type::check),
     ("defaults_within_range", defaults_within_range::check),
+    ("bounds_resolve", bounds_resolve::check),
     ("enum_values_fit_type", enum_values_fit_type::check),
     ("bit_fields_fit", bit_fields_fit::check),
     ("scale_is_representable", scale_is_representable::check),

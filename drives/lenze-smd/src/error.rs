@@ -3,10 +3,10 @@
 
 use core::fmt;
 
-use drivebus::units::Hertz;
 use drivebus::{BusError, Error};
 
 use crate::types::ControlSource;
+use crate::BoundedWriteError;
 
 /// Exception code an smd answers a write with while it is locked (section 4.5, line 416).
 pub const LOCKED_EXCEPTION: u8 = 0x01;
@@ -33,18 +33,37 @@ pub enum SmdError {
         /// The control source C01 holds.
         control_source: ControlSource,
     },
-    /// A speed lies outside a bound set by another parameter (#40 within C10...C11, line 501).
-    /// Nothing was sent.
+    /// A value lies beyond a bound set by another parameter's current value (#40 within
+    /// C10...C11, line 501; the description's `bounds`). Nothing was sent.
     OutsideBound {
         /// The parameter being written.
         parameter: &'static str,
-        /// The value asked for.
-        value: Hertz,
         /// The parameter whose current value is the bound that was broken.
         bound: &'static str,
-        /// That parameter's current value.
-        limit: Hertz,
+        /// The raw value asked for (0.1 Hz for #40).
+        raw: i128,
+        /// The bound's current raw value.
+        limit: i128,
     },
+}
+
+impl From<BoundedWriteError> for SmdError {
+    fn from(error: BoundedWriteError) -> Self {
+        match error {
+            BoundedWriteError::Drive(error) => error.into(),
+            BoundedWriteError::OutsideBound {
+                parameter,
+                bound,
+                raw,
+                limit,
+            } => Self::OutsideBound {
+                parameter,
+                bound,
+                raw,
+                limit,
+            },
+        }
+    }
 }
 
 impl From<Error> for SmdError {
@@ -79,13 +98,12 @@ impl fmt::Display for SmdError {
             ),
             Self::OutsideBound {
                 parameter,
-                value,
                 bound,
+                raw,
                 limit,
             } => write!(
                 f,
-                "{parameter}: {} Hz is outside the bound {bound} = {} Hz",
-                value.0, limit.0
+                "{parameter}: raw value {raw} is beyond the current value {limit} of {bound}"
             ),
         }
     }

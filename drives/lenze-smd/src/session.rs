@@ -36,11 +36,10 @@ use core::marker::PhantomData;
 
 use drivebus::modbus::{Modbus, ModbusLink, RegisterBus};
 use drivebus::units::Hertz;
-use drivebus::{Parameter, Writable};
+use drivebus::Writable;
 
 use crate::command::Command;
 use crate::error::SmdError;
-use crate::params;
 use crate::types::{ControlSource, DriveControl};
 use crate::LenzeSmd;
 
@@ -166,26 +165,10 @@ impl<B: RegisterBus, A: CanCommand> Session<'_, B, A> {
     }
 
     /// Writes the serial speed command (#40) after checking it against the drive's current C10
-    /// (minimum) and C11 (maximum output frequency) (Table 6, line 501).
+    /// (minimum) and C11 (maximum output frequency) (Table 6, line 501): the generated bounded
+    /// write of the description's `bounds`.
     pub fn set_serial_speed(&mut self, speed: Hertz) -> Result<(), SmdError> {
-        let minimum = self.drive.minimum_output_frequency().read()?;
-        let maximum = self.drive.maximum_output_frequency().read()?;
-        let broken = if speed.0 < minimum.0 {
-            Some((params::MinimumOutputFrequency::NAME, minimum))
-        } else if speed.0 > maximum.0 {
-            Some((params::MaximumOutputFrequency::NAME, maximum))
-        } else {
-            None
-        };
-        if let Some((bound, limit)) = broken {
-            return Err(SmdError::OutsideBound {
-                parameter: params::SerialSpeedCommand::NAME,
-                value: speed,
-                bound,
-                limit,
-            });
-        }
-        Ok(self.drive.serial_speed_command().write(speed)?)
+        Ok(self.drive.write_serial_speed_command(speed)?)
     }
 }
 

@@ -141,3 +141,40 @@ fn fault_codes_0_to_26_have_their_meaning() {
     assert!((0..=26).all(|code| meaning(code).is_some()));
     assert_eq!(meaning(27), None, "an unlisted code survives as unknown");
 }
+
+#[test]
+fn the_pi_setpoint_lies_within_c86_and_c87() {
+    // c81 (#117 in PC507) within c86 ... c87 (#119, #120; line 956), checked at run time.
+    let mut bus = MemoryBus::new();
+    bus.set_register(Table::Holding, 117, 0)
+        .set_register(Table::Holding, 119, 100) // c86 = 10.0
+        .set_register(Table::Holding, 120, 500); // c87 = 50.0
+    let mut d: Drive = LenzeSmd::modbus(bus, UnitId(1));
+    d.set_variant(Variant::Pc507);
+    assert_eq!(
+        d.write_pi_setpoint(50.1).unwrap_err(),
+        lenze_smd::BoundedWriteError::OutsideBound {
+            parameter: "pi_setpoint",
+            bound: "pi_max_feedback",
+            raw: 501,
+            limit: 500
+        }
+    );
+    assert!(matches!(
+        d.write_pi_setpoint(9.9).unwrap_err(),
+        lenze_smd::BoundedWriteError::OutsideBound {
+            bound: "pi_min_feedback",
+            ..
+        }
+    ));
+    d.write_pi_setpoint(25.0).unwrap();
+    let writes: Vec<Request> = requests(d)
+        .into_iter()
+        .filter(|r| matches!(r, Request::Write { .. }))
+        .collect();
+    assert_eq!(
+        writes.len(),
+        1,
+        "only the value within the bounds is written: {writes:?}"
+    );
+}

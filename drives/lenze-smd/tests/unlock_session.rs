@@ -105,9 +105,9 @@ fn the_serial_speed_stays_within_c10_and_c11() {
         session.set_serial_speed(Hertz(9.9)).unwrap_err(),
         SmdError::OutsideBound {
             parameter: "serial_speed_command",
-            value: Hertz(9.9),
             bound: "minimum_output_frequency",
-            limit: Hertz(10.0),
+            raw: 99,
+            limit: 100,
         }
     );
     let above = session.set_serial_speed(Hertz(50.1)).unwrap_err();

@@ -3,6 +3,7 @@
 //! drive handle with one accessor per parameter.
 
 mod addresses;
+mod bounds;
 mod control;
 mod enums;
 mod flags;
@@ -98,6 +99,7 @@ pub fn tokens(device: &Device) -> TokenStream {
         braced(params),
         handle::emit(device),
         read_blocks::emit(device),
+        bounds::emit(device),
         variant_selection::emit(device),
         pdo::emit(device),
         control.unwrap_or_default(),
