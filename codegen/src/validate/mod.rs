@@ -7,6 +7,7 @@ mod access_matches_functions;
 mod addresses_do_not_overlap;
 mod bit_fields_fit;
 mod bounds_resolve;
+mod commands_share_a_register;
 mod defaults_within_range;
 mod enum_values_fit_type;
 mod names_are_unique;

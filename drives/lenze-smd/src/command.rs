@@ -1,8 +1,13 @@
 //! Drive commands: register #1 takes one command bit per write (Note 1, lines 567-571: with
-//! several bits set the drive obeys only STOP, or answers exception 04). A [`Command`] is one
-//! bit, so a write can never carry two. Locking is [`Session::lock`](crate::Session::lock).
+//! several bits set the drive obeys only STOP, or answers exception 04). The description gives
+//! each bit as a command parameter of its own sharing #1 (`drive.start().trigger()`); a
+//! [`Command`] names one, so a write can never carry two. Locking is
+//! [`Session::lock`](crate::Session::lock).
 
-use crate::types::DriveControl;
+use drivebus::modbus::{ModbusLink, RegisterBus};
+use drivebus::Error;
+
+use crate::{params, LenzeSmd, Trigger};
 
 /// One command of the drive control register #1 (Table 8, lines 538-557).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -35,16 +40,33 @@ impl Command {
         Self::LocalSpeedReference,
     ];
 
-    /// The control word that carries this command alone.
-    pub const fn control_word(self) -> DriveControl {
+    /// The word this command writes to register #1, from the description.
+    pub const fn word(self) -> u16 {
         match self {
-            Self::UpdateBuffers => DriveControl::UPDATE_BUFFERS,
-            Self::Stop => DriveControl::STOP,
-            Self::Start => DriveControl::START,
-            Self::Reverse => DriveControl::SET_REVERSE,
-            Self::Forward => DriveControl::SET_FORWARD,
-            Self::SerialSpeedReference => DriveControl::SERIAL_SPEED_REFERENCE,
-            Self::LocalSpeedReference => DriveControl::LOCAL_SPEED_REFERENCE,
+            Self::UpdateBuffers => params::UpdateBuffers::TRIGGER,
+            Self::Stop => params::Stop::TRIGGER,
+            Self::Start => params::Start::TRIGGER,
+            Self::Reverse => params::SetReverse::TRIGGER,
+            Self::Forward => params::SetForward::TRIGGER,
+            Self::SerialSpeedReference => params::SerialSpeedReference::TRIGGER,
+            Self::LocalSpeedReference => params::LocalSpeedReference::TRIGGER,
+        }
+    }
+}
+
+impl<B: RegisterBus> LenzeSmd<ModbusLink<B>> {
+    /// Writes `command` to register #1 through its generated command parameter. Without an
+    /// unlock the drive answers exception 01; [`Session::command`](crate::Session::command) is
+    /// the checked path.
+    pub fn trigger(&mut self, command: Command) -> Result<(), Error> {
+        match command {
+            Command::UpdateBuffers => self.update_buffers().trigger(),
+            Command::Stop => self.stop().trigger(),
+            Command::Start => self.start().trigger(),
+            Command::Reverse => self.set_reverse().trigger(),
+            Command::Forward => self.set_forward().trigger(),
+            Command::SerialSpeedReference => self.serial_speed_reference().trigger(),
+            Command::LocalSpeedReference => self.local_speed_reference().trigger(),
         }
     }
 }

@@ -40,8 +40,8 @@ use drivebus::Writable;
 
 use crate::command::Command;
 use crate::error::SmdError;
-use crate::types::{ControlSource, DriveControl};
-use crate::LenzeSmd;
+use crate::types::ControlSource;
+use crate::{LenzeSmd, Trigger};
 
 mod access {
     /// What a session may write; sealed.
@@ -151,17 +151,14 @@ impl<'d, B: RegisterBus, A: Access> Session<'d, B, A> {
     }
 
     fn write_lock(&mut self) -> Result<(), SmdError> {
-        Ok(self
-            .drive
-            .drive_control()
-            .write(DriveControl::LOCK_SECURITY)?)
+        Ok(self.drive.lock_security().trigger()?)
     }
 }
 
 impl<B: RegisterBus, A: CanCommand> Session<'_, B, A> {
     /// Writes one command to register #1.
     pub fn command(&mut self, command: Command) -> Result<(), SmdError> {
-        Ok(self.drive.drive_control().write(command.control_word())?)
+        Ok(self.drive.trigger(command)?)
     }
 
     /// Writes the serial speed command (#40) after checking it against the drive's current C10

@@ -15,10 +15,10 @@ use drivebus::modbus::{ModbusLink, UnitId};
 use drivebus::units::{Hertz, Percent};
 use drivebus::BusError;
 use lenze_smd::types::{
-    ControlSource, Direction, DriveControl, FaultCode, HardwareConfiguration, OperationalStatus,
+    ControlSource, Direction, FaultCode, HardwareConfiguration, OperationalStatus,
     ParameterConfiguration, SpeedCommandSource, SpeedReference,
 };
-use lenze_smd::{Command, LenzeSmd, SmdError, Variant, VariantSelection};
+use lenze_smd::{Command, LenzeSmd, SmdError, Trigger, Variant, VariantSelection};
 use scripted_line::{client, crc16_modbus, with_crc, with_crc_as_printed, ScriptedLine};
 
 const SA: u8 = 0x0A;
@@ -88,14 +88,13 @@ fn drive_control_register_1_writes() {
     for (command, word) in words {
         let frame = [SA, 0x06, 0x00, 0x01, (word >> 8) as u8, word as u8];
         let mut d = drive(&[&frame]);
-        d.drive_control().write(command.control_word()).unwrap();
+        d.trigger(command).unwrap();
+        assert_eq!(command.word(), word);
         assert_eq!(sent(d), frames(&[&frame]), "{command:?}");
     }
     let lock = [SA, 0x06, 0x00, 0x01, 0x00, 0x02];
     let mut d = drive(&[&lock]);
-    d.drive_control()
-        .write(DriveControl::LOCK_SECURITY)
-        .unwrap();
+    d.lock_security().trigger().unwrap();
     assert_eq!(sent(d), frames(&[&lock]));
 }
 
@@ -268,7 +267,7 @@ fn software_version_c99_four_words_6_1() {
 fn a_locked_drive_answers_writes_with_exception_01() {
     // Section 4.5, line 416: exception 01 after a write while locked → typed `Locked`.
     let mut d = drive(&[&[SA, 0x86, 0x01]]);
-    let error = d.drive_control().write(DriveControl::START).unwrap_err();
+    let error = d.start().trigger().unwrap_err();
     assert_eq!(
         error.bus(),
         Some(&BusError::ModbusException {
@@ -278,8 +277,6 @@ fn a_locked_drive_answers_writes_with_exception_01() {
     );
     assert_eq!(
         SmdError::from(error),
-        SmdError::Locked {
-            parameter: "drive_control"
-        }
+        SmdError::Locked { parameter: "start" }
     );
 }

@@ -30,12 +30,10 @@ fn control_session_commands_and_locks() {
     session.command(Command::Start).unwrap();
     session.command(Command::Stop).unwrap();
     session.lock().unwrap();
-    let error = d.drive_control().write(Command::Start.control_word());
+    let error = d.trigger(Command::Start);
     assert_eq!(
         SmdError::from(error.unwrap_err()),
-        SmdError::Locked {
-            parameter: "drive_control"
-        }
+        SmdError::Locked { parameter: "start" }
     );
     assert_eq!(
         accepted(d),
@@ -182,16 +180,14 @@ fn an_unlock_the_drive_ended_surfaces_as_locked() {
         .controls_unlocked = false;
     assert_eq!(
         session.command(Command::Stop).unwrap_err(),
-        SmdError::Locked {
-            parameter: "drive_control"
-        }
+        SmdError::Locked { parameter: "stop" }
     );
 }
 
 #[test]
 fn every_command_is_one_bit() {
     for command in Command::ALL {
-        assert_eq!(command.control_word().bits().count_ones(), 1, "{command:?}");
+        assert_eq!(command.word().count_ones(), 1, "{command:?}");
     }
 }
 

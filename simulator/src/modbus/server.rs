@@ -5,7 +5,7 @@ use drivebus::modbus::Table;
 use drivegen::ir::{Device, ModbusCaps};
 
 use super::map::{self, Cell, RegisterMap};
-use super::read_blocks;
+use super::{command_register, read_blocks};
 use crate::drive::Drive;
 use crate::refusal::Refusal;
 
@@ -163,6 +163,7 @@ impl ModbusServer {
                 .map
                 .cell(Table::Holding, address)
                 .ok_or(self.exception(Refusal::NoSuchAddress))?;
+            let cell = command_register::matching(drive.store(), cell, address, value);
             if !cell.access.write {
                 return Err(self.exception(Refusal::ReadOnly));
             }

@@ -12,6 +12,7 @@ mod parameter;
 mod parameter_doc;
 mod pdo;
 mod read_blocks;
+mod triggers;
 mod variant_selection;
 mod variants;
 
@@ -100,6 +101,7 @@ pub fn tokens(device: &Device) -> TokenStream {
         handle::emit(device),
         read_blocks::emit(device),
         bounds::emit(device),
+        triggers::emit(device),
         variant_selection::emit(device),
         pdo::emit(device),
         control.unwrap_or_default(),

@@ -1,6 +1,6 @@
-//! A description whose variants the drive reports (`selected_by`) is served in the variant its
-//! selecting parameter holds: the Lenze smd in PC507 when #50 is preset to 507, in its default
-//! PC400 otherwise.
+//! The Lenze smd description served from its data: the variant its selecting parameter holds
+//! (`selected_by`: PC507 when #50 is preset to 507, the default PC400 otherwise), the read
+//! blocks beyond one register per read, and the commands sharing register #1.
 
 use drivebus::modbus::transport::{ModbusTcpClient, TcpConfig};
 use drivebus::modbus::{RegisterBus, Table, UnitId};
@@ -81,4 +81,21 @@ fn the_status_block_and_c99_are_the_only_multi_register_reads() {
     // C99 is a 4-word read at its one register (#95 in PC507, line 926); #96 is c01.
     assert_eq!(read_words(&sim, 95, 4).map(|w| w.len()), Ok(4));
     assert_eq!(read_words(&sim, 96, 1), Ok(vec![50]), "c01 default 5.0 s");
+}
+
+#[test]
+fn every_command_of_register_1_is_accepted_and_others_refused() {
+    // Table 8 (manual lines 538-551): 0x0001 ... 0x0200, one bit per write.
+    let sim = lenze();
+    let server = sim.serve_modbus_tcp("127.0.0.1:0", UNIT).unwrap();
+    let mut client = ModbusTcpClient::connect(server.local_addr(), &TcpConfig::default()).unwrap();
+    for word in [
+        0x0001, 0x0002, 0x0004, 0x0008, 0x0040, 0x0080, 0x0100, 0x0200,
+    ] {
+        assert_eq!(client.write_register(UNIT, 1, word), Ok(()), "{word:#06x}");
+    }
+    assert!(matches!(
+        client.write_register(UNIT, 1, 0x0010),
+        Err(BusError::ModbusException { code: 3, .. })
+    ));
 }
