@@ -299,7 +299,9 @@ pub struct Variant {
     pub name: String,
     /// Documentation.
     pub doc: Option<String>,
-    /// The value of a parameter by which the drive reports this variant.
+    /// The value of a parameter by which the drive reports this variant. Left out of the JSON
+    /// when absent.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub selected_by: Option<VariantSelector>,
     /// Citation.
     pub source: Option<Citation>,
@@ -641,7 +643,9 @@ pub struct Parameter {
     pub default_plus_node_id: bool,
     /// Raw range.
     pub range: Option<Range>,
-    /// Parameters whose current values bound this one (checked at run time).
+    /// Parameters whose current values bound this one (checked at run time). Left out of the
+    /// JSON when absent, so descriptions without bounds dump as before.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub bounds: Option<Bounds>,
     /// Allowed raw values.
     pub allowed: Vec<Number>,
