@@ -65,6 +65,18 @@ impl KeepAlive {
         timeout / POLLS_PER_TIMEOUT
     }
 
+    /// Reads n22 and n23 and starts polling at a third of n23; `None` (nothing started) while
+    /// n22 says the watchdog is not active.
+    pub fn for_drive<B: RegisterBus + Send + 'static>(
+        drive: Arc<Mutex<LenzeSmd<ModbusLink<B>>>>,
+    ) -> Result<Option<Self>, Error> {
+        let timeout = drive
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .watchdog_timeout()?;
+        Ok(timeout.map(|timeout| Self::spawn(drive, timeout)))
+    }
+
     /// Starts polling `drive` for a watchdog `timeout` (see [`LenzeSmd::watchdog_timeout`]).
     pub fn spawn<B: RegisterBus + Send + 'static>(
         drive: Arc<Mutex<LenzeSmd<ModbusLink<B>>>>,

@@ -132,3 +132,25 @@ fn dropping_the_keep_alive_stops_polling() {
     // The drive is free again for the application.
     assert!(drive.lock().unwrap().status().is_ok());
 }
+
+#[test]
+fn for_drive_follows_n22_and_n23() {
+    let line = Line::default();
+    let drive = Arc::new(Mutex::new(drive(&line)));
+    let keep_alive = KeepAlive::for_drive(Arc::clone(&drive)).unwrap().unwrap();
+    assert_eq!(
+        keep_alive.interval(),
+        Duration::from_millis(100),
+        "n23 = 300 ms / 3"
+    );
+    drop(keep_alive);
+    drive
+        .lock()
+        .unwrap()
+        .device()
+        .link_mut()
+        .bus_mut()
+        .memory
+        .set_register(Table::Holding, 114, 0);
+    assert!(KeepAlive::for_drive(drive).unwrap().is_none(), "n22 = 0");
+}
