@@ -34,6 +34,7 @@ pub mod raw;
 pub mod refusal;
 mod simulator;
 pub mod store;
+mod variant_selection;
 
 pub use drive::Drive;
 pub use refusal::Refusal;

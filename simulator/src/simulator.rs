@@ -109,9 +109,16 @@ impl Simulator {
         self.variant.as_deref()
     }
 
-    /// The Modbus request handler for this drive.
+    /// The Modbus request handler for this drive, in the variant its selecting parameter names
+    /// (`selected_by`), else the one served by default.
     pub fn modbus_server(&self) -> ModbusServer {
-        self.with(|drive| ModbusServer::new(drive.store().device(), self.variant()))
+        self.with(|drive| {
+            let selected = crate::variant_selection::selected_variant(drive.store());
+            ModbusServer::new(
+                drive.store().device(),
+                selected.as_deref().or(self.variant()),
+            )
+        })
     }
 
     /// Serves Modbus TCP on `addr` (use `127.0.0.1:0` for a free port) for `unit`.

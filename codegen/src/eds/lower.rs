@@ -351,6 +351,7 @@ impl EdsEntry {
             variants: Vec::new(),
             source: Some(names.source),
             erratum: None,
+            bounds: None,
             spans: ir::ParameterSpans {
                 name: v.span.clone(),
                 data_type: v.span.clone(),

@@ -193,6 +193,7 @@ impl Member<'_> {
             variants: Vec::new(),
             source: self.pdo.source.clone(),
             erratum: None,
+            bounds: None,
             spans: ir::ParameterSpans {
                 name: self.pdo.span.clone(),
                 data_type: self.pdo.span.clone(),

@@ -3,26 +3,32 @@
 //! `drivegen dump --json` serializes it; the schema is documented in `docs/ir-json.md` and is
 //! stable: fields are only ever added. Spans are kept for diagnostics and never serialized.
 
+mod bounds;
 mod data_type;
 mod expr;
 mod indexed;
 mod number;
 mod pdo;
+mod read_block;
 mod readable_registers;
 mod safety;
 mod scale_inputs;
 mod srdo;
 mod value_type;
+mod variant_selector;
 
+pub use bounds::Bounds;
 pub use data_type::DataType;
 pub use expr::{Expr, ExprError, Op};
 pub use indexed::IndexedParameter;
 pub use number::Number;
 pub use pdo::{pdo_bits, CobId, PdoDirection, PdoMapping};
+pub use read_block::ReadBlock;
 pub use readable_registers::{PlannerLimits, RegisterRun};
 pub use safety::is_safety_configuration;
 pub use srdo::{SrdoCobId, SrdoMapping};
 pub use value_type::ValueType;
+pub use variant_selector::VariantSelector;
 
 /// The Modbus vocabulary is the runtime's own: the IR names the types generated code uses.
 pub use drivebus::modbus::{Table, WordOrder};
@@ -319,6 +325,8 @@ pub struct ModbusCaps {
     pub illegal_address_exception: u8,
     /// Exception code for an illegal value.
     pub illegal_value_exception: u8,
+    /// Reads the device answers beyond `max_read_registers` (Lenze smd: 6 words at #24).
+    pub read_blocks: Vec<ReadBlock>,
     /// Citation.
     pub source: Option<Citation>,
 }
@@ -347,6 +355,10 @@ pub struct Variant {
     pub name: String,
     /// Documentation.
     pub doc: Option<String>,
+    /// The value of a parameter by which the drive reports this variant. Left out of the JSON
+    /// when absent.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub selected_by: Option<VariantSelector>,
     /// Citation.
     pub source: Option<Citation>,
     /// Where it is declared.
@@ -507,6 +519,9 @@ pub struct ModbusAddress {
     /// Table, PDU address, registers occupied and word order.
     #[serde(flatten)]
     pub wire: drivebus::modbus::ModbusAddress,
+    /// Registers of the map the value occupies from `address`: `words`, unless the device
+    /// answers a read of `words` words at this one address (Lenze smd C99: 4 words, 1 register).
+    pub occupies: u16,
     /// Access.
     pub access: Access,
     /// Variant this address is limited to.
@@ -654,6 +669,10 @@ pub struct Parameter {
     pub default_plus_node_id: bool,
     /// Raw range.
     pub range: Option<Range>,
+    /// Parameters whose current values bound this one (checked at run time). Left out of the
+    /// JSON when absent, so descriptions without bounds dump as before.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bounds: Option<Bounds>,
     /// Allowed raw values.
     pub allowed: Vec<Number>,
     /// Enumeration of the value.

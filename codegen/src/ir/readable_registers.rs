@@ -86,10 +86,10 @@ impl Device {
 /// The registers of `addresses`, merged into runs sorted by table and address.
 fn runs<'a>(addresses: impl Iterator<Item = &'a ModbusAddress>) -> Vec<RegisterRun> {
     let mut spans: Vec<(Table, u32, u32)> = addresses
-        .filter(|a| a.words > 0)
+        .filter(|a| a.occupies > 0)
         .map(|a| {
             let start = u32::from(a.address);
-            (a.table, start, start + u32::from(a.words))
+            (a.table, start, start + u32::from(a.occupies))
         })
         .collect();
     spans.sort_unstable();

@@ -104,6 +104,18 @@ pub struct RawModbusCaps {
     pub word_order: Option<Spanned<String>>,
     pub illegal_address_exception: Option<Spanned<i64>>,
     pub illegal_value_exception: Option<Spanned<i64>>,
+    #[serde(default)]
+    pub read_blocks: Vec<Spanned<RawReadBlock>>,
+    pub source: Option<Spanned<RawCitation>>,
+}
+
+/// `{ table, address, words, source }`: a read the device answers beyond `max_read_registers`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawReadBlock {
+    pub table: String,
+    pub address: i64,
+    pub words: i64,
     pub source: Option<Spanned<RawCitation>>,
 }
 
@@ -119,7 +131,16 @@ pub struct RawCanOpenCaps {
 pub struct RawVariant {
     pub name: Spanned<String>,
     pub doc: Option<String>,
+    pub selected_by: Option<Spanned<RawVariantSelector>>,
     pub source: Option<Spanned<RawCitation>>,
+}
+
+/// `selected_by = { parameter, value }`: the drive is in this variant when it reports `value`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawVariantSelector {
+    pub parameter: String,
+    pub value: i64,
 }
 
 #[derive(Debug, Deserialize)]
@@ -269,6 +290,7 @@ pub struct RawParameter {
     pub scale: Option<Spanned<RawScale>>,
     pub default: Option<Spanned<RawNumber>>,
     pub range: Option<Spanned<Vec<RawNumber>>>,
+    pub bounds: Option<Spanned<RawBounds>>,
     pub allowed: Option<Spanned<Vec<RawNumber>>>,
     #[serde(rename = "enum")]
     pub enumeration: Option<Spanned<String>>,
@@ -285,12 +307,21 @@ pub struct RawParameter {
     pub erratum: Option<String>,
 }
 
+/// `bounds = { min, max }`: parameters whose current values bound this one.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawBounds {
+    pub min: Option<String>,
+    pub max: Option<String>,
+}
+
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawModbusAddress {
     pub table: String,
     pub address: i64,
     pub words: Option<i64>,
+    pub occupies: Option<i64>,
     pub word_order: Option<String>,
     pub access: Option<String>,
     pub variant: Option<String>,

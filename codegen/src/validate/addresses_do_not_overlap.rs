@@ -1,6 +1,7 @@
 //! No two parameters share a Modbus register (per table) or a CANopen object entry, in any variant
 //! both exist in.
 
+use super::commands_share_a_register::commands_share_a_register;
 use crate::diagnostic::Diagnostic;
 use crate::ir::{Device, Parameter};
 
@@ -25,12 +26,13 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
     for (i, p) in params.iter().enumerate() {
         for q in &params[..i] {
             for a in &p.modbus {
-                let end = a.address as u32 + a.words as u32;
+                let end = a.address as u32 + a.occupies as u32;
                 let clash = q.modbus.iter().find(|b| {
                     b.table == a.table
-                        && (a.address as u32) < b.address as u32 + b.words as u32
+                        && (a.address as u32) < b.address as u32 + b.occupies as u32
                         && (b.address as u32) < end
                         && variants_meet(&a.variant, &b.variant, p, q)
+                        && !commands_share_a_register(p, a, q, b)
                 });
                 if let Some(b) = clash {
                     let message = format!(

@@ -6,6 +6,8 @@ use crate::ir::Device;
 mod access_matches_functions;
 mod addresses_do_not_overlap;
 mod bit_fields_fit;
+mod bounds_resolve;
+mod commands_share_a_register;
 mod defaults_within_range;
 mod enum_values_fit_type;
 mod indexed_names_are_unique;
@@ -15,6 +17,7 @@ mod pdo_entries_are_mappable;
 mod pdo_mappings_fit_eight_bytes;
 mod pdo_numbers_are_unique;
 mod ranges_fit_type;
+mod read_blocks_are_described;
 mod records_hold_their_members;
 mod references_resolve;
 pub(crate) mod scale_inputs_exist;
@@ -28,6 +31,7 @@ mod strings_have_length;
 mod units_are_known;
 mod value_types_are_consistent;
 mod values_cite_sources;
+mod variant_selectors_resolve;
 mod words_fit_type;
 
 /// A validation pass: reads the IR, returns what is wrong.
@@ -50,6 +54,7 @@ pub const PASSES: &[(&str, Pass)] = &[
     ),
     ("ranges_fit_type", ranges_fit_type::check),
     ("defaults_within_range", defaults_within_range::check),
+    ("bounds_resolve", bounds_resolve::check),
     ("enum_values_fit_type", enum_values_fit_type::check),
     ("bit_fields_fit", bit_fields_fit::check),
     ("scale_is_representable", scale_is_representable::check),
@@ -57,6 +62,10 @@ pub const PASSES: &[(&str, Pass)] = &[
     ("words_fit_type", words_fit_type::check),
     ("addresses_do_not_overlap", addresses_do_not_overlap::check),
     ("access_matches_functions", access_matches_functions::check),
+    (
+        "read_blocks_are_described",
+        read_blocks_are_described::check,
+    ),
     (
         "records_hold_their_members",
         records_hold_their_members::check,
@@ -79,6 +88,10 @@ pub const PASSES: &[(&str, Pass)] = &[
     ("srdo_timings_are_valid", srdo_timings_are_valid::check),
     ("srdo_numbers_are_unique", srdo_numbers_are_unique::check),
     ("indexed_names_are_unique", indexed_names_are_unique::check),
+    (
+        "variant_selectors_resolve",
+        variant_selectors_resolve::check,
+    ),
 ];
 
 /// Runs every pass.

@@ -23,6 +23,9 @@ impl Dictionary {
     pub fn new(sim: Simulator, device: &Device, variant: Option<&str>) -> Self {
         let mut objects = BTreeMap::new();
         for (id, parameter) in device.parameters.iter().enumerate() {
+            if !crate::variant_selection::exists_in(parameter, variant) {
+                continue;
+            }
             for address in parameter
                 .canopen
                 .iter()

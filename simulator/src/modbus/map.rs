@@ -35,6 +35,9 @@ impl RegisterMap {
     pub fn new(device: &Device, variant: Option<&str>) -> Self {
         let mut cells = HashMap::new();
         for (id, parameter) in device.parameters.iter().enumerate() {
+            if !crate::variant_selection::exists_in(parameter, variant) {
+                continue;
+            }
             let addresses = parameter
                 .modbus
                 .iter()
@@ -47,7 +50,7 @@ impl RegisterMap {
                     order: address.word_order,
                     access: address.access,
                 };
-                for word in 0..address.words {
+                for word in 0..address.occupies {
                     let key = (address.table, address.address.wrapping_add(word));
                     cells.insert(key, cell);
                 }

@@ -1,7 +1,9 @@
 //! The Modbus side of the simulator: the register map, the sans-I/O server core, and blocking
 //! TCP and RTU (serial) loops around it.
 
+mod command_register;
 pub mod map;
+pub mod read_blocks;
 pub mod rtu;
 pub mod server;
 pub mod tcp;

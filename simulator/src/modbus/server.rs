@@ -5,6 +5,7 @@ use drivebus::modbus::Table;
 use drivegen::ir::{Device, ModbusCaps};
 
 use super::map::{self, Cell, RegisterMap};
+use super::{command_register, read_blocks};
 use crate::drive::Drive;
 use crate::refusal::Refusal;
 
@@ -122,7 +123,10 @@ impl ModbusServer {
         count: u16,
     ) -> Result<Vec<u16>, Exception> {
         let max = self.caps.as_ref().map_or(125, |c| c.max_read_registers);
-        if count > max {
+        if let Some(value) = read_blocks::whole_value(&self.map, drive, table, start, count) {
+            return Ok(value);
+        }
+        if count > max && !read_blocks::is_block(self.caps.as_ref(), table, start, count) {
             return Err(ILLEGAL_DATA_VALUE);
         }
         let gaps = self.caps.as_ref().is_some_and(|c| c.read_gaps);
@@ -159,6 +163,7 @@ impl ModbusServer {
                 .map
                 .cell(Table::Holding, address)
                 .ok_or(self.exception(Refusal::NoSuchAddress))?;
+            let cell = command_register::matching(drive.store(), cell, address, value);
             if !cell.access.write {
                 return Err(self.exception(Refusal::ReadOnly));
             }

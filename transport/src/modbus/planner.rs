@@ -489,3 +489,134 @@ mod tests {
         }
     }
 }
+
+/// [`next_read`] for a device that also answers `blocks`: reads beyond `max_read_registers`,
+/// exactly as listed (the generated `MODBUS_READ_BLOCKS`; Lenze smd: 6 words at #24). When the
+/// lowest pending value lies in a block that covers more pending values than the ordinary read
+/// would, the whole block is read instead (the status block #24-#29 in one request, not six).
+pub fn next_read_with_blocks(
+    limits: &ModbusLimits,
+    blocks: &[RegisterSpan],
+    len: usize,
+    item: impl Fn(usize) -> (ModbusAddress, bool),
+) -> Result<Option<PlannedRead>, BusError> {
+    let Some(read) = next_read(limits, len, &item)? else {
+        return Ok(None);
+    };
+    let pending_within = |table: Table, start: usize, stop: usize| {
+        (0..len)
+            .map(&item)
+            .filter(|(a, done)| {
+                !done && a.table == table && a.address as usize >= start && end(a) <= stop
+            })
+            .count()
+    };
+    let ordinary = pending_within(read.table, read.start as usize, end_of(&read));
+    let block = blocks
+        .iter()
+        .filter(|b| {
+            b.table == read.table && (b.start as usize..b.end()).contains(&(read.start as usize))
+        })
+        .map(|b| (pending_within(b.table, b.start as usize, b.end()), b))
+        .filter(|(covered, _)| *covered > ordinary)
+        .max_by_key(|(covered, _)| *covered);
+    Ok(Some(block.map_or(read, |(_, b)| PlannedRead {
+        table: b.table,
+        start: b.start,
+        count: b.count,
+    })))
+}
+
+fn end_of(read: &PlannedRead) -> usize {
+    read.start as usize + read.count as usize
+}
+
+/// The whole plan for `items` on a device that also answers `blocks` (see
+/// [`next_read_with_blocks`]).
+#[cfg(any(feature = "std", test))]
+pub fn plan_with_blocks(
+    limits: &ModbusLimits,
+    blocks: &[RegisterSpan],
+    items: &[ModbusAddress],
+) -> Result<std::vec::Vec<PlannedRead>, BusError> {
+    let mut done = std::vec![false; items.len()];
+    let mut reads = std::vec::Vec::new();
+    while let Some(read) =
+        next_read_with_blocks(limits, blocks, items.len(), |i| (items[i], done[i]))?
+    {
+        for (item, done) in items.iter().zip(done.iter_mut()) {
+            *done |= read.offset_of(item).is_some();
+        }
+        reads.push(read);
+    }
+    Ok(reads)
+}
+
+#[cfg(test)]
+mod block_tests {
+    use super::*;
+    use crate::modbus::address::WordOrder;
+
+    /// The Lenze smd: one register per read, no gaps, and the status block at #24.
+    const SMD: ModbusLimits = ModbusLimits {
+        max_read_registers: 1,
+        read_gaps: false,
+        ..ModbusLimits::SPEC
+    };
+    const STATUS_BLOCK: [RegisterSpan; 1] = [RegisterSpan::holding(24, 6)];
+
+    fn holding(address: u16) -> ModbusAddress {
+        ModbusAddress {
+            table: Table::Holding,
+            address,
+            words: 1,
+            word_order: WordOrder::HighFirst,
+        }
+    }
+
+    fn read(start: u16, count: u16) -> PlannedRead {
+        PlannedRead {
+            table: Table::Holding,
+            start,
+            count,
+        }
+    }
+
+    #[test]
+    fn several_status_registers_take_the_block() {
+        let items: std::vec::Vec<_> = (24..=29).map(holding).collect();
+        assert_eq!(
+            plan_with_blocks(&SMD, &STATUS_BLOCK, &items).unwrap(),
+            [read(24, 6)]
+        );
+        assert_eq!(
+            plan(&SMD, &items).unwrap().len(),
+            6,
+            "without the block: six"
+        );
+        let items = [holding(26), holding(29), holding(61)];
+        assert_eq!(
+            plan_with_blocks(&SMD, &STATUS_BLOCK, &items).unwrap(),
+            [read(24, 6), read(61, 1)]
+        );
+    }
+
+    #[test]
+    fn one_status_register_is_read_alone() {
+        for address in [24, 27, 29] {
+            assert_eq!(
+                plan_with_blocks(&SMD, &STATUS_BLOCK, &[holding(address)]).unwrap(),
+                [read(address, 1)]
+            );
+        }
+    }
+
+    #[test]
+    fn registers_outside_every_block_keep_the_limit() {
+        let items = [holding(30), holding(31), holding(23)];
+        assert_eq!(
+            plan_with_blocks(&SMD, &STATUS_BLOCK, &items).unwrap(),
+            [read(23, 1), read(30, 1), read(31, 1)]
+        );
+    }
+}

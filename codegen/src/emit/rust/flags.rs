@@ -29,14 +29,34 @@ pub fn emit(f: &Flags, device: &Device) -> TokenStream {
         let method = ident(&names::snake(&field.name));
         let (lsb, width) = (field.lsb, field.width);
         let mask = super::enums::int_literal((1i128 << width) - 1, f.data_type);
-        let d = doc_attrs(&format!("Bits {lsb}..{}: {}", lsb + width, doc::escape(field.doc.as_deref().unwrap_or(&field.name))));
-        match field.enumeration.as_deref().and_then(|e| device.enumeration(e)) {
+        let d = doc_attrs(&format!(
+            "Bits {lsb}..{}: {}",
+            lsb + width,
+            doc::escape(field.doc.as_deref().unwrap_or(&field.name))
+        ));
+        // No shift at bit 0 and no cast to the same type: the generated code stays lint-free.
+        let shifted = if lsb == 0 {
+            quote! { self.bits() }
+        } else {
+            quote! { (self.bits() >> #lsb) }
+        };
+        let bits = quote! { #shifted & #mask };
+        match field
+            .enumeration
+            .as_deref()
+            .and_then(|e| device.enumeration(e))
+        {
             Some(e) => {
                 let ty = ident(&names::camel(&e.name));
                 let e_raw = raw_type(e.data_type);
-                quote! { #d pub const fn #method(&self) -> #ty { #ty::from_raw(((self.bits() >> #lsb) & #mask) as #e_raw) } }
+                let value = if e.data_type == f.data_type {
+                    bits
+                } else {
+                    quote! { (#bits) as #e_raw }
+                };
+                quote! { #d pub const fn #method(&self) -> #ty { #ty::from_raw(#value) } }
             }
-            None => quote! { #d pub const fn #method(&self) -> #raw { (self.bits() >> #lsb) & #mask } },
+            None => quote! { #d pub const fn #method(&self) -> #raw { #bits } },
         }
     });
     quote! {

@@ -3,6 +3,7 @@
 //! drive handle with one accessor per parameter.
 
 mod addresses;
+mod bounds;
 mod control;
 mod enums;
 mod flags;
@@ -12,7 +13,10 @@ mod parameter;
 mod parameter_doc;
 mod pdo;
 mod pdo_communication;
+mod read_blocks;
 mod srdo;
+mod triggers;
+mod variant_selection;
 mod variants;
 
 use proc_macro2::{Delimiter, Group, Ident, Literal, Span, TokenStream, TokenTree};
@@ -102,6 +106,10 @@ pub fn tokens(device: &Device) -> TokenStream {
             device,
             &ident(&crate::emit::ident::camel(&device.device.handle)),
         ),
+        read_blocks::emit(device),
+        bounds::emit(device),
+        triggers::emit(device),
+        variant_selection::emit(device),
         pdo::emit(device),
         srdo::emit(device),
         control.unwrap_or_default(),

@@ -6,8 +6,10 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::sync::Arc;
 
 mod control;
+mod occupies;
 mod overlay;
 mod pdo;
+mod read_blocks;
 mod srdo;
 mod subindex_range;
 
@@ -426,6 +428,11 @@ impl Lowering<'_> {
             word_order,
             illegal_address_exception: exception(&raw.illegal_address_exception, 0x02, self),
             illegal_value_exception: exception(&raw.illegal_value_exception, 0x03, self),
+            read_blocks: raw
+                .read_blocks
+                .iter()
+                .filter_map(|b| self.read_block(b))
+                .collect(),
             source: raw.source.as_ref().and_then(|c| self.citation(c)),
         }
     }
@@ -446,6 +453,11 @@ impl Lowering<'_> {
         ir::Variant {
             name: raw.name.get_ref().clone(),
             doc: raw.doc.clone(),
+            selected_by: raw.selected_by.as_ref().map(|s| ir::VariantSelector {
+                parameter: s.get_ref().parameter.clone(),
+                value: s.get_ref().value,
+                span: self.span(s),
+            }),
             source: raw.source.as_ref().and_then(|c| self.citation(c)),
             span: self.span(&raw.name),
         }
@@ -766,6 +778,7 @@ impl Lowering<'_> {
         let natural_words = ty.bytes().div_ceil(2).max(1) as i64;
         let words =
             self.int_in::<u16>(&spanned(raw.words.unwrap_or(natural_words)), "word count")?;
+        let occupies = self.occupied_registers(raw.occupies, words, span)?;
         let word_order = match &raw.word_order {
             Some(w) => self.word_order(w, span.clone())?,
             None => default_order,
@@ -783,6 +796,7 @@ impl Lowering<'_> {
                 words,
                 word_order,
             },
+            occupies,
             access,
             variant: raw.variant.clone(),
             span: span.clone(),
@@ -975,6 +989,11 @@ impl Lowering<'_> {
             default,
             default_plus_node_id: false,
             range,
+            bounds: raw.bounds.as_ref().map(|b| ir::Bounds {
+                min: b.get_ref().min.clone(),
+                max: b.get_ref().max.clone(),
+                span: self.span(b),
+            }),
             allowed,
             enumeration: raw.enumeration.as_ref().map(|e| e.get_ref().clone()),
             flags: raw.flags.as_ref().map(|f| f.get_ref().clone()),

@@ -1,0 +1,84 @@
+//! A read block (`[modbus] read_blocks`) covers only registers the description lists as readable
+//! in every variant, so every word it returns decodes as a described parameter.
+
+use crate::diagnostic::Diagnostic;
+use crate::ir::{Device, ModbusAddress, Parameter, ReadBlock};
+
+const RULE: &str = "read_blocks_are_described";
+
+/// Whether `a` of `p` is readable in every variant and occupies `register` of its table.
+fn covers(p: &Parameter, a: &ModbusAddress, block: &ReadBlock, register: u32) -> bool {
+    let start = u32::from(a.address);
+    a.table == block.table
+        && a.access.read
+        && a.variant.is_none()
+        && p.variants.is_empty()
+        && (start..start + u32::from(a.occupies)).contains(&register)
+}
+
+/// Reports block registers that no readable, variant-independent parameter occupies.
+pub fn check(device: &Device) -> Vec<Diagnostic> {
+    let Some(caps) = &device.modbus else {
+        return Vec::new();
+    };
+    caps.read_blocks
+        .iter()
+        .filter_map(|block| {
+            let missing = block.registers().find(|&r| {
+                !device
+                    .parameters
+                    .iter()
+                    .any(|p| p.modbus.iter().any(|a| covers(p, a, block, r)))
+            })?;
+            let message = format!(
+                "the read block at {:#06x} covers register {missing:#06x}, which no parameter readable in every variant occupies",
+                block.address
+            )
+            .to_lowercase();
+            Some(
+                Diagnostic::error(RULE, block.span.clone(), message)
+                    .help("describe every register the block returns, or shorten the block"),
+            )
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::validate::test_support::{device, messages};
+
+    fn body(words: u16) -> String {
+        let mut body = format!(
+            "[modbus]\nmax_read_registers = 1\nread_blocks = [{{ table = \"holding\", address = 24, words = {words} }}]\n"
+        );
+        for r in 24..27 {
+            body.push_str(&format!(
+                "[[parameter]]\nname = \"r{r}\"\ntype = \"u16\"\nmodbus = {{ table = \"holding\", address = {r}, access = \"r\" }}\nsource = {{ doc = \"m\", line = 1 }}\n"
+            ));
+        }
+        body
+    }
+
+    #[test]
+    fn a_block_over_described_registers_is_kept() {
+        let device = device(&body(3));
+        let block = &device.modbus.unwrap().read_blocks[0];
+        assert_eq!((block.address, block.words), (24, 3));
+    }
+
+    #[test]
+    fn a_block_past_the_described_registers_is_reported() {
+        assert_eq!(
+            messages("read_blocks_are_described", &body(4)),
+            ["the read block at 0x0018 covers register 0x001b, which no parameter readable in every variant occupies"]
+        );
+    }
+
+    #[test]
+    fn a_block_of_one_word_is_malformed() {
+        assert_eq!(
+            messages("values_are_well_formed", &body(1)),
+            ["a read block of 1 words"]
+        );
+    }
+}

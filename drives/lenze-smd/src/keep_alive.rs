@@ -1,0 +1,163 @@
+//! The watchdog keep-alive (section 4.4, lines 370-387): once unlocked, with n22 not 0, the drive
+//! acts (inhibit, quick stop or trip FC3) when it hears nothing valid for n23 ms, and the master
+//! should communicate "at less than 1/2 the interval" (line 372). [`KeepAlive`] reads the status
+//! block (#24, 6 registers, as 4.8 step 8 suggests, line 445) from a thread every third of the
+//! timeout, stops when dropped, and records every time the drive went unanswered longer than
+//! the timeout.
+
+use std::sync::mpsc::{self, RecvTimeoutError, Sender};
+use std::sync::{Arc, Mutex, PoisonError};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+use std::vec::Vec;
+
+use drivebus::modbus::{ModbusLink, RegisterBus};
+use drivebus::units::Milliseconds;
+use drivebus::Error;
+
+use crate::types::SerialTimeoutAction;
+use crate::LenzeSmd;
+
+/// Polls per timeout: three, so the interval stays under the manual's half.
+const POLLS_PER_TIMEOUT: u32 = 3;
+
+/// A time the drive went without a successful poll for longer than its timeout.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MissedDeadline {
+    /// From the last successful poll to the moment the miss was noticed.
+    pub silent_for: Duration,
+}
+
+/// What the keep-alive has done so far.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct KeepAliveReport {
+    /// Successful polls.
+    pub polls: u64,
+    /// Each stretch without an answer longer than the timeout, once per stretch.
+    pub missed: Vec<MissedDeadline>,
+    /// The last failed poll's error.
+    pub last_error: Option<Error>,
+}
+
+/// A thread that keeps the drive's watchdog fed; stops when dropped.
+#[derive(Debug)]
+pub struct KeepAlive {
+    stop: Option<Sender<()>>,
+    thread: Option<JoinHandle<()>>,
+    report: Arc<Mutex<KeepAliveReport>>,
+    interval: Duration,
+}
+
+impl<B: RegisterBus> LenzeSmd<ModbusLink<B>> {
+    /// The watchdog timeout n23, or `None` while n22 says the watchdog is not active.
+    pub fn watchdog_timeout(&mut self) -> Result<Option<Duration>, Error> {
+        if self.serial_timeout_action().read()? == SerialTimeoutAction::NOT_ACTIVE {
+            return Ok(None);
+        }
+        let Milliseconds(ms) = self.serial_fault_time().read()?;
+        Ok(Some(Duration::from_millis(ms as u64)))
+    }
+}
+
+impl KeepAlive {
+    /// The poll interval for a watchdog `timeout`: a third of it.
+    pub fn interval_for(timeout: Duration) -> Duration {
+        timeout / POLLS_PER_TIMEOUT
+    }
+
+    /// Reads n22 and n23 and starts polling at a third of n23; `None` (nothing started) while
+    /// n22 says the watchdog is not active.
+    pub fn for_drive<B: RegisterBus + Send + 'static>(
+        drive: Arc<Mutex<LenzeSmd<ModbusLink<B>>>>,
+    ) -> Result<Option<Self>, Error> {
+        let timeout = drive
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .watchdog_timeout()?;
+        Ok(timeout.map(|timeout| Self::spawn(drive, timeout)))
+    }
+
+    /// Starts polling `drive` for a watchdog `timeout` (see [`LenzeSmd::watchdog_timeout`]).
+    pub fn spawn<B: RegisterBus + Send + 'static>(
+        drive: Arc<Mutex<LenzeSmd<ModbusLink<B>>>>,
+        timeout: Duration,
+    ) -> Self {
+        let (stop, stopped) = mpsc::channel::<()>();
+        let report = Arc::new(Mutex::new(KeepAliveReport::default()));
+        let interval = Self::interval_for(timeout);
+        let shared = Arc::clone(&report);
+        let thread = std::thread::spawn(move || {
+            let mut watch = Watch::new(timeout);
+            while let Err(RecvTimeoutError::Timeout) = stopped.recv_timeout(interval) {
+                let poll = drive
+                    .lock()
+                    .unwrap_or_else(PoisonError::into_inner)
+                    .status()
+                    .map(|_| ());
+                let mut report = shared.lock().unwrap_or_else(PoisonError::into_inner);
+                watch.record(poll, Instant::now(), &mut report);
+            }
+        });
+        Self {
+            stop: Some(stop),
+            thread: Some(thread),
+            report,
+            interval,
+        }
+    }
+
+    /// How often the drive is polled.
+    pub fn interval(&self) -> Duration {
+        self.interval
+    }
+
+    /// A copy of what happened so far.
+    pub fn report(&self) -> KeepAliveReport {
+        self.report
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .clone()
+    }
+}
+
+impl Drop for KeepAlive {
+    fn drop(&mut self) {
+        drop(self.stop.take());
+        if let Some(thread) = self.thread.take() {
+            let _ = thread.join();
+        }
+    }
+}
+
+/// Deadline bookkeeping of the polling thread.
+struct Watch {
+    timeout: Duration,
+    last_answer: Instant,
+    miss_reported: bool,
+}
+
+impl Watch {
+    fn new(timeout: Duration) -> Self {
+        Self {
+            timeout,
+            last_answer: Instant::now(),
+            miss_reported: false,
+        }
+    }
+
+    fn record(&mut self, poll: Result<(), Error>, now: Instant, report: &mut KeepAliveReport) {
+        let silent_for = now.saturating_duration_since(self.last_answer);
+        if silent_for > self.timeout && !self.miss_reported {
+            report.missed.push(MissedDeadline { silent_for });
+            self.miss_reported = true;
+        }
+        match poll {
+            Ok(()) => {
+                report.polls += 1;
+                self.last_answer = now;
+                self.miss_reported = false;
+            }
+            Err(error) => report.last_error = Some(error),
+        }
+    }
+}

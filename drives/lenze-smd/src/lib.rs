@@ -1,0 +1,27 @@
+#![doc = include_str!("../README.md")]
+#![no_std]
+#![deny(warnings, missing_docs)]
+
+#[cfg(feature = "std")]
+extern crate std;
+
+include!(concat!(env!("OUT_DIR"), "/drive.rs"));
+
+mod command;
+mod configuration;
+mod error;
+#[cfg(feature = "std")]
+mod keep_alive;
+mod session;
+mod software_version;
+mod status_block;
+
+pub use command::Command;
+pub use error::{SmdError, LOCKED_EXCEPTION};
+#[cfg(feature = "std")]
+pub use keep_alive::{KeepAlive, KeepAliveReport, MissedDeadline};
+pub use session::{
+    CanCommand, CanWriteParameters, Controls, ControlsAndParameters, Parameters, Session,
+};
+pub use software_version::version_text;
+pub use status_block::{StatusBlock, STATUS_BLOCK_START, STATUS_BLOCK_WORDS};

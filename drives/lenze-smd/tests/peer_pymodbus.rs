@@ -1,0 +1,168 @@
+//! The generated crate against an independent Modbus RTU implementation: pymodbus 3.16.1 playing
+//! an smd drive (tests/peers/smd_server.py: one register per read except the documented blocks,
+//! write-only registers, the unlock and lock rules) on a socat pty pair, reached with drivebus'
+//! serial RTU client, in each parameter configuration. Each test starts its peers and stops them
+//! by PID. A missing peer fails the test; `tests/peers/setup.sh` at the workspace root installs it.
+
+use std::io::{BufRead, BufReader};
+use std::path::Path;
+use std::process::{self, Stdio};
+use std::time::Duration;
+
+use drivebus::modbus::rtu::{Parity, StopBits};
+use drivebus::modbus::transport::{SerialConfig, SerialRtuClient};
+use drivebus::modbus::{ModbusLink, RegisterBus, Table, UnitId};
+use drivebus::units::Hertz;
+use lenze_smd::types::{OperationalStatus, SerialBaudRate};
+use lenze_smd::{Command, LenzeSmd, SmdError, Variant, VariantSelection};
+use peer_support::{pty_pair, python, Process, PtyPair, SETUP_HINT};
+
+const UNIT: UnitId = UnitId(10);
+/// The peer's count of accepted writes (its instrumentation, not a drive register).
+const ACCEPTED_WRITES: u16 = 200;
+
+type Drive = LenzeSmd<ModbusLink<SerialRtuClient>>;
+
+/// The pty pair and the pymodbus drive on its server end, serving `configuration` as #50.
+struct Peer {
+    _server: Process,
+    pty: PtyPair,
+}
+
+fn start(configuration: u16) -> Peer {
+    let pty = pty_pair();
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/peers/smd_server.py");
+    let python = python();
+    let mut server = Process::new(
+        process::Command::new(&python)
+            .arg(&script)
+            .arg(&pty.server)
+            .arg(configuration.to_string())
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::inherit())
+            .spawn()
+            .unwrap_or_else(|e| panic!("cannot start {} ({e}); {SETUP_HINT}", python.display())),
+    );
+    let stdout = server.child_mut().stdout.take().expect("piped stdout");
+    let mut line = String::new();
+    BufReader::new(stdout).read_line(&mut line).unwrap();
+    assert_eq!(
+        line.trim(),
+        "READY",
+        "the pymodbus smd did not start; {SETUP_HINT}"
+    );
+    Peer {
+        _server: server,
+        pty,
+    }
+}
+
+fn open(peer: &Peer) -> (Drive, VariantSelection) {
+    // 9600 baud, 8N2: the smd default (section 2.3 A, line 210).
+    let line = SerialConfig {
+        parity: Parity::None,
+        stop_bits: StopBits::Two,
+        timeout: Duration::from_secs(1),
+        ..SerialConfig::new(9_600)
+    };
+    let client = SerialRtuClient::open(peer.pty.client.to_str().unwrap(), &line).unwrap();
+    LenzeSmd::open(client, UNIT).unwrap()
+}
+
+fn accepted_writes(drive: &mut Drive) -> u16 {
+    let mut count = [0u16; 1];
+    let link = drive.device().link_mut();
+    let unit = link.unit();
+    link.bus_mut()
+        .read_registers(unit, Table::Holding, ACCEPTED_WRITES, &mut count)
+        .unwrap();
+    count[0]
+}
+
+#[test]
+fn pc507_status_version_and_a_control_session() {
+    let peer = start(507);
+    let (mut drive, selection) = open(&peer);
+    assert_eq!(selection, VariantSelection::Known(Variant::Pc507));
+    assert_eq!(drive.drive_family().read(), Ok(69));
+    assert_eq!(
+        drive.read_software_version().unwrap().as_str(),
+        Some("SMD 2.01")
+    );
+    let status = drive.status().unwrap(); // 6 words at #24, which the peer allows
+    assert_eq!(status.command_speed, Hertz(51.3));
+    assert_eq!(status.load_and_status.load(), 100);
+    assert_eq!(
+        status.load_and_status.operational_status(),
+        OperationalStatus::RUN
+    );
+    // c25 is #103 in PC507; the peer's #95 is C99.
+    assert_eq!(
+        drive.serial_baud_rate().read(),
+        Ok(SerialBaudRate::N82_9600)
+    );
+
+    let mut session = drive.unlock_controls().unwrap();
+    session.command(Command::SerialSpeedReference).unwrap();
+    session.set_serial_speed(Hertz(41.2)).unwrap();
+    assert!(matches!(
+        session.set_serial_speed(Hertz(50.1)),
+        Err(SmdError::OutsideBound {
+            bound: "maximum_output_frequency",
+            ..
+        })
+    ));
+    session.command(Command::Start).unwrap();
+    session.command(Command::Stop).unwrap();
+    session.lock().unwrap();
+    assert_eq!(drive.serial_speed_command().read(), Ok(Hertz(41.2)));
+    // Locked again: the peer answers exception 01, the crate says `Locked`.
+    assert_eq!(
+        SmdError::from(drive.trigger(Command::Start).unwrap_err()),
+        SmdError::Locked { parameter: "start" }
+    );
+    // #48 = 0, SerialSpeedReference, #40, Start, Stop, lock.
+    assert_eq!(accepted_writes(&mut drive), 6);
+}
+
+#[test]
+fn pc400_places_the_moved_registers() {
+    let peer = start(400);
+    let (mut drive, selection) = open(&peer);
+    assert_eq!(selection, VariantSelection::Known(Variant::Pc400));
+    assert_eq!(
+        drive.read_software_version().unwrap().as_str(),
+        Some("SMD 1.51")
+    );
+    assert_eq!(
+        drive.serial_baud_rate().read(),
+        Ok(SerialBaudRate::N82_9600)
+    );
+    let mut session = drive.unlock_all(0).unwrap();
+    session
+        .write::<lenze_smd::params::AccelerationTime>(drivebus::units::Seconds(10.0))
+        .unwrap();
+    session.lock().unwrap();
+    assert_eq!(
+        drive.acceleration_time().read(),
+        Ok(drivebus::units::Seconds(10.0))
+    );
+}
+
+#[test]
+fn an_unknown_configuration_reads_but_never_writes() {
+    let peer = start(600);
+    let (mut drive, selection) = open(&peer);
+    assert_eq!(selection, VariantSelection::Unknown(600));
+    assert_eq!(drive.drive_family().read(), Ok(69));
+    assert_eq!(
+        drive.unlock_controls().unwrap_err(),
+        SmdError::UnknownConfiguration { value: 600 }
+    );
+    assert_eq!(
+        drive.unlock_parameter_writing(0).unwrap_err(),
+        SmdError::UnknownConfiguration { value: 600 }
+    );
+    assert_eq!(accepted_writes(&mut drive), 0, "nothing was sent");
+}
