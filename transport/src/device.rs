@@ -2,7 +2,7 @@
 
 use core::marker::PhantomData;
 
-use crate::error::{BusError, Error, ValueError};
+use crate::error::{BusError, Error, ValueError, WriteRefusal};
 use crate::link::{Link, MAX_VALUE_BYTES};
 use crate::parameter::{Parameter, Readable, ValueOf, Writable};
 use crate::read_set::ReadSet;
@@ -14,6 +14,8 @@ use crate::VariantId;
 pub struct Device<L> {
     link: L,
     variant: VariantId,
+    /// Set while the drive is not one the description covers: every write fails before sending.
+    refusal: Option<WriteRefusal>,
 }
 
 pub(crate) fn bus_error(parameter: &'static str) -> impl Fn(BusError) -> Error {
@@ -23,7 +25,11 @@ pub(crate) fn bus_error(parameter: &'static str) -> impl Fn(BusError) -> Error {
 impl<L: Link> Device<L> {
     /// A device reached over `link`, in configuration `variant`.
     pub fn new(link: L, variant: VariantId) -> Self {
-        Self { link, variant }
+        Self {
+            link,
+            variant,
+            refusal: None,
+        }
     }
 
     /// The selected variant.
@@ -31,9 +37,23 @@ impl<L: Link> Device<L> {
         self.variant
     }
 
-    /// Selects another variant (for example after reading the drive's configuration).
+    /// Selects another variant (after reading the drive's configuration, or as the user's
+    /// explicit override); lifts a refusal of writes for an unknown variant.
     pub fn set_variant(&mut self, variant: VariantId) {
         self.variant = variant;
+        if matches!(self.refusal, Some(WriteRefusal::UnknownVariant { .. })) {
+            self.refusal = None;
+        }
+    }
+
+    /// Refuses every write from now on, with `reason`, until it is lifted.
+    pub fn refuse_writes(&mut self, reason: WriteRefusal) {
+        self.refusal = Some(reason);
+    }
+
+    /// Why writes are refused, if they are.
+    pub fn write_refusal(&self) -> Option<WriteRefusal> {
+        self.refusal
     }
 
     /// The link, for protocol-specific operations.
@@ -74,6 +94,12 @@ impl<L: Link> Device<L> {
 
     /// Writes a raw value; still checked against the description's range and allowed values.
     pub fn write_raw<P: Writable<L::Protocol>>(&mut self, raw: P::Raw) -> Result<(), Error> {
+        if let Some(reason) = self.refusal {
+            return Err(Error::WritesRefused {
+                parameter: P::NAME,
+                reason,
+            });
+        }
         P::check(&raw).map_err(named::<P>)?;
         let address =
             P::write_address(self.variant).ok_or(Error::NotInVariant { parameter: P::NAME })?;

@@ -169,6 +169,39 @@ pub enum Error {
         /// Parameter name as in the description.
         parameter: &'static str,
     },
+    /// The device refuses every write until the reason is resolved; nothing was sent.
+    WritesRefused {
+        /// The parameter that was to be written.
+        parameter: &'static str,
+        /// Why writes are refused.
+        reason: WriteRefusal,
+    },
+}
+
+/// Why a device handle refuses writes before sending anything: the drive on the other end is
+/// not one its description covers, so a described address or scale could be wrong for it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum WriteRefusal {
+    /// The parameter that tells the drive's configuration holds a value no variant of the
+    /// description is selected by (Lenze smd: register #50 neither 400 nor 507).
+    UnknownVariant {
+        /// The selecting parameter, as in the description.
+        selector: &'static str,
+        /// The raw value it holds.
+        value: i128,
+    },
+}
+
+impl fmt::Display for WriteRefusal {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::UnknownVariant { selector, value } => write!(
+                f,
+                "{selector} reads {value}, which selects no variant the description covers"
+            ),
+        }
+    }
 }
 
 impl Error {
@@ -197,6 +230,9 @@ impl fmt::Display for Error {
                     f,
                     "{parameter} does not exist in the drive's selected variant"
                 )
+            }
+            Self::WritesRefused { parameter, reason } => {
+                write!(f, "{parameter} not written: {reason}")
             }
         }
     }

@@ -46,7 +46,7 @@ pub mod value;
 
 pub use data_type::DataType;
 pub use device::{Accessor, Device};
-pub use error::{BusError, Error, ValueError};
+pub use error::{BusError, Error, ValueError, WriteRefusal};
 pub use error_class::ErrorClass;
 pub use link::Link;
 pub use parameter::{Parameter, Placement, Readable, ValueOf, Writable};

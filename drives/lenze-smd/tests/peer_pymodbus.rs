@@ -164,5 +164,16 @@ fn an_unknown_configuration_reads_but_never_writes() {
         drive.unlock_parameter_writing(0).unwrap_err(),
         SmdError::UnknownConfiguration { value: 600 }
     );
+    // A plain generated setter is refused as well, before anything is sent (line 314).
+    assert_eq!(
+        drive.serial_speed_command().write(Hertz(10.0)),
+        Err(drivebus::Error::WritesRefused {
+            parameter: "serial_speed_command",
+            reason: drivebus::WriteRefusal::UnknownVariant {
+                selector: "parameter_configuration",
+                value: 600
+            }
+        })
+    );
     assert_eq!(accepted_writes(&mut drive), 0, "nothing was sent");
 }

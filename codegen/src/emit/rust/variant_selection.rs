@@ -27,8 +27,9 @@ pub fn emit(device: &Device) -> TokenStream {
     ));
     let detect_doc = doc_attrs(&format!(
         "Reads `{name}` and selects the variant it names. A value no variant is selected by \
-         leaves the selected variant as it was (the default, or what `set_variant` chose) and \
-         comes back as [`VariantSelection::Unknown`]."
+         comes back as [`VariantSelection::Unknown`]: reads go on in the variant selected before, \
+         and every write is refused with `Error::WritesRefused` (nothing is sent) until a later \
+         detection succeeds or `set_variant` overrides it."
     ));
     quote! {
         /// What the drive reported about its variant.
@@ -63,7 +64,13 @@ pub fn emit(device: &Device) -> TokenStream {
                         self.set_variant(variant);
                         VariantSelection::Known(variant)
                     }
-                    None => VariantSelection::Unknown(raw),
+                    None => {
+                        self.device.refuse_writes(::drivebus::WriteRefusal::UnknownVariant {
+                            selector: #name,
+                            value: ::core::primitive::i128::from(raw),
+                        });
+                        VariantSelection::Unknown(raw)
+                    }
                 })
             }
         }
