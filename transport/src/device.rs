@@ -3,6 +3,7 @@
 use core::marker::PhantomData;
 
 use crate::error::{BusError, Error, ValueError};
+use crate::given::Given;
 use crate::link::{Link, MAX_VALUE_BYTES};
 use crate::parameter::{Parameter, Readable, ValueOf, Writable};
 use crate::read_set::ReadSet;
@@ -14,6 +15,7 @@ use crate::VariantId;
 pub struct Device<L> {
     link: L,
     variant: VariantId,
+    given: Given,
 }
 
 pub(crate) fn bus_error(parameter: &'static str) -> impl Fn(BusError) -> Error {
@@ -23,7 +25,21 @@ pub(crate) fn bus_error(parameter: &'static str) -> impl Fn(BusError) -> Error {
 impl<L: Link> Device<L> {
     /// A device reached over `link`, in configuration `variant`.
     pub fn new(link: L, variant: VariantId) -> Self {
-        Self { link, variant }
+        Self {
+            link,
+            variant,
+            given: Given::default(),
+        }
+    }
+
+    /// The values the handle was given when opened (model constants, unreadable scale inputs).
+    pub fn given(&self) -> &Given {
+        &self.given
+    }
+
+    /// The given values, to add to.
+    pub fn given_mut(&mut self) -> &mut Given {
+        &mut self.given
     }
 
     /// The selected variant.

@@ -25,6 +25,7 @@ pub mod control;
 pub mod device;
 pub mod error;
 pub mod error_class;
+pub mod given;
 pub mod link;
 #[cfg(feature = "std")]
 pub mod memory;

@@ -155,6 +155,9 @@ pub fn empty_device(name: &str, model: &EdsModel) -> ir::Device {
         cia402: None,
         state_machine: None,
         pdos: Vec::new(),
+        refinements: Vec::new(),
+        constants: Vec::new(),
+        models: Vec::new(),
     }
 }
 

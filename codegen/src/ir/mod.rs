@@ -5,16 +5,20 @@
 
 mod data_type;
 mod expr;
+mod model;
 mod number;
 mod pdo;
 mod readable_registers;
+mod refinement;
 mod value_type;
 
 pub use data_type::DataType;
 pub use expr::{Expr, ExprError, Op};
+pub use model::{Constant, Model};
 pub use number::Number;
 pub use pdo::{pdo_bits, CobId, PdoDirection, PdoMapping};
 pub use readable_registers::{PlannerLimits, RegisterRun};
+pub use refinement::Refinement;
 pub use value_type::ValueType;
 
 use std::sync::Arc;
@@ -56,6 +60,15 @@ pub struct Device {
     /// Declared PDO mappings (left out of the JSON when there are none).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub pdos: Vec<PdoMapping>,
+    /// `[[refine]]` entries applied to included parameters (left out of the JSON when none).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub refinements: Vec<Refinement>,
+    /// Per-model constants (`[[constant]]`), left out of the JSON when none.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub constants: Vec<Constant>,
+    /// Product models (`[[model]]`) and their constants, left out of the JSON when none.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub models: Vec<Model>,
 }
 
 /// How the drive deviates from the CiA 402 state machine.
@@ -263,6 +276,10 @@ pub struct ModbusCaps {
     pub illegal_address_exception: u8,
     /// Exception code for an illegal value.
     pub illegal_value_exception: u8,
+    /// Requests whose exception the device answers under another function code than
+    /// `request | 0x80` (left out of the JSON when none).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub exception_functions: Vec<ExceptionFunction>,
     /// Citation.
     pub source: Option<Citation>,
 }
@@ -272,6 +289,25 @@ impl ModbusCaps {
     /// several registers are written register by register.
     pub fn writes_multiple_registers(&self) -> bool {
         self.functions.contains(&0x10)
+    }
+}
+
+/// A request whose exception answer carries a deviating function code.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct ExceptionFunction {
+    /// The request's function code.
+    pub request: u8,
+    /// The function code of its exception answer (bit 7 set).
+    pub answer: u8,
+}
+
+impl ModbusCaps {
+    /// The function code the device answers an exception to `request` with.
+    pub fn exception_function(&self, request: u8) -> u8 {
+        self.exception_functions
+            .iter()
+            .find(|e| e.request == request)
+            .map_or(request | 0x80, |e| e.answer)
     }
 }
 
@@ -586,6 +622,23 @@ pub struct Command {
     pub kind: CommandKind,
     /// The raw value that triggers it.
     pub value: Option<i64>,
+    /// Name of this value, where the register takes several.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// Documentation of this value.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub doc: Option<String>,
+    /// The register's further command values (2FF0h sub 1 of Kinco: 1 = store, 10 =
+    /// initialise), left out of the JSON when none.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub more: Vec<Command>,
+}
+
+impl Command {
+    /// Every value of the command register, the first one first.
+    pub fn values(&self) -> impl Iterator<Item = &Command> {
+        std::iter::once(self).chain(&self.more)
+    }
 }
 
 /// An inclusive raw range.

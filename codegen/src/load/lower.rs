@@ -2,17 +2,24 @@
 //! a malformed scale, a citation of an unknown manual) are reported here; rules that relate
 //! several values to each other are validation passes.
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeMap;
 use std::sync::Arc;
 
+#[path = "lower_commands.rs"]
+mod commands;
 #[path = "lower_control.rs"]
 mod control;
+#[path = "lower_models.rs"]
+mod models;
 #[path = "lower_pdo.rs"]
 mod pdo;
+#[path = "lower_refine.rs"]
+mod refine;
 
 use toml::Spanned;
 
 use super::exact::{float_ratio, parse_ratio};
+use super::only::{Filter, Kind};
 use super::overlay::Overlay;
 use super::raw::*;
 use super::LoadedFile;
@@ -54,14 +61,20 @@ pub fn lower(
     }
     for (i, file) in std::iter::once(&root).chain(&included).enumerate() {
         cx.file = file.id;
-        let keep = Filter::new(file, &mut cx);
+        let keep = Filter::new(file, cx.diagnostics);
         if i == 0 {
             cx.root_items(&file.raw, &mut device);
         } else {
             cx.refuse_included_pdos(&file.raw);
         }
         cx.items(&file.raw, &keep, &mut device);
+        cx.models(&file.raw, &mut device);
     }
+    for file in std::iter::once(&root).chain(&included) {
+        cx.file = file.id;
+        cx.refinements(&file.raw, &mut device);
+    }
+    cx.command_enums(&mut device);
     if let Some(overlay) = cx.overlay.take() {
         overlay.finish(&mut device, cx.diagnostics);
     }
@@ -75,65 +88,6 @@ pub(super) struct Lowering<'d> {
     pub(super) file: FileId,
     /// The EDS the root file is an overlay of.
     pub(super) overlay: Option<Overlay<'d>>,
-}
-
-/// Which items of an included file are kept (`only`), including what kept items refer to.
-struct Filter(Option<BTreeSet<String>>);
-
-impl Filter {
-    fn new(file: &LoadedFile, cx: &mut Lowering<'_>) -> Filter {
-        let Some(only) = &file.only else {
-            return Filter(None);
-        };
-        let mut keep: BTreeSet<String> = only.iter().cloned().collect();
-        let raw = &file.raw;
-        let referenced: Vec<String> = raw
-            .parameter
-            .iter()
-            .filter(|p| keep.contains(p.name.get_ref()))
-            .flat_map(|p| {
-                [&p.enumeration, &p.flags, &p.record]
-                    .into_iter()
-                    .flatten()
-                    .map(|r| r.get_ref().clone())
-            })
-            .collect();
-        keep.extend(referenced);
-        let field_enums: Vec<String> = raw
-            .flags
-            .iter()
-            .filter(|f| keep.contains(f.name.get_ref()))
-            .flat_map(|f| {
-                f.fields
-                    .iter()
-                    .filter_map(|x| x.get_ref().enumeration.as_ref())
-                    .map(|e| e.get_ref().clone())
-            })
-            .collect();
-        keep.extend(field_enums);
-        let known: BTreeSet<&String> = raw
-            .parameter
-            .iter()
-            .map(|p| p.name.get_ref())
-            .chain(raw.enums.iter().map(|e| e.name.get_ref()))
-            .chain(raw.flags.iter().map(|f| f.name.get_ref()))
-            .chain(raw.record.iter().map(|r| r.name.get_ref()))
-            .collect();
-        for name in only.iter().filter(|n| !known.contains(n)) {
-            cx.diagnostics.push(
-                Diagnostic::error_at_no_place(
-                    "includes_resolve",
-                    format!("`only` names `{name}`, which the included profile does not define"),
-                )
-                .help("check the spelling against the profile file"),
-            );
-        }
-        Filter(Some(keep))
-    }
-
-    fn keeps(&self, name: &str) -> bool {
-        self.0.as_ref().is_none_or(|k| k.contains(name))
-    }
 }
 
 const VALUE_RULE: &str = "values_are_well_formed";
@@ -217,6 +171,9 @@ impl Lowering<'_> {
             cia402: None,
             state_machine: None,
             pdos: Vec::new(),
+            refinements: Vec::new(),
+            constants: Vec::new(),
+            models: Vec::new(),
         })
     }
 
@@ -285,17 +242,29 @@ impl Lowering<'_> {
             .modbus
             .as_ref()
             .map_or(ir::WordOrder::HighFirst, |m| m.word_order);
-        for e in raw.enums.iter().filter(|e| keep.keeps(e.name.get_ref())) {
+        for e in raw
+            .enums
+            .iter()
+            .filter(|e| keep.keeps(Kind::Enum, e.name.get_ref()))
+        {
             if let Some(e) = self.enumeration(e) {
                 device.enums.push(e);
             }
         }
-        for f in raw.flags.iter().filter(|f| keep.keeps(f.name.get_ref())) {
+        for f in raw
+            .flags
+            .iter()
+            .filter(|f| keep.keeps(Kind::Flags, f.name.get_ref()))
+        {
             if let Some(f) = self.flags(f) {
                 device.flags.push(f);
             }
         }
-        for r in raw.record.iter().filter(|r| keep.keeps(r.name.get_ref())) {
+        for r in raw
+            .record
+            .iter()
+            .filter(|r| keep.keeps(Kind::Record, r.name.get_ref()))
+        {
             if let Some(r) = self.record(r) {
                 device.records.push(r);
             }
@@ -303,7 +272,7 @@ impl Lowering<'_> {
         for p in raw
             .parameter
             .iter()
-            .filter(|p| keep.keeps(p.name.get_ref()))
+            .filter(|p| keep.keeps(Kind::Parameter, p.name.get_ref()))
         {
             if let Some(p) = self.parameter(p, modbus_order) {
                 device.parameters.push(p);
@@ -421,6 +390,7 @@ impl Lowering<'_> {
             word_order,
             illegal_address_exception: exception(&raw.illegal_address_exception, 0x02, self),
             illegal_value_exception: exception(&raw.illegal_value_exception, 0x03, self),
+            exception_functions: self.exception_functions(raw),
             source: raw.source.as_ref().and_then(|c| self.citation(c)),
         }
     }
@@ -843,8 +813,7 @@ impl Lowering<'_> {
         })
     }
 
-    fn command(&mut self, raw: &Spanned<RawCommand>) -> Option<ir::Command> {
-        let c = raw.get_ref();
+    fn command(&mut self, c: &RawCommand) -> Option<ir::Command> {
         let kind = match c.kind.get_ref().as_str() {
             "store" => ir::CommandKind::Store,
             "restore-factory" => ir::CommandKind::RestoreFactory,
@@ -864,6 +833,9 @@ impl Lowering<'_> {
         Some(ir::Command {
             kind,
             value: c.value.as_ref().map(|v| *v.get_ref()),
+            name: c.name.as_ref().map(|n| n.get_ref().clone()),
+            doc: c.doc.clone(),
+            more: Vec::new(),
         })
     }
 
@@ -937,10 +909,7 @@ impl Lowering<'_> {
             Some(e) => self.effect(e)?,
             None => ir::Effect::Immediate,
         };
-        let command = match &raw.command {
-            Some(c) => Some(self.command(c)?),
-            None => None,
-        };
+        let command = self.commands(raw.command.as_ref(), raw.commands.as_ref())?;
         let spans = ir::ParameterSpans {
             name: self.span(&raw.name),
             data_type: raw

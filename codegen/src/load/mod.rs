@@ -2,6 +2,7 @@
 
 pub mod exact;
 mod lower;
+mod only;
 mod overlay;
 mod raw;
 
@@ -25,7 +26,7 @@ pub struct LoadedFile {
     /// Its contents.
     pub raw: RawFile,
     /// The `only` filter of the include that brought it in.
-    pub only: Option<Vec<String>>,
+    pub only: Option<raw::RawOnly>,
 }
 
 /// Reads a description file (or a folder's `device.toml`) and everything it includes.
@@ -58,7 +59,7 @@ pub fn read_files(
 
 fn read_recursive(
     path: &Path,
-    only: Option<Vec<String>>,
+    only: Option<raw::RawOnly>,
     included_at: Option<Span>,
     files: &mut Files,
     diagnostics: &mut Vec<Diagnostic>,
@@ -120,7 +121,7 @@ fn read_recursive(
 const SHAPES: &[(&str, &str)] = &[
     (
         "RawInclude",
-        "an include is a path string or `{ path, only = [names] }`",
+        "an include is a path string or `{ path, only = [names] }` (or `only = { parameters, enums, flags, records }`)",
     ),
     (
         "OneOrMany",
@@ -136,6 +137,10 @@ const SHAPES: &[(&str, &str)] = &[
     ),
     ("RawNumber", "expected a number"),
     ("RawPdo", "`pdo` is false, \"rx\", \"tx\" or \"both\""),
+    (
+        "RawOnly",
+        "`only` is a list of names or `{ parameters, enums, flags, records }`, each a list of names",
+    ),
 ];
 
 fn syntax_error(id: FileId, error: &toml::de::Error) -> Diagnostic {

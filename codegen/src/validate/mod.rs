@@ -8,6 +8,7 @@ mod addresses_do_not_overlap;
 mod bit_fields_fit;
 mod defaults_within_range;
 mod enum_values_fit_type;
+mod models_give_constants;
 mod names_are_unique;
 mod parameters_have_addresses;
 mod pdo_entries_are_mappable;
@@ -48,6 +49,7 @@ pub const PASSES: &[(&str, Pass)] = &[
     ("enum_values_fit_type", enum_values_fit_type::check),
     ("bit_fields_fit", bit_fields_fit::check),
     ("scale_is_representable", scale_is_representable::check),
+    ("models_give_constants", models_give_constants::check),
     ("scale_inputs_exist", scale_inputs_exist::check),
     ("words_fit_type", words_fit_type::check),
     ("addresses_do_not_overlap", addresses_do_not_overlap::check),

@@ -29,6 +29,14 @@ pub mod function {
     pub const WRITE_MULTIPLE_REGISTERS: u8 = 0x10;
     /// Set on the function code of an exception response.
     pub const EXCEPTION_FLAG: u8 = 0x80;
+
+    /// Whether function code `got` answers a request as an exception: the standard
+    /// `request | 0x80`, or any code with bit 7 set — some devices answer under another one (the
+    /// Kinco FD manual shows 0x81 for FC 0x03, line 2424), and no normal answer has bit 7 set.
+    #[inline]
+    pub const fn is_exception(got: u8) -> bool {
+        got & EXCEPTION_FLAG != 0
+    }
 }
 
 /// Largest PDU the specification allows (256-byte RTU ADU minus address and CRC).
@@ -493,7 +501,7 @@ fn register_data<'a>(request: &Request<'_>, pdu: &'a [u8]) -> Option<&'a [u8]> {
 fn decode_any_response<'a>(request: &Request<'_>, pdu: &'a [u8]) -> Result<Response<'a>, BusError> {
     let function = request.function();
     let (&got, body) = pdu.split_first().ok_or(frame_error("empty response PDU"))?;
-    if got == function | function::EXCEPTION_FLAG {
+    if function::is_exception(got) {
         return match body {
             [code] => Err(BusError::ModbusException {
                 function,
@@ -832,6 +840,14 @@ mod tests {
         }
         assert_eq!(
             decode_response(&read, &[0x83, 0x02]),
+            Err(BusError::ModbusException {
+                function: 3,
+                code: 2
+            })
+        );
+        // Kinco FD manual line 2424: the exception to FC 0x03 comes back as 0x81.
+        assert_eq!(
+            decode_response(&read, &[0x81, 0x02]),
             Err(BusError::ModbusException {
                 function: 3,
                 code: 2

@@ -6,6 +6,7 @@ mod addresses;
 mod control;
 mod enums;
 mod flags;
+mod given;
 mod handle;
 mod parameter;
 mod parameter_doc;
@@ -74,7 +75,8 @@ pub fn tokens(device: &Device) -> TokenStream {
             #[allow(unused_imports)]
             use ::drivebus as db;
         })
-        .chain(device.parameters.iter().map(|p| parameter::emit(p, device))),
+        .chain(device.parameters.iter().map(|p| parameter::emit(p, device)))
+        .chain(std::iter::once(given::scale_inputs(device))),
     );
     let control = (!device.device.is_profile).then(|| {
         control::emit(
@@ -95,6 +97,7 @@ pub fn tokens(device: &Device) -> TokenStream {
         },
         braced(params),
         handle::emit(device),
+        given::emit(device),
         pdo::emit(device),
         control.unwrap_or_default(),
     ])
