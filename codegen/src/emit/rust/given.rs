@@ -110,7 +110,12 @@ fn model_enum(device: &Device) -> TokenStream {
             );
             quote! { (#c, match ::drivebus::Ratio::new(#n, #d) { Some(r) => r, None => ::drivebus::Ratio::ZERO }) }
         });
-        quote! { Self::#variant => (#name, &[ #( #constants ),* ]) }
+        quote! {
+            Self::#variant => {
+                const CONSTANTS: &[(&str, ::drivebus::Ratio)] = &[ #( #constants ),* ];
+                (#name, CONSTANTS)
+            }
+        }
     });
     quote! {
         /// The product models of the description; the model fixes the constants run-time scales read.

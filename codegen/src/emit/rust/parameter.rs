@@ -140,10 +140,10 @@ fn runtime_scale(p: &Parameter, device: &Device) -> TokenStream {
             where
                 #( #markers: ScaleInput<L::Protocol>, )*
             {
-                let bad = db::ValueError::BadScale { parameter: <Self as db::Parameter>::NAME };
+                let bad = || db::ValueError::BadScale { parameter: <Self as db::Parameter>::NAME };
                 #( let #parameter_vars = <#markers as ScaleInput<L::Protocol>>::scale_input(device, <Self as db::Parameter>::NAME)?; )*
-                #( let #constant_vars = device.given().get(#constant_names).ok_or(bad)?; )*
-                let factor = (|| Some(#expr))().ok_or(bad)?;
+                #( let #constant_vars = device.given().get(#constant_names).ok_or_else(bad)?; )*
+                let factor = (|| Some(#expr))().ok_or_else(bad)?;
                 Ok(db::Scale::factor(factor))
             }
         }
