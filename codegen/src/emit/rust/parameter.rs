@@ -134,6 +134,8 @@ fn runtime_scale(p: &Parameter, device: &Device) -> TokenStream {
     quote! {
         impl #name {
             /// Obtains the factor's inputs and evaluates the run-time scale expression.
+            // Every operation is checked (`?`), the last one included.
+            #[allow(clippy::needless_question_mark)]
             fn runtime_scale<L: db::Link>(
                 device: &mut db::Device<L>,
             ) -> Result<db::Scale, db::Error>
