@@ -94,7 +94,14 @@ fn every_listed_object_is_described_and_every_rejected_one_is_not() {
         let present = canopen.contains(&key) && rs232.contains(&key) && on_modbus;
         let absent = !canopen.contains(&key) && !rs232.contains(&key);
         if (entry.described && !present) || (!entry.described && !absent) {
-            wrong.push(format!("{entry:X?}"));
+            wrong.push(format!(
+                "manual line {}: {:04X}h.{:02X} (Modbus {:X?}) should be {}",
+                entry.manual_line,
+                entry.index,
+                entry.subindex,
+                entry.modbus,
+                if entry.described { "described" } else { "left out" }
+            ));
         }
     }
     assert!(wrong.is_empty(), "not as listed:\n{}", wrong.join("\n"));
