@@ -100,7 +100,11 @@ fn every_listed_object_is_described_and_every_rejected_one_is_not() {
                 entry.index,
                 entry.subindex,
                 entry.modbus,
-                if entry.described { "described" } else { "left out" }
+                if entry.described {
+                    "described"
+                } else {
+                    "left out"
+                }
             ));
         }
     }
