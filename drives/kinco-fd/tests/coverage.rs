@@ -57,7 +57,7 @@ fn description() -> Device {
 #[test]
 fn the_list_is_the_manuals() {
     let list = manual_list();
-    assert_eq!(list.iter().filter(|l| l.described).count(), 128);
+    assert_eq!(list.iter().filter(|l| l.described).count(), 134);
     assert_eq!(list.iter().filter(|l| l.modbus.is_some()).count(), 88);
 }
 

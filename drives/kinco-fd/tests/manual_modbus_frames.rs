@@ -110,7 +110,10 @@ fn homing_10_5() {
         .modes_of_operation()
         .write(ModesOfOperation::HOMING)
         .unwrap();
-    drive.homing_method().write(33i8).unwrap();
+    drive
+        .homing_method()
+        .write(kinco_fd::types::HomingMethod::METHOD33)
+        .unwrap();
     drive
         .homing_speed_switch()
         .write(rpm_of(DEC_200_RPM))

@@ -81,7 +81,10 @@ fn homing_lines_3254_3260() {
         .modes_of_operation()
         .write(ModesOfOperation::HOMING)
         .unwrap();
-    drive.homing_method().write(33i8).unwrap();
+    drive
+        .homing_method()
+        .write(kinco_fd::types::HomingMethod::METHOD33)
+        .unwrap();
     drive
         .homing_speed_switch()
         .write(rpm_200_as_printed())
