@@ -401,6 +401,9 @@ pub struct Flags {
     pub bits: Vec<Bit>,
     /// Multi-bit fields.
     pub fields: Vec<BitField>,
+    /// The enum of error codes the bits report (`bits[].code`), left out of the JSON when none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub codes: Option<String>,
     /// Citation.
     pub source: Option<Citation>,
     /// Errata decision.
@@ -419,6 +422,10 @@ pub struct Bit {
     pub bit: u32,
     /// Documentation.
     pub doc: Option<String>,
+    /// The error code the bit reports, a value of the flags' `codes` enum (left out of the JSON
+    /// when none).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub code: Option<i64>,
     /// Where it is declared.
     #[serde(skip)]
     pub span: Span,

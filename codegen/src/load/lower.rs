@@ -509,6 +509,7 @@ impl Lowering<'_> {
                     name: inner.name.get_ref().clone(),
                     bit,
                     doc: inner.doc.clone(),
+                    code: inner.code.as_ref().map(|c| *c.get_ref()),
                     span: self.span(&inner.bit),
                 })
             })
@@ -534,6 +535,7 @@ impl Lowering<'_> {
             doc: raw.doc.clone(),
             bits,
             fields,
+            codes: raw.codes.as_ref().map(|c| c.get_ref().clone()),
             source: raw.source.as_ref().and_then(|c| self.citation(c)),
             erratum: raw.erratum.clone(),
             span: self.span(&raw.name),

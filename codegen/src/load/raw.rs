@@ -170,6 +170,8 @@ pub struct RawFlags {
     pub bits: Vec<Spanned<RawBit>>,
     #[serde(default)]
     pub fields: Vec<Spanned<RawField>>,
+    /// The enum of error codes the bits' `code`s are values of.
+    pub codes: Option<Spanned<String>>,
     pub erratum: Option<String>,
 }
 
@@ -179,6 +181,8 @@ pub struct RawBit {
     pub name: Spanned<String>,
     pub bit: Spanned<i64>,
     pub doc: Option<String>,
+    /// The error code this bit reports (a value of the flags' `codes` enum).
+    pub code: Option<Spanned<i64>>,
 }
 
 #[derive(Debug, Deserialize)]

@@ -5,6 +5,7 @@ use crate::ir::Device;
 
 mod access_matches_functions;
 mod addresses_do_not_overlap;
+mod bit_codes_are_enum_values;
 mod bit_fields_fit;
 mod defaults_within_range;
 mod enum_values_fit_type;
@@ -48,6 +49,10 @@ pub const PASSES: &[(&str, Pass)] = &[
     ("defaults_within_range", defaults_within_range::check),
     ("enum_values_fit_type", enum_values_fit_type::check),
     ("bit_fields_fit", bit_fields_fit::check),
+    (
+        "bit_codes_are_enum_values",
+        bit_codes_are_enum_values::check,
+    ),
     ("scale_is_representable", scale_is_representable::check),
     ("models_give_constants", models_give_constants::check),
     ("scale_inputs_exist", scale_inputs_exist::check),

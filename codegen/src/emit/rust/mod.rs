@@ -3,6 +3,7 @@
 //! drive handle with one accessor per parameter.
 
 mod addresses;
+mod bit_codes;
 mod control;
 mod enums;
 mod flags;
@@ -65,7 +66,8 @@ pub fn tokens(device: &Device) -> TokenStream {
             .enums
             .iter()
             .map(enums::emit)
-            .chain(device.flags.iter().map(|f| flags::emit(f, device))),
+            .chain(device.flags.iter().map(|f| flags::emit(f, device)))
+            .chain(device.flags.iter().map(|f| bit_codes::emit(f, device))),
     );
     let params = concat(
         std::iter::once(quote! {
