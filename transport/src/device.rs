@@ -3,6 +3,7 @@
 use core::marker::PhantomData;
 
 use crate::error::{BusError, Error, ValueError, WriteRefusal};
+use crate::given::Given;
 use crate::link::{Link, MAX_VALUE_BYTES};
 use crate::parameter::{Parameter, Readable, ValueOf, Writable};
 use crate::read_set::ReadSet;
@@ -16,6 +17,8 @@ pub struct Device<L> {
     variant: VariantId,
     /// Set while the drive is not one the description covers: every write fails before sending.
     refusal: Option<WriteRefusal>,
+    /// Values given when the handle was opened (model constants, unreadable scale inputs).
+    given: Given,
 }
 
 pub(crate) fn bus_error(parameter: &'static str) -> impl Fn(BusError) -> Error {
@@ -29,7 +32,18 @@ impl<L: Link> Device<L> {
             link,
             variant,
             refusal: None,
+            given: Given::default(),
         }
+    }
+
+    /// The values the handle was given when opened (model constants, unreadable scale inputs).
+    pub fn given(&self) -> &Given {
+        &self.given
+    }
+
+    /// The given values, to add to.
+    pub fn given_mut(&mut self) -> &mut Given {
+        &mut self.given
     }
 
     /// The selected variant.

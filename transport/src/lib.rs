@@ -29,6 +29,7 @@ pub mod data_type;
 pub mod device;
 pub mod error;
 pub mod error_class;
+pub mod given;
 #[cfg(feature = "std")]
 pub mod interpret;
 pub mod link;

@@ -6,6 +6,7 @@
 //! compiles but reads or writes differently (an address, scale, range or default moved), and
 //! *compatible* for pure additions.
 
+mod models;
 mod parameters;
 mod pdos;
 mod srdos;
@@ -57,6 +58,7 @@ pub fn diff(old: &Device, new: &Device) -> Vec<Change> {
     parameters::compare(&old.parameters, &new.parameters, &mut changes);
     pdos::compare(&old.pdos, &new.pdos, &mut changes);
     srdos::compare(&old.srdos, &new.srdos, &mut changes);
+    models::compare(&old.models, &new.models, &mut changes);
     types::enums(&old.enums, &new.enums, &mut changes);
     types::flags(&old.flags, &new.flags, &mut changes);
     changes.sort_by(|a, b| (a.impact, &a.subject).cmp(&(b.impact, &b.subject)));

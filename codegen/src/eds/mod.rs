@@ -157,6 +157,9 @@ pub fn empty_device(name: &str, model: &EdsModel) -> ir::Device {
         pdos: Vec::new(),
         srdos: Vec::new(),
         indexed: Vec::new(),
+        refinements: Vec::new(),
+        constants: Vec::new(),
+        models: Vec::new(),
     }
 }
 

@@ -7,10 +7,12 @@ mod bounds;
 mod data_type;
 mod expr;
 mod indexed;
+mod model;
 mod number;
 mod pdo;
 mod read_block;
 mod readable_registers;
+mod refinement;
 mod safety;
 mod scale_inputs;
 mod srdo;
@@ -21,10 +23,12 @@ pub use bounds::Bounds;
 pub use data_type::DataType;
 pub use expr::{Expr, ExprError, Op};
 pub use indexed::IndexedParameter;
+pub use model::{Constant, Model};
 pub use number::Number;
 pub use pdo::{pdo_bits, CobId, PdoDirection, PdoMapping};
 pub use read_block::ReadBlock;
 pub use readable_registers::{PlannerLimits, RegisterRun};
+pub use refinement::Refinement;
 pub use safety::is_safety_configuration;
 pub use srdo::{SrdoCobId, SrdoMapping};
 pub use value_type::ValueType;
@@ -78,6 +82,15 @@ pub struct Device {
     /// Members described once over a run of sub-indices (left out of the JSON when there are none).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub indexed: Vec<IndexedParameter>,
+    /// `[[refine]]` entries applied to included parameters (left out of the JSON when none).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub refinements: Vec<Refinement>,
+    /// Per-model constants (`[[constant]]`), left out of the JSON when none.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub constants: Vec<Constant>,
+    /// Product models (`[[model]]`) and their constants, left out of the JSON when none.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub models: Vec<Model>,
 }
 
 /// How the drive deviates from the CiA 402 state machine.
@@ -327,6 +340,10 @@ pub struct ModbusCaps {
     pub illegal_value_exception: u8,
     /// Reads the device answers beyond `max_read_registers` (Lenze smd: 6 words at #24).
     pub read_blocks: Vec<ReadBlock>,
+    /// Requests whose exception the device answers under another function code than
+    /// `request | 0x80` (left out of the JSON when none).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub exception_functions: Vec<ExceptionFunction>,
     /// Citation.
     pub source: Option<Citation>,
 }
@@ -336,6 +353,25 @@ impl ModbusCaps {
     /// several registers are written register by register.
     pub fn writes_multiple_registers(&self) -> bool {
         self.functions.contains(&0x10)
+    }
+}
+
+/// A request whose exception answer carries a deviating function code.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct ExceptionFunction {
+    /// The request's function code.
+    pub request: u8,
+    /// The function code of its exception answer (bit 7 set).
+    pub answer: u8,
+}
+
+impl ModbusCaps {
+    /// The function code the device answers an exception to `request` with.
+    pub fn exception_function(&self, request: u8) -> u8 {
+        self.exception_functions
+            .iter()
+            .find(|e| e.request == request)
+            .map_or(request | 0x80, |e| e.answer)
     }
 }
 
@@ -433,6 +469,9 @@ pub struct Flags {
     pub bits: Vec<Bit>,
     /// Multi-bit fields.
     pub fields: Vec<BitField>,
+    /// The enum of error codes the bits report (`bits[].code`), left out of the JSON when none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub codes: Option<String>,
     /// Citation.
     pub source: Option<Citation>,
     /// Errata decision.
@@ -451,6 +490,10 @@ pub struct Bit {
     pub bit: u32,
     /// Documentation.
     pub doc: Option<String>,
+    /// The error code the bit reports, a value of the flags' `codes` enum (left out of the JSON
+    /// when none).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub code: Option<i64>,
     /// Where it is declared.
     #[serde(skip)]
     pub span: Span,
@@ -627,6 +670,23 @@ pub struct Command {
     pub kind: CommandKind,
     /// The raw value that triggers it.
     pub value: Option<i64>,
+    /// Name of this value, where the register takes several.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// Documentation of this value.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub doc: Option<String>,
+    /// The register's further command values (2FF0h sub 1 of Kinco: 1 = store, 10 =
+    /// initialise), left out of the JSON when none.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub more: Vec<Command>,
+}
+
+impl Command {
+    /// Every value of the command register, the first one first.
+    pub fn values(&self) -> impl Iterator<Item = &Command> {
+        std::iter::once(self).chain(&self.more)
+    }
 }
 
 /// An inclusive raw range.

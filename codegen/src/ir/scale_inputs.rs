@@ -1,8 +1,8 @@
-//! Which protocols a run-time scale can be computed on: its inputs must be readable there.
-//! Validation warns where they are not; the emitter leaves such a parameter out of that
-//! protocol's API rather than return unscaled values.
+//! Where a run-time scale's inputs come from: a per-model constant, a parameter read over the
+//! protocol in use, or (where that parameter is not readable there) a value the user gives when
+//! opening the handle. Validation and the emitter both ask these.
 
-use super::{Device, Parameter, Scale};
+use super::{Device, Parameter};
 
 impl Parameter {
     /// Whether the parameter has a readable Modbus address.
@@ -17,13 +17,8 @@ impl Parameter {
 }
 
 impl Device {
-    /// Whether every run-time scale input of `p` is readable by `readable` (true without one).
-    pub fn scale_inputs_readable(&self, p: &Parameter, readable: fn(&Parameter) -> bool) -> bool {
-        match &p.scale {
-            Some(Scale::Runtime { inputs, .. }) => inputs
-                .iter()
-                .all(|i| self.parameter(i).is_some_and(readable)),
-            _ => true,
-        }
+    /// Whether `name` is one of the device's per-model constants.
+    pub fn is_constant(&self, name: &str) -> bool {
+        self.constants.iter().any(|c| c.name == name)
     }
 }

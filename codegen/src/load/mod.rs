@@ -1,6 +1,7 @@
 //! Loading: read a description's files (following `include`), keep spans, lower to the IR.
 
 mod lower;
+mod only;
 mod raw;
 mod raw_srdo;
 pub mod subindex_range;
@@ -25,7 +26,7 @@ pub struct LoadedFile {
     /// Its contents.
     pub raw: RawFile,
     /// The `only` filter of the include that brought it in.
-    pub only: Option<Vec<String>>,
+    pub only: Option<raw::RawOnly>,
 }
 
 /// Reads a description file (or a folder's `device.toml`) and everything it includes.
@@ -58,7 +59,7 @@ pub fn read_files(
 
 fn read_recursive(
     path: &Path,
-    only: Option<Vec<String>>,
+    only: Option<raw::RawOnly>,
     included_at: Option<Span>,
     files: &mut Files,
     diagnostics: &mut Vec<Diagnostic>,
@@ -120,7 +121,7 @@ fn read_recursive(
 const SHAPES: &[(&str, &str)] = &[
     (
         "RawInclude",
-        "an include is a path string or `{ path, only = [names] }`",
+        "an include is a path string or `{ path, only = [names] }` (or `only = { parameters, enums, flags, records }`)",
     ),
     (
         "OneOrMany",
@@ -139,6 +140,10 @@ const SHAPES: &[(&str, &str)] = &[
     (
         "RawSrdoCobId",
         "an SRDO COB-ID is a number or `{ base, node_id_factor }`",
+    ),
+    (
+        "RawOnly",
+        "`only` is a list of names or `{ parameters, enums, flags, records }`, each a list of names",
     ),
 ];
 

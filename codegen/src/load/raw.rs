@@ -40,6 +40,12 @@ pub struct RawFile {
     pub pdo: Vec<RawPdoMapping>,
     #[serde(default)]
     pub srdo: Vec<super::raw_srdo::RawSrdo>,
+    #[serde(default)]
+    pub refine: Vec<RawRefine>,
+    #[serde(default)]
+    pub constant: Vec<RawConstant>,
+    #[serde(default)]
+    pub model: Vec<RawModel>,
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -54,7 +60,7 @@ pub enum RawInclude {
 #[serde(deny_unknown_fields)]
 pub struct RawIncludeTable {
     pub path: String,
-    pub only: Option<Vec<String>>,
+    pub only: Option<RawOnly>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -104,6 +110,7 @@ pub struct RawModbusCaps {
     pub word_order: Option<Spanned<String>>,
     pub illegal_address_exception: Option<Spanned<i64>>,
     pub illegal_value_exception: Option<Spanned<i64>>,
+    pub exception_functions: Option<Spanned<Vec<RawExceptionFunction>>>,
     #[serde(default)]
     pub read_blocks: Vec<Spanned<RawReadBlock>>,
     pub source: Option<Spanned<RawCitation>>,
@@ -186,6 +193,8 @@ pub struct RawFlags {
     pub bits: Vec<Spanned<RawBit>>,
     #[serde(default)]
     pub fields: Vec<Spanned<RawField>>,
+    /// The enum of error codes the bits' `code`s are values of.
+    pub codes: Option<Spanned<String>>,
     pub erratum: Option<String>,
 }
 
@@ -195,6 +204,8 @@ pub struct RawBit {
     pub name: Spanned<String>,
     pub bit: Spanned<i64>,
     pub doc: Option<String>,
+    /// The error code this bit reports (a value of the flags' `codes` enum).
+    pub code: Option<Spanned<i64>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -302,6 +313,9 @@ pub struct RawParameter {
     pub rs232: Option<Spanned<OneOrMany<RawCanOpenAddress>>>,
     pub effect: Option<Spanned<String>>,
     pub command: Option<Spanned<RawCommand>>,
+    /// A command register that takes several values (serde keeps no spans inside the untagged
+    /// one-or-many form, so several values are a key of their own).
+    pub commands: Option<Spanned<Vec<Spanned<RawCommand>>>>,
     pub variants: Option<Vec<Spanned<String>>>,
     pub source: Option<Spanned<RawCitation>>,
     pub erratum: Option<String>,
@@ -370,6 +384,9 @@ pub enum RawPdo {
 pub struct RawCommand {
     pub kind: Spanned<String>,
     pub value: Option<Spanned<i64>>,
+    /// Name of the value when a command register takes several (`[{ kind, value, name }, ...]`).
+    pub name: Option<Spanned<String>>,
+    pub doc: Option<String>,
 }
 
 /// `[cia402]`: how the drive deviates from the CiA 402 state machine.
@@ -467,4 +484,76 @@ pub struct RawPdoMapping {
 pub enum RawCobId {
     Number(i64),
     Text(String),
+}
+
+/// `only` of an include: a list of names (each with the enums, flags and records it refers to), or
+/// one list per kind, taken exactly.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(untagged)]
+pub enum RawOnly {
+    Names(Vec<String>),
+    Kinds(RawOnlyKinds),
+}
+
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawOnlyKinds {
+    #[serde(default)]
+    pub parameters: Vec<String>,
+    #[serde(default)]
+    pub enums: Vec<String>,
+    #[serde(default)]
+    pub flags: Vec<String>,
+    #[serde(default)]
+    pub records: Vec<String>,
+}
+
+/// `[[refine]]`: more addresses for, and cited overrides of, a parameter of an included profile.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawRefine {
+    pub parameter: Spanned<String>,
+    pub doc: Option<String>,
+    pub unit: Option<Spanned<String>>,
+    pub scale: Option<Spanned<RawScale>>,
+    pub default: Option<Spanned<RawNumber>>,
+    pub range: Option<Spanned<Vec<RawNumber>>>,
+    pub allowed: Option<Spanned<Vec<RawNumber>>>,
+    #[serde(rename = "enum")]
+    pub enumeration: Option<Spanned<String>>,
+    pub modbus: Option<Spanned<OneOrMany<RawModbusAddress>>>,
+    pub canopen: Option<Spanned<OneOrMany<RawCanOpenAddress>>>,
+    pub rs232: Option<Spanned<OneOrMany<RawCanOpenAddress>>>,
+    pub source: Option<Spanned<RawCitation>>,
+    pub erratum: Option<String>,
+}
+
+/// `[[constant]]`: a value fixed by the product model, usable in scale expressions.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawConstant {
+    pub name: Spanned<String>,
+    pub doc: Option<String>,
+    pub unit: Option<Spanned<String>>,
+    pub source: Option<Spanned<RawCitation>>,
+}
+
+/// `[[model]]`: a product model the user names when opening the handle, with its constants.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawModel {
+    pub name: Spanned<String>,
+    pub doc: Option<String>,
+    pub constants: Spanned<std::collections::BTreeMap<String, RawScalar>>,
+    pub source: Option<Spanned<RawCitation>>,
+    pub erratum: Option<String>,
+}
+
+/// `exception_functions = [{ request, answer }]`: a device that answers a request's exception
+/// under a function code other than `request | 0x80`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawExceptionFunction {
+    pub request: i64,
+    pub answer: i64,
 }

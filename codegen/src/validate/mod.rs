@@ -5,12 +5,14 @@ use crate::ir::Device;
 
 mod access_matches_functions;
 mod addresses_do_not_overlap;
+mod bit_codes_are_enum_values;
 mod bit_fields_fit;
 mod bounds_resolve;
 mod commands_share_a_register;
 mod defaults_within_range;
 mod enum_values_fit_type;
 mod indexed_names_are_unique;
+mod models_give_constants;
 mod names_are_unique;
 mod parameters_have_addresses;
 mod pdo_entries_are_mappable;
@@ -57,7 +59,12 @@ pub const PASSES: &[(&str, Pass)] = &[
     ("bounds_resolve", bounds_resolve::check),
     ("enum_values_fit_type", enum_values_fit_type::check),
     ("bit_fields_fit", bit_fields_fit::check),
+    (
+        "bit_codes_are_enum_values",
+        bit_codes_are_enum_values::check,
+    ),
     ("scale_is_representable", scale_is_representable::check),
+    ("models_give_constants", models_give_constants::check),
     ("scale_inputs_exist", scale_inputs_exist::check),
     ("words_fit_type", words_fit_type::check),
     ("addresses_do_not_overlap", addresses_do_not_overlap::check),

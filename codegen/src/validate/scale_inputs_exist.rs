@@ -1,14 +1,15 @@
-//! A run-time scale reads only integer, unscaled parameters. Where an input is not readable over a
-//! protocol the scaled parameter uses, the factor cannot be computed there: that is a warning, and
-//! the generated API leaves the parameter out of that protocol (it does not compile) rather than
-//! return unscaled values.
+//! A run-time scale reads only integer, unscaled parameters and per-model constants. Where a
+//! parameter input is not readable over a protocol the scaled parameter uses (Kinco's encoder
+//! resolution has no Modbus register), the user gives its value when opening the handle
+//! (`give_<input>`); a read or write before that is a typed `BadScale` error, never an unscaled
+//! value.
 
 use crate::diagnostic::Diagnostic;
 use crate::ir::{Device, Scale};
 
 const RULE: &str = "scale_inputs_exist";
 
-/// Reports run-time scale inputs that do not exist or cannot be read.
+/// Reports run-time scale inputs that are neither parameters nor constants, or not plain integers.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
     let mut out = Vec::new();
     for p in &device.parameters {
@@ -17,9 +18,12 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
         };
         for name in inputs {
             let error = |message: String| Diagnostic::error(RULE, span.clone(), message);
+            if device.is_constant(name) {
+                continue;
+            }
             let Some(input) = device.parameter(name) else {
                 out.push(error(format!(
-                    "scale of `{}` reads `{name}`, which is not a parameter",
+                    "scale of `{}` reads `{name}`, which is neither a parameter nor a constant",
                     p.name
                 )));
                 continue;
@@ -32,25 +36,6 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
                 out.push(error(format!(
                     "scale input `{name}` must be a plain integer parameter without scale"
                 )));
-            }
-            let missing = [
-                (
-                    "Modbus",
-                    !p.modbus.is_empty() && !input.readable_over_modbus(),
-                ),
-                (
-                    "CANopen",
-                    !p.canopen.is_empty() && !input.readable_over_canopen(),
-                ),
-            ];
-            for (protocol, _) in missing.iter().filter(|(_, m)| *m) {
-                let message = format!(
-                    "scale input `{name}` of `{}` is not readable over {protocol}; `{}` is left out of the {protocol} API",
-                    p.name, p.name
-                );
-                let help =
-                    "give the input a readable address on that protocol if the manual has one";
-                out.push(error(message).warning().help(help));
             }
         }
     }
@@ -76,19 +61,21 @@ source = { doc = "m", line = 1 }
     fn unknown_input_is_reported() {
         assert_eq!(
             messages("scale_inputs_exist", SPEED),
-            ["scale of `target_speed` reads `encoder_resolution`, which is not a parameter"]
+            ["scale of `target_speed` reads `encoder_resolution`, which is neither a parameter nor a constant"]
         );
     }
 
     #[test]
-    fn input_missing_on_a_protocol_is_reported() {
+    fn an_input_missing_on_a_protocol_is_given_not_reported() {
         let body = format!("{SPEED}\n[[parameter]]\nname = \"encoder_resolution\"\ntype = \"u32\"\ncanopen = {{ index = 0x6410, subindex = 3, access = \"rw\" }}\nsource = {{ doc = \"m\", line = 1 }}\n");
         let found = crate::validate::test_support::diagnostics("scale_inputs_exist", &body);
-        assert_eq!(found.len(), 1);
-        assert_eq!(found[0].severity, crate::Severity::Warning);
-        assert_eq!(
-            found[0].message,
-            "scale input `encoder_resolution` of `target_speed` is not readable over Modbus; `target_speed` is left out of the Modbus API"
-        );
+        assert!(found.is_empty(), "{found:?}");
+    }
+
+    #[test]
+    fn a_constant_is_an_input() {
+        let body = SPEED.replace("encoder_resolution", "peak_current")
+            + "[[constant]]\nname = \"peak_current\"\nsource = { doc = \"m\", line = 1 }\n[[model]]\nname = \"a\"\nconstants = { peak_current = 45 }\nsource = { doc = \"m\", line = 1 }\n";
+        assert!(messages("scale_inputs_exist", &body).is_empty());
     }
 }

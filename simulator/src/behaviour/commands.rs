@@ -21,15 +21,23 @@ impl Commands {
             .parameters
             .iter()
             .enumerate()
-            .filter_map(|(id, p)| p.command.as_ref().map(|c| (id, c.kind, c.value)))
+            .flat_map(|(id, p)| {
+                p.command
+                    .iter()
+                    .flat_map(move |c| c.values().map(move |v| (id, v.kind, v.value)))
+            })
             .collect();
         (!commands.is_empty()).then_some(Self { commands })
     }
 
-    fn command(&self, id: ParamId) -> Option<(CommandKind, Option<i64>)> {
-        self.commands
-            .iter()
-            .find(|(c, _, _)| *c == id)
+    /// The command of register `id` that `written` (its raw value, if known) triggers: the value's
+    /// own where the register takes several, else the register's one command.
+    fn command(&self, id: ParamId, written: Option<i128>) -> Option<(CommandKind, Option<i64>)> {
+        let mut of_register = self.commands.iter().filter(|(c, _, _)| *c == id);
+        let first = of_register.clone().next();
+        of_register
+            .find(|(_, _, value)| value.is_some_and(|v| Some(i128::from(v)) == written))
+            .or(first)
             .map(|&(_, kind, value)| (kind, value))
     }
 }
@@ -37,9 +45,9 @@ impl Commands {
 impl Behaviour for Commands {
     /// A command with a trigger value (e.g. CiA 301 "save") refuses any other value.
     fn accept(&self, store: &Store, id: ParamId, bytes: &[u8]) -> Result<(), Refusal> {
-        match self.command(id) {
+        let written = crate::raw::to_int(store.parameter(id).data_type, bytes);
+        match self.command(id, written) {
             Some((_, Some(value))) => {
-                let written = crate::raw::to_int(store.parameter(id).data_type, bytes);
                 if written == Some(i128::from(value)) {
                     Ok(())
                 } else {
@@ -53,7 +61,7 @@ impl Behaviour for Commands {
     /// Runs the command; the register itself reads back its described value afterwards (a
     /// trigger is not a setting, e.g. CiA 301 1010h reads its storage capabilities).
     fn written(&mut self, store: &mut Store, shared: &mut Shared, id: ParamId) {
-        let command = self.command(id);
+        let command = self.command(id, store.int(id));
         if command.is_some() {
             store.reset_to_factory(id);
         }

@@ -42,9 +42,17 @@ impl ModbusServer {
         let answer = self.answer(drive, request, out);
         let result = match answer {
             Ok(len) => Ok(len),
-            Err(code) => pdu::encode_exception(function, code, out),
+            Err(code) => pdu::encode_exception(self.exception_function(function), code, out),
         };
         result.unwrap_or(0)
+    }
+
+    /// The function code whose exception flag makes the answer's function code: the request's
+    /// own, or what the description declares the device answers instead (`exception_functions`).
+    fn exception_function(&self, function: u8) -> u8 {
+        self.caps
+            .as_ref()
+            .map_or(function, |c| c.exception_function(function) & 0x7F)
     }
 
     fn answer(

@@ -65,7 +65,7 @@ pub fn open_frame(unit: UnitId, frame: &[u8]) -> Result<&[u8], BusError> {
 #[inline]
 fn answer_len(request: &Request<'_>, second: u8) -> Option<usize> {
     let function = request.function();
-    if second == function | function::EXCEPTION_FLAG {
+    if function::is_exception(second) {
         Some(1 + 2 + 2)
     } else if second == function {
         Some(1 + request.response_len() + 2)

@@ -3,10 +3,12 @@
 //! drive handle with one accessor per parameter.
 
 mod addresses;
+mod bit_codes;
 mod bounds;
 mod control;
 mod enums;
 mod flags;
+mod given;
 mod handle;
 mod indexed;
 mod parameter;
@@ -71,7 +73,8 @@ pub fn tokens(device: &Device) -> TokenStream {
             .enums
             .iter()
             .map(enums::emit)
-            .chain(device.flags.iter().map(|f| flags::emit(f, device))),
+            .chain(device.flags.iter().map(|f| flags::emit(f, device)))
+            .chain(device.flags.iter().map(|f| bit_codes::emit(f, device))),
     );
     let params = concat(
         std::iter::once(quote! {
@@ -81,7 +84,8 @@ pub fn tokens(device: &Device) -> TokenStream {
             #[allow(unused_imports)]
             use ::drivebus as db;
         })
-        .chain(device.parameters.iter().map(|p| parameter::emit(p, device))),
+        .chain(device.parameters.iter().map(|p| parameter::emit(p, device)))
+        .chain(std::iter::once(given::scale_inputs(device))),
     );
     let control = (!device.device.is_profile).then(|| {
         control::emit(
@@ -110,6 +114,7 @@ pub fn tokens(device: &Device) -> TokenStream {
         bounds::emit(device),
         triggers::emit(device),
         variant_selection::emit(device),
+        given::emit(device),
         pdo::emit(device),
         srdo::emit(device),
         control.unwrap_or_default(),

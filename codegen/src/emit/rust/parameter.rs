@@ -111,33 +111,39 @@ fn expr_tokens(expr: &Expr) -> TokenStream {
     }
 }
 
-/// An inherent `runtime_scale` that reads the factor's inputs and evaluates the expression.
-fn runtime_scale(p: &Parameter) -> TokenStream {
+/// An inherent `runtime_scale` that obtains the factor's inputs — parameters through
+/// `ScaleInput` (read, or given where the protocol cannot read them), constants from the model the
+/// handle was opened with — and evaluates the run-time scale expression.
+fn runtime_scale(p: &Parameter, device: &Device) -> TokenStream {
     let Some(Scale::Runtime { inputs, ast, .. }) = &p.scale else {
         return quote! {};
     };
-    let markers: Vec<_> = inputs.iter().map(|i| ident(&names::camel(i))).collect();
-    let vars: Vec<_> = inputs
-        .iter()
-        .map(|i| ident(&format!("input_{}", names::snake(i))))
-        .collect();
+    let (constants, parameters): (Vec<&String>, Vec<&String>) =
+        inputs.iter().partition(|i| device.is_constant(i));
+    let markers: Vec<_> = parameters.iter().map(|i| ident(&names::camel(i))).collect();
+    let var = |i: &String| ident(&format!("input_{}", names::snake(i)));
+    let (parameter_vars, constant_vars): (Vec<_>, Vec<_>) = (
+        parameters.iter().map(|i| var(i)).collect(),
+        constants.iter().map(|i| var(i)).collect(),
+    );
+    let constant_names = constants.iter().map(|c| c.as_str());
     let expr = expr_tokens(ast);
     let name = ident(&names::camel(&p.name));
     quote! {
         impl #name {
-            /// Reads the factor's inputs and evaluates the run-time scale expression.
-            // `Some(a.checked_div(b)?)`: uniform for every expression, needless for a single one.
+            /// Obtains the factor's inputs and evaluates the run-time scale expression.
+            // Every operation is checked (`?`), the last one included.
             #[allow(clippy::needless_question_mark)]
             fn runtime_scale<L: db::Link>(
                 device: &mut db::Device<L>,
             ) -> Result<db::Scale, db::Error>
             where
-                #( #markers: db::Readable<L::Protocol>, )*
+                #( #markers: ScaleInput<L::Protocol>, )*
             {
-                #( let #vars = db::Ratio::from_raw(device.read_raw::<#markers>()?)
-                    .ok_or(db::ValueError::BadScale { parameter: <Self as db::Parameter>::NAME })?; )*
-                let factor = (|| Some(#expr))()
-                    .ok_or(db::ValueError::BadScale { parameter: <Self as db::Parameter>::NAME })?;
+                let bad = || db::ValueError::BadScale { parameter: <Self as db::Parameter>::NAME };
+                #( let #parameter_vars = <#markers as ScaleInput<L::Protocol>>::scale_input(device, <Self as db::Parameter>::NAME)?; )*
+                #( let #constant_vars = device.given().get(#constant_names).ok_or_else(bad)?; )*
+                let factor = (|| Some(#expr))().ok_or_else(bad)?;
                 Ok(db::Scale::factor(factor))
             }
         }
@@ -168,25 +174,12 @@ pub fn emit(p: &Parameter, device: &Device) -> TokenStream {
     let raw = raw_type(p.data_type);
     let (value_type, codec) = (value_type(p, &quote! { types }), codec(p));
     let clauses = clauses(p);
-    // A run-time factor that cannot be read over a protocol leaves the parameter out of it.
-    let on_modbus = device.scale_inputs_readable(p, Parameter::readable_over_modbus);
-    let on_canopen = device.scale_inputs_readable(p, Parameter::readable_over_canopen);
     let capabilities = [Direction::Read, Direction::Write]
         .into_iter()
         .flat_map(|d| {
             [
-                capability(
-                    p,
-                    "modbus",
-                    d,
-                    addresses::modbus(p, device, d).filter(|_| on_modbus),
-                ),
-                capability(
-                    p,
-                    "canopen",
-                    d,
-                    addresses::canopen(p, device, d).filter(|_| on_canopen),
-                ),
+                capability(p, "modbus", d, addresses::modbus(p, device, d)),
+                capability(p, "canopen", d, addresses::canopen(p, device, d)),
             ]
         })
         .flatten()
@@ -199,7 +192,7 @@ pub fn emit(p: &Parameter, device: &Device) -> TokenStream {
     // Without a capability nothing would call the scale (an unused function warns).
     let scale = match capabilities.is_empty() {
         true => quote! {},
-        false => runtime_scale(p),
+        false => runtime_scale(p, device),
     };
     concat([docs, declaration, scale])
 }
@@ -230,10 +223,9 @@ source = {{ doc = "m", line = 1 }}
     }
 
     #[test]
-    fn a_runtime_scale_is_emitted_only_where_the_parameter_can_be_reached() {
+    fn a_runtime_scale_is_emitted_whether_or_not_its_input_can_be_read() {
         assert!(scaled_by_resolution("rw").contains("runtime_scale"));
-        // The input cannot be read: the parameter is left out of Modbus, and nothing would call
-        // its scale (an unused function is a warning in the user's crate).
-        assert!(!scaled_by_resolution("w").contains("runtime_scale"));
+        // The input cannot be read: its value is given when the handle is opened.
+        assert!(scaled_by_resolution("w").contains("runtime_scale"));
     }
 }

@@ -2,19 +2,23 @@
 //! a malformed scale, a citation of an unknown manual) are reported here; rules that relate
 //! several values to each other are validation passes.
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeMap;
 use std::sync::Arc;
 
+mod commands;
 mod control;
+mod models;
 mod occupies;
 mod overlay;
 mod pdo;
 mod read_blocks;
+mod refine;
 mod srdo;
 mod subindex_range;
 
 use toml::Spanned;
 
+use super::only::{Filter, Kind};
 use super::raw::*;
 use super::LoadedFile;
 use crate::diagnostic::{Diagnostic, FileId, Files, Span};
@@ -57,7 +61,7 @@ pub fn lower(
     }
     for (i, file) in std::iter::once(&root).chain(&included).enumerate() {
         cx.file = file.id;
-        let keep = Filter::new(file, &mut cx);
+        let keep = Filter::new(file, cx.diagnostics);
         if i == 0 {
             cx.root_items(&file.raw, &mut device);
         } else {
@@ -65,7 +69,13 @@ pub fn lower(
             cx.refuse_included_srdos(&file.raw);
         }
         cx.items(&file.raw, &keep, &mut device);
+        cx.models(&file.raw, &mut device);
     }
+    for file in std::iter::once(&root).chain(&included) {
+        cx.file = file.id;
+        cx.refinements(&file.raw, &mut device);
+    }
+    cx.command_enums(&mut device);
     if let Some(overlay) = cx.overlay.take() {
         overlay.finish(&mut device, cx.diagnostics);
     }
@@ -79,65 +89,6 @@ pub(super) struct Lowering<'d> {
     pub(super) file: FileId,
     /// The EDS the root file is an overlay of.
     pub(super) overlay: Option<Overlay<'d>>,
-}
-
-/// Which items of an included file are kept (`only`), including what kept items refer to.
-struct Filter(Option<BTreeSet<String>>);
-
-impl Filter {
-    fn new(file: &LoadedFile, cx: &mut Lowering<'_>) -> Filter {
-        let Some(only) = &file.only else {
-            return Filter(None);
-        };
-        let mut keep: BTreeSet<String> = only.iter().cloned().collect();
-        let raw = &file.raw;
-        let referenced: Vec<String> = raw
-            .parameter
-            .iter()
-            .filter(|p| keep.contains(p.name.get_ref()))
-            .flat_map(|p| {
-                [&p.enumeration, &p.flags, &p.record]
-                    .into_iter()
-                    .flatten()
-                    .map(|r| r.get_ref().clone())
-            })
-            .collect();
-        keep.extend(referenced);
-        let field_enums: Vec<String> = raw
-            .flags
-            .iter()
-            .filter(|f| keep.contains(f.name.get_ref()))
-            .flat_map(|f| {
-                f.fields
-                    .iter()
-                    .filter_map(|x| x.get_ref().enumeration.as_ref())
-                    .map(|e| e.get_ref().clone())
-            })
-            .collect();
-        keep.extend(field_enums);
-        let known: BTreeSet<&String> = raw
-            .parameter
-            .iter()
-            .map(|p| p.name.get_ref())
-            .chain(raw.enums.iter().map(|e| e.name.get_ref()))
-            .chain(raw.flags.iter().map(|f| f.name.get_ref()))
-            .chain(raw.record.iter().map(|r| r.name.get_ref()))
-            .collect();
-        for name in only.iter().filter(|n| !known.contains(n)) {
-            cx.diagnostics.push(
-                Diagnostic::error_at_no_place(
-                    "includes_resolve",
-                    format!("`only` names `{name}`, which the included profile does not define"),
-                )
-                .help("check the spelling against the profile file"),
-            );
-        }
-        Filter(Some(keep))
-    }
-
-    fn keeps(&self, name: &str) -> bool {
-        self.0.as_ref().is_none_or(|k| k.contains(name))
-    }
 }
 
 const VALUE_RULE: &str = "values_are_well_formed";
@@ -223,6 +174,9 @@ impl Lowering<'_> {
             pdos: Vec::new(),
             srdos: Vec::new(),
             indexed: Vec::new(),
+            refinements: Vec::new(),
+            constants: Vec::new(),
+            models: Vec::new(),
         })
     }
 
@@ -292,17 +246,29 @@ impl Lowering<'_> {
             .modbus
             .as_ref()
             .map_or(ir::WordOrder::HighFirst, |m| m.word_order);
-        for e in raw.enums.iter().filter(|e| keep.keeps(e.name.get_ref())) {
+        for e in raw
+            .enums
+            .iter()
+            .filter(|e| keep.keeps(Kind::Enum, e.name.get_ref()))
+        {
             if let Some(e) = self.enumeration(e) {
                 device.enums.push(e);
             }
         }
-        for f in raw.flags.iter().filter(|f| keep.keeps(f.name.get_ref())) {
+        for f in raw
+            .flags
+            .iter()
+            .filter(|f| keep.keeps(Kind::Flags, f.name.get_ref()))
+        {
             if let Some(f) = self.flags(f) {
                 device.flags.push(f);
             }
         }
-        for r in raw.record.iter().filter(|r| keep.keeps(r.name.get_ref())) {
+        for r in raw
+            .record
+            .iter()
+            .filter(|r| keep.keeps(Kind::Record, r.name.get_ref()))
+        {
             if let Some(r) = self.record(r) {
                 device.records.push(r);
             }
@@ -310,7 +276,7 @@ impl Lowering<'_> {
         for p in raw
             .parameter
             .iter()
-            .filter(|p| keep.keeps(p.name.get_ref()))
+            .filter(|p| keep.keeps(Kind::Parameter, p.name.get_ref()))
         {
             if let Some(lowered) = self.parameter(p, modbus_order) {
                 self.push_expanded(p, lowered, device);
@@ -433,6 +399,7 @@ impl Lowering<'_> {
                 .iter()
                 .filter_map(|b| self.read_block(b))
                 .collect(),
+            exception_functions: self.exception_functions(raw),
             source: raw.source.as_ref().and_then(|c| self.citation(c)),
         }
     }
@@ -556,6 +523,7 @@ impl Lowering<'_> {
                     name: inner.name.get_ref().clone(),
                     bit,
                     doc: inner.doc.clone(),
+                    code: inner.code.as_ref().map(|c| *c.get_ref()),
                     span: self.span(&inner.bit),
                 })
             })
@@ -581,6 +549,7 @@ impl Lowering<'_> {
             doc: raw.doc.clone(),
             bits,
             fields,
+            codes: raw.codes.as_ref().map(|c| c.get_ref().clone()),
             source: raw.source.as_ref().and_then(|c| self.citation(c)),
             erratum: raw.erratum.clone(),
             span: self.span(&raw.name),
@@ -639,11 +608,6 @@ impl Lowering<'_> {
 
     fn scale(&mut self, raw: &Spanned<RawScale>) -> Option<ir::Scale> {
         let span = self.span(raw);
-        let exact = |s: &RawScalar| match s {
-            RawScalar::Int(i) => Some(Ratio::int(*i)),
-            RawScalar::Float(f) => float_ratio(*f),
-            RawScalar::Text(t) => Ratio::parse(t),
-        };
         let (factor, offset) = match raw.get_ref() {
             RawScale::Int(i) => (Some(Ratio::int(*i)), Some(Ratio::ZERO)),
             RawScale::Float(f) => (float_ratio(*f), Some(Ratio::ZERO)),
@@ -674,8 +638,8 @@ impl Lowering<'_> {
                 factor,
                 offset,
             }) => (
-                factor.as_ref().map_or(Some(Ratio::ONE), exact),
-                offset.as_ref().map_or(Some(Ratio::ZERO), exact),
+                factor.as_ref().map_or(Some(Ratio::ONE), exact_scalar),
+                offset.as_ref().map_or(Some(Ratio::ZERO), exact_scalar),
             ),
             RawScale::Table(_) => {
                 self.error_help(
@@ -860,8 +824,7 @@ impl Lowering<'_> {
         })
     }
 
-    fn command(&mut self, raw: &Spanned<RawCommand>) -> Option<ir::Command> {
-        let c = raw.get_ref();
+    fn command(&mut self, c: &RawCommand) -> Option<ir::Command> {
         let kind = match c.kind.get_ref().as_str() {
             "store" => ir::CommandKind::Store,
             "restore-factory" => ir::CommandKind::RestoreFactory,
@@ -881,6 +844,9 @@ impl Lowering<'_> {
         Some(ir::Command {
             kind,
             value: c.value.as_ref().map(|v| *v.get_ref()),
+            name: c.name.as_ref().map(|n| n.get_ref().clone()),
+            doc: c.doc.clone(),
+            more: Vec::new(),
         })
     }
 
@@ -954,10 +920,7 @@ impl Lowering<'_> {
             Some(e) => self.effect(e)?,
             None => ir::Effect::Immediate,
         };
-        let command = match &raw.command {
-            Some(c) => Some(self.command(c)?),
-            None => None,
-        };
+        let command = self.commands(raw.command.as_ref(), raw.commands.as_ref())?;
         let spans = ir::ParameterSpans {
             name: self.span(&raw.name),
             data_type: raw
@@ -1017,6 +980,16 @@ impl Lowering<'_> {
             Some(entry) => self.overlay_merge(entry, parameter, raw),
             None => parameter,
         })
+    }
+}
+
+/// The exact value of a number as a description writes it: an integer, a float (its shortest
+/// decimal representation) or a string (`"1/100"`, `"0.1"`).
+fn exact_scalar(value: &RawScalar) -> Option<Ratio> {
+    match value {
+        RawScalar::Int(i) => Some(Ratio::int(*i)),
+        RawScalar::Float(f) => float_ratio(*f),
+        RawScalar::Text(t) => Ratio::parse(t),
     }
 }
 

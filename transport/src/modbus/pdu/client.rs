@@ -417,7 +417,7 @@ fn register_data<'a>(request: &Request<'_>, pdu: &'a [u8]) -> Option<&'a [u8]> {
 fn decode_any_response<'a>(request: &Request<'_>, pdu: &'a [u8]) -> Result<Response<'a>, BusError> {
     let function = request.function();
     let (&got, body) = pdu.split_first().ok_or(frame_error("empty response PDU"))?;
-    if got == function | function::EXCEPTION_FLAG {
+    if function::is_exception(got) {
         return match body {
             [code] => Err(BusError::ModbusException {
                 function,

@@ -39,6 +39,14 @@ pub mod function {
     pub const WRITE_MULTIPLE_REGISTERS: u8 = 0x10;
     /// Set on the function code of an exception response.
     pub const EXCEPTION_FLAG: u8 = 0x80;
+
+    /// Whether function code `got` answers a request as an exception: the standard
+    /// `request | 0x80`, or any code with bit 7 set — some devices answer under another one (the
+    /// Kinco FD manual shows 0x81 for FC 0x03, line 2424), and no normal answer has bit 7 set.
+    #[inline]
+    pub const fn is_exception(got: u8) -> bool {
+        got & EXCEPTION_FLAG != 0
+    }
 }
 
 /// Largest PDU the specification allows (256-byte RTU ADU minus address and CRC).

@@ -108,6 +108,14 @@ fn decodes_responses_and_rejects_what_does_not_match() {
             code: crate::modbus::ExceptionCode::IllegalDataAddress
         })
     );
+    // Kinco FD manual line 2424: the exception to FC 0x03 comes back as 0x81.
+    assert_eq!(
+        decode_response(&read, &[0x81, 0x02]),
+        Err(BusError::ModbusException {
+            function: 3,
+            code: crate::modbus::ExceptionCode::IllegalDataAddress
+        })
+    );
     let write = Request::WriteSingleRegister {
         address: 0x28,
         value: 2,

@@ -1,0 +1,12 @@
+#![doc = include_str!("../README.md")]
+#![no_std]
+#![deny(warnings, missing_docs)]
+
+#[cfg(feature = "std")]
+extern crate std;
+
+include!(concat!(env!("OUT_DIR"), "/drive.rs"));
+
+mod store;
+
+pub use store::Store;
