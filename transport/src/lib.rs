@@ -8,7 +8,8 @@
 //! * [`value`] — raw wire types and their little-endian codecs.
 //! * [`scale`] / [`units`] — exact rational scaling and the unit newtypes values are returned in.
 //! * [`link`] — the one trait a protocol binding implements; [`device`] drives it.
-//! * [`modbus`] / [`canopen`] — protocol addresses and the bus traits transports implement.
+//! * [`modbus`] / [`canopen`] / [`rs232`] — protocol addresses and the bus traits transports
+//!   implement.
 //!
 //! The core is `#![no_std]`; the `std` feature adds the in-memory bus used by tests and examples.
 #![no_std]
@@ -33,6 +34,7 @@ mod open_enum_macro;
 pub mod parameter;
 mod parameter_macro;
 pub mod read_set;
+pub mod rs232;
 pub mod scale;
 pub mod units;
 pub mod value;
