@@ -113,7 +113,7 @@ pub enum BusError {
     },
     /// A Kinco RS-232 exchange about object `index`:`subindex` failed (bad or out-of-place
     /// telegram, silence, or an error answer).
-    Rs232 {
+    Rs232Exchange {
         /// Object index of the request.
         index: u16,
         /// Object subindex of the request.
@@ -161,7 +161,7 @@ impl fmt::Display for BusError {
                     "SDO transfer of {index:#06x}:{subindex} aborted by the client with {code:#010x} ({meaning})"
                 )
             }
-            Self::Rs232 {
+            Self::Rs232Exchange {
                 index,
                 subindex,
                 error,

@@ -16,6 +16,7 @@ mod pdo_numbers_are_unique;
 mod ranges_fit_type;
 mod records_hold_their_members;
 mod references_resolve;
+mod rs232_values_fit_a_telegram;
 pub(crate) mod scale_inputs_exist;
 mod scale_is_representable;
 mod state_machines_resolve;
@@ -50,6 +51,10 @@ pub const PASSES: &[(&str, Pass)] = &[
     ("scale_is_representable", scale_is_representable::check),
     ("scale_inputs_exist", scale_inputs_exist::check),
     ("words_fit_type", words_fit_type::check),
+    (
+        "rs232_values_fit_a_telegram",
+        rs232_values_fit_a_telegram::check,
+    ),
     ("addresses_do_not_overlap", addresses_do_not_overlap::check),
     ("access_matches_functions", access_matches_functions::check),
     (

@@ -18,6 +18,11 @@ pub fn readable_canopen(p: &Parameter) -> bool {
     p.canopen.iter().any(|a| a.access.read)
 }
 
+/// Whether `p` has a readable Kinco RS-232 address.
+pub fn readable_rs232(p: &Parameter) -> bool {
+    p.rs232.iter().any(|a| a.access.read)
+}
+
 /// Whether every run-time scale input of `p` is readable by `readable` (true without one).
 pub fn inputs_readable(p: &Parameter, device: &Device, readable: fn(&Parameter) -> bool) -> bool {
     match &p.scale {
@@ -56,6 +61,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
             let missing = [
                 ("Modbus", !p.modbus.is_empty() && !readable_modbus(input)),
                 ("CANopen", !p.canopen.is_empty() && !readable_canopen(input)),
+                ("RS-232", !p.rs232.is_empty() && !readable_rs232(input)),
             ];
             for (protocol, _) in missing.iter().filter(|(_, m)| *m) {
                 let message = format!(

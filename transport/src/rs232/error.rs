@@ -1,4 +1,4 @@
-//! Everything an RS-232 exchange can fail with; [`BusError::Rs232`](crate::BusError::Rs232)
+//! Everything an RS-232 exchange can fail with; [`BusError::Rs232Exchange`](crate::BusError::Rs232Exchange)
 //! names the object it was about.
 
 use core::fmt;

@@ -8,7 +8,7 @@ use crate::link::Link;
 /// A host able to exchange one request with one station at a time.
 pub trait TelegramBus {
     /// Sends `request` to `station` and returns its answer: an upload's value or a download's
-    /// confirmation. Every failure, an error answer included, is a [`BusError::Rs232`] naming the
+    /// confirmation. Every failure, an error answer included, is a [`BusError::Rs232Exchange`] naming the
     /// request's object, or an I/O error.
     fn exchange(&mut self, station: StationId, request: &Request) -> Result<Answer, BusError>;
 }
@@ -22,7 +22,7 @@ impl<B: TelegramBus + ?Sized> TelegramBus for &mut B {
 impl Rs232Error {
     /// The bus error of this failure in an exchange about `object`.
     pub fn about(self, object: Object) -> BusError {
-        BusError::Rs232 {
+        BusError::Rs232Exchange {
             index: object.index,
             subindex: object.subindex,
             error: self,

@@ -12,7 +12,9 @@ use super::enums::int_literal;
 use super::{concat, doc_attrs, ident, parameter_doc, raw_type};
 use crate::emit::ident as names;
 use crate::ir::{DataType, Device, Expr, Number, Op, Parameter, Scale, ValueType};
-use crate::validate::scale_inputs_exist::{inputs_readable, readable_canopen, readable_modbus};
+use crate::validate::scale_inputs_exist::{
+    inputs_readable, readable_canopen, readable_modbus, readable_rs232,
+};
 
 /// A raw value as a literal of the parameter's raw type (validation keeps floats finite and
 /// within that type's width).
@@ -88,6 +90,41 @@ fn clauses(p: &Parameter) -> TokenStream {
     quote! { #scale #range #allowed }
 }
 
+/// The expression as an `Option<Ratio>`: its outermost operation's own result, so no `Some(x?)`
+/// (clippy's `needless_question_mark`) and no closure where nothing inside needs one.
+fn factor_tokens(expr: &Expr) -> TokenStream {
+    let outer = match expr {
+        Expr::Number(n, d) => quote! { db::Ratio::new(#n, #d) },
+        Expr::Parameter(_) => {
+            let value = expr_tokens(expr);
+            quote! { Some(#value) }
+        }
+        Expr::Negate(a) => {
+            let a = expr_tokens(a);
+            quote! { db::Ratio::ZERO.checked_sub(#a) }
+        }
+        Expr::Binary(a, op, b) => {
+            let (a, b) = (expr_tokens(a), expr_tokens(b));
+            let method = ident(op_method(*op));
+            quote! { (#a).#method(#b) }
+        }
+        Expr::Empty => quote! { None::<db::Ratio> },
+    };
+    match outer.to_string().contains('?') {
+        true => quote! { (|| #outer)() },
+        false => outer,
+    }
+}
+
+fn op_method(op: Op) -> &'static str {
+    match op {
+        Op::Add => "checked_add",
+        Op::Sub => "checked_sub",
+        Op::Mul => "checked_mul",
+        Op::Div => "checked_div",
+    }
+}
+
 fn expr_tokens(expr: &Expr) -> TokenStream {
     match expr {
         Expr::Number(n, d) => quote! { db::Ratio::new(#n, #d)? },
@@ -101,12 +138,7 @@ fn expr_tokens(expr: &Expr) -> TokenStream {
         }
         Expr::Binary(a, op, b) => {
             let (a, b) = (expr_tokens(a), expr_tokens(b));
-            let method = ident(match op {
-                Op::Add => "checked_add",
-                Op::Sub => "checked_sub",
-                Op::Mul => "checked_mul",
-                Op::Div => "checked_div",
-            });
+            let method = ident(op_method(*op));
             quote! { (#a).#method(#b)? }
         }
         Expr::Empty => quote! { None? },
@@ -123,7 +155,7 @@ fn runtime_scale(p: &Parameter) -> TokenStream {
         .iter()
         .map(|i| ident(&format!("input_{}", names::snake(i))))
         .collect();
-    let expr = expr_tokens(ast);
+    let factor = factor_tokens(ast);
     let name = ident(&names::camel(&p.name));
     quote! {
         impl #name {
@@ -136,7 +168,7 @@ fn runtime_scale(p: &Parameter) -> TokenStream {
             {
                 #( let #vars = db::Ratio::from_raw(device.read_raw::<#markers>()?)
                     .ok_or(db::ValueError::BadScale { parameter: <Self as db::Parameter>::NAME })?; )*
-                let factor = (|| Some(#expr))()
+                let factor = #factor
                     .ok_or(db::ValueError::BadScale { parameter: <Self as db::Parameter>::NAME })?;
                 Ok(db::Scale::factor(factor))
             }
@@ -171,6 +203,7 @@ pub fn emit(p: &Parameter, device: &Device) -> TokenStream {
     // A run-time factor that cannot be read over a protocol leaves the parameter out of it.
     let on_modbus = inputs_readable(p, device, readable_modbus);
     let on_canopen = inputs_readable(p, device, readable_canopen);
+    let on_rs232 = inputs_readable(p, device, readable_rs232);
     let capabilities = [Direction::Read, Direction::Write]
         .into_iter()
         .flat_map(|d| {
@@ -186,6 +219,12 @@ pub fn emit(p: &Parameter, device: &Device) -> TokenStream {
                     "canopen",
                     d,
                     addresses::canopen(p, device, d).filter(|_| on_canopen),
+                ),
+                capability(
+                    p,
+                    "rs232",
+                    d,
+                    addresses::rs232(p, device, d).filter(|_| on_rs232),
                 ),
             ]
         })
