@@ -48,25 +48,31 @@ pub struct Rs232Client<S> {
     config: Rs232Config,
 }
 
+/// Opens the serial port at `path` with the protocol's line settings: 8N1 at `config.baud`
+/// (for a host, or for a simulated drive).
+pub fn open_line(path: &str, config: &Rs232Config) -> Result<SerialStream, BusError> {
+    let port = serialport::new(path, config.baud)
+        .data_bits(serialport::DataBits::Eight)
+        .parity(serialport::Parity::None)
+        .stop_bits(serialport::StopBits::One)
+        .flow_control(serialport::FlowControl::None)
+        .timeout(config.timeout)
+        .open()
+        .map_err(|e| {
+            BusError::Io(match e.kind {
+                serialport::ErrorKind::Io(kind) => kind,
+                serialport::ErrorKind::NoDevice => std::io::ErrorKind::NotFound,
+                serialport::ErrorKind::InvalidInput => std::io::ErrorKind::InvalidInput,
+                serialport::ErrorKind::Unknown => std::io::ErrorKind::Other,
+            })
+        })?;
+    Ok(SerialStream::from_port(port))
+}
+
 impl Rs232Client<SerialStream> {
     /// Opens the serial port at `path` (`/dev/ttyUSB0`, `COM3`) with 8N1 at `config.baud`.
     pub fn open(path: &str, config: Rs232Config) -> Result<Self, BusError> {
-        let port = serialport::new(path, config.baud)
-            .data_bits(serialport::DataBits::Eight)
-            .parity(serialport::Parity::None)
-            .stop_bits(serialport::StopBits::One)
-            .flow_control(serialport::FlowControl::None)
-            .timeout(config.timeout)
-            .open()
-            .map_err(|e| {
-                BusError::Io(match e.kind {
-                    serialport::ErrorKind::Io(kind) => kind,
-                    serialport::ErrorKind::NoDevice => std::io::ErrorKind::NotFound,
-                    serialport::ErrorKind::InvalidInput => std::io::ErrorKind::InvalidInput,
-                    serialport::ErrorKind::Unknown => std::io::ErrorKind::Other,
-                })
-            })?;
-        Ok(Self::new(SerialStream::from_port(port), config))
+        Ok(Self::new(open_line(path, &config)?, config))
     }
 }
 
