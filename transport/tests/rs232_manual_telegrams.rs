@@ -118,7 +118,7 @@ fn every_printed_request_decodes_to_its_meaning() {
         let (station, data) =
             telegram::decode(&telegram).unwrap_or_else(|e| panic!("line {line}: {e:?}"));
         assert_eq!(station, StationId(1), "line {line}");
-        assert_eq!(Request::decode(&data), Ok(request), "line {line}");
+        assert_eq!(Request::decode(data), Ok(request), "line {line}");
     }
 }
 

@@ -56,7 +56,7 @@ impl Rs232Server {
         }
         match telegram::decode(received) {
             Ok((station, data)) if station == self.station => {
-                let answer = self.answer(&data);
+                let answer = self.answer(data);
                 out.extend_from_slice(&telegram::encode(self.station, &answer.encode()));
             }
             _ => {}
@@ -137,7 +137,7 @@ mod tests {
     fn answer(bytes: &[u8]) -> Answer {
         let telegram: Telegram = bytes.try_into().unwrap();
         let (_, data) = telegram::decode(&telegram).unwrap();
-        Answer::decode(&data).unwrap()
+        Answer::decode(data).unwrap()
     }
 
     #[test]

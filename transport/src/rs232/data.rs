@@ -48,6 +48,7 @@ pub enum Width {
 
 impl Width {
     /// The width of a value of `bytes` bytes, if the protocol can carry it.
+    #[inline]
     pub const fn of(bytes: usize) -> Option<Self> {
         match bytes {
             1 => Some(Self::One),
@@ -58,6 +59,7 @@ impl Width {
     }
 
     /// The number of bytes.
+    #[inline]
     pub const fn bytes(self) -> usize {
         match self {
             Self::One => 1,
@@ -66,6 +68,7 @@ impl Width {
         }
     }
 
+    #[inline]
     const fn download_command(self) -> u8 {
         match self {
             Self::One => command::DOWNLOAD_1,
@@ -74,6 +77,7 @@ impl Width {
         }
     }
 
+    #[inline]
     const fn uploaded_command(self) -> u8 {
         match self {
             Self::One => command::UPLOADED_1,
@@ -82,6 +86,7 @@ impl Width {
         }
     }
 
+    #[inline]
     const fn from_download_command(command: u8) -> Option<Self> {
         match command {
             command::DOWNLOAD_1 => Some(Self::One),
@@ -91,6 +96,7 @@ impl Width {
         }
     }
 
+    #[inline]
     const fn from_uploaded_command(command: u8) -> Option<Self> {
         match command {
             command::UPLOADED_1 => Some(Self::One),
@@ -110,6 +116,7 @@ pub struct Value {
 
 impl Value {
     /// The value held in `bytes` (1, 2 or 4 of them, little-endian).
+    #[inline]
     pub fn new(bytes: &[u8]) -> Result<Self, Rs232Error> {
         let width =
             Width::of(bytes.len()).ok_or(Rs232Error::UnsupportedWidth { bytes: bytes.len() })?;
@@ -122,19 +129,32 @@ impl Value {
     }
 
     /// How many bytes the value occupies.
+    #[inline]
     pub fn width(&self) -> Width {
         self.width
     }
 
     /// The value's little-endian bytes.
+    #[inline]
     pub fn as_bytes(&self) -> &[u8] {
         &self.bytes[..self.width.bytes()]
     }
 
+    #[inline]
     fn from_data(width: Width, data: &Data) -> Self {
-        let mut bytes = [0u8; 4];
-        bytes[..width.bytes()].copy_from_slice(&data[4..4 + width.bytes()]);
-        Self { width, bytes }
+        // Whole-word masking instead of a copy of variable length (a `memcpy` call).
+        let all = u32::from_le_bytes([data[4], data[5], data[6], data[7]]);
+        let mask = u32::MAX >> (32 - 8 * width.bytes() as u32);
+        Self {
+            width,
+            bytes: (all & mask).to_le_bytes(),
+        }
+    }
+
+    /// The value zero-extended to 32 bits.
+    #[inline]
+    pub fn to_u32(&self) -> u32 {
+        u32::from_le_bytes(self.bytes)
     }
 }
 
@@ -148,11 +168,13 @@ pub struct Object {
 }
 
 impl Object {
+    #[inline]
     fn write_to(self, data: &mut Data) {
         data[1..3].copy_from_slice(&self.index.to_le_bytes());
         data[3] = self.subindex;
     }
 
+    #[inline]
     fn read_from(data: &Data) -> Self {
         Self {
             index: u16::from_le_bytes([data[1], data[2]]),
@@ -172,11 +194,13 @@ pub enum Request {
 
 impl Request {
     /// A read of `index`:`subindex`.
+    #[inline]
     pub const fn upload(index: u16, subindex: u8) -> Self {
         Self::Upload(Object { index, subindex })
     }
 
     /// A write of the little-endian `bytes` (1, 2 or 4 of them) to `index`:`subindex`.
+    #[inline]
     pub fn download(index: u16, subindex: u8, bytes: &[u8]) -> Result<Self, Rs232Error> {
         Ok(Self::Download(
             Object { index, subindex },
@@ -185,6 +209,7 @@ impl Request {
     }
 
     /// The object the request addresses.
+    #[inline]
     pub const fn object(&self) -> Object {
         match self {
             Self::Upload(object) | Self::Download(object, _) => *object,
@@ -192,6 +217,7 @@ impl Request {
     }
 
     /// The 8 data bytes of the request.
+    #[inline]
     pub fn encode(&self) -> Data {
         let mut data = [0u8; DATA_LEN];
         match self {
@@ -210,6 +236,7 @@ impl Request {
 
     /// The request in 8 data bytes, as a drive reads it; the unused bytes of an upload and the
     /// bytes past a download's width are ignored.
+    #[inline]
     pub fn decode(data: &Data) -> Result<Self, Rs232Error> {
         let object = Object::read_from(data);
         match data[0] {
@@ -237,6 +264,7 @@ pub enum Answer {
 
 impl Answer {
     /// The object the answer is about.
+    #[inline]
     pub const fn object(&self) -> Object {
         match self {
             Self::Uploaded(object, _) | Self::Downloaded(object) | Self::Refused(object, _) => {
@@ -246,6 +274,7 @@ impl Answer {
     }
 
     /// The uploaded value's little-endian bytes, if this answer carries one.
+    #[inline]
     pub fn value(&self) -> Option<&[u8]> {
         match self {
             Self::Uploaded(_, value) => Some(value.as_bytes()),
@@ -254,6 +283,7 @@ impl Answer {
     }
 
     /// The 8 data bytes of the answer; reserved bytes are zero.
+    #[inline]
     pub fn encode(&self) -> Data {
         let mut data = [0u8; DATA_LEN];
         self.object().write_to(&mut data);
@@ -272,6 +302,7 @@ impl Answer {
     }
 
     /// The answer in 8 data bytes; reserved bytes and bytes past the width are ignored.
+    #[inline]
     pub fn decode(data: &Data) -> Result<Self, Rs232Error> {
         let object = Object::read_from(data);
         match data[0] {

@@ -36,6 +36,7 @@ pub struct Exchange {
 
 impl Exchange {
     /// An exchange of `request` with `station`, wired as `mode` says.
+    #[inline]
     pub fn new(station: StationId, request: Request, mode: LoopMode) -> Self {
         Self {
             station,
@@ -52,11 +53,13 @@ impl Exchange {
     }
 
     /// The request.
+    #[inline]
     pub fn request(&self) -> &Request {
         &self.request
     }
 
     /// The telegram to send.
+    #[inline]
     pub fn telegram(&self) -> &Telegram {
         &self.telegram
     }
@@ -64,17 +67,28 @@ impl Exchange {
     /// Takes received bytes; returns the answer once it is complete (a download's or an
     /// upload's; an error answer is [`Rs232Error::Refused`]). Bytes after the answer are left
     /// unread: the caller drops stale input before its next request.
+    #[inline]
     pub fn receive(&mut self, mut bytes: &[u8]) -> Result<Option<Answer>, Rs232Error> {
         while !bytes.is_empty() {
-            let take = (TELEGRAM_LEN - self.len).min(bytes.len());
-            self.received[self.len..self.len + take].copy_from_slice(&bytes[..take]);
-            self.len += take;
-            bytes = &bytes[take..];
-            if self.len < TELEGRAM_LEN {
-                return Ok(None);
-            }
-            self.len = 0;
-            if let Some(answer) = self.judge()? {
+            let complete = match (self.len, bytes.split_first_chunk::<TELEGRAM_LEN>()) {
+                // A whole telegram at a boundary (the usual case) is judged where it lies.
+                (0, Some((telegram, rest))) => {
+                    bytes = rest;
+                    *telegram
+                }
+                _ => {
+                    let take = (TELEGRAM_LEN - self.len).min(bytes.len());
+                    self.received[self.len..self.len + take].copy_from_slice(&bytes[..take]);
+                    self.len += take;
+                    bytes = &bytes[take..];
+                    if self.len < TELEGRAM_LEN {
+                        return Ok(None);
+                    }
+                    self.len = 0;
+                    self.received
+                }
+            };
+            if let Some(answer) = self.judge(&complete)? {
                 return Ok(Some(answer));
             }
         }
@@ -82,6 +96,7 @@ impl Exchange {
     }
 
     /// The error that ends the exchange when the timeout passes before the answer is complete.
+    #[inline]
     pub fn timed_out(&self) -> Rs232Error {
         match (self.awaiting, self.len) {
             (_, received @ 1..) => Rs232Error::Short { received },
@@ -91,9 +106,13 @@ impl Exchange {
         }
     }
 
-    /// Judges the complete telegram in `received`: `None` if it was the expected echo.
-    fn judge(&mut self) -> Result<Option<Answer>, Rs232Error> {
-        let is_echo = self.received == self.telegram;
+    /// Judges a complete telegram: `None` if it was the expected echo.
+    #[inline]
+    fn judge(&mut self, received: &Telegram) -> Result<Option<Answer>, Rs232Error> {
+        // The command byte first: an answer's never equals the request's, so the whole
+        // telegram is compared only for a likely echo (and the telegram just built, still in
+        // the store buffer as pieces, is not reloaded whole).
+        let is_echo = received[1] == self.telegram[1] && *received == self.telegram;
         match (self.awaiting, is_echo) {
             (Awaiting::Echo, true) => {
                 self.awaiting = Awaiting::Answer;
@@ -101,20 +120,20 @@ impl Exchange {
             }
             (Awaiting::Echo, false) => Err(Rs232Error::MissingEcho),
             (Awaiting::Answer, true) => Err(Rs232Error::EchoOutOfPlace),
-            (Awaiting::Answer, false) => self.answer().map(Some),
+            (Awaiting::Answer, false) => self.answer(received).map(Some),
         }
     }
 
-    fn answer(&self) -> Result<Answer, Rs232Error> {
-        let (station, data) =
-            telegram::decode(&self.received).map_err(|bad| Rs232Error::Checksum {
-                received: bad.received,
-                expected: bad.expected,
-            })?;
+    #[inline]
+    fn answer(&self, received: &Telegram) -> Result<Answer, Rs232Error> {
+        let (station, data) = telegram::decode(received).map_err(|bad| Rs232Error::Checksum {
+            received: bad.received,
+            expected: bad.expected,
+        })?;
         if station != self.station {
             return Err(Rs232Error::OtherStation { station: station.0 });
         }
-        let answer = Answer::decode(&data)?;
+        let answer = Answer::decode(data)?;
         let object = answer.object();
         if object != self.request.object() {
             return Err(Rs232Error::OtherObject {

@@ -47,18 +47,16 @@ pub struct BadChecksum {
 
 /// The station id and data of a telegram, once its checksum is verified.
 #[inline]
-pub fn decode(telegram: &Telegram) -> Result<(StationId, Data), BadChecksum> {
-    let (head, tail) = telegram.split_at(TELEGRAM_LEN - 1);
-    let expected = checksum(head);
-    if tail[0] != expected {
+pub fn decode(telegram: &Telegram) -> Result<(StationId, &Data), BadChecksum> {
+    let [station, data @ .., sum] = telegram;
+    let expected = checksum(&telegram[..TELEGRAM_LEN - 1]);
+    if *sum != expected {
         return Err(BadChecksum {
-            received: tail[0],
+            received: *sum,
             expected,
         });
     }
-    let mut data = [0u8; DATA_LEN];
-    data.copy_from_slice(&head[1..]);
-    Ok((StationId(head[0]), data))
+    Ok((StationId(*station), data))
 }
 
 #[cfg(test)]
@@ -92,7 +90,7 @@ mod tests {
         #[test]
         fn telegrams_round_trip(station: u8, data: [u8; 8]) {
             let telegram = encode(StationId(station), &data);
-            prop_assert_eq!(decode(&telegram), Ok((StationId(station), data)));
+            prop_assert_eq!(decode(&telegram), Ok((StationId(station), &data)));
         }
 
         #[test]
