@@ -9,7 +9,7 @@
 //! checksum without answering (line 2207), so the exchange never resends on its own: the caller
 //! decides whether a failed request may be repeated.
 
-use super::data::{Answer, Request};
+use super::data::{Answer, Object, Request};
 use super::telegram::{self, Telegram, TELEGRAM_LEN};
 use super::{LoopMode, Rs232Error, StationId};
 
@@ -22,12 +22,23 @@ enum Awaiting {
     Answer,
 }
 
+/// A complete telegram that does not end the exchange with an error.
+enum Verdict {
+    /// The host's own telegram, back from the loop where it was due.
+    Echo,
+    /// The answer.
+    Answer(Answer),
+}
+
 /// One request to one station and the state of its answer.
 #[derive(Debug, Clone)]
 pub struct Exchange {
     station: StationId,
     mode: LoopMode,
-    request: Request,
+    /// The object asked about, and whether the request is an upload (else a download): what
+    /// the answer must match.
+    object: Object,
+    upload: bool,
     telegram: Telegram,
     awaiting: Awaiting,
     received: Telegram,
@@ -41,7 +52,8 @@ impl Exchange {
         Self {
             station,
             mode,
-            request,
+            object: request.object(),
+            upload: matches!(request, Request::Upload(_)),
             telegram: telegram::encode(station, &request.encode()),
             awaiting: match mode {
                 LoopMode::PointToPoint => Awaiting::Answer,
@@ -50,12 +62,6 @@ impl Exchange {
             received: [0; TELEGRAM_LEN],
             len: 0,
         }
-    }
-
-    /// The request.
-    #[inline]
-    pub fn request(&self) -> &Request {
-        &self.request
     }
 
     /// The telegram to send.
@@ -70,11 +76,11 @@ impl Exchange {
     #[inline]
     pub fn receive(&mut self, mut bytes: &[u8]) -> Result<Option<Answer>, Rs232Error> {
         while !bytes.is_empty() {
-            let complete = match (self.len, bytes.split_first_chunk::<TELEGRAM_LEN>()) {
+            let verdict = match (self.len, bytes.split_first_chunk::<TELEGRAM_LEN>()) {
                 // A whole telegram at a boundary (the usual case) is judged where it lies.
                 (0, Some((telegram, rest))) => {
                     bytes = rest;
-                    *telegram
+                    self.judge(telegram)?
                 }
                 _ => {
                     let take = (TELEGRAM_LEN - self.len).min(bytes.len());
@@ -85,11 +91,12 @@ impl Exchange {
                         return Ok(None);
                     }
                     self.len = 0;
-                    self.received
+                    self.judge(&self.received)?
                 }
             };
-            if let Some(answer) = self.judge(&complete)? {
-                return Ok(Some(answer));
+            match verdict {
+                Verdict::Echo => self.awaiting = Awaiting::Answer,
+                Verdict::Answer(answer) => return Ok(Some(answer)),
             }
         }
         Ok(None)
@@ -106,21 +113,19 @@ impl Exchange {
         }
     }
 
-    /// Judges a complete telegram: `None` if it was the expected echo.
-    #[inline]
-    fn judge(&mut self, received: &Telegram) -> Result<Option<Answer>, Rs232Error> {
+    /// Judges a complete telegram. Always inlined: called by reference to the telegram where it
+    /// lies, a call would reload the request's bytes through memory.
+    #[inline(always)]
+    fn judge(&self, received: &Telegram) -> Result<Verdict, Rs232Error> {
         // The command byte first: an answer's never equals the request's, so the whole
         // telegram is compared only for a likely echo (and the telegram just built, still in
         // the store buffer as pieces, is not reloaded whole).
         let is_echo = received[1] == self.telegram[1] && *received == self.telegram;
         match (self.awaiting, is_echo) {
-            (Awaiting::Echo, true) => {
-                self.awaiting = Awaiting::Answer;
-                Ok(None)
-            }
+            (Awaiting::Echo, true) => Ok(Verdict::Echo),
             (Awaiting::Echo, false) => Err(Rs232Error::MissingEcho),
             (Awaiting::Answer, true) => Err(Rs232Error::EchoOutOfPlace),
-            (Awaiting::Answer, false) => self.answer(received).map(Some),
+            (Awaiting::Answer, false) => self.answer(received).map(Verdict::Answer),
         }
     }
 
@@ -135,16 +140,15 @@ impl Exchange {
         }
         let answer = Answer::decode(data)?;
         let object = answer.object();
-        if object != self.request.object() {
+        if object != self.object {
             return Err(Rs232Error::OtherObject {
                 index: object.index,
                 subindex: object.subindex,
             });
         }
-        match (&self.request, answer) {
+        match (self.upload, answer) {
             (_, Answer::Refused(_, cause)) => Err(Rs232Error::Refused { cause }),
-            (Request::Upload(_), Answer::Uploaded(..))
-            | (Request::Download(..), Answer::Downloaded(_)) => Ok(answer),
+            (true, Answer::Uploaded(..)) | (false, Answer::Downloaded(_)) => Ok(answer),
             _ => Err(Rs232Error::UnexpectedCommand { command: data[0] }),
         }
     }
