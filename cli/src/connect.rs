@@ -11,8 +11,12 @@ use drivebus::canopen::blocking::BlockingSdo;
 use drivebus::canopen::{CanBus, CanFrame, NodeId, SdoBus};
 use drivebus::interpret::registers;
 use drivebus::modbus::rtu::{Parity, StopBits};
+use drivebus::modbus::transport::SerialStream;
 use drivebus::modbus::transport::{ModbusTcpClient, SerialConfig, SerialRtuClient, TcpConfig};
 use drivebus::modbus::{ModbusLimits, RegisterBus, UnitId, MAX_IN_FLIGHT};
+use drivebus::rs232::data::Request;
+use drivebus::rs232::serial::{Rs232Client, Rs232Config, DEFAULT_BAUD};
+use drivebus::rs232::{LoopMode, Rs232Error, StationId, TelegramBus};
 use drivebus::BusError;
 use drivegen::ir::{self, Device, Parameter};
 
@@ -32,9 +36,18 @@ pub struct BusArgs {
     /// speaks candump lines on its stdio, e.g. a relay or `drivegen sim ... --can candump:stdio`).
     #[arg(long, value_name = "BACKEND", group = "bus")]
     pub can: Option<String>,
-    /// Baud rate of --serial.
-    #[arg(long, default_value_t = 19_200)]
-    pub baud: u32,
+    /// The Kinco RS-232 protocol on a serial port (or pty), 8N1; the station id is --node-id.
+    /// A Kinco FD's RS-485 port speaks it too, out of the box (6510h sub 0Ch = 1).
+    #[arg(long, value_name = "PATH", group = "bus")]
+    pub kinco_rs232: Option<String>,
+    /// --kinco-rs232: the drives are wired in a multi-point loop (RS232_Loop_Enable = 1), so
+    /// each request comes back before its answer.
+    #[arg(long)]
+    pub rs232_loop: bool,
+    /// Baud rate of --serial (default 19200) or --kinco-rs232 (default 38400, the drive's
+    /// factory setting).
+    #[arg(long)]
+    pub baud: Option<u32>,
     /// Parity of --serial: none, even or odd.
     #[arg(long, default_value = "even")]
     pub parity: String,
@@ -44,7 +57,8 @@ pub struct BusArgs {
     /// Modbus unit id.
     #[arg(long, default_value_t = 1)]
     pub unit: u8,
-    /// CANopen node id (default: the description's).
+    /// CANopen node id, or Kinco RS-232 station id (default: the description's CANopen node id,
+    /// else 1 on RS-232).
     #[arg(long)]
     pub node_id: Option<u8>,
     /// How long the drive has to answer, in milliseconds.
@@ -80,6 +94,10 @@ enum Link {
     CanOpen {
         sdo: BlockingSdo<DynCan>,
         node: NodeId,
+    },
+    Rs232 {
+        bus: Rs232Client<SerialStream>,
+        station: StationId,
     },
 }
 
@@ -139,7 +157,7 @@ impl Session {
                     StopBits::One
                 },
                 timeout,
-                ..SerialConfig::new(args.baud)
+                ..SerialConfig::new(args.baud.unwrap_or(19_200))
             };
             let target = format!("Modbus RTU {path} unit {}", args.unit);
             let bus =
@@ -162,9 +180,38 @@ impl Session {
                 relay,
             });
         }
+        if let Some(path) = &args.kinco_rs232 {
+            return Self::rs232(args, device, path, timeout);
+        }
         Err(CliError::Usage(
-            "name a bus: --modbus-tcp HOST:PORT, --serial PATH or --can BACKEND".into(),
+            "name a bus: --modbus-tcp HOST:PORT, --serial PATH, --can BACKEND or --kinco-rs232 PATH"
+                .into(),
         ))
+    }
+
+    fn rs232(
+        args: &BusArgs,
+        device: &Device,
+        path: &str,
+        timeout: Duration,
+    ) -> Result<Self, CliError> {
+        let config = Rs232Config {
+            baud: args.baud.unwrap_or(DEFAULT_BAUD),
+            timeout,
+            mode: if args.rs232_loop {
+                LoopMode::MultiPoint
+            } else {
+                LoopMode::PointToPoint
+            },
+        };
+        let station = StationId(station_id(args, device));
+        let target = format!("Kinco RS-232 {path} station {}", station.0);
+        let bus = Rs232Client::open(path, config).map_err(|e| connect_error(&target, e))?;
+        Ok(Self {
+            link: Link::Rs232 { bus, station },
+            target,
+            relay: None,
+        })
     }
 
     fn modbus(bus: Box<dyn RegisterBus + Send>, unit: u8, device: &Device, target: String) -> Self {
@@ -192,8 +239,15 @@ impl Session {
             Link::CanOpen { sdo, node } => parameters
                 .iter()
                 .map(|p| {
-                    let address = object_address(p, true)?;
+                    let address = object_address(p, &p.canopen, "CANopen", true)?;
                     upload(sdo, *node, p, address).map_err(|e| bus_error(target, p, e))
+                })
+                .collect(),
+            Link::Rs232 { bus, station } => parameters
+                .iter()
+                .map(|p| {
+                    let address = object_address(p, &p.rs232, "RS-232", true)?;
+                    rs232_upload(bus, *station, address).map_err(|e| bus_error(target, p, e))
                 })
                 .collect(),
             Link::Modbus { bus, unit, limits } => {
@@ -239,8 +293,12 @@ impl Session {
                 }
             }
             Link::CanOpen { sdo, node } => {
-                let address = object_address(parameter, false)?;
+                let address = object_address(parameter, &parameter.canopen, "CANopen", false)?;
                 sdo.download(*node, address.index, address.subindex, bytes)
+            }
+            Link::Rs232 { bus, station } => {
+                let address = object_address(parameter, &parameter.rs232, "RS-232", false)?;
+                rs232_download(bus, *station, address, bytes)
             }
         };
         result.map_err(|e| bus_error(&self.target, parameter, e))
@@ -316,10 +374,55 @@ fn modbus_address(parameter: &Parameter, read: bool) -> Result<&ir::ModbusAddres
         .ok_or_else(|| no_access(parameter, "Modbus", read))
 }
 
-fn object_address(parameter: &Parameter, read: bool) -> Result<&ir::ObjectAddress, CliError> {
-    parameter
-        .canopen
+/// The first of `addresses` (the parameter's CANopen or RS-232 objects) that allows the access.
+fn object_address<'a>(
+    parameter: &Parameter,
+    addresses: &'a [ir::ObjectAddress],
+    protocol: &str,
+    read: bool,
+) -> Result<&'a ir::ObjectAddress, CliError> {
+    addresses
         .iter()
         .find(|a| if read { a.access.read } else { a.access.write })
-        .ok_or_else(|| no_access(parameter, "CANopen", read))
+        .ok_or_else(|| no_access(parameter, protocol, read))
+}
+
+/// The RS-232 station: --node-id, else the description's CANopen node id (the drive's one id,
+/// manual line 2183), else 1.
+fn station_id(args: &BusArgs, device: &Device) -> u8 {
+    args.node_id
+        .or(device.canopen.as_ref().map(|c| c.default_node_id))
+        .unwrap_or(1)
+}
+
+/// The value at `address`, by RS-232 upload.
+fn rs232_upload(
+    bus: &mut Rs232Client<SerialStream>,
+    station: StationId,
+    address: &ir::ObjectAddress,
+) -> Result<Vec<u8>, BusError> {
+    let request = Request::upload(address.index, address.subindex);
+    let answer = bus.exchange(station, &request)?;
+    answer
+        .value()
+        .map(<[u8]>::to_vec)
+        .ok_or(BusError::Frame("an upload was answered without a value"))
+}
+
+/// Writes `bytes` to `address` by RS-232 download.
+fn rs232_download(
+    bus: &mut Rs232Client<SerialStream>,
+    station: StationId,
+    address: &ir::ObjectAddress,
+    bytes: &[u8],
+) -> Result<(), BusError> {
+    let request = Request::download(address.index, address.subindex, bytes).map_err(
+        |error: Rs232Error| {
+            error.about(drivebus::rs232::data::Object {
+                index: address.index,
+                subindex: address.subindex,
+            })
+        },
+    )?;
+    bus.exchange(station, &request).map(drop)
 }

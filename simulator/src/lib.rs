@@ -11,6 +11,9 @@
 //!   ([`modbus::rtu::serve`]) loops.
 //! * [`canopen`] — the object dictionary view with CiA 301 abort codes, and a [`canopen::Node`]
 //!   (boot-up, NMT, heartbeat, SDO) running on any CAN backend of `drivebus`.
+//! * [`rs232`] — the Kinco RS-232 protocol from the parameters' `rs232` addresses: a sans-I/O
+//!   [`rs232::Rs232Server`] (point-to-point or multi-point loop) and a blocking loop
+//!   ([`rs232::serve`]) on a serial port or pty.
 //!
 //! ```
 //! use drivebus::modbus::transport::{ModbusTcpClient, TcpConfig};
@@ -32,6 +35,7 @@ pub mod drive;
 pub mod modbus;
 pub mod raw;
 pub mod refusal;
+pub mod rs232;
 mod simulator;
 pub mod store;
 mod variant_selection;

@@ -7,11 +7,13 @@ use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
 use drivebus::modbus::UnitId;
+use drivebus::rs232::{LoopMode, StationId};
 use drivegen::ir::Device;
 
 use crate::drive::Drive;
 use crate::modbus::tcp::TcpServer;
 use crate::modbus::ModbusServer;
+use crate::rs232::Rs232Server;
 
 /// Why a simulator could not be built or configured.
 #[derive(Debug)]
@@ -119,6 +121,11 @@ impl Simulator {
                 selected.as_deref().or(self.variant()),
             )
         })
+    }
+
+    /// The Kinco RS-232 telegram handler for this drive at `station`.
+    pub fn rs232_server(&self, station: StationId, mode: LoopMode) -> Rs232Server {
+        Rs232Server::new(self, station, mode)
     }
 
     /// Serves Modbus TCP on `addr` (use `127.0.0.1:0` for a free port) for `unit`.

@@ -114,6 +114,16 @@ pub enum BusError {
         /// CiA 301 abort code the client sent.
         code: AbortCode,
     },
+    /// A Kinco RS-232 exchange about object `index`:`subindex` failed (bad or out-of-place
+    /// telegram, silence, or an error answer).
+    Rs232Exchange {
+        /// Object index of the request.
+        index: u16,
+        /// Object subindex of the request.
+        subindex: u8,
+        /// What went wrong.
+        error: crate::rs232::Rs232Error,
+    },
     /// A frame arrived but is malformed or does not match the request.
     Frame(&'static str),
     /// The request needs a feature the device does not support (per its description).
@@ -143,6 +153,11 @@ impl fmt::Display for BusError {
                 f,
                 "SDO transfer of {index:#06x}:{subindex} aborted by the client with {code}"
             ),
+            Self::Rs232Exchange {
+                index,
+                subindex,
+                error,
+            } => write!(f, "RS-232 request about {index:#06x}:{subindex}: {error}"),
             Self::Frame(why) => write!(f, "bad frame: {why}"),
             Self::Unsupported(what) => write!(f, "not supported by the device: {what}"),
             #[cfg(feature = "std")]

@@ -8,7 +8,8 @@
 //! * [`value`] — raw wire types and their little-endian codecs.
 //! * [`scale`] / [`units`] — exact rational scaling and the unit newtypes values are returned in.
 //! * [`link`] — the one trait a protocol binding implements; [`device`] drives it.
-//! * [`modbus`] / [`canopen`] — protocol addresses and the bus traits transports implement.
+//! * [`modbus`] / [`canopen`] / [`rs232`] — protocol addresses and the bus traits transports
+//!   implement.
 //! * `interpret` (feature `std`) — byte and register codecs for tools that read a description at
 //!   run time (the CLI, the simulator).
 //! * [`prelude`] — the names an application uses most, in one `use drivebus::prelude::*;`.
@@ -41,6 +42,7 @@ pub mod parameter;
 mod parameter_macro;
 pub mod prelude;
 pub mod read_set;
+pub mod rs232;
 pub mod scale;
 pub mod units;
 pub mod value;

@@ -7,6 +7,8 @@ use std::vec::Vec;
 use crate::canopen::{NodeId, SdoBus};
 use crate::error::BusError;
 use crate::modbus::{RegisterBus, Table, UnitId};
+use crate::rs232::data::{Answer, Request as Rs232Request, Value};
+use crate::rs232::{Rs232Error, StationId, TelegramBus};
 
 /// One request as the memory bus saw it.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -27,9 +29,9 @@ pub enum Request {
         /// Values written.
         values: Vec<u16>,
     },
-    /// An SDO upload.
+    /// An SDO (or RS-232) upload.
     Upload(u16, u8),
-    /// An SDO download.
+    /// An SDO (or RS-232) download.
     Download(u16, u8, Vec<u8>),
 }
 
@@ -177,5 +179,44 @@ impl SdoBus for MemoryBus {
             })?;
         *slot = data.to_vec();
         Ok(())
+    }
+}
+
+/// The same objects over the Kinco RS-232 data protocol; unknown objects get an error answer
+/// with cause 0x06020000.
+impl TelegramBus for MemoryBus {
+    fn exchange(
+        &mut self,
+        _station: StationId,
+        request: &Rs232Request,
+    ) -> Result<Answer, BusError> {
+        let object = request.object();
+        let refused = Rs232Error::Refused {
+            cause: crate::canopen::sdo::AbortCode::ObjectDoesNotExist.code(),
+        }
+        .about(object);
+        match request {
+            Rs232Request::Upload(_) => {
+                self.log
+                    .push(Request::Upload(object.index, object.subindex));
+                let value = self.object(object.index, object.subindex).ok_or(refused)?;
+                let value = Value::new(value).map_err(|error| error.about(object))?;
+                Ok(Answer::Uploaded(object, value))
+            }
+            Rs232Request::Download(_, value) => {
+                let data = value.as_bytes().to_vec();
+                self.log.push(Request::Download(
+                    object.index,
+                    object.subindex,
+                    data.clone(),
+                ));
+                let slot = self
+                    .objects
+                    .get_mut(&(object.index, object.subindex))
+                    .ok_or(refused)?;
+                *slot = data;
+                Ok(Answer::Downloaded(object))
+            }
+        }
     }
 }

@@ -18,8 +18,8 @@
 /// After the name, raw type, value type and [`codec`](crate::codec) come optional clauses:
 /// `scale(numerator, denominator, offset numerator, offset denominator)`, `range(min, max)` and
 /// `one_of[values]` (raw values). Then one clause per capability: `read` or `write`, the protocol
-/// (`modbus` or `canopen`), and the placement — one address, `(input|holding address words order)`
-/// or `(index subindex bytes)`, or a list with one slot per variant, `_` where absent. A trailing
+/// (`modbus`, `canopen` or `rs232`), and the placement — one address,
+/// `(input|holding address words order)` or `(index subindex bytes)` (CANopen and RS-232), or a list with one slot per variant, `_` where absent. A trailing
 /// `runtime` makes the capability take its scale from the marker's inherent `runtime_scale`.
 #[macro_export]
 macro_rules! parameter {
@@ -79,8 +79,10 @@ macro_rules! parameter {
 
     (@protocol modbus) => { $crate::modbus::Modbus };
     (@protocol canopen) => { $crate::canopen::CanOpen };
+    (@protocol rs232) => { $crate::rs232::Rs232 };
     (@address_type modbus) => { $crate::modbus::ModbusAddress };
     (@address_type canopen) => { $crate::canopen::ObjectAddress };
+    (@address_type rs232) => { $crate::canopen::ObjectAddress };
 
     (@placement $protocol:ident [$($slot:tt),* $(,)?]) => {
         $crate::Placement::PerVariant(&[$($crate::parameter!(@slot $protocol $slot)),*])
@@ -95,6 +97,9 @@ macro_rules! parameter {
         $crate::modbus::ModbusAddress::$table($address, $words, $crate::modbus::WordOrder::$order)
     };
     (@address canopen ($index:literal $subindex:literal $bytes:literal)) => {
+        $crate::canopen::ObjectAddress::new($index, $subindex, $bytes)
+    };
+    (@address rs232 ($index:literal $subindex:literal $bytes:literal)) => {
         $crate::canopen::ObjectAddress::new($index, $subindex, $bytes)
     };
 }

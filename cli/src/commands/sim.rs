@@ -9,6 +9,9 @@ use drivebus::canopen::backend::slcan::{Bitrate, SlcanBus};
 use drivebus::canopen::NodeId;
 use drivebus::modbus::transport::{SerialConfig, SerialStream};
 use drivebus::modbus::UnitId;
+use drivebus::rs232::serial::{open_line, Rs232Config, DEFAULT_BAUD};
+use drivebus::rs232::{LoopMode, StationId};
+use drivegen::ir::Device;
 use drivesim::canopen::{Node, NodeConfig};
 use drivesim::Simulator;
 
@@ -29,13 +32,22 @@ pub struct Args {
     /// `listening on` line goes to stderr) or `slcan:HOST:PORT` (connects to an SLCAN gateway).
     #[arg(long, value_name = "BACKEND", group = "bus")]
     can: Option<String>,
-    /// Baud rate of --serial.
-    #[arg(long, default_value_t = 19_200)]
-    baud: u32,
+    /// Serve the Kinco RS-232 protocol on a serial port or pty (8N1), station --node-id, from
+    /// the parameters' `rs232` addresses.
+    #[arg(long, value_name = "PATH", group = "bus")]
+    kinco_rs232: Option<String>,
+    /// --kinco-rs232: be a drive in a multi-point loop (RS232_Loop_Enable = 1), repeating every
+    /// telegram before answering.
+    #[arg(long)]
+    rs232_loop: bool,
+    /// Baud rate of --serial (default 19200) or --kinco-rs232 (default 38400).
+    #[arg(long)]
+    baud: Option<u32>,
     /// Modbus unit id.
     #[arg(long, default_value_t = 1)]
     unit: u8,
-    /// CANopen node id (default: the description's).
+    /// CANopen node id, or Kinco RS-232 station id (default: the description's CANopen node id,
+    /// else 1 on RS-232).
     #[arg(long)]
     node_id: Option<u8>,
     /// Heartbeat period in ms when the description has no 1017h (0: none).
@@ -72,7 +84,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         return Ok(());
     }
     if let Some(path) = &args.serial {
-        let mut stream = SerialStream::open(path, &SerialConfig::new(args.baud))
+        let mut stream = SerialStream::open(path, &SerialConfig::new(args.baud.unwrap_or(19_200)))
             .map_err(|e| CliError::Io(format!("cannot open {path}: {e}")))?;
         announce(&format!(
             "listening on modbus-rtu {path} unit {}",
@@ -94,9 +106,37 @@ pub fn run(args: Args) -> Result<(), CliError> {
         let mut node_sim = Node::new(sim.clone(), config, sim.variant());
         return run_can(&mut node_sim, backend, node);
     }
+    if let Some(path) = &args.kinco_rs232 {
+        return serve_rs232(&sim, &args, &device, path);
+    }
     Err(CliError::Usage(
-        "name a bus: --modbus-tcp HOST:PORT, --serial PATH or --can BACKEND".into(),
+        "name a bus: --modbus-tcp HOST:PORT, --serial PATH, --can BACKEND or --kinco-rs232 PATH"
+            .into(),
     ))
+}
+
+fn serve_rs232(sim: &Simulator, args: &Args, device: &Device, path: &str) -> Result<(), CliError> {
+    let station = args
+        .node_id
+        .or(device.canopen.as_ref().map(|c| c.default_node_id))
+        .unwrap_or(1);
+    let mode = if args.rs232_loop {
+        LoopMode::MultiPoint
+    } else {
+        LoopMode::PointToPoint
+    };
+    let line = Rs232Config {
+        baud: args.baud.unwrap_or(DEFAULT_BAUD),
+        ..Rs232Config::default()
+    };
+    let mut stream =
+        open_line(path, &line).map_err(|e| CliError::Io(format!("cannot open {path}: {e}")))?;
+    let mut server = sim.rs232_server(StationId(station), mode);
+    announce(&format!(
+        "listening on kinco-rs232 {path} station {station}"
+    ));
+    drivesim::rs232::serve(&mut server, &mut stream)
+        .map_err(|e| CliError::Io(format!("{path}: {e}")))
 }
 
 fn run_can(node_sim: &mut Node, backend: &str, node: NodeId) -> Result<(), CliError> {

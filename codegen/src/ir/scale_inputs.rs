@@ -14,6 +14,11 @@ impl Parameter {
     pub fn readable_over_canopen(&self) -> bool {
         self.canopen.iter().any(|a| a.access.read)
     }
+
+    /// Whether the parameter has a readable Kinco RS-232 address.
+    pub fn readable_over_rs232(&self) -> bool {
+        self.rs232.iter().any(|a| a.access.read)
+    }
 }
 
 impl Device {

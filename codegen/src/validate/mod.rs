@@ -22,6 +22,7 @@ mod ranges_fit_type;
 mod read_blocks_are_described;
 mod records_hold_their_members;
 mod references_resolve;
+mod rs232_values_fit_a_telegram;
 pub(crate) mod scale_inputs_exist;
 mod scale_is_representable;
 mod srdo_entries_are_mappable;
@@ -67,6 +68,10 @@ pub const PASSES: &[(&str, Pass)] = &[
     ("models_give_constants", models_give_constants::check),
     ("scale_inputs_exist", scale_inputs_exist::check),
     ("words_fit_type", words_fit_type::check),
+    (
+        "rs232_values_fit_a_telegram",
+        rs232_values_fit_a_telegram::check,
+    ),
     ("addresses_do_not_overlap", addresses_do_not_overlap::check),
     ("access_matches_functions", access_matches_functions::check),
     (

@@ -15,7 +15,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
                 p.spans.name.clone(),
                 format!("parameter `{}` has no address", p.name),
             )
-            .help("add `modbus = { table, address }` or `canopen = { index, subindex }`")
+            .help("add `modbus = { table, address }`, `canopen = { index, subindex }` or `rs232 = { index, subindex }`")
         })
         .collect()
 }

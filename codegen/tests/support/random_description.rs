@@ -23,6 +23,9 @@ const UNITS: &[&str] = &[
 
 const INTEGER_TYPES: &[&str] = &["u8", "u16", "u32", "i8", "i16", "i32"];
 
+/// Types 1, 2 or 4 bytes wide: the ones a Kinco RS-232 telegram carries.
+const RS232_TYPES: &[&str] = &["bool", "u8", "u16", "u32", "i8", "i16", "i32", "f32"];
+
 /// Names that are awkward as Rust identifiers, or plain ones.
 fn name() -> impl Strategy<Value = String> {
     prop_oneof![
@@ -299,7 +302,8 @@ fn parameter(index: usize, address: u16, name: &str, ty: &str, x: &Extras, cx: &
         "canopen = {{ index = 0x{object:04X}, subindex = {subindex}, access = \"{}\", pdo = {pdo} }}",
         x.access
     );
-    if x.rs232 {
+    // An RS-232 telegram carries 1, 2 or 4 bytes (rule `rs232_values_fit_a_telegram`).
+    if x.rs232 && RS232_TYPES.contains(&ty) {
         let _ = writeln!(
             toml,
             "rs232 = {{ index = 0x{object:04X}, subindex = {subindex}, access = \"{}\" }}",

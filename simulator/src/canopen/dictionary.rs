@@ -4,7 +4,7 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use drivebus::canopen::sdo::server::ObjectDictionary;
 use drivebus::canopen::sdo::AbortCode;
-use drivegen::ir::{Access, Device};
+use drivegen::ir::{Access, Device, ObjectAddress, Parameter};
 
 use crate::refusal::Refusal;
 use crate::store::ParamId;
@@ -19,15 +19,25 @@ pub struct Dictionary {
 }
 
 impl Dictionary {
-    /// The objects of `device` in `variant` (`None`: the default configuration).
+    /// The CANopen objects of `device` in `variant` (`None`: the default configuration).
     pub fn new(sim: Simulator, device: &Device, variant: Option<&str>) -> Self {
+        Self::of(sim, device, variant, |p| &p.canopen)
+    }
+
+    /// The objects of `device` in `variant` at the object addresses `addresses` picks from each
+    /// parameter (CANopen, or the Kinco RS-232 protocol, which addresses the same way).
+    pub fn of(
+        sim: Simulator,
+        device: &Device,
+        variant: Option<&str>,
+        addresses: fn(&Parameter) -> &[ObjectAddress],
+    ) -> Self {
         let mut objects = BTreeMap::new();
         for (id, parameter) in device.parameters.iter().enumerate() {
             if !crate::variant_selection::exists_in(parameter, variant) {
                 continue;
             }
-            for address in parameter
-                .canopen
+            for address in addresses(parameter)
                 .iter()
                 .filter(|a| a.variant.is_none() || a.variant.as_deref() == variant)
             {

@@ -109,11 +109,25 @@ pub fn canopen(p: &Parameter, device: &Device, direction: Direction) -> Option<T
     {
         return None;
     }
+    objects(p, device, &p.canopen, direction)
+}
+
+/// The Kinco RS-232 placement for reads or writes: object addresses, as on CANopen.
+pub fn rs232(p: &Parameter, device: &Device, direction: Direction) -> Option<TokenStream> {
+    objects(p, device, &p.rs232, direction)
+}
+
+fn objects(
+    p: &Parameter,
+    device: &Device,
+    addresses: &[ObjectAddress],
+    direction: Direction,
+) -> Option<TokenStream> {
     let bytes = p.data_type.bytes();
     placement(
         p,
         device,
-        &p.canopen,
+        addresses,
         direction,
         |a| a.access,
         |a| &a.variant,

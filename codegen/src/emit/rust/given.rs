@@ -39,6 +39,7 @@ fn is_given(input: &Parameter, device: &Device) -> bool {
         Some(Scale::Runtime { inputs, .. }) if inputs.contains(&input.name) => {
             (!p.modbus.is_empty() && !input.readable_over_modbus())
                 || (!p.canopen.is_empty() && !input.readable_over_canopen())
+                || (!p.rs232.is_empty() && !input.readable_over_rs232())
         }
         _ => false,
     })
@@ -50,7 +51,7 @@ pub fn scale_inputs(device: &Device) -> TokenStream {
     if inputs.is_empty() {
         return quote! {};
     }
-    let protocols: [(TokenStream, Readable); 2] = [
+    let protocols: [(TokenStream, Readable); 3] = [
         (
             quote! { db::modbus::Modbus },
             Parameter::readable_over_modbus,
@@ -59,6 +60,7 @@ pub fn scale_inputs(device: &Device) -> TokenStream {
             quote! { db::canopen::CanOpen },
             Parameter::readable_over_canopen,
         ),
+        (quote! { db::rs232::Rs232 }, Parameter::readable_over_rs232),
     ];
     let impls = inputs.iter().flat_map(|input| {
         let marker = ident(&names::camel(&input.name));

@@ -44,6 +44,7 @@ fn register_spans(runs: Vec<RegisterRun>) -> TokenStream {
 fn constructors(device: &Device, handle: &proc_macro2::Ident) -> TokenStream {
     let has_modbus = device.parameters.iter().any(|p| !p.modbus.is_empty());
     let has_canopen = device.parameters.iter().any(|p| !p.canopen.is_empty());
+    let has_rs232 = device.parameters.iter().any(|p| !p.rs232.is_empty());
     let limits = modbus_limits(device);
     let modbus = has_modbus.then(|| {
         quote! {
@@ -68,7 +69,17 @@ fn constructors(device: &Device, handle: &proc_macro2::Ident) -> TokenStream {
             }
         }
     });
-    quote! { #modbus #canopen }
+    let rs232 = has_rs232.then(|| {
+        quote! {
+            impl<B: ::drivebus::rs232::TelegramBus> #handle<::drivebus::rs232::Rs232Link<B>> {
+                /// A drive reached over the Kinco RS-232 protocol at `station`.
+                pub fn rs232(bus: B, station: ::drivebus::rs232::StationId) -> Self {
+                    Self::new(::drivebus::rs232::Rs232Link::new(bus, station))
+                }
+            }
+        }
+    });
+    quote! { #modbus #canopen #rs232 }
 }
 
 pub fn emit(device: &Device) -> TokenStream {

@@ -83,6 +83,15 @@ fn clauses(p: &Parameter) -> TokenStream {
     quote! { #scale #range #allowed }
 }
 
+fn op_method(op: Op) -> &'static str {
+    match op {
+        Op::Add => "checked_add",
+        Op::Sub => "checked_sub",
+        Op::Mul => "checked_mul",
+        Op::Div => "checked_div",
+    }
+}
+
 fn expr_tokens(expr: &Expr) -> TokenStream {
     match expr {
         Expr::Number(ratio) => {
@@ -99,12 +108,7 @@ fn expr_tokens(expr: &Expr) -> TokenStream {
         }
         Expr::Binary(a, op, b) => {
             let (a, b) = (expr_tokens(a), expr_tokens(b));
-            let method = ident(match op {
-                Op::Add => "checked_add",
-                Op::Sub => "checked_sub",
-                Op::Mul => "checked_mul",
-                Op::Div => "checked_div",
-            });
+            let method = ident(op_method(*op));
             quote! { (#a).#method(#b)? }
         }
         Expr::Empty => quote! { None? },
@@ -180,6 +184,7 @@ pub fn emit(p: &Parameter, device: &Device) -> TokenStream {
             [
                 capability(p, "modbus", d, addresses::modbus(p, device, d)),
                 capability(p, "canopen", d, addresses::canopen(p, device, d)),
+                capability(p, "rs232", d, addresses::rs232(p, device, d)),
             ]
         })
         .flatten()

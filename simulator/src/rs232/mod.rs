@@ -1,0 +1,6 @@
+//! The Kinco RS-232 side of the simulator: a sans-I/O drive answering telegrams from the
+//! parameters' `rs232` addresses, and a blocking loop over a serial line or pty.
+
+pub mod server;
+
+pub use server::{serve, Rs232Server};

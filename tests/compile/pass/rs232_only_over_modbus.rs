@@ -1,0 +1,9 @@
+use drivebus::memory::MemoryBus;
+use drivebus::rs232::StationId;
+use drivebus::units::Rpm;
+use drivegen_tests::kinco_rs232::KincoRs232;
+
+fn main() {
+    let mut drive = KincoRs232::rs232(MemoryBus::new(), StationId(1));
+    let _ = drive.target_speed().write(Rpm(150.0));
+}

@@ -1,0 +1,87 @@
+//! The bus trait RS-232 transports implement, and the [`Link`] generated drive handles use.
+
+use super::data::{Answer, Object, Request};
+use super::{ObjectAddress, Rs232, Rs232Error, StationId};
+use crate::error::BusError;
+use crate::link::Link;
+
+/// A host able to exchange one request with one station at a time.
+pub trait TelegramBus {
+    /// Sends `request` to `station` and returns its answer: an upload's value or a download's
+    /// confirmation. Every failure, an error answer included, is a [`BusError::Rs232Exchange`] naming the
+    /// request's object, or an I/O error.
+    fn exchange(&mut self, station: StationId, request: &Request) -> Result<Answer, BusError>;
+}
+
+impl<B: TelegramBus + ?Sized> TelegramBus for &mut B {
+    fn exchange(&mut self, station: StationId, request: &Request) -> Result<Answer, BusError> {
+        (**self).exchange(station, request)
+    }
+}
+
+impl Rs232Error {
+    /// The bus error of this failure in an exchange about `object`.
+    pub fn about(self, object: Object) -> BusError {
+        BusError::Rs232Exchange {
+            index: object.index,
+            subindex: object.subindex,
+            error: self,
+        }
+    }
+}
+
+/// A [`TelegramBus`] bound to one station: the [`Link`] generated drive handles use.
+#[derive(Debug)]
+pub struct Rs232Link<B> {
+    bus: B,
+    station: StationId,
+}
+
+impl<B: TelegramBus> Rs232Link<B> {
+    /// Binds `bus` to `station`.
+    pub fn new(bus: B, station: StationId) -> Self {
+        Self { bus, station }
+    }
+    /// The station this link talks to.
+    pub fn station(&self) -> StationId {
+        self.station
+    }
+    /// The underlying bus.
+    pub fn bus_mut(&mut self) -> &mut B {
+        &mut self.bus
+    }
+    /// Gives the bus back.
+    pub fn into_bus(self) -> B {
+        self.bus
+    }
+}
+
+impl<B: TelegramBus> Link for Rs232Link<B> {
+    type Protocol = Rs232;
+
+    fn read(&mut self, address: &ObjectAddress, out: &mut [u8]) -> Result<usize, BusError> {
+        let request = Request::upload(address.index, address.subindex);
+        let answer = self.bus.exchange(self.station, &request)?;
+        let value = answer.value().ok_or(BusError::Frame(
+            "the bus answered an upload without a value",
+        ))?;
+        out.get_mut(..value.len())
+            .ok_or(BusError::Frame("value buffer too small"))?
+            .copy_from_slice(value);
+        Ok(value.len())
+    }
+
+    fn write(&mut self, address: &ObjectAddress, data: &[u8]) -> Result<(), BusError> {
+        let object = Object {
+            index: address.index,
+            subindex: address.subindex,
+        };
+        let request = Request::download(object.index, object.subindex, data)
+            .map_err(|error| error.about(object))?;
+        self.bus.exchange(self.station, &request).map(drop)
+    }
+
+    fn wire_bytes(&self, address: &ObjectAddress) -> usize {
+        address.bytes as usize
+    }
+}
