@@ -12,6 +12,11 @@ fn shipped() -> Vec<PathBuf> {
         .unwrap()
         .map(|e| e.unwrap().path())
         .filter(|p| p.join("device.toml").is_file())
+        // `DRIVEGEN_BENCH_ONLY=lafert-smartris`: one family, to compare against older trees.
+        .filter(|p| match std::env::var("DRIVEGEN_BENCH_ONLY") {
+            Ok(only) => p.ends_with(only),
+            Err(_) => true,
+        })
         .collect();
     paths.sort();
     paths

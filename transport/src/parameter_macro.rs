@@ -11,21 +11,27 @@
 /// # use drivebus::parameter;
 /// /// DC link voltage.
 /// pub struct BusDcLink;
-/// parameter!(BusDcLink = "bus_dc_link": u16 => drivebus::units::Volts, InUnit, scale(1, 100, 0, 1);
-///     read modbus (input 0x64 1 LowFirst));
+/// parameter!(BusDcLink = "bus_dc_link": u16 => drivebus::units::Volts, InUnit, scale = 1 / 100;
+///     read modbus(input 0x0064));
+/// /// Motor temperature.
+/// pub struct MotorTemperature;
+/// parameter!(MotorTemperature = "motor_temperature": u32 => drivebus::units::Celsius, InUnit,
+///     scale = 1 / 10, offset = -40 / 1, range(0, 2000);
+///     read modbus(input 0x0070, 2 words, LowFirst); read canopen(0x2001 sub 3, 4 bytes));
 /// ```
 ///
 /// After the name, raw type, value type and [`codec`](crate::codec) come optional clauses:
-/// `scale(numerator, denominator, offset numerator, offset denominator)`, `range(min, max)` and
-/// `one_of[values]` (raw values). Then one clause per capability: `read` or `write`, the protocol
-/// (`modbus`, `canopen` or `rs232`), and the placement — one address,
-/// `(input|holding address words order)` or `(index subindex bytes)` (CANopen and RS-232), or a list with one slot per variant, `_` where absent. A trailing
-/// `runtime` makes the capability take its scale from the marker's inherent `runtime_scale`.
+/// `scale = numerator / denominator` (with `, offset = numerator / denominator` after it),
+/// `range(min, max)` and `one_of[values]` (raw values). Then one clause per capability: `read`
+/// or `write`, the protocol (`modbus`, `canopen` or `rs232`), and the placement — one address,
+/// `(input 0x0064)` / `(holding 0x0010, 2 words, LowFirst)` or `(0x6041 sub 0, 2 bytes)`, or a
+/// list with one slot per variant, `_` where absent. A trailing `runtime` makes the capability
+/// take its scale from the marker's inherent `runtime_scale`.
 #[macro_export]
 macro_rules! parameter {
     (
         $name:ident = $param_name:literal : $raw:ty => $value:ty, $codec:ident
-        $(, scale($num:expr, $den:expr, $off_num:expr, $off_den:expr))?
+        $(, scale = $num:literal / $den:literal $(, offset = $off_num:literal / $off_den:literal)?)?
         $(, range($min:expr, $max:expr))?
         $(, one_of[$($allowed:expr),*])?
         $(; $direction:ident $protocol:ident $placement:tt $($runtime:ident)?)*
@@ -33,7 +39,8 @@ macro_rules! parameter {
     ) => {
         impl $crate::Parameter for $name {
             const NAME: &'static str = $param_name;
-            $(const SCALE: $crate::Scale = $crate::Scale::fixed($num, $den, $off_num, $off_den);)?
+            $(const SCALE: $crate::Scale =
+                $crate::Scale::fixed($num, $den, 0, 1) $(.with_offset($off_num, $off_den))?;)?
             type Raw = $raw;
             type Value = $value;
             type Codec = $crate::codec::$codec;
@@ -93,13 +100,16 @@ macro_rules! parameter {
     (@slot $protocol:ident _) => { None };
     (@slot $protocol:ident $address:tt) => { Some($crate::parameter!(@address $protocol $address)) };
 
-    (@address modbus ($table:ident $address:literal $words:literal $order:ident)) => {
+    (@address modbus ($table:ident $address:literal)) => {
+        $crate::modbus::ModbusAddress::$table($address, 1, $crate::modbus::WordOrder::HighFirst)
+    };
+    (@address modbus ($table:ident $address:literal, $words:literal words, $order:ident)) => {
         $crate::modbus::ModbusAddress::$table($address, $words, $crate::modbus::WordOrder::$order)
     };
-    (@address canopen ($index:literal $subindex:literal $bytes:literal)) => {
+    (@address canopen ($index:literal sub $subindex:literal, $bytes:literal bytes)) => {
         $crate::canopen::ObjectAddress::new($index, $subindex, $bytes)
     };
-    (@address rs232 ($index:literal $subindex:literal $bytes:literal)) => {
+    (@address rs232 ($index:literal sub $subindex:literal, $bytes:literal bytes)) => {
         $crate::canopen::ObjectAddress::new($index, $subindex, $bytes)
     };
 }

@@ -196,6 +196,18 @@ impl Scale {
         }
     }
 
+    /// This scale with `offset_num / offset_den` added after the factor, for generated
+    /// constants (`scale = 1 / 10, offset = -40 / 1`).
+    pub const fn with_offset(self, offset_num: i64, offset_den: i64) -> Scale {
+        match Ratio::new(offset_num, offset_den) {
+            Some(offset) => Scale {
+                factor: self.factor,
+                offset,
+            },
+            None => panic!("the generator emits only valid offsets"),
+        }
+    }
+
     /// A scale with the given factor and no offset.
     pub const fn factor(factor: Ratio) -> Scale {
         Scale {

@@ -4,25 +4,32 @@
 
 use drivebus::memory::MemoryBus;
 use drivebus::modbus::{ModbusLimits, ModbusLink, Table, UnitId};
-use drivebus::units::Hertz;
+use drivebus::units::{Celsius, Hertz};
 use drivebus::{Device, Error, ValueError, VariantId};
 
 /// At holding 0x004E in variant 0, 0x004F in variant 1, absent in variant 2; 0.1 Hz steps.
 pub struct Setpoint;
-drivebus::parameter!(Setpoint = "setpoint": u16 => Hertz, InUnit, scale(1, 10, 0, 1), range(0, 2400);
-    read modbus [(holding 0x004E 1 HighFirst), (holding 0x004F 1 HighFirst), _];
-    write modbus [(holding 0x004E 1 HighFirst), (holding 0x004F 1 HighFirst), _]);
+drivebus::parameter!(Setpoint = "setpoint": u16 => Hertz, InUnit, scale = 1 / 10, range(0, 2400);
+    read modbus [(holding 0x004E), (holding 0x004F), _];
+    write modbus [(holding 0x004E), (holding 0x004F), _]);
 
 /// A raw code that only takes the listed values.
 pub struct Code;
 drivebus::parameter!(Code = "code": u16 => u16, Plain, one_of[1, 2, 4];
-    read modbus (input 0x0010 1 LowFirst); write modbus (holding 0x0010 1 LowFirst));
+    read modbus (input 0x0010); write modbus (holding 0x0010));
+/// Tenths of a degree from -40 °C, two registers low word first.
+pub struct Temperature;
+drivebus::parameter!(Temperature = "temperature": u32 => Celsius, InUnit,
+    scale = 1 / 10, offset = -40 / 1;
+    read modbus (input 0x0020, 2 words, LowFirst));
 
 fn device(variant: u16) -> Device<ModbusLink<MemoryBus>> {
     let mut bus = MemoryBus::new();
     bus.set_register(Table::Holding, 0x4E, 500)
         .set_register(Table::Holding, 0x4F, 600)
         .set_register(Table::Input, 0x10, 2)
+        .set_register(Table::Input, 0x20, 653)
+        .set_register(Table::Input, 0x21, 0)
         .set_register(Table::Holding, 0x10, 0);
     let link = ModbusLink::new(bus, UnitId(1), ModbusLimits::SPEC);
     Device::new(link, VariantId(variant))
@@ -84,4 +91,10 @@ fn range_and_allowed_values_are_checked_before_sending() {
         2,
         "read from the input register"
     );
+}
+
+#[test]
+fn named_scale_offset_and_word_order_clauses() {
+    // 653 tenths from -40 °C is 25.3 °C; the low word comes first.
+    assert_eq!(device(0).read::<Temperature>().unwrap(), Celsius(25.3));
 }

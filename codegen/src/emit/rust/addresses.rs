@@ -28,25 +28,30 @@ pub(super) fn hex(value: u16) -> Literal {
         .expect("a hexadecimal integer is a literal")
 }
 
-/// `(input 0x0064 1 LowFirst)` in `drivebus::parameter!` syntax.
+/// `(input 0x0064)`, or `(holding 0x0010, 2 words, LowFirst)` where the value spans several
+/// registers (only then does the word order matter), in `drivebus::parameter!` syntax.
 fn modbus_tokens(a: &ModbusAddress) -> TokenStream {
     let table = match a.table {
         Table::Input => quote! { input },
         Table::Holding => quote! { holding },
     };
+    let address = hex(a.address);
+    if a.words == 1 {
+        return quote! { (#table #address) };
+    }
     let order = match a.word_order {
         WordOrder::HighFirst => quote! { HighFirst },
         WordOrder::LowFirst => quote! { LowFirst },
     };
-    let (address, words) = (hex(a.address), Literal::u16_unsuffixed(a.words));
-    quote! { (#table #address #words #order) }
+    let words = Literal::u16_unsuffixed(a.words);
+    quote! { (#table #address, #words words, #order) }
 }
 
-/// `(0x6040 0 2)`: index, subindex and size in bytes, in `drivebus::parameter!` syntax.
+/// `(0x6040 sub 0, 2 bytes)`: index, subindex and size, in `drivebus::parameter!` syntax.
 fn object_tokens(a: &ObjectAddress, bytes: u16) -> TokenStream {
     let (index, subindex) = (hex(a.index), Literal::u8_unsuffixed(a.subindex));
     let bytes = Literal::u16_unsuffixed(bytes);
-    quote! { (#index #subindex #bytes) }
+    quote! { (#index sub #subindex, #bytes bytes) }
 }
 
 /// Where a parameter is for one direction, in `drivebus::parameter!` syntax: one address

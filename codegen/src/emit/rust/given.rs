@@ -53,31 +53,45 @@ pub fn scale_inputs(device: &Device) -> TokenStream {
     }
     let protocols: [(TokenStream, Readable); 3] = [
         (
-            quote! { db::modbus::Modbus },
+            quote! { ::drivebus::modbus::Modbus },
             Parameter::readable_over_modbus,
         ),
         (
-            quote! { db::canopen::CanOpen },
+            quote! { ::drivebus::canopen::CanOpen },
             Parameter::readable_over_canopen,
         ),
-        (quote! { db::rs232::Rs232 }, Parameter::readable_over_rs232),
+        (
+            quote! { ::drivebus::rs232::Rs232 },
+            Parameter::readable_over_rs232,
+        ),
     ];
+    // Only the protocols the device has: a scale is never computed over another one.
+    let reached: [bool; 3] = [
+        device.parameters.iter().any(|p| !p.modbus.is_empty()),
+        device.parameters.iter().any(|p| !p.canopen.is_empty()),
+        device.parameters.iter().any(|p| !p.rs232.is_empty()),
+    ];
+    let protocols: Vec<_> = protocols
+        .into_iter()
+        .zip(reached)
+        .filter_map(|(protocol, reached)| reached.then_some(protocol))
+        .collect();
     let impls = inputs.iter().flat_map(|input| {
         let marker = ident(&names::camel(&input.name));
         let name = input.name.as_str();
         protocols.iter().map(move |(protocol, readable)| {
             let body = if readable(input) {
-                quote! { db::Ratio::from_raw(device.read_raw::<Self>()?) }
+                quote! { ::drivebus::Ratio::from_raw(device.read_raw::<Self>()?) }
             } else {
                 quote! { device.given().get(#name) }
             };
             quote! {
                 impl ScaleInput<#protocol> for #marker {
-                    fn scale_input<L: db::Link<Protocol = #protocol>>(
-                        device: &mut db::Device<L>,
+                    fn scale_input<L: ::drivebus::Link<Protocol = #protocol>>(
+                        device: &mut ::drivebus::Device<L>,
                         scaled: &'static str,
-                    ) -> Result<db::Ratio, db::Error> {
-                        Ok((#body).ok_or(db::ValueError::BadScale { parameter: scaled })?)
+                    ) -> Result<::drivebus::Ratio, ::drivebus::Error> {
+                        Ok((#body).ok_or(::drivebus::ValueError::BadScale { parameter: scaled })?)
                     }
                 }
             }
@@ -86,12 +100,12 @@ pub fn scale_inputs(device: &Device) -> TokenStream {
     quote! {
         /// How a run-time scale input is obtained over protocol `P`: read from the drive where
         /// the protocol reaches it, else the value given when the handle was opened.
-        pub trait ScaleInput<P: db::Protocol> {
+        pub trait ScaleInput<P: ::drivebus::Protocol> {
             /// The input's exact value; `scaled` names the parameter being scaled, for errors.
-            fn scale_input<L: db::Link<Protocol = P>>(
-                device: &mut db::Device<L>,
+            fn scale_input<L: ::drivebus::Link<Protocol = P>>(
+                device: &mut ::drivebus::Device<L>,
                 scaled: &'static str,
-            ) -> Result<db::Ratio, db::Error>;
+            ) -> Result<::drivebus::Ratio, ::drivebus::Error>;
         }
         #( #impls )*
     }

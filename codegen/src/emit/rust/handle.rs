@@ -101,8 +101,10 @@ pub fn emit(device: &Device) -> TokenStream {
             let docs = doc_attrs(&format!(
                 "{summary}\n\nSee [`params::{marker}`] for address, type, unit and source."
             ));
+            let aliases = super::parameter_doc::aliases(p);
             quote! {
                 #docs
+                #aliases
                 #[inline]
                 pub fn #method(&mut self) -> ::drivebus::Accessor<'_, L, params::#marker> {
                     self.device.parameter()

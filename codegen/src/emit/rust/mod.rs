@@ -45,12 +45,14 @@ pub(crate) fn raw_type(data_type: DataType) -> TokenStream {
     }
 }
 
-/// One `#[doc = "..."]` attribute from escaped text: a single attribute instead of one per line
-/// keeps the token stream (and so the generator's parse time) small.
+/// `#[doc = "..."]` attributes from escaped text, one per line, so the generated source shows
+/// `///` lines as hand-written code would.
 pub(crate) fn doc_attrs(text: &str) -> TokenStream {
-    let doc: String = text.lines().map(|l| format!(" {l}\n")).collect();
-    let doc = doc.strip_suffix('\n').unwrap_or_default();
-    quote! { #[doc = #doc] }
+    let lines = text.lines().map(|line| match line {
+        "" => String::new(),
+        line => format!(" {line}"),
+    });
+    quote! { #( #[doc = #lines] )* }
 }
 
 /// Generates the Rust source of a drive crate's items. `origin` names the description in the
@@ -80,9 +82,6 @@ pub fn tokens(device: &Device) -> TokenStream {
         std::iter::once(quote! {
             #[allow(unused_imports)]
             use super::types;
-            // Lower-case, so it cannot collide with a (camel-case) parameter marker.
-            #[allow(unused_imports)]
-            use ::drivebus as db;
         })
         .chain(device.parameters.iter().map(|p| parameter::emit(p, device)))
         .chain(std::iter::once(given::scale_inputs(device))),

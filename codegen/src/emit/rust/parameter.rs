@@ -57,18 +57,22 @@ fn codec(p: &Parameter) -> Ident {
     })
 }
 
+/// A ratio's numerator and denominator as literals (a negative numerator keeps its sign).
+fn ratio_tokens(ratio: drivebus::Ratio) -> (TokenStream, Literal) {
+    let numerator = int_literal(i128::from(ratio.numerator()), DataType::Signed(8));
+    (numerator, Literal::i64_unsuffixed(ratio.denominator()))
+}
+
 /// The optional clauses of the declaration: fixed scale, range and allowed raw values.
 fn clauses(p: &Parameter) -> TokenStream {
     let scale = match &p.scale {
         Some(Scale::Fixed(scale)) => {
-            let [n, d, on, od] = [
-                scale.factor.numerator(),
-                scale.factor.denominator(),
-                scale.offset.numerator(),
-                scale.offset.denominator(),
-            ]
-            .map(Literal::i64_unsuffixed);
-            quote! { , scale(#n, #d, #on, #od) }
+            let (n, d) = ratio_tokens(scale.factor);
+            let offset = (scale.offset != drivebus::Ratio::ZERO).then(|| {
+                let (on, od) = ratio_tokens(scale.offset);
+                quote! { , offset = #on / #od }
+            });
+            quote! { , scale = #n / #d #offset }
         }
         _ => quote! {},
     };
@@ -96,7 +100,7 @@ fn expr_tokens(expr: &Expr) -> TokenStream {
     match expr {
         Expr::Number(ratio) => {
             let (n, d) = (ratio.numerator(), ratio.denominator());
-            quote! { db::Ratio::new(#n, #d)? }
+            quote! { ::drivebus::Ratio::new(#n, #d)? }
         }
         Expr::Parameter(name) => {
             let var = ident(&format!("input_{}", names::snake(name)));
@@ -104,7 +108,7 @@ fn expr_tokens(expr: &Expr) -> TokenStream {
         }
         Expr::Negate(a) => {
             let a = expr_tokens(a);
-            quote! { db::Ratio::ZERO.checked_sub(#a)? }
+            quote! { ::drivebus::Ratio::ZERO.checked_sub(#a)? }
         }
         Expr::Binary(a, op, b) => {
             let (a, b) = (expr_tokens(a), expr_tokens(b));
@@ -138,23 +142,23 @@ fn runtime_scale(p: &Parameter, device: &Device) -> TokenStream {
             /// Obtains the factor's inputs and evaluates the run-time scale expression.
             // Every operation is checked (`?`), the last one included.
             #[allow(clippy::needless_question_mark)]
-            fn runtime_scale<L: db::Link>(
-                device: &mut db::Device<L>,
-            ) -> Result<db::Scale, db::Error>
+            fn runtime_scale<L: ::drivebus::Link>(
+                device: &mut ::drivebus::Device<L>,
+            ) -> Result<::drivebus::Scale, ::drivebus::Error>
             where
                 #( #markers: ScaleInput<L::Protocol>, )*
             {
-                let bad = || db::ValueError::BadScale { parameter: <Self as db::Parameter>::NAME };
-                #( let #parameter_vars = <#markers as ScaleInput<L::Protocol>>::scale_input(device, <Self as db::Parameter>::NAME)?; )*
+                let bad = || ::drivebus::ValueError::BadScale { parameter: <Self as ::drivebus::Parameter>::NAME };
+                #( let #parameter_vars = <#markers as ScaleInput<L::Protocol>>::scale_input(device, <Self as ::drivebus::Parameter>::NAME)?; )*
                 #( let #constant_vars = device.given().get(#constant_names).ok_or_else(bad)?; )*
                 let factor = (|| Some(#expr))().ok_or_else(bad)?;
-                Ok(db::Scale::factor(factor))
+                Ok(::drivebus::Scale::factor(factor))
             }
         }
     }
 }
 
-/// `; read modbus (input 0x0064 1 LowFirst)`: one capability clause, if the direction is allowed.
+/// `; read modbus (input 0x0064)`: one capability clause, if the direction is allowed.
 fn capability(
     p: &Parameter,
     protocol: &str,
@@ -174,6 +178,7 @@ fn capability(
 pub fn emit(p: &Parameter, device: &Device) -> TokenStream {
     let name = ident(&names::camel(&p.name));
     let docs = doc_attrs(&parameter_doc::text(p, device));
+    let aliases = parameter_doc::aliases(p);
     let param_name = p.name.as_str();
     let raw = raw_type(p.data_type);
     let (value_type, codec) = (value_type(p, &quote! { types }), codec(p));
@@ -190,9 +195,10 @@ pub fn emit(p: &Parameter, device: &Device) -> TokenStream {
         .flatten()
         .collect::<Vec<_>>();
     let declaration = quote! {
+        #aliases
         #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
         pub struct #name;
-        db::parameter!(#name = #param_name: #raw => #value_type, #codec #clauses #( #capabilities )*);
+        ::drivebus::parameter!(#name = #param_name: #raw => #value_type, #codec #clauses #( #capabilities )*);
     };
     // Without a capability nothing would call the scale (an unused function warns).
     let scale = match capabilities.is_empty() {

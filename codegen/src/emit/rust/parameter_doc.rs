@@ -1,9 +1,15 @@
 //! The rustdoc of a parameter: what it is, where it lives, its type, unit, access and citation.
 
+use std::collections::BTreeSet;
 use std::fmt::Write as _;
 
+use proc_macro2::TokenStream;
+use quote::quote;
+
 use crate::emit::doc;
-use crate::ir::{Access, Citation, Device, Effect, Parameter, Scale};
+use crate::ir::{
+    Access, Citation, Command, CommandKind, Device, Effect, Parameter, Scale, Table, WordOrder,
+};
 
 fn access(a: Access) -> &'static str {
     match (a.read, a.write) {
@@ -27,21 +33,23 @@ pub fn text(p: &Parameter, device: &Device) -> String {
             .as_deref()
             .map(|v| format!(" (variant `{v}`)"))
             .unwrap_or_default();
-        let words = if a.words > 1 {
-            format!(", {} words {:?}", a.words, a.word_order).to_lowercase()
-        } else {
-            String::new()
+        let words = match (a.words, a.word_order) {
+            (1, _) => String::new(),
+            (n, WordOrder::LowFirst) => format!(", {n} words, low word first"),
+            (n, WordOrder::HighFirst) => format!(", {n} words, high word first"),
+        };
+        let table = match a.table {
+            Table::Input => "Input",
+            Table::Holding => "Holding",
         };
         row(
             &mut out,
             "Modbus",
             format!(
-                "{:?} register `{:#06X}`{words}, {}{variant}",
-                a.table,
+                "{table} register `0x{:04X}`{words}, {}{variant}",
                 a.address,
                 access(a.access)
-            )
-            .replace("0X", "0x"),
+            ),
         );
     }
     if p.canopen.iter().any(crate::ir::is_safety_configuration) {
@@ -137,7 +145,7 @@ pub fn text(p: &Parameter, device: &Device) -> String {
         row(
             &mut out,
             "Command",
-            format!("{:?}, trigger value {:?}; never retried", c.kind, c.value),
+            format!("{}; never retried", command_text(c)),
         );
     }
     if !p.variants.is_empty() {
@@ -170,4 +178,38 @@ pub fn citation(c: &Citation, device: &Device) -> String {
         let _ = write!(cite, ", line {line}");
     }
     cite
+}
+
+/// What a command register does, in words: `store, trigger value 1`.
+fn command_text(c: &Command) -> String {
+    let kind = match c.kind {
+        CommandKind::Store => "store",
+        CommandKind::RestoreFactory => "restore factory settings",
+        CommandKind::Reset => "reset",
+        CommandKind::Action => "action",
+    };
+    match c.value {
+        Some(value) => format!("{kind}, trigger value {value}"),
+        None => kind.to_owned(),
+    }
+}
+
+/// `#[doc(alias = "...")]` with the addresses the manuals print, so rustdoc's search finds a
+/// parameter by them: `0x0064` for a Modbus register, `6041h` and `0x6041` for an object (and
+/// `6041h:01` for a sub-index other than 0).
+pub fn aliases(p: &Parameter) -> TokenStream {
+    let modbus = p.modbus.iter().map(|a| format!("0x{:04X}", a.address));
+    let objects = p.canopen.iter().chain(&p.rs232).flat_map(|a| {
+        let sub = (a.subindex != 0).then(|| format!("{:04X}h:{:02X}", a.index, a.subindex));
+        [
+            Some(format!("{:04X}h", a.index)),
+            Some(format!("0x{:04X}", a.index)),
+            sub,
+        ]
+        .into_iter()
+        .flatten()
+    });
+    let unique: BTreeSet<String> = modbus.chain(objects).collect();
+    let attrs = unique.iter().map(|alias| quote! { #[doc(alias = #alias)] });
+    quote! { #( #attrs )* }
 }
