@@ -23,6 +23,7 @@
 extern crate std;
 
 pub mod canopen;
+#[doc(hidden)] // the checks generated parameters call before sending
 pub mod check;
 pub mod codec;
 pub mod control;

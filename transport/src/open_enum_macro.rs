@@ -25,6 +25,7 @@
 /// assert!(BaudRate::try_from(97).is_err());
 /// assert_eq!(format!("{:?}", BaudRate::B9600), "b9600");
 /// ```
+#[doc(hidden)] // generated crates call it; users never need to
 #[macro_export]
 macro_rules! open_enum {
     ($name:ident: $raw:ty) => {

@@ -27,6 +27,7 @@
 /// `(input 0x0064)` / `(holding 0x0010, 2 words, LowFirst)` or `(0x6041 sub 0, 2 bytes)`, or a
 /// list with one slot per variant, `_` where absent. A trailing `runtime` makes the capability
 /// take its scale from the marker's inherent `runtime_scale`.
+#[doc(hidden)] // generated crates call it; users never need to
 #[macro_export]
 macro_rules! parameter {
     (

@@ -189,6 +189,7 @@ impl Scale {
     };
 
     /// A scale with the given factor and offset, from the generator's exact fractions.
+    #[doc(hidden)] // generated constants; users build scales from `Ratio`s
     pub const fn fixed(num: i64, den: i64, offset_num: i64, offset_den: i64) -> Scale {
         match (Ratio::new(num, den), Ratio::new(offset_num, offset_den)) {
             (Some(factor), Some(offset)) => Scale { factor, offset },
@@ -198,6 +199,7 @@ impl Scale {
 
     /// This scale with `offset_num / offset_den` added after the factor, for generated
     /// constants (`scale = 1 / 10, offset = -40 / 1`).
+    #[doc(hidden)]
     pub const fn with_offset(self, offset_num: i64, offset_den: i64) -> Scale {
         match Ratio::new(offset_num, offset_den) {
             Some(offset) => Scale {

@@ -1,7 +1,7 @@
 //! The run-time interpreter's codecs: parameter values as the bytes and registers a described
 //! [`DataType`](crate::DataType) occupies, for tools that read a description at run time (the
-//! `drivegen` CLI, the simulator) instead of compiling it. Scaling and range checks are the same
-//! [`Scale`](crate::Scale) and [`check`](crate::check) generated code uses.
+//! `drivegen` CLI, the simulator) instead of compiling it. Scaling is the same
+//! [`Scale`](crate::Scale) generated code uses.
 
 pub mod raw;
 pub mod registers;
