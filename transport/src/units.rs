@@ -63,6 +63,8 @@ units! {
     Rpm = "rpm",
     /// Revolutions per minute per second (acceleration).
     RpmPerSecond = "rpm/s",
+    /// Revolutions per second per second (acceleration, as Kinco's manual gives it).
+    RpsPerSecond = "rps/s",
     /// Degrees Celsius.
     Celsius = "°C",
     /// Percent.

@@ -80,3 +80,28 @@ fn currents_follow_the_model() {
     assert!((drive.max_current().read().unwrap().0 - 11.312).abs() < 1e-9);
     assert_eq!(Model::Fd144s.name(), "fd144s");
 }
+
+#[test]
+fn accelerations_are_in_rps_per_second() {
+    // 100000 DEC at resolution 10000 is 610.352 rps/s (line 1966): DEC · 4000000 / (65536 · 10000).
+    let mut memory = MemoryBus::new();
+    memory
+        .set_object(0x6410, 3, &10_000u32.to_le_bytes())
+        .set_object(0x6083, 0, &100_000u32.to_le_bytes());
+    let node = NodeId::new(1).unwrap();
+    let mut drive = KincoFd::<CanOpenLink<MemoryBus>>::canopen(memory, node);
+    let acceleration = drive.profile_acceleration().read().unwrap();
+    assert!(
+        (acceleration.0 - 610.3515625).abs() < 1e-9,
+        "{acceleration:?}"
+    );
+    // 1 rps/s is 16.384 DEC here: not a whole DEC, refused rather than rounded.
+    assert!(drive
+        .profile_acceleration()
+        .write(drivebus::units::RpsPerSecond(1.0))
+        .is_err());
+    drive
+        .profile_acceleration()
+        .write(drivebus::units::RpsPerSecond(610.3515625))
+        .unwrap();
+}
