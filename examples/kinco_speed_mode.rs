@@ -1,8 +1,9 @@
 //! The Kinco FD speed-mode sequence of the manual (sections 9.4 / 10.5 / 11.5: mode 3, target
 //! speed 150 rpm, controlword 0x0F) through the generated `kinco-fd` crate, against the simulated
-//! drive built from the same description — once over Modbus TCP and once over CANopen (an
-//! in-process CAN bus). The Kinco RS-232 transport is being added to drivebus separately; the
-//! description already gives every object its RS-232 address.
+//! drive built from the same description — over Modbus TCP, over CANopen (an in-process CAN bus)
+//! and over the Kinco RS-232 protocol (the sans-I/O telegram exchange of `drivebus::rs232`
+//! against the simulator's RS-232 server, in process; `drivegen sim --kinco-rs232 PTY` serves a
+//! real serial line).
 //!
 //! ```sh
 //! cargo run --example kinco_speed_mode
@@ -18,9 +19,14 @@ use drivebus::canopen::blocking::BlockingSdo;
 use drivebus::canopen::NodeId;
 use drivebus::modbus::transport::{ModbusTcpClient, TcpConfig};
 use drivebus::modbus::UnitId;
+use drivebus::rs232::data::{Answer, Request};
+use drivebus::rs232::exchange::Exchange;
+use drivebus::rs232::{LoopMode, StationId, TelegramBus};
 use drivebus::units::Rpm;
+use drivebus::BusError;
 use drivebus::{Link, Readable, Writable};
 use drivesim::canopen::{Node, NodeConfig};
+use drivesim::rs232::Rs232Server;
 use kinco_fd::params::{
     Controlword, ModesOfOperation, Statusword, TargetVelocity, VelocityActualValue,
 };
@@ -60,7 +66,33 @@ fn main() -> Result<(), Box<dyn Error>> {
     stop.store(true, Ordering::Relaxed);
     node.join()
         .map_err(|_| "the CANopen node thread panicked")??;
-    result
+    result?;
+
+    println!("Kinco RS-232, simulated Kinco FD as station 1, telegrams exchanged in process");
+    let rs232_sim = drivesim::Simulator::load(DESCRIPTION)?;
+    rs232_sim.preset("encoder_resolution", 10_000)?;
+    let server = Rs232Server::new(&rs232_sim, StationId(1), LoopMode::PointToPoint);
+    // Over RS-232 the encoder resolution (6410h.03) is read from the drive, as over CANopen.
+    speed_mode(KincoFd::rs232(InProcessLine { server }, StationId(1)))
+}
+
+/// A serial line whose far end is the simulator's RS-232 server: each request telegram goes
+/// through the same sans-I/O exchange a serial client uses, and the server's bytes come back.
+struct InProcessLine {
+    server: Rs232Server,
+}
+
+impl TelegramBus for InProcessLine {
+    fn exchange(&mut self, station: StationId, request: &Request) -> Result<Answer, BusError> {
+        let object = request.object();
+        let mut exchange = Exchange::new(station, *request, LoopMode::PointToPoint);
+        let reply = self.server.handle(exchange.telegram());
+        match exchange.receive(&reply) {
+            Ok(Some(answer)) => Ok(answer),
+            Ok(None) => Err(exchange.timed_out().about(object)),
+            Err(error) => Err(error.about(object)),
+        }
+    }
 }
 
 /// Mode 3, 150 rpm, power on; then the drive's own view of it.

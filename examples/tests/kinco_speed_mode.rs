@@ -1,5 +1,5 @@
-//! The Kinco speed-mode example runs end to end over Modbus TCP and CANopen on its simulators,
-//! and the motor reaches the commanded 150 rpm on both.
+//! The Kinco speed-mode example runs end to end over Modbus TCP, CANopen and Kinco RS-232 on its
+//! simulators, and the motor reaches the commanded 150 rpm on all three.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -12,7 +12,7 @@ fn example() -> PathBuf {
 }
 
 #[test]
-fn speed_mode_reaches_150_rpm_over_modbus_and_canopen() {
+fn speed_mode_reaches_150_rpm_over_all_three_protocols() {
     let output = Command::new(example()).output().unwrap();
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert!(
@@ -24,13 +24,13 @@ fn speed_mode_reaches_150_rpm_over_modbus_and_canopen() {
         stdout
             .matches("target speed   150 rpm (409600 DEC)")
             .count(),
-        2,
+        3,
         "{stdout}"
     );
     assert_eq!(
         stdout.matches("actual speed   150 rpm").count(),
-        2,
+        3,
         "{stdout}"
     );
-    assert_eq!(stdout.matches("OPERATION_ENABLED").count(), 2, "{stdout}");
+    assert_eq!(stdout.matches("OPERATION_ENABLED").count(), 3, "{stdout}");
 }
