@@ -10,7 +10,7 @@ use drivebus::scale::EXACT_INTEGERS;
 use drivebus::ValueError;
 use drivegen::ir::{DataType, Device, Parameter, Scale};
 
-use crate::raw_value::RawValue;
+use drivebus::interpret::RawValue;
 
 /// Why a value typed by the user was refused (nothing has been sent).
 #[derive(Debug, Clone, PartialEq)]
@@ -325,16 +325,9 @@ fn check(parameter: &Parameter, raw: RawValue) -> Result<(), CodecError> {
             )));
         }
     }
+    let against = |bound: drivegen::ir::Number| bound.compare_raw(raw);
     if let Some(range) = &parameter.range {
-        let from_min = matches!(
-            raw.compare(range.min),
-            Some(Ordering::Greater | Ordering::Equal)
-        );
-        let to_max = matches!(
-            raw.compare(range.max),
-            Some(Ordering::Less | Ordering::Equal)
-        );
-        if !(from_min && to_max) {
+        if range.locate(against) != Some(Ordering::Equal) {
             return Err(CodecError::OutOfRange(format!(
                 "{} is outside the range of {}: {}..={}",
                 shown(raw),
@@ -344,8 +337,7 @@ fn check(parameter: &Parameter, raw: RawValue) -> Result<(), CodecError> {
             )));
         }
     }
-    let is_allowed = |a: &drivegen::ir::Number| raw.compare(*a) == Some(Ordering::Equal);
-    if !parameter.allowed.is_empty() && !parameter.allowed.iter().any(is_allowed) {
+    if !parameter.allows(against) {
         let allowed: Vec<String> = parameter.allowed.iter().map(|a| shown_number(*a)).collect();
         return Err(CodecError::NotAllowed(format!(
             "{} is not allowed for {}; allowed: {}",

@@ -8,7 +8,6 @@ mod connect;
 mod error;
 mod modbus_batch;
 mod pdo_mappings;
-mod raw_value;
 mod suggest;
 mod table;
 

@@ -1,8 +1,10 @@
 //! The parameter store: every parameter's raw value, its factory default and its stored copy.
 
+use std::cmp::Ordering;
 use std::collections::HashMap;
 
-use drivegen::ir::{DataType, Device, Parameter};
+use drivebus::interpret::RawValue;
+use drivegen::ir::{DataType, Device, Number, Parameter};
 
 use crate::raw;
 use crate::refusal::Refusal;
@@ -89,18 +91,16 @@ impl Store {
         if bytes.len() != width && !(text && bytes.len() <= width) {
             return Err(Refusal::WrongLength);
         }
-        let Some(value) = raw::to_f64(parameter.data_type, bytes) else {
+        let Some(value) = RawValue::of(parameter.data_type, bytes) else {
             return Ok(());
         };
-        if let Some(range) = &parameter.range {
-            if value > range.max.as_f64() {
-                return Err(Refusal::TooHigh);
-            }
-            if value < range.min.as_f64() {
-                return Err(Refusal::TooLow);
-            }
+        let against = |bound: Number| bound.compare_raw(value);
+        match parameter.range.as_ref().and_then(|r| r.locate(against)) {
+            Some(Ordering::Greater) => return Err(Refusal::TooHigh),
+            Some(Ordering::Less) => return Err(Refusal::TooLow),
+            _ => {}
         }
-        if !parameter.allowed.is_empty() && !parameter.allowed.iter().any(|a| a.as_f64() == value) {
+        if !parameter.allows(against) {
             return Err(Refusal::InvalidValue);
         }
         Ok(())

@@ -10,8 +10,8 @@
 //! * [`link`] — the one trait a protocol binding implements; [`device`] drives it.
 //! * [`modbus`] / [`canopen`] / [`rs232`] — protocol addresses and the bus traits transports
 //!   implement.
-//! * `interpret` (feature `std`) — byte and register codecs for tools that read a description at
-//!   run time (the CLI, the simulator).
+//! * [`interpret`] — raw values, and (feature `std`) byte and register codecs, for tools that read
+//!   a description at run time (the CLI, the simulator).
 //! * [`prelude`] — the names an application uses most, in one `use drivebus::prelude::*;`.
 //!
 //! The core is `#![no_std]`; the `std` feature adds the in-memory bus used by tests and examples.
@@ -32,7 +32,6 @@ pub mod device;
 pub mod error;
 pub mod error_class;
 pub mod given;
-#[cfg(feature = "std")]
 pub mod interpret;
 pub mod link;
 #[cfg(feature = "std")]

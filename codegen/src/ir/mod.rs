@@ -699,11 +699,24 @@ pub struct Range {
 }
 
 impl Range {
+    /// Where a value lies, given how it compares with a bound: `Less` below the minimum,
+    /// `Greater` above the maximum, `Equal` within; `None` if it does not compare (NaN). The one
+    /// range check of described values, for the validator, the simulator and the CLI alike.
+    pub fn locate(
+        &self,
+        compare: impl Fn(Number) -> Option<std::cmp::Ordering>,
+    ) -> Option<std::cmp::Ordering> {
+        use std::cmp::Ordering::{Equal, Greater, Less};
+        match (compare(self.min)?, compare(self.max)?) {
+            (Less, _) => Some(Less),
+            (_, Greater) => Some(Greater),
+            _ => Some(Equal),
+        }
+    }
+
     /// Whether `n` lies within the range, compared exactly ([`Number::compare`]).
     pub fn contains(&self, n: Number) -> bool {
-        use std::cmp::Ordering::{Equal, Greater, Less};
-        matches!(n.compare(self.min), Some(Greater | Equal))
-            && matches!(n.compare(self.max), Some(Less | Equal))
+        self.locate(|bound| n.compare(bound)) == Some(std::cmp::Ordering::Equal)
     }
 }
 
@@ -788,6 +801,18 @@ pub struct ParameterSpans {
     pub record: Option<Span>,
     /// The variants list.
     pub variants: Vec<Span>,
+}
+
+impl Parameter {
+    /// Whether a value is one of the allowed values (always, when the description lists none),
+    /// given how it compares with each.
+    pub fn allows(&self, compare: impl Fn(Number) -> Option<std::cmp::Ordering>) -> bool {
+        self.allowed.is_empty()
+            || self
+                .allowed
+                .iter()
+                .any(|a| compare(*a) == Some(std::cmp::Ordering::Equal))
+    }
 }
 
 impl Device {

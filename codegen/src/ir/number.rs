@@ -3,6 +3,7 @@
 use std::cmp::Ordering;
 use std::fmt;
 
+use drivebus::interpret::RawValue;
 use serde::{Serialize, Serializer};
 
 /// A raw value as written in a description.
@@ -28,6 +29,15 @@ impl Number {
         match (self, other) {
             (Number::Int(a), Number::Int(b)) => Some(a.cmp(&b)),
             _ => self.as_f64().partial_cmp(&other.as_f64()),
+        }
+    }
+
+    /// How a raw value read or typed at run time compares with this number: integers exactly,
+    /// anything else as floats; `None` with NaN.
+    pub fn compare_raw(self, raw: RawValue) -> Option<Ordering> {
+        match (raw, self) {
+            (RawValue::Int(i), Number::Int(n)) => Some(i.cmp(&i128::from(n))),
+            _ => raw.as_f64().partial_cmp(&self.as_f64()),
         }
     }
 
@@ -58,5 +68,29 @@ impl Serialize for Number {
             Number::Int(i) => serializer.serialize_i64(*i),
             Number::Float(f) => serializer.serialize_f64(*f),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn raw_integers_compare_exactly_beyond_float_precision() {
+        let big = RawValue::Int(i128::from(i64::MAX));
+        assert_eq!(
+            Number::Int(i64::MAX - 1).compare_raw(big),
+            Some(Ordering::Greater)
+        );
+        assert_eq!(
+            Number::Int(1).compare_raw(RawValue::Float(1.5)),
+            Some(Ordering::Greater)
+        );
+        assert_eq!(Number::Int(1).compare_raw(RawValue::Float(f64::NAN)), None);
+        let beyond_i64 = RawValue::Int(i128::from(u64::MAX));
+        assert_eq!(
+            Number::Int(i64::MAX).compare_raw(beyond_i64),
+            Some(Ordering::Greater)
+        );
     }
 }

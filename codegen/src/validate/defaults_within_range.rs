@@ -28,8 +28,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
                 r.min, r.max
             ));
         }
-        let is_default = |a: &Number| a.compare(default) == Some(std::cmp::Ordering::Equal);
-        if !p.allowed.is_empty() && !p.allowed.iter().any(is_default) {
+        if !p.allows(|a| default.compare(a)) {
             refuse(format!("{default} is not one of its allowed values"));
         }
         if let (Some(e), Number::Int(i)) = (

@@ -3,5 +3,10 @@
 //! `drivegen` CLI, the simulator) instead of compiling it. Scaling is the same
 //! [`Scale`](crate::Scale) generated code uses.
 
+#[cfg(feature = "std")]
 pub mod raw;
+mod raw_value;
+#[cfg(feature = "std")]
 pub mod registers;
+
+pub use raw_value::RawValue;

@@ -1,10 +1,10 @@
 //! A raw value as the command line handles it: integers stay exact. An `f64` holds 53 bits, a
 //! `u64` or `i64` raw value 64, so `raw:18446744073709551610` must not pass through a float.
 
-use std::cmp::Ordering;
-use std::fmt;
+use core::fmt;
 
-use drivegen::ir::Number;
+#[cfg(feature = "std")]
+use crate::DataType;
 
 /// A raw value: an exact integer, or a float for float parameters and scaled input.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -24,12 +24,13 @@ impl RawValue {
         }
     }
 
-    /// How the value compares with a described number (a range bound or an allowed value);
-    /// `None` for NaN.
-    pub fn compare(self, number: Number) -> Option<Ordering> {
-        match (self, number) {
-            (RawValue::Int(i), Number::Int(n)) => Some(i.cmp(&i128::from(n))),
-            _ => self.as_f64().partial_cmp(&number.as_f64()),
+    #[cfg(feature = "std")]
+    /// The value `bytes` hold as `data_type`: an integer exactly, a float as a float; `None`
+    /// for text and octets, or too few bytes.
+    pub fn of(data_type: DataType, bytes: &[u8]) -> Option<RawValue> {
+        match super::raw::to_int(data_type, bytes) {
+            Some(int) => Some(RawValue::Int(int)),
+            None => super::raw::to_f64(data_type, bytes).map(RawValue::Float),
         }
     }
 }
@@ -43,21 +44,21 @@ impl fmt::Display for RawValue {
     }
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "std"))]
 mod tests {
     use super::*;
 
     #[test]
-    fn integers_compare_exactly_beyond_float_precision() {
-        let big = RawValue::Int(i128::from(i64::MAX));
+    fn bytes_read_as_exact_integers_or_floats() {
+        let max = u64::MAX.to_le_bytes();
         assert_eq!(
-            big.compare(Number::Int(i64::MAX - 1)),
-            Some(Ordering::Greater)
+            RawValue::of(DataType::Unsigned(8), &max),
+            Some(RawValue::Int(i128::from(u64::MAX)))
         );
         assert_eq!(
-            RawValue::Float(1.5).compare(Number::Int(1)),
-            Some(Ordering::Greater)
+            RawValue::of(DataType::F32, &1.5f32.to_le_bytes()),
+            Some(RawValue::Float(1.5))
         );
-        assert_eq!(RawValue::Float(f64::NAN).compare(Number::Int(1)), None);
+        assert_eq!(RawValue::of(DataType::String(4), b"abcd"), None);
     }
 }
