@@ -81,6 +81,14 @@ pub struct ModbusLimits {
     /// read covers them besides the requested ones, even where `read_gaps` allows unlisted
     /// addresses — the device would refuse the whole request.
     pub unreadable: &'static [RegisterSpan],
+    /// Reads the device answers beyond `max_read_registers`, exactly as listed (the description's
+    /// `[modbus] read_blocks`; Lenze smd: 6 words at #24). The planner reads a whole block where
+    /// that takes fewer requests than reading its values one by one.
+    pub read_blocks: &'static [RegisterSpan],
+    /// Values wider than `max_read_registers` the device answers whole, each in one read of
+    /// exactly its words at its address (a Modbus address whose `occupies` is less than its
+    /// `words`; Lenze smd C99, 4 words at one register). Such a read covers that value only.
+    pub whole_values: &'static [RegisterSpan],
 }
 
 /// Consecutive registers of one table.
@@ -117,6 +125,11 @@ impl RegisterSpan {
     pub fn end(&self) -> usize {
         self.start as usize + self.count as usize
     }
+
+    /// Whether this span is exactly the registers of `value`.
+    pub fn is_exactly(&self, value: &ModbusAddress) -> bool {
+        self.table == value.table && self.start == value.address && self.count == value.words
+    }
 }
 
 impl ModbusLimits {
@@ -128,6 +141,8 @@ impl ModbusLimits {
         read_gaps: true,
         readable: &[],
         unreadable: &[],
+        read_blocks: &[],
+        whole_values: &[],
     };
 }
 
