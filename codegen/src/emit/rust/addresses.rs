@@ -37,6 +37,7 @@ fn modbus_tokens(a: &ModbusAddress) -> TokenStream {
     let order = match a.word_order {
         WordOrder::HighFirst => quote! { HighFirst },
         WordOrder::LowFirst => quote! { LowFirst },
+        WordOrder::Text => quote! { Text },
     };
     let (address, words) = (hex(a.address), Literal::u16_unsuffixed(a.words));
     quote! { (#table #address #words #order) }
