@@ -21,11 +21,13 @@ pub fn limits(device: &Device) -> ModbusLimits {
             read_gaps: limits.read_gaps,
             readable: register_spans(limits.readable),
             unreadable: register_spans(limits.unreadable),
+            read_blocks: register_spans(limits.read_blocks),
+            whole_values: register_spans(limits.whole_values),
         })
 }
 
 /// Register runs as limits hold them: `'static` (as generated crates do); a command opens one
-/// session, so leaking two lists per run is bounded.
+/// session, so leaking four lists per run is bounded.
 fn register_spans(runs: Vec<ir::RegisterRun>) -> &'static [RegisterSpan] {
     let spans = runs.into_iter().map(|run| RegisterSpan {
         table: run.table,

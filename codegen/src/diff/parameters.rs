@@ -113,6 +113,7 @@ fn describe_modbus(a: &ModbusAddress) -> String {
         let order = match a.word_order {
             WordOrder::HighFirst => "high first",
             WordOrder::LowFirst => "low first",
+            WordOrder::Text => "text, high byte first",
         };
         text += &format!(" ({} words, {order})", a.words);
     }

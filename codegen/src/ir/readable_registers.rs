@@ -31,6 +31,10 @@ pub struct PlannerLimits {
     pub readable: Vec<RegisterRun>,
     /// What no read may cover ([`Device::unreadable_register_runs`]).
     pub unreadable: Vec<RegisterRun>,
+    /// The reads answered beyond the limit, as listed (`[modbus] read_blocks`).
+    pub read_blocks: Vec<RegisterRun>,
+    /// The values answered whole at one address ([`Device::whole_value_reads`]).
+    pub whole_values: Vec<RegisterRun>,
 }
 
 impl Device {
@@ -45,7 +49,37 @@ impl Device {
             read_gaps: m.read_gaps,
             readable: self.registers_to_read_past(),
             unreadable: self.unreadable_register_runs(),
+            read_blocks: m
+                .read_blocks
+                .iter()
+                .map(|b| RegisterRun {
+                    table: b.table,
+                    start: b.address,
+                    count: b.words,
+                })
+                .collect(),
+            whole_values: self.whole_value_reads(),
         })
+    }
+
+    /// The readable values the device answers with more words than they occupy in the map
+    /// (`occupies` < `words`; Lenze smd C99: 4 words at one register), each as the read of its
+    /// words at its address, in any variant, sorted and without repeats.
+    pub fn whole_value_reads(&self) -> Vec<RegisterRun> {
+        let mut reads: Vec<RegisterRun> = self
+            .parameters
+            .iter()
+            .flat_map(|p| &p.modbus)
+            .filter(|a| a.access.read && a.occupies < a.words)
+            .map(|a| RegisterRun {
+                table: a.table,
+                start: a.address,
+                count: a.words,
+            })
+            .collect();
+        reads.sort_unstable_by_key(|r| (r.table, r.start, r.count));
+        reads.dedup();
+        reads
     }
 
     /// What a request planner may read past besides the registers it was asked for: nothing

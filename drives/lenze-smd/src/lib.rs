@@ -13,7 +13,6 @@ mod error;
 #[cfg(feature = "std")]
 mod keep_alive;
 mod session;
-mod software_version;
 mod status_block;
 
 pub use command::Command;
@@ -23,5 +22,4 @@ pub use keep_alive::{KeepAlive, KeepAliveReport, MissedDeadline};
 pub use session::{
     CanCommand, CanWriteParameters, Controls, ControlsAndParameters, Parameters, Session,
 };
-pub use software_version::version_text;
 pub use status_block::{StatusBlock, STATUS_BLOCK_START, STATUS_BLOCK_WORDS};

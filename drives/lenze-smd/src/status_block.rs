@@ -57,17 +57,25 @@ impl StatusBlock {
 }
 
 impl<B: RegisterBus> LenzeSmd<ModbusLink<B>> {
-    /// Reads the whole status block (#24-#29) in one request, FC 0x03 with a count of 6.
+    /// Reads the whole status block (#24-#29) in one request, FC 0x03 with a count of 6: the
+    /// request planner takes the block from `MODBUS_LIMITS.read_blocks`.
     pub fn status(&mut self) -> Result<StatusBlock, Error> {
-        let mut words = [0u16; STATUS_BLOCK_WORDS];
-        let link = self.device().link_mut();
-        let unit = link.unit();
-        link.bus_mut()
-            .read_registers(unit, BLOCK.table, STATUS_BLOCK_START, &mut words)
-            .map_err(|cause| Error::Bus {
-                parameter: "status_block",
-                cause,
-            })?;
-        StatusBlock::decode(words)
+        let (command_speed, actual_speed, load_and_status, direction, source, fault) = self
+            .read_many((
+                params::CommandSpeed,
+                params::ActualSpeed,
+                params::LoadAndStatus,
+                params::DirectionAndControlMode,
+                params::SpeedSourceAndReference,
+                params::FaultAndCommandedDirection,
+            ))?;
+        Ok(StatusBlock {
+            command_speed,
+            actual_speed,
+            load_and_status,
+            direction_and_control_mode: direction,
+            speed_source_and_reference: source,
+            fault_and_commanded_direction: fault,
+        })
     }
 }

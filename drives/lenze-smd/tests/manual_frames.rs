@@ -251,13 +251,16 @@ fn one_word_parameter_read_and_write_6_1() {
 
 #[test]
 fn software_version_c99_four_words_6_1() {
-    // Section 6.1 (lines 833-836): "SA 03 00 RA 00 04", answer 8 bytes, text as on line 926.
+    // Section 6.1 (lines 833-836): "SA 03 00 RA 00 04", answer 8 bytes, text as on line 926,
+    // through the generated accessor: the planner reads the 4-word value alone although the
+    // drive reads one register at a time, and its text runs in address order, each register
+    // high byte first (Note 4a, line 639).
     for (variant, register) in [(Variant::Pc400, 0x59u8), (Variant::Pc507, 0x5F)] {
         let mut answer = vec![SA, 0x03, 0x08];
         answer.extend_from_slice(b"SMD 1.51");
         let mut d = drive(&[&answer]);
         d.set_variant(variant);
-        let version = d.read_software_version().unwrap();
+        let version = d.software_version().read().unwrap();
         assert_eq!(version.as_str(), Some("SMD 1.51"));
         assert_eq!(sent(d), frames(&[&[SA, 0x03, 0x00, register, 0x00, 0x04]]));
     }

@@ -87,7 +87,7 @@ fn pc507_status_version_and_a_control_session() {
     assert_eq!(selection, VariantSelection::Known(Variant::Pc507));
     assert_eq!(drive.drive_family().read(), Ok(69));
     assert_eq!(
-        drive.read_software_version().unwrap().as_str(),
+        drive.software_version().read().unwrap().as_str(),
         Some("SMD 2.01")
     );
     let status = drive.status().unwrap(); // 6 words at #24, which the peer allows
@@ -132,7 +132,7 @@ fn pc400_places_the_moved_registers() {
     let (mut drive, selection) = open(&peer);
     assert_eq!(selection, VariantSelection::Known(Variant::Pc400));
     assert_eq!(
-        drive.read_software_version().unwrap().as_str(),
+        drive.software_version().read().unwrap().as_str(),
         Some("SMD 1.51")
     );
     assert_eq!(

@@ -20,6 +20,10 @@ pub enum WordOrder {
     HighFirst,
     /// Least significant word at the lowest address (Lafert LOW/HIGH pairs, Kinco).
     LowFirst,
+    /// A byte string (text, octets): its bytes in address order, each register high byte
+    /// first, the Modbus convention for text (Lenze smd C99 "SMD 1.51", lines 926 and 639).
+    /// Strings have no numeric word order; the description's loader gives them this one.
+    Text,
 }
 
 /// Where a parameter lives on a Modbus device.
@@ -81,6 +85,14 @@ pub struct ModbusLimits {
     /// read covers them besides the requested ones, even where `read_gaps` allows unlisted
     /// addresses — the device would refuse the whole request.
     pub unreadable: &'static [RegisterSpan],
+    /// Reads the device answers beyond `max_read_registers`, exactly as listed (the description's
+    /// `[modbus] read_blocks`; Lenze smd: 6 words at #24). The planner reads a whole block where
+    /// that takes fewer requests than reading its values one by one.
+    pub read_blocks: &'static [RegisterSpan],
+    /// Values wider than `max_read_registers` the device answers whole, each in one read of
+    /// exactly its words at its address (a Modbus address whose `occupies` is less than its
+    /// `words`; Lenze smd C99, 4 words at one register). Such a read covers that value only.
+    pub whole_values: &'static [RegisterSpan],
 }
 
 /// Consecutive registers of one table.
@@ -117,6 +129,11 @@ impl RegisterSpan {
     pub fn end(&self) -> usize {
         self.start as usize + self.count as usize
     }
+
+    /// Whether this span is exactly the registers of `value`.
+    pub fn is_exactly(&self, value: &ModbusAddress) -> bool {
+        self.table == value.table && self.start == value.address && self.count == value.words
+    }
 }
 
 impl ModbusLimits {
@@ -128,6 +145,8 @@ impl ModbusLimits {
         read_gaps: true,
         readable: &[],
         unreadable: &[],
+        read_blocks: &[],
+        whole_values: &[],
     };
 }
 
@@ -138,11 +157,12 @@ pub const MAX_VALUE_WORDS: usize = 32;
 pub fn registers_to_le(registers: &[u16], order: WordOrder, out: &mut [u8]) {
     let n = registers.len();
     for (i, chunk) in out.chunks_exact_mut(2).enumerate().take(n) {
-        let word = match order {
-            WordOrder::LowFirst => registers[i],
-            WordOrder::HighFirst => registers[n - 1 - i],
+        let bytes = match order {
+            WordOrder::LowFirst => registers[i].to_le_bytes(),
+            WordOrder::HighFirst => registers[n - 1 - i].to_le_bytes(),
+            WordOrder::Text => registers[i].to_be_bytes(),
         };
-        chunk.copy_from_slice(&word.to_le_bytes());
+        chunk.copy_from_slice(&bytes);
     }
 }
 
@@ -150,10 +170,11 @@ pub fn registers_to_le(registers: &[u16], order: WordOrder, out: &mut [u8]) {
 pub fn le_to_registers(bytes: &[u8], order: WordOrder, out: &mut [u16]) {
     let n = out.len();
     for (i, chunk) in bytes.chunks_exact(2).enumerate().take(n) {
-        let word = u16::from_le_bytes([chunk[0], chunk[1]]);
+        let pair = [chunk[0], chunk[1]];
         match order {
-            WordOrder::LowFirst => out[i] = word,
-            WordOrder::HighFirst => out[n - 1 - i] = word,
+            WordOrder::LowFirst => out[i] = u16::from_le_bytes(pair),
+            WordOrder::HighFirst => out[n - 1 - i] = u16::from_le_bytes(pair),
+            WordOrder::Text => out[i] = u16::from_be_bytes(pair),
         }
     }
 }
@@ -172,8 +193,19 @@ mod tests {
     }
 
     #[test]
+    fn text_runs_in_address_order_high_byte_first() {
+        let registers = [0x534D, 0x4420, 0x312E, 0x3531];
+        let mut out = [0u8; 8];
+        registers_to_le(&registers, WordOrder::Text, &mut out);
+        assert_eq!(&out, b"SMD 1.51");
+        let mut back = [0u16; 4];
+        le_to_registers(&out, WordOrder::Text, &mut back);
+        assert_eq!(back, registers);
+    }
+
+    #[test]
     fn register_conversion_round_trips() {
-        for order in [WordOrder::LowFirst, WordOrder::HighFirst] {
+        for order in [WordOrder::LowFirst, WordOrder::HighFirst, WordOrder::Text] {
             let bytes = 0x0102_0304_0506_0708u64.to_le_bytes();
             let mut regs = [0u16; 4];
             le_to_registers(&bytes, order, &mut regs);

@@ -29,11 +29,20 @@ pub struct PlannedRead {
     pub start: u16,
     /// Number of registers.
     pub count: u16,
+    /// Whether this is the read of one value the device answers whole beyond its read limit
+    /// ([`ModbusLimits::whole_values`]): it then covers only that value, since the registers
+    /// after its address hold other parameters.
+    pub whole_value: bool,
 }
 
 impl PlannedRead {
     /// The register offset of `item` inside this read, if the read covers all of it.
     pub fn offset_of(&self, item: &ModbusAddress) -> Option<usize> {
+        if self.whole_value {
+            let same =
+                (item.table, item.address, item.words) == (self.table, self.start, self.count);
+            return same.then_some(0);
+        }
         let offset = (item.address as usize).checked_sub(self.start as usize)?;
         (item.table == self.table && offset + item.words as usize <= self.count as usize)
             .then_some(offset)
@@ -56,7 +65,7 @@ pub fn check_item(limits: &ModbusLimits, item: &ModbusAddress) -> Result<(), Bus
     if words == 0 || words > MAX_VALUE_WORDS {
         return Err(BusError::Unsupported("value wider than 32 registers"));
     }
-    if words > read_limit(limits) {
+    if words > read_limit(limits) && !is_whole_value(limits, item) {
         return Err(BusError::Unsupported(
             "value wider than the device's read limit",
         ));
@@ -67,6 +76,12 @@ pub fn check_item(limits: &ModbusLimits, item: &ModbusAddress) -> Result<(), Bus
     Ok(())
 }
 
+/// Whether the device answers `item` whole although it is wider than the read limit
+/// ([`ModbusLimits::whole_values`]).
+fn is_whole_value(limits: &ModbusLimits, item: &ModbusAddress) -> bool {
+    limits.whole_values.iter().any(|span| span.is_exactly(item))
+}
+
 fn end(item: &ModbusAddress) -> usize {
     item.address as usize + item.words as usize
 }
@@ -74,7 +89,12 @@ fn end(item: &ModbusAddress) -> usize {
 /// Plans the next read for `len` items, where `item(i)` is item `i`'s address and whether it has
 /// been read already. `None` once every item is read.
 ///
-/// The items already read still count as requested registers for bridging gaps.
+/// The items already read still count as requested registers for bridging gaps. A value wider
+/// than the read limit that the device answers whole ([`ModbusLimits::whole_values`]) is read
+/// alone; where the lowest pending value lies in one of the device's
+/// [`read_blocks`](ModbusLimits::read_blocks) and the block covers more pending values than the
+/// ordinary read would, the whole block is read instead (the Lenze smd status block #24-#29 in
+/// one request, not six).
 pub fn next_read(
     limits: &ModbusLimits,
     len: usize,
@@ -92,6 +112,26 @@ pub fn next_read(
     let Some(first) = first else {
         return Ok(None);
     };
+    if first.words as usize > read_limit(limits) {
+        return Ok(Some(PlannedRead {
+            table: first.table,
+            start: first.address,
+            count: first.words,
+            whole_value: true,
+        }));
+    }
+    let read = ordinary_read(limits, first, len, &item);
+    Ok(Some(block_instead(limits, read, len, &item)))
+}
+
+/// The longest read from `first` (the lowest pending value) within the limit, the readable
+/// registers and the unreadable barriers.
+fn ordinary_read(
+    limits: &ModbusLimits,
+    first: ModbusAddress,
+    len: usize,
+    item: impl Fn(usize) -> (ModbusAddress, bool),
+) -> PlannedRead {
     let start = first.address as usize;
     let mut limit = start + read_limit(limits);
     if !limits.read_gaps {
@@ -128,11 +168,12 @@ pub fn next_read(
         })
         .map(|(a, _)| end(&a))
         .fold(end(&first), usize::max);
-    Ok(Some(PlannedRead {
+    PlannedRead {
         table: first.table,
         start: first.address,
         count: (last - start) as u16,
-    }))
+        whole_value: false,
+    }
 }
 
 /// The first register of `table` in `within` that the device lists as unreadable and no item
@@ -209,6 +250,7 @@ mod tests {
             table,
             start,
             count,
+            whole_value: false,
         }
     }
 
@@ -490,19 +532,14 @@ mod tests {
     }
 }
 
-/// [`next_read`] for a device that also answers `blocks`: reads beyond `max_read_registers`,
-/// exactly as listed (the generated `MODBUS_READ_BLOCKS`; Lenze smd: 6 words at #24). When the
-/// lowest pending value lies in a block that covers more pending values than the ordinary read
-/// would, the whole block is read instead (the status block #24-#29 in one request, not six).
-pub fn next_read_with_blocks(
+/// `read`, or the read block holding its first register where the block covers more pending
+/// values than `read` does.
+fn block_instead(
     limits: &ModbusLimits,
-    blocks: &[RegisterSpan],
+    read: PlannedRead,
     len: usize,
     item: impl Fn(usize) -> (ModbusAddress, bool),
-) -> Result<Option<PlannedRead>, BusError> {
-    let Some(read) = next_read(limits, len, &item)? else {
-        return Ok(None);
-    };
+) -> PlannedRead {
     let pending_within = |table: Table, start: usize, stop: usize| {
         (0..len)
             .map(&item)
@@ -512,7 +549,8 @@ pub fn next_read_with_blocks(
             .count()
     };
     let ordinary = pending_within(read.table, read.start as usize, end_of(&read));
-    let block = blocks
+    let block = limits
+        .read_blocks
         .iter()
         .filter(|b| {
             b.table == read.table && (b.start as usize..b.end()).contains(&(read.start as usize))
@@ -520,36 +558,16 @@ pub fn next_read_with_blocks(
         .map(|b| (pending_within(b.table, b.start as usize, b.end()), b))
         .filter(|(covered, _)| *covered > ordinary)
         .max_by_key(|(covered, _)| *covered);
-    Ok(Some(block.map_or(read, |(_, b)| PlannedRead {
+    block.map_or(read, |(_, b)| PlannedRead {
         table: b.table,
         start: b.start,
         count: b.count,
-    })))
+        whole_value: false,
+    })
 }
 
 fn end_of(read: &PlannedRead) -> usize {
     read.start as usize + read.count as usize
-}
-
-/// The whole plan for `items` on a device that also answers `blocks` (see
-/// [`next_read_with_blocks`]).
-#[cfg(any(feature = "std", test))]
-pub fn plan_with_blocks(
-    limits: &ModbusLimits,
-    blocks: &[RegisterSpan],
-    items: &[ModbusAddress],
-) -> Result<std::vec::Vec<PlannedRead>, BusError> {
-    let mut done = std::vec![false; items.len()];
-    let mut reads = std::vec::Vec::new();
-    while let Some(read) =
-        next_read_with_blocks(limits, blocks, items.len(), |i| (items[i], done[i]))?
-    {
-        for (item, done) in items.iter().zip(done.iter_mut()) {
-            *done |= read.offset_of(item).is_some();
-        }
-        reads.push(read);
-    }
-    Ok(reads)
 }
 
 #[cfg(test)]
@@ -558,12 +576,19 @@ mod block_tests {
     use crate::modbus::address::WordOrder;
 
     /// The Lenze smd: one register per read, no gaps, and the status block at #24.
+    /// C99, the software version: 4 words at #89 (PC400).
+    const C99: RegisterSpan = RegisterSpan::holding(89, 4);
     const SMD: ModbusLimits = ModbusLimits {
         max_read_registers: 1,
         read_gaps: false,
+        read_blocks: &[RegisterSpan::holding(24, 6)],
+        whole_values: &[C99],
         ..ModbusLimits::SPEC
     };
-    const STATUS_BLOCK: [RegisterSpan; 1] = [RegisterSpan::holding(24, 6)];
+    const WITHOUT_BLOCKS: ModbusLimits = ModbusLimits {
+        read_blocks: &[],
+        ..SMD
+    };
 
     fn holding(address: u16) -> ModbusAddress {
         ModbusAddress {
@@ -579,35 +604,27 @@ mod block_tests {
             table: Table::Holding,
             start,
             count,
+            whole_value: false,
         }
     }
 
     #[test]
     fn several_status_registers_take_the_block() {
         let items: std::vec::Vec<_> = (24..=29).map(holding).collect();
+        assert_eq!(plan(&SMD, &items).unwrap(), [read(24, 6)]);
         assert_eq!(
-            plan_with_blocks(&SMD, &STATUS_BLOCK, &items).unwrap(),
-            [read(24, 6)]
-        );
-        assert_eq!(
-            plan(&SMD, &items).unwrap().len(),
+            plan(&WITHOUT_BLOCKS, &items).unwrap().len(),
             6,
             "without the block: six"
         );
         let items = [holding(26), holding(29), holding(61)];
-        assert_eq!(
-            plan_with_blocks(&SMD, &STATUS_BLOCK, &items).unwrap(),
-            [read(24, 6), read(61, 1)]
-        );
+        assert_eq!(plan(&SMD, &items).unwrap(), [read(24, 6), read(61, 1)]);
     }
 
     #[test]
     fn one_status_register_is_read_alone() {
         for address in [24, 27, 29] {
-            assert_eq!(
-                plan_with_blocks(&SMD, &STATUS_BLOCK, &[holding(address)]).unwrap(),
-                [read(address, 1)]
-            );
+            assert_eq!(plan(&SMD, &[holding(address)]).unwrap(), [read(address, 1)]);
         }
     }
 
@@ -615,8 +632,44 @@ mod block_tests {
     fn registers_outside_every_block_keep_the_limit() {
         let items = [holding(30), holding(31), holding(23)];
         assert_eq!(
-            plan_with_blocks(&SMD, &STATUS_BLOCK, &items).unwrap(),
+            plan(&SMD, &items).unwrap(),
             [read(23, 1), read(30, 1), read(31, 1)]
         );
+    }
+
+    fn wide(address: u16, words: u16) -> ModbusAddress {
+        ModbusAddress {
+            words,
+            ..holding(address)
+        }
+    }
+
+    #[test]
+    fn a_whole_value_wider_than_the_limit_is_read_alone() {
+        let items = [holding(88), wide(89, 4), holding(90)];
+        assert_eq!(
+            plan(&SMD, &items).unwrap(),
+            [
+                read(88, 1),
+                PlannedRead {
+                    whole_value: true,
+                    ..read(89, 4)
+                },
+                read(90, 1)
+            ]
+        );
+    }
+
+    #[test]
+    fn a_wide_value_the_device_does_not_answer_whole_is_refused() {
+        for item in [wide(89, 3), wide(90, 4), wide(24, 6)] {
+            assert_eq!(
+                plan(&SMD, &[item]),
+                Err(BusError::Unsupported(
+                    "value wider than the device's read limit"
+                )),
+                "{item:?}"
+            );
+        }
     }
 }

@@ -29,19 +29,21 @@ pub(super) fn hex(value: u16) -> Literal {
 }
 
 /// `(input 0x0064)`, or `(holding 0x0010, 2 words, LowFirst)` where the value spans several
-/// registers (only then does the word order matter), in `drivebus::parameter!` syntax.
+/// registers or is text (only then does the order matter), in `drivebus::parameter!` syntax.
 fn modbus_tokens(a: &ModbusAddress) -> TokenStream {
     let table = match a.table {
         Table::Input => quote! { input },
         Table::Holding => quote! { holding },
     };
     let address = hex(a.address);
-    if a.words == 1 {
+    // One register of a number has no word order to tell; text keeps its byte order.
+    if a.words == 1 && a.word_order != WordOrder::Text {
         return quote! { (#table #address) };
     }
     let order = match a.word_order {
         WordOrder::HighFirst => quote! { HighFirst },
         WordOrder::LowFirst => quote! { LowFirst },
+        WordOrder::Text => quote! { Text },
     };
     let words = Literal::u16_unsuffixed(a.words);
     quote! { (#table #address, #words words, #order) }

@@ -16,6 +16,8 @@ fn modbus_limits(device: &Device) -> TokenStream {
     let (multiple, gaps) = (limits.write_multiple, limits.read_gaps);
     let readable = register_spans(limits.readable);
     let unreadable = register_spans(limits.unreadable);
+    let read_blocks = register_spans(limits.read_blocks);
+    let whole_values = register_spans(limits.whole_values);
     quote! {
         ::drivebus::modbus::ModbusLimits {
             max_read_registers: #read,
@@ -24,6 +26,8 @@ fn modbus_limits(device: &Device) -> TokenStream {
             read_gaps: #gaps,
             readable: #readable,
             unreadable: #unreadable,
+            read_blocks: #read_blocks,
+            whole_values: #whole_values,
         }
     }
 }

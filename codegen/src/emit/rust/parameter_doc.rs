@@ -37,6 +37,7 @@ pub fn text(p: &Parameter, device: &Device) -> String {
             (1, _) => String::new(),
             (n, WordOrder::LowFirst) => format!(", {n} words, low word first"),
             (n, WordOrder::HighFirst) => format!(", {n} words, high word first"),
+            (n, WordOrder::Text) => format!(", {n} words of text, in address order"),
         };
         let table = match a.table {
             Table::Input => "Input",

@@ -744,6 +744,7 @@ impl Lowering<'_> {
             self.int_in::<u16>(&spanned(raw.words.unwrap_or(natural_words)), "word count")?;
         let occupies = self.occupied_registers(raw.occupies, words, span)?;
         let word_order = match &raw.word_order {
+            _ if matches!(ty, DataType::String(_) | DataType::Octets(_)) => ir::WordOrder::Text,
             Some(w) => self.word_order(w, span.clone())?,
             None => default_order,
         };
