@@ -23,14 +23,13 @@ use drivebus::canopen::{CanBus, CanOpenLink, NodeId, SdoBus};
 use drivebus::units::{Milliseconds, Rpm};
 use drivesim::canopen::{Node, NodeConfig};
 use drivesim::Simulator;
-use ezwheel_swd::Swd;
+use ezwheel_swd::{Model, Swd};
 
 /// Factory node id (manual section 9.3).
 const NODE: NodeId = NodeId(0x10);
 
-/// Gear ratio of the standard SWD 150 (ezSWD150IH.14x/Cx): (63/17)², manual line 465. The
-/// description has no per-model constants yet, so the example names the product itself.
-const SWD150_RATIO: f64 = (63.0 / 17.0) * (63.0 / 17.0);
+/// The product: the standard SWD 150 (ezSWD150IH.14x/Cx), gear ratio (63/17)², manual line 465.
+const MODEL: Model = Model::Swd15014x;
 
 fn main() -> Result<(), Box<dyn Error>> {
     let description = concat!(env!("CARGO_MANIFEST_DIR"), "/../descriptions/ezwheel-swd");
@@ -49,7 +48,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     });
     println!("simulated ez-Wheel SWD, node {:#04x}", NODE.0);
     let sdo = BlockingSdo::new(client).with_timeout(Duration::from_millis(500));
-    let result = run(Swd::canopen(sdo, NODE), &mut monitor);
+    let result = run(Swd::canopen(sdo, NODE).with_model(MODEL), &mut monitor);
     stop.store(true, Ordering::Relaxed);
     node.join().map_err(|_| "the simulated node panicked")??;
     result
@@ -95,9 +94,12 @@ fn run(
         motor = drive.velocity_actual_value().read()?;
         println!("motor speed        {motor} rpm");
     }
+    let ratio = drive.gear_ratio()?;
+    let wheel = ezwheel_swd::wheel_speed(Rpm(f64::from(motor)), ratio).ok_or("zero gear ratio")?;
     println!(
-        "wheel speed        {:.1} rpm (SWD 150, ratio {SWD150_RATIO:.3})",
-        f64::from(motor) / SWD150_RATIO
+        "wheel speed        {:.1} rpm (SWD 150, ratio {:.3})",
+        wheel.0,
+        ratio.to_f64()
     );
 
     drive.set_motor_speed(Rpm(0.0))?;

@@ -265,6 +265,8 @@ fn pdo_configuration_and_links_run_over_any_backend() {
         number: 1,
         cob_id: 0x185,
         transmission_type: Some(1),
+        inhibit_time: None,
+        event_timer: None,
         entries: &entries,
     };
     config.apply(&mut sdo, NODE).unwrap();

@@ -296,6 +296,8 @@ fn a_tpdo_configuration_plan_is_applied_to_the_peer() {
         number: 1,
         cob_id: 0x185,
         transmission_type: Some(1),
+        inhibit_time: None,
+        event_timer: None,
         entries: &entries,
     };
     config.apply(&mut peer.sdo, NODE_ID).unwrap();

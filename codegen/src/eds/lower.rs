@@ -351,6 +351,7 @@ impl EdsEntry {
             variants: Vec::new(),
             source: Some(names.source),
             erratum: None,
+            safety: false,
             bounds: None,
             spans: ir::ParameterSpans {
                 name: v.span.clone(),

@@ -193,6 +193,7 @@ impl Member<'_> {
             variants: Vec::new(),
             source: self.pdo.source.clone(),
             erratum: None,
+            safety: false,
             bounds: None,
             spans: ir::ParameterSpans {
                 name: self.pdo.span.clone(),

@@ -771,6 +771,10 @@ pub struct Parameter {
     pub source: Option<Citation>,
     /// Errata decision.
     pub erratum: Option<String>,
+    /// A safety-function parameter (`safety = true`): the generated API reads it but gives it no
+    /// setter (see [`Parameter::is_safety`]). Left out of the IR JSON when false.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub safety: bool,
     /// Where things are declared.
     #[serde(skip)]
     pub spans: ParameterSpans,

@@ -319,6 +319,8 @@ pub struct RawParameter {
     pub variants: Option<Vec<Spanned<String>>>,
     pub source: Option<Spanned<RawCitation>>,
     pub erratum: Option<String>,
+    /// `safety = true`: a safety-function parameter, read but never written by a plain setter.
+    pub safety: Option<bool>,
 }
 
 /// `bounds = { min, max }`: parameters whose current values bound this one.

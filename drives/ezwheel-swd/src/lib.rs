@@ -12,7 +12,9 @@ mod compile_guarantees;
 mod emcy;
 #[cfg(feature = "std")]
 mod velocity_mode;
+mod wheel_speed;
 
 pub use emcy::EmcyCodes;
 #[cfg(feature = "std")]
 pub use velocity_mode::{HALT, VL_OPERATION_ENABLED};
+pub use wheel_speed::{motor_speed, wheel_speed};

@@ -1,9 +1,12 @@
 //! Members described once over a run of sub-indices are reached through one indexed accessor:
-//! `drive.sls_velocity_limit(3)` reads and writes 6693h:03 of the simulated SWD, and a sub-index
-//! outside the run is refused before anything is sent.
+//! `drive.sls_velocity_limit(3)` reads 6693h:03, and a sub-index outside the run is refused
+//! before anything is sent. The SWD's writable runs are all safety-function parameters
+//! (`safety = true`: no setter), so the values are placed in the object dictionary directly.
 
 mod support;
 
+use drivebus::canopen::NodeId;
+use drivebus::memory::MemoryBus;
 use drivebus::units::Rpm;
 use drivebus::{Error, ValueError};
 use ezwheel_swd::indexed::{SafetyControlword2Command, StandardErrorField};
@@ -11,16 +14,17 @@ use support::simulated_swd::start;
 
 #[test]
 fn an_indexed_accessor_reaches_the_sub_index_it_names() {
-    let (mut drive, _node) = start();
-    drive
-        .safety_controlword_2_command(3)
-        .write(0x6690_0100)
-        .unwrap();
+    let mut memory = MemoryBus::new();
+    for sub in 2..=4 {
+        let value: u32 = if sub == 3 { 0x6690_0100 } else { 0 };
+        memory.set_object(0x66F1, sub, &value.to_le_bytes());
+    }
+    let mut drive = ezwheel_swd::Swd::canopen(memory, NodeId(0x10));
     assert_eq!(
         drive.safety_controlword_2_command(3).read().unwrap(),
         0x6690_0100
     );
-    // The neighbours are untouched: each sub-index is its own object.
+    // The neighbours are distinct objects.
     assert_eq!(drive.safety_controlword_2_command(2).read().unwrap(), 0);
     assert_eq!(drive.safety_controlword_2_command(4).read().unwrap(), 0);
     assert_eq!(drive.safety_controlword_2_command(3).subindex(), 3);
@@ -28,11 +32,13 @@ fn an_indexed_accessor_reaches_the_sub_index_it_names() {
 
 #[test]
 fn an_indexed_accessor_converts_units_like_any_accessor() {
-    let (mut drive, _node) = start();
-    // 6693h is scaled by the vl dimension factor 604Ch (1/1 by default): raw rpm.
-    drive.sls_velocity_limit(8).write(Rpm(450.0)).unwrap();
+    // 6693h is scaled by the vl dimension factor 604Ch (numerator / denominator): raw rpm × 2.
+    let mut memory = MemoryBus::new();
+    memory.set_object(0x6693, 8, &450u32.to_le_bytes());
+    memory.set_object(0x604C, 1, &2i32.to_le_bytes());
+    memory.set_object(0x604C, 2, &1i32.to_le_bytes());
+    let mut drive = ezwheel_swd::Swd::canopen(memory, NodeId(0x10));
     assert_eq!(drive.sls_velocity_limit(8).read_raw().unwrap(), 450);
-    drive.vl_dimension_factor_numerator().write(2).unwrap();
     assert_eq!(drive.sls_velocity_limit(8).read().unwrap(), Rpm(900.0));
 }
 
@@ -55,7 +61,7 @@ fn a_sub_index_outside_the_run_is_a_typed_error_and_nothing_is_sent() {
         );
     }
     // The run of 66F0h starts at sub-index 2 (sub-indices 1, 7 and 8 are fixed, read-only).
-    assert!(drive.safety_controlword_1_command(1).write(0).is_err());
+    assert!(drive.safety_controlword_1_command(1).read().is_err());
     assert_eq!(SafetyControlword2Command::<()>::FIRST, 1);
     assert_eq!(StandardErrorField::<()>::LAST, 254);
 }
@@ -71,12 +77,10 @@ fn the_error_history_is_one_accessor_over_254_sub_indices() {
 
 #[test]
 fn an_out_of_range_sub_index_sends_no_request() {
-    use drivebus::canopen::NodeId;
-    use drivebus::memory::MemoryBus;
     let mut memory = MemoryBus::new();
     memory.set_object(0x66F1, 8, &0x6632_0000u32.to_le_bytes());
     let mut drive = ezwheel_swd::Swd::canopen(memory, NodeId(0x10));
-    assert!(drive.safety_controlword_2_command(9).write(1).is_err());
+    assert!(drive.safety_controlword_2_command(9).read().is_err());
     assert!(drive.safety_controlword_2_command(0).read().is_err());
     assert!(drive.device().link_mut().bus_mut().log().is_empty());
     // In range, the request reaches the object of that sub-index.

@@ -5,7 +5,11 @@
 
 mod support;
 
+use core::time::Duration;
+
 use drivebus::canopen::pdo::COB_ID_INVALID;
+use drivebus::canopen::sdo::client::SdoClient;
+use drivebus::canopen::sdo::Transfer;
 use drivebus::canopen::{NodeId, SdoBus};
 use ezwheel_swd::pdo::{Rpdo1, Rpdo4, Tpdo1, Tpdo2, Tpdo3, Tpdo4, Tpdo8};
 use ezwheel_swd::types::{Controlword, Statusword};
@@ -94,4 +98,47 @@ fn a_configuration_applies_to_the_simulated_drive_and_enables_the_pdo() {
     let bus = drive.device().link_mut().bus_mut();
     bus.upload(NodeId(NODE), 0x1603, 0, &mut count).unwrap();
     assert_eq!(count, [2]);
+}
+
+/// The first SDO frame (COB-ID, data) of each write of `plan`, for node 10h.
+fn sdo_frames(plan: drivebus::canopen::pdo::PdoPlan<'_>) -> Vec<(u16, Vec<u8>)> {
+    plan.map(|write| {
+        let client = SdoClient::new(NodeId(NODE), Duration::from_secs(1));
+        let mut transfer =
+            client.download(write.index, write.subindex, write.data(), Duration::ZERO);
+        let frame = transfer
+            .poll_transmit()
+            .expect("a download starts with a frame");
+        (frame.id(), frame.data().to_vec())
+    })
+    .collect()
+}
+
+#[test]
+fn a_configuration_writes_the_inhibit_time_and_event_timer_it_gives() {
+    // RPDO 1 (lines 1338-1345): transmission type 1 and event timer 0 (sub 5, a 2-byte
+    // expedited download, 2Bh) written while the PDO is invalid. The inhibit time (sub 3) is
+    // read-only on the SWD (line 1341), so the configuration does not write it.
+    let frames = sdo_frames(Rpdo1::config(NodeId(NODE)).plan().unwrap());
+    assert_eq!(
+        frames,
+        [
+            (0x610, vec![0x23, 0x00, 0x14, 0x01, 0x10, 0x02, 0x00, 0x80]),
+            (0x610, vec![0x2F, 0x00, 0x14, 0x02, 0x01, 0x00, 0x00, 0x00]),
+            (0x610, vec![0x2B, 0x00, 0x14, 0x05, 0x00, 0x00, 0x00, 0x00]),
+            (0x610, vec![0x2F, 0x00, 0x16, 0x00, 0x00, 0x00, 0x00, 0x00]),
+            (0x610, vec![0x23, 0x00, 0x16, 0x01, 0x10, 0x00, 0x40, 0x60]),
+            (0x610, vec![0x2F, 0x00, 0x16, 0x00, 0x01, 0x00, 0x00, 0x00]),
+            (0x610, vec![0x23, 0x00, 0x14, 0x01, 0x10, 0x02, 0x00, 0x00]),
+        ]
+    );
+    assert_eq!(Rpdo1::INHIBIT_TIME, Some(0));
+    // A TPDO table without sub 5 (lines 1387-1390) writes no event timer.
+    let tpdo1: Vec<u8> = Tpdo1::config(NodeId(NODE))
+        .plan()
+        .unwrap()
+        .filter(|w| w.index == 0x1800)
+        .map(|w| w.subindex)
+        .collect();
+    assert!(!tpdo1.contains(&5));
 }

@@ -362,6 +362,10 @@ pub struct PdoConfig<'a> {
     pub cob_id: u32,
     /// Transmission type (sub 2), if it is to be written.
     pub transmission_type: Option<u8>,
+    /// Inhibit time (sub 3, in 100 µs), if it is to be written.
+    pub inhibit_time: Option<u16>,
+    /// Event timer (sub 5, in ms), if it is to be written.
+    pub event_timer: Option<u16>,
     /// The mapping.
     pub entries: &'a [MappedObject],
 }
@@ -386,7 +390,6 @@ impl SdoWrite {
             len: 1,
         }
     }
-    #[cfg(feature = "srdo")]
     pub(crate) fn u16(index: u16, subindex: u8, value: u16) -> Self {
         let [lo, hi] = value.to_le_bytes();
         Self {
@@ -431,8 +434,8 @@ impl<'a> PdoConfig<'a> {
     }
 
     /// The writes that apply this configuration, in the order CiA 301 requires: disable the
-    /// PDO, (set the transmission type,) zero the entry count, write the entries, set the count,
-    /// enable the PDO.
+    /// PDO, (set the transmission type, the inhibit time, the event timer: each only while the
+    /// PDO is invalid,) zero the entry count, write the entries, set the count, enable the PDO.
     pub fn plan(&self) -> Result<PdoPlan<'a>, BusError> {
         if !(1..=512).contains(&self.number) {
             return Err(BusError::Unsupported("PDO number outside 1..=512"));
@@ -469,14 +472,17 @@ impl Iterator for PdoPlan<'_> {
         let c = &self.config;
         let (comm, map, n) = (c.communication_index(), c.mapping_index(), c.entries.len());
         let cob_id = c.cob_id & !COB_ID_INVALID;
-        // Steps: disable, transmission type, zero count, n entries, count, enable.
+        // Steps: disable, transmission type, inhibit time, event timer, zero count, n entries,
+        // count, enable.
         let write = match self.step {
             0 => Some(SdoWrite::u32(comm, 1, cob_id | COB_ID_INVALID)),
             1 => c.transmission_type.map(|t| SdoWrite::u8(comm, 2, t)),
-            2 => Some(SdoWrite::u8(map, 0, 0)),
-            s if s < 3 + n => Some(SdoWrite::u32(map, (s - 2) as u8, c.entries[s - 3].entry())),
-            s if s == 3 + n => Some(SdoWrite::u8(map, 0, n as u8)),
-            s if s == 4 + n => Some(SdoWrite::u32(comm, 1, cob_id)),
+            2 => c.inhibit_time.map(|t| SdoWrite::u16(comm, 3, t)),
+            3 => c.event_timer.map(|t| SdoWrite::u16(comm, 5, t)),
+            4 => Some(SdoWrite::u8(map, 0, 0)),
+            s if s < 5 + n => Some(SdoWrite::u32(map, (s - 4) as u8, c.entries[s - 5].entry())),
+            s if s == 5 + n => Some(SdoWrite::u8(map, 0, n as u8)),
+            s if s == 6 + n => Some(SdoWrite::u32(comm, 1, cob_id)),
             _ => return None,
         };
         self.step += 1;
@@ -567,6 +573,8 @@ mod tests {
             number: 1,
             cob_id: 0x181,
             transmission_type: Some(1),
+            inhibit_time: None,
+            event_timer: None,
             entries: &entries,
         };
         let plan: Vec<(u16, u8, Vec<u8>)> = config
@@ -606,6 +614,49 @@ mod tests {
     }
 
     #[test]
+    fn inhibit_time_and_event_timer_are_written_while_the_pdo_is_invalid() {
+        let entries = [MappedObject::new(0x6041, 0, 16)];
+        let config = PdoConfig {
+            kind: PdoKind::Transmit,
+            number: 3,
+            cob_id: 0x390,
+            transmission_type: Some(0xFF),
+            inhibit_time: Some(100),
+            event_timer: Some(0x01F4),
+            entries: &entries,
+        };
+        let plan: Vec<(u16, u8, Vec<u8>)> = config
+            .plan()
+            .unwrap()
+            .map(|w| (w.index, w.subindex, w.data().to_vec()))
+            .collect();
+        assert_eq!(
+            plan,
+            [
+                (0x1802, 1, 0x8000_0390u32.to_le_bytes().to_vec()),
+                (0x1802, 2, vec![0xFF]),
+                (0x1802, 3, vec![100, 0]),
+                (0x1802, 5, vec![0xF4, 0x01]),
+                (0x1A02, 0, vec![0]),
+                (0x1A02, 1, 0x6041_0010u32.to_le_bytes().to_vec()),
+                (0x1A02, 0, vec![1]),
+                (0x1802, 1, 0x390u32.to_le_bytes().to_vec()),
+            ]
+        );
+        let event_timer_only = PdoConfig {
+            inhibit_time: None,
+            ..config
+        };
+        let subs: Vec<u8> = event_timer_only
+            .plan()
+            .unwrap()
+            .filter(|w| w.index == 0x1802)
+            .map(|w| w.subindex)
+            .collect();
+        assert_eq!(subs, [1, 2, 5, 1]);
+    }
+
+    #[test]
     fn apply_writes_through_any_sdo_bus_and_stops_on_refusal() {
         use crate::memory::{MemoryBus, Request};
         let entries = [MappedObject::new(0x6041, 0, 16)];
@@ -614,6 +665,8 @@ mod tests {
             number: 1,
             cob_id: 0x201,
             transmission_type: None,
+            inhibit_time: None,
+            event_timer: None,
             entries: &entries,
         };
         let mut bus = MemoryBus::new();

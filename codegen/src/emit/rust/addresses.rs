@@ -68,6 +68,11 @@ fn placement<A>(
     variant: impl Fn(&A) -> &Option<String>,
     tokens: impl Fn(&A) -> TokenStream,
 ) -> Option<TokenStream> {
+    // Safety parameters get no write placement on any protocol: only the deliberate safety
+    // write changes them (`Parameter::is_safety`).
+    if matches!(direction, Direction::Write) && p.is_safety() {
+        return None;
+    }
     let usable: Vec<&A> = addresses
         .iter()
         .filter(|a| direction.allows(access(a)))
@@ -108,14 +113,8 @@ pub fn modbus(p: &Parameter, device: &Device, direction: Direction) -> Option<To
     )
 }
 
-/// The CANopen placement for reads or writes. Safety configuration objects get no write
-/// placement: only the deliberate safety write changes them (`ir::is_safety_configuration`).
+/// The CANopen placement for reads or writes.
 pub fn canopen(p: &Parameter, device: &Device, direction: Direction) -> Option<TokenStream> {
-    if matches!(direction, Direction::Write)
-        && p.canopen.iter().any(crate::ir::is_safety_configuration)
-    {
-        return None;
-    }
     objects(p, device, &p.canopen, direction)
 }
 

@@ -72,7 +72,10 @@ fn summary(run: &IndexedParameter) -> String {
 fn access(run: &IndexedParameter, device: &Device) -> (bool, bool) {
     let first = run.members.first().and_then(|m| device.parameter(m));
     let address = first.and_then(|p| p.canopen.first());
-    address.map_or((false, false), |a| (a.access.read, a.access.write))
+    let safety = first.is_some_and(Parameter::is_safety);
+    address.map_or((false, false), |a| {
+        (a.access.read, a.access.write && !safety)
+    })
 }
 
 fn accessor_type(run: &IndexedParameter, device: &Device) -> TokenStream {

@@ -53,13 +53,8 @@ pub fn text(p: &Parameter, device: &Device) -> String {
             ),
         );
     }
-    if p.canopen.iter().any(crate::ir::is_safety_configuration) {
-        row(
-            &mut out,
-            "Safety",
-            "written only through `drivebus::canopen::srdo::write_safety_configuration` (no setter)"
-                .into(),
-        );
+    if let Some(note) = p.safety_write_note() {
+        row(&mut out, "Safety", note.into());
     }
     for a in &p.canopen {
         row(

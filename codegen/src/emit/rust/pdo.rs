@@ -72,7 +72,7 @@ fn mapping(m: &PdoMapping, device: &Device) -> TokenStream {
     let layout = layout(&fields);
     let count = Literal::usize_unsuffixed(fields.len());
     let (decode, encode) = (decode(&fields, &count), encode(&fields, &count));
-    let config = super::pdo_communication::emit(m, &count);
+    let config = super::pdo_communication::emit(m, &count, device);
     quote! {
         #docs
         #[derive(Debug, Clone, Copy, PartialEq)]

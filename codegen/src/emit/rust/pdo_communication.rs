@@ -6,7 +6,7 @@ use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
 use super::{doc_attrs, ident};
-use crate::ir::{PdoDirection, PdoMapping};
+use crate::ir::{Device, PdoDirection, PdoMapping};
 
 /// `0x190` / `0x180 + node id` / `not given`, for the struct's doc table.
 pub(super) fn cob_id_text(m: &PdoMapping) -> String {
@@ -51,9 +51,24 @@ fn option_literal<T: Into<u64>>(value: Option<T>, suffix: &str) -> TokenStream {
     }
 }
 
+/// Whether the configuration writes communication sub-index `subindex`: not when the description
+/// describes that object read-only (the SWD's RPDO inhibit times, lines 1341 and 1365).
+fn writable(m: &PdoMapping, device: &Device, subindex: u8) -> bool {
+    let index = match m.direction {
+        PdoDirection::Rx => 0x1400,
+        PdoDirection::Tx => 0x1800,
+    } + m.number
+        - 1;
+    !device
+        .parameters
+        .iter()
+        .flat_map(|p| &p.canopen)
+        .any(|a| a.index == index && a.subindex == subindex && !a.access.write)
+}
+
 /// The constants, `cob_id(node)` / `config(node)` when the COB-ID is given, and
 /// `config_with_cob_id(cob_id)`.
-pub(super) fn emit(m: &PdoMapping, count: &Literal) -> TokenStream {
+pub(super) fn emit(m: &PdoMapping, count: &Literal, device: &Device) -> TokenStream {
     let kind = ident(match m.direction {
         PdoDirection::Tx => "Transmit",
         PdoDirection::Rx => "Receive",
@@ -63,6 +78,15 @@ pub(super) fn emit(m: &PdoMapping, count: &Literal) -> TokenStream {
     let transmission_type = option_literal(m.transmission_type, "u8");
     let inhibit_time = option_literal(m.inhibit_time, "u16");
     let event_timer = option_literal(m.event_timer, "u16");
+    let [written_inhibit_time, written_event_timer] = [(3, "INHIBIT_TIME"), (5, "EVENT_TIMER")]
+        .map(|(subindex, constant)| {
+            let constant = ident(constant);
+            if writable(m, device, subindex) {
+                quote! { Self::#constant }
+            } else {
+                quote! { None }
+            }
+        });
     let by_node = m.cob_id.map(|c| {
         let value: Literal = format!("0x{:X}", c.value)
             .parse()
@@ -106,7 +130,9 @@ pub(super) fn emit(m: &PdoMapping, count: &Literal) -> TokenStream {
         #by_node
 
         /// The configuration that maps and enables this PDO under `cob_id` (bit 31 is cleared
-        /// by the plan's last step), to apply over SDO in pre-operational.
+        /// by the plan's last step), to apply over SDO in pre-operational. It writes the
+        /// transmission type, inhibit time and event timer the description gives, except an
+        /// object the description makes read-only.
         pub fn config_with_cob_id(cob_id: u32) -> ::drivebus::canopen::pdo::PdoConfig<'static> {
             let layout: &'static ::drivebus::canopen::pdo::PdoLayout<#count> = &Self::LAYOUT;
             ::drivebus::canopen::pdo::PdoConfig {
@@ -114,6 +140,8 @@ pub(super) fn emit(m: &PdoMapping, count: &Literal) -> TokenStream {
                 number: #number,
                 cob_id,
                 transmission_type: Self::TRANSMISSION_TYPE,
+                inhibit_time: #written_inhibit_time,
+                event_timer: #written_event_timer,
                 entries: layout.entries(),
             }
         }

@@ -975,6 +975,7 @@ impl Lowering<'_> {
                 .collect(),
             source,
             erratum: raw.erratum.clone(),
+            safety: raw.safety.unwrap_or(false),
             spans,
         })?;
         Some(match matched {
