@@ -220,3 +220,50 @@ impl TelegramBus for MemoryBus {
         }
     }
 }
+
+/// A [`MemoryBus`] that also keeps the first CAN frame of every SDO transfer asked of it, as the
+/// sans-I/O SDO client would send it: tests compare those frames with a manual's printed bytes.
+#[derive(Debug, Default)]
+pub struct SdoRecorder {
+    /// Where the objects live.
+    pub memory: MemoryBus,
+    /// The request frames, oldest first.
+    pub frames: Vec<crate::canopen::CanFrame>,
+}
+
+impl SdoRecorder {
+    fn client(node: NodeId) -> crate::canopen::sdo::client::SdoClient {
+        crate::canopen::sdo::client::SdoClient::new(node, core::time::Duration::from_secs(1))
+    }
+}
+
+impl SdoBus for SdoRecorder {
+    fn upload(
+        &mut self,
+        node: NodeId,
+        index: u16,
+        subindex: u8,
+        out: &mut [u8],
+    ) -> Result<usize, BusError> {
+        use crate::canopen::sdo::Transfer;
+        let mut scratch = [0u8; 8];
+        let mut transfer =
+            Self::client(node).upload(index, subindex, &mut scratch, core::time::Duration::ZERO);
+        self.frames.extend(transfer.poll_transmit());
+        self.memory.upload(node, index, subindex, out)
+    }
+
+    fn download(
+        &mut self,
+        node: NodeId,
+        index: u16,
+        subindex: u8,
+        data: &[u8],
+    ) -> Result<(), BusError> {
+        use crate::canopen::sdo::Transfer;
+        let mut transfer =
+            Self::client(node).download(index, subindex, data, core::time::Duration::ZERO);
+        self.frames.extend(transfer.poll_transmit());
+        self.memory.download(node, index, subindex, data)
+    }
+}

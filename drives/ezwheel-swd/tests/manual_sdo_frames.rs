@@ -2,60 +2,17 @@
 //! request COB-ID 610h) built through the generated API and drivebus' sans-I/O SDO client, NMT
 //! and frame codecs, compared with the printed bytes.
 
-use core::time::Duration;
-
 use drivebus::canopen::nmt::{NmtCommand, NmtState};
 use drivebus::canopen::pdo::MappedObject;
-use drivebus::canopen::sdo::client::SdoClient;
-use drivebus::canopen::sdo::Transfer;
 use drivebus::canopen::srdo::{
     self, write_safety_configuration, MappingWrite, SrdoCommunication, SrdoConfig,
 };
-use drivebus::canopen::{CanFrame, CanOpenLink, NodeId, SdoBus};
-use drivebus::memory::MemoryBus;
+use drivebus::canopen::{CanOpenLink, NodeId};
+use drivebus::memory::SdoRecorder;
 use drivebus::units::Rpm;
-use drivebus::BusError;
 use ezwheel_swd::Swd;
 
 const NODE: NodeId = NodeId(0x10);
-
-/// Records the first frame of every SDO transfer, answers from `memory`.
-#[derive(Debug, Default)]
-struct SdoRecorder {
-    memory: MemoryBus,
-    frames: Vec<CanFrame>,
-}
-
-fn client(node: NodeId) -> SdoClient {
-    SdoClient::new(node, Duration::from_secs(1))
-}
-
-impl SdoBus for SdoRecorder {
-    fn upload(
-        &mut self,
-        node: NodeId,
-        index: u16,
-        subindex: u8,
-        out: &mut [u8],
-    ) -> Result<usize, BusError> {
-        let mut scratch = [0u8; 8];
-        let mut transfer = client(node).upload(index, subindex, &mut scratch, Duration::ZERO);
-        self.frames.extend(transfer.poll_transmit());
-        self.memory.upload(node, index, subindex, out)
-    }
-
-    fn download(
-        &mut self,
-        node: NodeId,
-        index: u16,
-        subindex: u8,
-        data: &[u8],
-    ) -> Result<(), BusError> {
-        let mut transfer = client(node).download(index, subindex, data, Duration::ZERO);
-        self.frames.extend(transfer.poll_transmit());
-        self.memory.download(node, index, subindex, data)
-    }
-}
 
 fn drive() -> Swd<CanOpenLink<SdoRecorder>> {
     let mut recorder = SdoRecorder::default();

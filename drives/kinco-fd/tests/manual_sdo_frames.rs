@@ -9,10 +9,10 @@
 mod recorders;
 
 use drivebus::canopen::{CanOpenLink, NodeId};
+use drivebus::memory::SdoRecorder;
 use drivebus::units::{Increments, Rpm};
 use kinco_fd::types::ModesOfOperation;
 use kinco_fd::KincoFd;
-use recorders::SdoRecorder;
 
 fn drive() -> KincoFd<CanOpenLink<SdoRecorder>> {
     let mut recorder = SdoRecorder::default();

@@ -2,52 +2,9 @@
 //! 7507-7568), built through the generated API and drivebus' sans-I/O SDO client, compared with
 //! the printed bytes (node 1: request COB-ID 0x601).
 
-use core::time::Duration;
-
-use drivebus::canopen::sdo::client::SdoClient;
-use drivebus::canopen::sdo::Transfer;
-use drivebus::canopen::{CanFrame, CanOpenLink, NodeId, SdoBus};
-use drivebus::memory::MemoryBus;
-use drivebus::BusError;
+use drivebus::canopen::{CanOpenLink, NodeId};
+use drivebus::memory::SdoRecorder;
 use lafert_smartris::Smartris;
-
-/// Records the first frame of every SDO transfer the link asks for, answers from `memory`.
-#[derive(Debug, Default)]
-struct SdoRecorder {
-    memory: MemoryBus,
-    frames: Vec<CanFrame>,
-}
-
-fn client(node: NodeId) -> SdoClient {
-    SdoClient::new(node, Duration::from_secs(1))
-}
-
-impl SdoBus for SdoRecorder {
-    fn upload(
-        &mut self,
-        node: NodeId,
-        index: u16,
-        subindex: u8,
-        out: &mut [u8],
-    ) -> Result<usize, BusError> {
-        let mut scratch = [0u8; 8];
-        let mut transfer = client(node).upload(index, subindex, &mut scratch, Duration::ZERO);
-        self.frames.extend(transfer.poll_transmit());
-        self.memory.upload(node, index, subindex, out)
-    }
-
-    fn download(
-        &mut self,
-        node: NodeId,
-        index: u16,
-        subindex: u8,
-        data: &[u8],
-    ) -> Result<(), BusError> {
-        let mut transfer = client(node).download(index, subindex, data, Duration::ZERO);
-        self.frames.extend(transfer.poll_transmit());
-        self.memory.download(node, index, subindex, data)
-    }
-}
 
 fn drive() -> Smartris<CanOpenLink<SdoRecorder>> {
     let mut recorder = SdoRecorder::default();

@@ -4,11 +4,6 @@
 
 #![allow(dead_code)] // each test file uses one of the two
 
-use core::time::Duration;
-
-use drivebus::canopen::sdo::client::SdoClient;
-use drivebus::canopen::sdo::Transfer;
-use drivebus::canopen::{CanFrame, NodeId, SdoBus};
 use drivebus::memory::MemoryBus;
 use drivebus::modbus::pdu::Request;
 use drivebus::modbus::rtu::{encode_request, MAX_ADU};
@@ -61,43 +56,5 @@ impl RegisterBus for RtuRecorder {
     ) -> Result<(), BusError> {
         self.record(unit, &Request::WriteMultipleRegisters { start, values })?;
         self.memory.write_registers(unit, start, values)
-    }
-}
-
-/// Records the first frame of every SDO transfer, answers from `memory`.
-#[derive(Debug, Default)]
-pub struct SdoRecorder {
-    pub memory: MemoryBus,
-    pub frames: Vec<CanFrame>,
-}
-
-fn client(node: NodeId) -> SdoClient {
-    SdoClient::new(node, Duration::from_secs(1))
-}
-
-impl SdoBus for SdoRecorder {
-    fn upload(
-        &mut self,
-        node: NodeId,
-        index: u16,
-        subindex: u8,
-        out: &mut [u8],
-    ) -> Result<usize, BusError> {
-        let mut scratch = [0u8; 8];
-        let mut transfer = client(node).upload(index, subindex, &mut scratch, Duration::ZERO);
-        self.frames.extend(transfer.poll_transmit());
-        self.memory.upload(node, index, subindex, out)
-    }
-
-    fn download(
-        &mut self,
-        node: NodeId,
-        index: u16,
-        subindex: u8,
-        data: &[u8],
-    ) -> Result<(), BusError> {
-        let mut transfer = client(node).download(index, subindex, data, Duration::ZERO);
-        self.frames.extend(transfer.poll_transmit());
-        self.memory.download(node, index, subindex, data)
     }
 }
