@@ -6,6 +6,7 @@ mod codec;
 mod commands;
 mod connect;
 mod error;
+mod identity_check;
 mod modbus_batch;
 mod pdo_mappings;
 mod raw_value;
