@@ -47,6 +47,8 @@ enum Command {
     Decode(commands::decode::Args),
     /// Export a description as a CiA 306 EDS, or import a vendor EDS as a TOML overlay.
     Eds(commands::eds::Args),
+    /// Find the CANopen nodes on a bus and match their identity against descriptions.
+    Scan(commands::scan::Args),
     /// CANopen Safety: the safety configuration signature of an SRDO.
     Safety(commands::safety::Args),
 }
@@ -64,6 +66,7 @@ fn main() -> ExitCode {
         Command::Decode(args) => commands::decode::run(args),
         Command::Eds(args) => commands::eds::run(args),
         Command::Safety(args) => commands::safety::run(args),
+        Command::Scan(args) => commands::scan::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
