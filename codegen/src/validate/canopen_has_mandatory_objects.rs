@@ -2,7 +2,9 @@
 //! (CiA 301 §7.5.2): device type (1000h), error register (1001h) and the identity object (1018h,
 //! at least its sub-index 0 and the vendor-ID, sub-index 1). Masters read them first (python
 //! canopen, lely, CiA 302 boot-up); the exported EDS lists them under `[MandatoryObjects]`. Include
-//! them from `profiles/cia301.toml` unless the manual gives them.
+//! them from `profiles/cia301.toml` unless the manual gives them. A device read from a vendor EDS
+//! (or an overlay of one) is not checked: the EDS is the vendor's own object list, and its
+//! objects are imported as they are.
 
 use crate::diagnostic::Diagnostic;
 use crate::ir::Device;
@@ -19,7 +21,11 @@ pub const MANDATORY_OBJECTS: &[(u16, u8, &str)] = &[
 
 /// Reports each mandatory object a CANopen description leaves out.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
-    if device.canopen.is_none() {
+    let from_eds = device
+        .sources
+        .iter()
+        .any(|s| s.id == crate::eds::EDS_SOURCE_ID);
+    if device.canopen.is_none() || from_eds {
         return Vec::new();
     }
     MANDATORY_OBJECTS
