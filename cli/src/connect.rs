@@ -72,7 +72,8 @@ pub struct BusArgs {
 }
 
 /// A CAN backend behind a box.
-struct DynCan(Box<dyn CanBus + Send>);
+/// A boxed CAN backend as a [`CanBus`].
+pub struct DynCan(pub Box<dyn CanBus + Send>);
 
 impl CanBus for DynCan {
     fn send(&mut self, frame: &CanFrame) -> Result<(), BusError> {
@@ -306,7 +307,7 @@ impl Session {
 }
 
 /// Opens a CAN backend; a relay process is returned for the session to stop.
-fn can_backend(spec: &str) -> Result<(Box<dyn CanBus + Send>, Option<Child>), CliError> {
+pub fn can_backend(spec: &str) -> Result<(Box<dyn CanBus + Send>, Option<Child>), CliError> {
     if let Some(addr) = spec.strip_prefix("slcan:") {
         let mut bus = SlcanBus::connect(addr).map_err(|e| connect_error(spec, e))?;
         bus.open(Bitrate::K500)

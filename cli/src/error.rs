@@ -40,6 +40,16 @@ pub enum CliError {
     Usage(String),
     /// I/O on files or sockets.
     Io(String),
+    /// The drive's identity parameter holds a value the description does not cover; nothing
+    /// was written.
+    IdentityMismatch {
+        /// The identity parameter.
+        parameter: String,
+        /// The values the description covers.
+        expected: Vec<i64>,
+        /// The raw value the drive reported.
+        found: String,
+    },
     /// `diff` found changes that break code written against the old description.
     Breaking(usize),
 }
@@ -75,6 +85,14 @@ impl fmt::Display for CliError {
                 cause,
             } => write!(f, "{parameter}: {target}: {cause}"),
             CliError::Usage(text) | CliError::Io(text) => write!(f, "{text}"),
+            CliError::IdentityMismatch {
+                parameter,
+                expected,
+                found,
+            } => write!(
+                f,
+                "{parameter} reads {found}, the description covers {expected:?}: not written (--no-identity-check writes anyway)"
+            ),
             CliError::Breaking(count) => write!(
                 f,
                 "{count} breaking change(s): code written against the old description may not compile"

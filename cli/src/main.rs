@@ -6,6 +6,7 @@ mod codec;
 mod commands;
 mod connect;
 mod error;
+mod identity_check;
 mod modbus_batch;
 mod pdo_mappings;
 mod suggest;
@@ -45,6 +46,8 @@ enum Command {
     Decode(commands::decode::Args),
     /// Export a description as a CiA 306 EDS, or import a vendor EDS as a TOML overlay.
     Eds(commands::eds::Args),
+    /// Find the CANopen nodes on a bus and match their identity against descriptions.
+    Scan(commands::scan::Args),
     /// CANopen Safety: the safety configuration signature of an SRDO.
     Safety(commands::safety::Args),
 }
@@ -62,6 +65,7 @@ fn main() -> ExitCode {
         Command::Decode(args) => commands::decode::run(args),
         Command::Eds(args) => commands::eds::run(args),
         Command::Safety(args) => commands::safety::run(args),
+        Command::Scan(args) => commands::scan::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -426,3 +426,34 @@ fn diff_classifies_changes_and_fails_only_on_breaking_ones() {
         stderr(&output)
     );
 }
+
+#[test]
+fn write_checks_the_identity_first_unless_told_not_to() {
+    let (sim, _server, addr) = simulated_lafert();
+    sim.preset("fw_release", 226).unwrap();
+    let lafert = lafert_path();
+    let lafert = lafert.to_str().unwrap();
+    let write = |extra: &[&str]| {
+        let mut args = vec![
+            "write",
+            lafert,
+            "speed_setpoint",
+            "-1500rpm",
+            "--modbus-tcp",
+            &addr,
+        ];
+        args.extend_from_slice(extra);
+        drivegen(&args)
+    };
+    let refused = write(&[]);
+    assert!(!refused.status.success());
+    assert!(
+        stderr(&refused).contains("fw_release reads 226, the description covers [242]"),
+        "{}",
+        stderr(&refused)
+    );
+    assert_eq!(raw(&sim, "speed_setpoint"), 0, "nothing written");
+    let forced = write(&["--no-identity-check"]);
+    assert!(forced.status.success(), "{}", stderr(&forced));
+    assert_eq!(raw(&sim, "speed_setpoint"), -1500);
+}

@@ -53,9 +53,9 @@ fn export_then_import_gives_a_valid_overlay_with_every_object() {
         "{}",
         String::from_utf8_lossy(&check.stderr)
     );
-    // 57 objects of the description, and 25 sub-indices of the communication and mapping objects
-    // of its five declared PDOs.
-    assert!(stdout.contains("82 parameters"), "{stdout}");
+    // 61 objects of the description (57 and the CiA 301 mandatory 1000h, 1001h, 1018h sub 0
+    // and 1), and 25 sub-indices of the communication and mapping objects of its five PDOs.
+    assert!(stdout.contains("86 parameters"), "{stdout}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

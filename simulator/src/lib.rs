@@ -32,6 +32,7 @@
 pub mod behaviour;
 pub mod canopen;
 pub mod drive;
+mod identity;
 pub mod modbus;
 pub mod raw;
 pub mod refusal;

@@ -75,13 +75,19 @@ impl Simulator {
     pub fn new(device: Device) -> Self {
         let device = with_pdo_objects(device);
         let variant = device.variants.first().map(|v| v.name.clone());
-        Self {
+        let identity = crate::identity::covered_identity(&device);
+        let sim = Self {
             inner: Arc::new(Mutex::new(Inner {
                 drive: Drive::new(device),
                 last: Instant::now(),
             })),
             variant,
+        };
+        if let Some((name, value)) = identity {
+            // The parameter is described and the value fits its type (identity_names_a_parameter).
+            let _ = sim.preset(&name, value);
         }
+        sim
     }
 
     /// Runs `f` on the drive after advancing it to the present time.

@@ -65,6 +65,12 @@ impl<L: Link> Device<L> {
         self.refusal = Some(reason);
     }
 
+    /// Lifts any refusal of writes: the caller's explicit decision to write to a drive its
+    /// description was not verified against (the generated `trust_unverified`).
+    pub fn lift_write_refusal(&mut self) {
+        self.refusal = None;
+    }
+
     /// Why writes are refused, if they are.
     pub fn write_refusal(&self) -> Option<WriteRefusal> {
         self.refusal

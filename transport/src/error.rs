@@ -206,6 +206,16 @@ pub enum WriteRefusal {
         /// The raw value it holds.
         value: i128,
     },
+    /// The parameter that tells the drive's firmware or configuration holds a value the
+    /// description's `[identity]` does not cover (found by the handle's `verify_identity`).
+    IdentityMismatch {
+        /// The identity parameter, as in the description.
+        parameter: &'static str,
+        /// The values the description covers.
+        expected: &'static [i128],
+        /// The raw value the drive reported.
+        found: i128,
+    },
 }
 
 impl fmt::Display for WriteRefusal {
@@ -214,6 +224,14 @@ impl fmt::Display for WriteRefusal {
             Self::UnknownVariant { selector, value } => write!(
                 f,
                 "{selector} reads {value}, which selects no variant the description covers"
+            ),
+            Self::IdentityMismatch {
+                parameter,
+                expected,
+                found,
+            } => write!(
+                f,
+                "{parameter} reads {found}; the description covers {expected:?}"
             ),
         }
     }

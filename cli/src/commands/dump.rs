@@ -26,6 +26,9 @@ pub fn run(args: Args) -> Result<(), CliError> {
         println!("{json}");
         return Ok(());
     }
+    if let Some(identity) = &device.identity {
+        println!("{identity}");
+    }
     let mut rows = vec![vec![
         "parameter".to_string(),
         "type".to_string(),

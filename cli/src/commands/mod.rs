@@ -8,6 +8,7 @@ pub mod eds;
 pub mod generate;
 pub mod read;
 pub mod safety;
+pub mod scan;
 pub mod sim;
 pub mod watch;
 pub mod write;

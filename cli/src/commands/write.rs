@@ -21,6 +21,9 @@ pub struct Args {
     /// Print JSON.
     #[arg(long)]
     json: bool,
+    /// Write without first checking the drive's identity against the description's `[identity]`.
+    #[arg(long)]
+    no_identity_check: bool,
 }
 
 /// Checks the value against the description, then writes it.
@@ -32,6 +35,9 @@ pub fn run(args: Args) -> Result<(), CliError> {
         cause,
     })?;
     let mut session = Session::open(&args.bus, &device)?;
+    if !args.no_identity_check {
+        crate::identity_check::verify(&mut session, &device)?;
+    }
     session.write(parameter, &bytes)?;
     let shown = codec::show(&device, parameter, &bytes);
     if args.json {

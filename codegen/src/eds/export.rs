@@ -88,7 +88,11 @@ fn header(out: &mut String, device: &Device) {
 
 /// `[MandatoryObjects]`, `[OptionalObjects]` and `[ManufacturerObjects]` (CiA 306 §4.5).
 fn object_lists(out: &mut String, objects: &BTreeMap<u16, BTreeMap<u8, Entry<'_>>>) {
-    let mandatory = |i: u16| i == 0x1000 || i == 0x1001;
+    let mandatory = |i: u16| {
+        crate::validate::canopen_has_mandatory_objects::MANDATORY_OBJECTS
+            .iter()
+            .any(|(index, _, _)| *index == i)
+    };
     let manufacturer = |i: u16| (0x2000..0x6000).contains(&i);
     let lists: [(&str, &dyn Fn(u16) -> bool); 3] = [
         ("MandatoryObjects", &mandatory),

@@ -147,6 +147,7 @@ pub fn empty_device(name: &str, model: &EdsModel) -> ir::Device {
             default_node_id: model.device.node_id.unwrap_or(1),
             source: None,
         }),
+        identity: None,
         variants: Vec::new(),
         enums: Vec::new(),
         flags: Vec::new(),

@@ -5,6 +5,7 @@
 
 mod bounds;
 mod data_type;
+mod expected_identity;
 mod expr;
 mod indexed;
 mod model;
@@ -21,6 +22,7 @@ mod variant_selector;
 
 pub use bounds::Bounds;
 pub use data_type::DataType;
+pub use expected_identity::ExpectedIdentity;
 pub use expr::{Expr, ExprError, Op};
 pub use indexed::IndexedParameter;
 pub use model::{Constant, Model};
@@ -59,6 +61,9 @@ pub struct Device {
     pub modbus: Option<ModbusCaps>,
     /// CANopen capabilities, if the device speaks CANopen.
     pub canopen: Option<CanOpenCaps>,
+    /// The drive, firmware and configuration the description covers (`[identity]`), if given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub identity: Option<ExpectedIdentity>,
     /// Firmware / configuration variants; the first is the default.
     pub variants: Vec<Variant>,
     /// Enumerations.

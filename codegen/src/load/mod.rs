@@ -3,6 +3,7 @@
 mod lower;
 mod only;
 mod raw;
+mod raw_identity;
 mod raw_srdo;
 pub mod subindex_range;
 

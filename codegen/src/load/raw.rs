@@ -20,6 +20,7 @@ pub struct RawFile {
     pub source: Vec<RawSource>,
     pub modbus: Option<RawModbusCaps>,
     pub canopen: Option<RawCanOpenCaps>,
+    pub identity: Option<super::raw_identity::RawIdentity>,
     #[serde(default)]
     pub variant: Vec<RawVariant>,
     #[serde(default, rename = "enum")]

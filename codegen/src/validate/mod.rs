@@ -8,9 +8,11 @@ mod addresses_do_not_overlap;
 mod bit_codes_are_enum_values;
 mod bit_fields_fit;
 mod bounds_resolve;
+pub(crate) mod canopen_has_mandatory_objects;
 mod commands_share_a_register;
 mod defaults_within_range;
 mod enum_values_fit_type;
+mod identity_names_a_parameter;
 mod indexed_names_are_unique;
 mod models_give_constants;
 mod names_are_unique;
@@ -100,6 +102,14 @@ pub const PASSES: &[(&str, Pass)] = &[
     ("srdo_timings_are_valid", srdo_timings_are_valid::check),
     ("srdo_numbers_are_unique", srdo_numbers_are_unique::check),
     ("indexed_names_are_unique", indexed_names_are_unique::check),
+    (
+        "identity_names_a_parameter",
+        identity_names_a_parameter::check,
+    ),
+    (
+        "canopen_has_mandatory_objects",
+        canopen_has_mandatory_objects::check,
+    ),
     (
         "variant_selectors_resolve",
         variant_selectors_resolve::check,

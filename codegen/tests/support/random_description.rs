@@ -393,6 +393,7 @@ pub fn description() -> impl Strategy<Value = String> {
                  [modbus]\nword_order = \"{word_order}\"\nread_gaps = {read_gaps}\nsource = {{ doc = \"m\", line = 1 }}\n\n\
                  [canopen]\ndefault_node_id = 5\nsource = {{ doc = \"m\", line = 1 }}\n\n"
             );
+            toml += MANDATORY_OBJECTS;
             for v in 0..2 {
                 let _ = write!(
                     toml,
@@ -421,6 +422,13 @@ pub fn description() -> impl Strategy<Value = String> {
             toml
         })
 }
+
+/// The CiA 301 objects every CANopen description must have (rule `canopen_has_mandatory_objects`).
+const MANDATORY_OBJECTS: &str = "\
+[[parameter]]\nname = \"device_type\"\ndoc = \"Device type.\"\ntype = \"u32\"\ncanopen = { index = 0x1000, subindex = 0, access = \"ro\" }\nsource = { doc = \"m\", line = 1 }\n\n\
+[[parameter]]\nname = \"error_register\"\ndoc = \"Error register.\"\ntype = \"u8\"\ncanopen = { index = 0x1001, subindex = 0, access = \"ro\" }\nsource = { doc = \"m\", line = 1 }\n\n\
+[[parameter]]\nname = \"identity_count\"\ndoc = \"Identity entries.\"\ntype = \"u8\"\ncanopen = { index = 0x1018, subindex = 0, access = \"ro\" }\nsource = { doc = \"m\", line = 1 }\n\n\
+[[parameter]]\nname = \"vendor_id\"\ndoc = \"Vendor-ID.\"\ntype = \"u32\"\ncanopen = { index = 0x1018, subindex = 1, access = \"ro\" }\nsource = { doc = \"m\", line = 1 }\n\n";
 
 /// `count` valid random descriptions written into `dir` as `random_N.toml`, the same on every run.
 pub fn valid_descriptions(count: usize, dir: &Path) -> Vec<PathBuf> {

@@ -63,6 +63,8 @@ mod link;
 pub mod message;
 pub mod nmt;
 pub mod pdo;
+#[cfg(feature = "canopen")]
+pub mod scan;
 pub mod sdo;
 #[cfg(feature = "srdo")]
 pub mod srdo;

@@ -10,6 +10,7 @@ mod enums;
 mod flags;
 mod given;
 mod handle;
+mod identity_check;
 mod indexed;
 mod parameter;
 mod parameter_doc;
@@ -113,6 +114,7 @@ pub fn tokens(device: &Device) -> TokenStream {
         bounds::emit(device),
         triggers::emit(device),
         variant_selection::emit(device),
+        identity_check::emit(device),
         given::emit(device),
         pdo::emit(device),
         srdo::emit(device),

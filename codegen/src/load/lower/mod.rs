@@ -7,6 +7,7 @@ use std::sync::Arc;
 
 mod commands;
 mod control;
+mod identity;
 mod models;
 mod occupies;
 mod overlay;
@@ -164,6 +165,7 @@ impl Lowering<'_> {
             sources: Vec::new(),
             modbus: None,
             canopen: None,
+            identity: None,
             variants: Vec::new(),
             enums: Vec::new(),
             flags: Vec::new(),
@@ -216,6 +218,7 @@ impl Lowering<'_> {
             .and_then(|c| self.citation(c));
         device.modbus = raw.modbus.as_ref().map(|m| self.modbus_caps(m));
         device.canopen = raw.canopen.as_ref().map(|c| self.canopen_caps(c));
+        device.identity = raw.identity.as_ref().map(|i| self.expected_identity(i));
         device.variants = raw.variant.iter().map(|v| self.variant(v)).collect();
         device.cia402 = raw.cia402.as_ref().map(|c| self.cia402(c));
         device.pdos = raw.pdo.iter().filter_map(|p| self.pdo_mapping(p)).collect();
