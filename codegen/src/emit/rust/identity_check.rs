@@ -28,12 +28,15 @@ pub fn emit(device: &Device) -> TokenStream {
     let raw = raw_type(parameter.data_type);
     let name = &parameter.name;
     let values = identity.values.iter().map(|v| i128::from(*v));
+    // In code spans: a bare `[242]` would be read as an intra-doc link.
+    let covered: Vec<String> = identity.values.iter().map(|v| format!("`{v}`")).collect();
+    let covered = covered.join(", ");
     let verify_doc = doc_attrs(&format!(
-        "Reads `{name}` and checks it against the values the description covers ({:?}). On a \
+        "Reads `{name}` and checks it against the values the description covers ({}). On a \
          mismatch every later write is refused before sending, and the refusal (naming expected \
          and found values) comes back as `Error::WritesRefused`; reads go on. Call it right after \
          connecting; `trust_unverified` is the explicit opt-in to write anyway.",
-        identity.values
+        covered
     ));
     quote! {
         /// The values of the identity parameter this description covers.

@@ -157,7 +157,7 @@ fn configuration(s: &SrdoMapping) -> TokenStream {
         }
 
         /// The default configuration on `node`: what
-        /// [`signature`](::drivebus::canopen::srdo::signature) signs and the safety write writes.
+        /// [`signature`](::drivebus::canopen::srdo::signature()) signs and the safety write writes.
         pub fn config(node: ::drivebus::canopen::NodeId) -> ::drivebus::canopen::srdo::SrdoConfig<'static> {
             ::drivebus::canopen::srdo::SrdoConfig {
                 number: Self::NUMBER,
