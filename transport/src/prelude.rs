@@ -23,3 +23,7 @@ pub use crate::modbus::transport::{
     ModbusTcpClient, RtuOverTcpClient, SerialConfig, SerialRtuClient, TcpConfig,
 };
 pub use crate::modbus::{ExceptionCode, ModbusLink, RegisterBus, UnitId};
+
+#[cfg(feature = "rs232")]
+pub use crate::rs232::serial::{Rs232Client, Rs232Config};
+pub use crate::rs232::{Rs232Link, StationId, TelegramBus};
