@@ -1,8 +1,6 @@
 //! A drive whose only behaviour is a `[state_machine]` table gets a working simulated machine:
 //! no simulator code names its states, registers or commands.
 
-use std::io::Write;
-
 use drivesim::{Drive, Simulator};
 
 /// A made-up conveyor drive: boots through `init`, runs on 0x10, brakes on 0x20, and shows
@@ -94,9 +92,17 @@ kind = "external"
 source = { doc = "m", line = 15 }
 "#;
 
-fn conveyor() -> (Simulator, tempfile_path::TempToml) {
-    let file = tempfile_path::TempToml::new(CONVEYOR);
-    (Simulator::load(file.path()).unwrap(), file)
+/// The conveyor, loaded from a file of its own (read once, at load).
+fn conveyor() -> Simulator {
+    // Tests run in parallel: one file each.
+    static NEXT: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let name = format!("drivesim-conveyor-{}-{n}.toml", std::process::id());
+    let path = std::env::temp_dir().join(name);
+    std::fs::write(&path, CONVEYOR).unwrap();
+    let sim = Simulator::load(&path);
+    std::fs::remove_file(&path).unwrap();
+    sim.unwrap()
 }
 
 fn value(drive: &Drive, name: &str) -> i128 {
@@ -114,7 +120,7 @@ fn order(drive: &mut Drive, raw: i128) {
 
 #[test]
 fn boots_through_automatic_transitions_and_follows_commands() {
-    let (sim, _file) = conveyor();
+    let sim = conveyor();
     sim.with(|drive| {
         assert_eq!(value(drive, "state"), 0x02, "init → idle by itself");
         order(drive, 0x20);
@@ -134,7 +140,7 @@ fn boots_through_automatic_transitions_and_follows_commands() {
 
 #[test]
 fn a_pattern_with_a_condition_shows_while_it_holds() {
-    let (sim, _file) = conveyor();
+    let sim = conveyor();
     sim.preset("mode", 7).unwrap();
     sim.with(|drive| {
         order(drive, 0x10);
@@ -144,7 +150,7 @@ fn a_pattern_with_a_condition_shows_while_it_holds() {
 
 #[test]
 fn a_fault_enters_the_fault_state_and_a_reset_boots_again() {
-    let (sim, _file) = conveyor();
+    let sim = conveyor();
     sim.with(|drive| {
         order(drive, 0x10);
         drive.inject_fault(0x42);
@@ -155,34 +161,4 @@ fn a_fault_enters_the_fault_state_and_a_reset_boots_again() {
         drive.reboot();
         assert_eq!(value(drive, "state"), 0x02);
     });
-}
-
-/// A description written to a file of its own, removed when dropped.
-mod tempfile_path {
-    use super::*;
-
-    pub struct TempToml(std::path::PathBuf);
-
-    impl TempToml {
-        pub fn new(text: &str) -> Self {
-            static NEXT: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-            let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-            let path = std::env::temp_dir()
-                .join(format!("drivesim-machine-{}-{n}.toml", std::process::id()));
-            std::fs::File::create(&path)
-                .and_then(|mut f| f.write_all(text.as_bytes()))
-                .unwrap();
-            Self(path)
-        }
-
-        pub fn path(&self) -> &std::path::Path {
-            &self.0
-        }
-    }
-
-    impl Drop for TempToml {
-        fn drop(&mut self) {
-            let _ = std::fs::remove_file(&self.0);
-        }
-    }
 }

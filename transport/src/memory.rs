@@ -267,3 +267,67 @@ impl SdoBus for SdoRecorder {
         self.memory.download(node, index, subindex, data)
     }
 }
+
+/// A [`MemoryBus`] that also keeps every request as the RTU frame (unit, PDU, CRC)
+/// [`encode_request`](crate::modbus::rtu::encode_request) builds for it: what would go on the
+/// RS-485 wire, for tests against a manual's printed frames.
+#[cfg(feature = "modbus-core")]
+#[derive(Debug, Default)]
+pub struct RtuRecorder {
+    /// Where the registers live.
+    pub memory: MemoryBus,
+    /// The request frames, oldest first.
+    pub frames: Vec<Vec<u8>>,
+}
+
+#[cfg(feature = "modbus-core")]
+impl RtuRecorder {
+    fn record(
+        &mut self,
+        unit: UnitId,
+        request: &crate::modbus::pdu::Request<'_>,
+    ) -> Result<(), BusError> {
+        use crate::modbus::rtu::{encode_request, MAX_ADU};
+        let mut frame = [0u8; MAX_ADU];
+        let len = encode_request(unit, request, &mut frame)?;
+        self.frames.push(frame[..len].to_vec());
+        Ok(())
+    }
+}
+
+#[cfg(feature = "modbus-core")]
+impl RegisterBus for RtuRecorder {
+    fn read_registers(
+        &mut self,
+        unit: UnitId,
+        table: Table,
+        start: u16,
+        out: &mut [u16],
+    ) -> Result<(), BusError> {
+        use crate::modbus::pdu::Request;
+        let count = out.len() as u16;
+        let request = match table {
+            Table::Input => Request::ReadInputRegisters { start, count },
+            Table::Holding => Request::ReadHoldingRegisters { start, count },
+        };
+        self.record(unit, &request)?;
+        self.memory.read_registers(unit, table, start, out)
+    }
+
+    fn write_register(&mut self, unit: UnitId, address: u16, value: u16) -> Result<(), BusError> {
+        let request = crate::modbus::pdu::Request::WriteSingleRegister { address, value };
+        self.record(unit, &request)?;
+        self.memory.write_register(unit, address, value)
+    }
+
+    fn write_registers(
+        &mut self,
+        unit: UnitId,
+        start: u16,
+        values: &[u16],
+    ) -> Result<(), BusError> {
+        let request = crate::modbus::pdu::Request::WriteMultipleRegisters { start, values };
+        self.record(unit, &request)?;
+        self.memory.write_registers(unit, start, values)
+    }
+}

@@ -6,6 +6,7 @@
 //! compiles but reads or writes differently (an address, scale, range or default moved), and
 //! *compatible* for pure additions.
 
+mod mappings;
 mod models;
 mod parameters;
 mod pdos;

@@ -1,39 +1,20 @@
 //! Changes to declared SRDOs: their structs and their safety configuration.
 
-use super::{match_by_name, Change, Impact};
+use super::mappings::{self, MappingKind};
+use super::Change;
 use crate::ir::SrdoMapping;
 
 /// A removed SRDO or changed entries change the generated struct (breaking); any other change of
 /// the configuration changes the wire and the safety signature the drive expects (behaviour).
 pub(super) fn compare(old: &[SrdoMapping], new: &[SrdoMapping], out: &mut Vec<Change>) {
-    let matched = match_by_name(old, new, |s| &s.name);
-    for s in matched.removed {
-        out.push(Change::new(Impact::Breaking, subject(s), "removed"));
-    }
-    for s in matched.added {
-        out.push(Change::new(Impact::Compatible, subject(s), "added"));
-    }
-    for (o, n) in matched.both {
-        if o.entries != n.entries {
-            let what = format!(
-                "entries {} → {}",
-                o.entries.join(", "),
-                n.entries.join(", ")
-            );
-            out.push(Change::new(Impact::Breaking, subject(o), what));
-        }
-        if configuration(o) != configuration(n) {
-            out.push(Change::new(
-                Impact::Behaviour,
-                subject(o),
-                format!(
-                    "{} → {} (the safety signature changes)",
-                    configuration(o),
-                    configuration(n)
-                ),
-            ));
-        }
-    }
+    let kind = MappingKind {
+        subject: |s: &SrdoMapping| format!("SRDO `{}`", s.name),
+        name: |s| &s.name,
+        entries: |s| &s.entries,
+        configuration,
+        consequence: " (the safety signature changes)",
+    };
+    mappings::compare(&kind, old, new, out);
 }
 
 /// Everything but the entries that the communication object holds.
@@ -52,10 +33,6 @@ fn configuration(s: &SrdoMapping) -> String {
         inverted.node_id_factor,
         s.transmission_type
     )
-}
-
-fn subject(s: &SrdoMapping) -> String {
-    format!("SRDO `{}`", s.name)
 }
 
 #[cfg(test)]

@@ -3,14 +3,11 @@
 //! and checked against a CRC-16/MODBUS computed here bit by bit. Station 1; the encoder
 //! resolution is the manual's 10000.
 
-#[path = "support/recorders.rs"]
-mod recorders;
-
+use drivebus::memory::RtuRecorder;
 use drivebus::modbus::{ModbusLink, Table, UnitId};
 use drivebus::units::Rpm;
 use kinco_fd::types::ModesOfOperation;
 use kinco_fd::KincoFd;
-use recorders::RtuRecorder;
 
 /// CRC-16/MODBUS (poly 0xA001 reflected, init 0xFFFF), bit by bit: shares nothing with drivebus.
 fn crc16_modbus(bytes: &[u8]) -> u16 {

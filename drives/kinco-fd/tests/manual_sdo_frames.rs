@@ -5,9 +5,6 @@
 //! section's controlword and mode lines (3264-3265) drop a digit and are left out; its other
 //! lines are intact.
 
-#[path = "support/recorders.rs"]
-mod recorders;
-
 use drivebus::canopen::{CanOpenLink, NodeId};
 use drivebus::memory::SdoRecorder;
 use drivebus::units::{Increments, Rpm};

@@ -5,16 +5,14 @@
 
 #[path = "support/fake_clock.rs"]
 mod fake_clock;
-#[path = "support/rtu_recorder.rs"]
-mod rtu_recorder;
 
+use drivebus::memory::RtuRecorder;
 use drivebus::modbus::pdu::Request;
 use drivebus::modbus::rtu::{encode_request, MAX_ADU};
 use drivebus::modbus::{ModbusLink, Table, UnitId};
 use fake_clock::FakeClock;
 use lafert_smartris::types::{BaudRate, ComSettings};
 use lafert_smartris::{params, RebootWait, Smartris};
-use rtu_recorder::RtuRecorder;
 
 /// CRC-16/MODBUS (poly 0xA001 reflected, init 0xFFFF), written out bit by bit so it shares nothing
 /// with the table-driven implementation under test.
