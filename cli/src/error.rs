@@ -4,7 +4,7 @@ use std::fmt;
 
 use drivebus::BusError;
 
-use crate::codec::CodecError;
+use drivebus::interpret::InputError;
 
 /// A failed command.
 #[derive(Debug)]
@@ -23,7 +23,7 @@ pub enum CliError {
         /// Parameter.
         parameter: String,
         /// Why.
-        cause: CodecError,
+        cause: InputError,
     },
     /// The parameter has no address on the chosen protocol, or not with this access.
     NoAccess(String),

@@ -21,14 +21,14 @@ pub fn verify(session: &mut Session, device: &Device) -> Result<(), CliError> {
         return Ok(());
     };
     let bytes = session.read_many(&[parameter])?.pop().unwrap_or_default();
-    let shown = codec::show(device, parameter, &bytes);
-    let found = shown.raw.as_i64();
+    let shown = drivebus::interpret::show(device, parameter, &bytes);
+    let found = codec::raw_json(&shown.raw).as_i64();
     if found.is_some_and(|v| identity.values.contains(&v)) {
         return Ok(());
     }
     Err(CliError::IdentityMismatch {
         parameter: parameter.name.clone(),
         expected: identity.values.clone(),
-        found: shown.raw.to_string(),
+        found: codec::raw_json(&shown.raw).to_string(),
     })
 }

@@ -6,8 +6,6 @@ use std::collections::HashMap;
 use drivebus::canopen::pdo::{MappedObject, PdoKind};
 use drivegen::ir::Device;
 
-use crate::codec;
-
 /// First RPDO and TPDO mapping objects.
 const RPDO_MAPPING: u16 = 0x1600;
 const TPDO_MAPPING: u16 = 0x1A00;
@@ -74,7 +72,11 @@ impl PdoMappings {
                     .any(|a| a.index == entry.index && a.subindex == entry.subindex)
             });
             values.push(match parameter {
-                Some(p) => format!("{}={}", p.name, codec::show(device, p, bytes).text),
+                Some(p) => format!(
+                    "{}={}",
+                    p.name,
+                    drivebus::interpret::show(device, p, bytes).text
+                ),
                 None => format!("{:04X}:{:02X}={bytes:02X?}", entry.index, entry.subindex),
             });
         }

@@ -1,10 +1,9 @@
 //! The parameter store: every parameter's raw value, its factory default and its stored copy.
 
-use std::cmp::Ordering;
 use std::collections::HashMap;
 
-use drivebus::interpret::RawValue;
-use drivegen::ir::{DataType, Device, Number, Parameter};
+use drivebus::interpret::{self, Breach, RawValue};
+use drivegen::ir::{DataType, Device, Parameter};
 
 use crate::raw;
 use crate::refusal::Refusal;
@@ -94,16 +93,11 @@ impl Store {
         let Some(value) = RawValue::of(parameter.data_type, bytes) else {
             return Ok(());
         };
-        let against = |bound: Number| bound.compare_raw(value);
-        match parameter.range.as_ref().and_then(|r| r.locate(against)) {
-            Some(Ordering::Greater) => return Err(Refusal::TooHigh),
-            Some(Ordering::Less) => return Err(Refusal::TooLow),
-            _ => {}
-        }
-        if !parameter.allows(against) {
-            return Err(Refusal::InvalidValue);
-        }
-        Ok(())
+        interpret::check(parameter, value).map_err(|breach| match breach {
+            Breach::BelowRange => Refusal::TooLow,
+            Breach::AboveRange => Refusal::TooHigh,
+            Breach::OutsideType | Breach::Unordered | Breach::NotAllowed => Refusal::InvalidValue,
+        })
     }
 
     /// Puts a parameter back to its factory value.

@@ -9,7 +9,6 @@ use drivebus::canopen::message::Message;
 use drivebus::canopen::sdo::AbortCode;
 use drivegen::ir::Device;
 
-use crate::codec;
 use crate::error::CliError;
 use crate::pdo_mappings::PdoMappings;
 use crate::table;
@@ -178,7 +177,7 @@ fn mux(data: &[u8; 8]) -> (u16, u8) {
 
 fn typed(device: &Device, index: u16, subindex: u8, bytes: &[u8]) -> String {
     match find(device, index, subindex) {
-        Some(p) => codec::show(device, p, bytes).text,
+        Some(p) => drivebus::interpret::show(device, p, bytes).text,
         None => format!("{bytes:02X?}"),
     }
 }

@@ -39,12 +39,13 @@ pub fn run(args: Args) -> Result<(), CliError> {
         println!("{}", serde_json::Value::from(json));
     } else {
         let mut rows = vec![vec!["parameter".into(), "value".into(), "raw".into()]];
-        rows.extend(
-            parameters
-                .iter()
-                .zip(&values)
-                .map(|(p, s)| vec![p.name.clone(), s.text.clone(), s.raw.to_string()]),
-        );
+        rows.extend(parameters.iter().zip(&values).map(|(p, s)| {
+            vec![
+                p.name.clone(),
+                s.text.clone(),
+                codec::raw_json(&s.raw).to_string(),
+            ]
+        }));
         print!("{}", table::render(&rows));
     }
     Ok(())
@@ -60,22 +61,22 @@ pub fn read_all(
     session: &mut Session,
     device: &Device,
     parameters: &[&Parameter],
-) -> Result<Vec<codec::Shown>, CliError> {
+) -> Result<Vec<drivebus::interpret::Shown>, CliError> {
     let values = session.read_many(parameters)?;
     Ok(parameters
         .iter()
         .zip(&values)
-        .map(|(p, raw)| codec::show(device, p, raw))
+        .map(|(p, raw)| drivebus::interpret::show(device, p, raw))
         .collect())
 }
 
 /// One value as a JSON object.
-pub fn to_json(parameter: &Parameter, shown: &codec::Shown) -> serde_json::Value {
+pub fn to_json(parameter: &Parameter, shown: &drivebus::interpret::Shown) -> serde_json::Value {
     serde_json::json!({
         "parameter": parameter.name,
-        "value": shown.value,
+        "value": codec::value_json(&shown.value),
         "unit": parameter.unit,
-        "raw": shown.raw,
+        "raw": codec::raw_json(&shown.raw),
         "text": shown.text,
     })
 }

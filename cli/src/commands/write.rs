@@ -30,16 +30,18 @@ pub struct Args {
 pub fn run(args: Args) -> Result<(), CliError> {
     let device = super::load(&args.description)?;
     let parameter = super::parameter(&device, &args.parameter)?;
-    let bytes = codec::parse(&device, parameter, &args.value).map_err(|cause| CliError::Value {
-        parameter: parameter.name.clone(),
-        cause,
+    let bytes = drivebus::interpret::parse(&device, parameter, &args.value).map_err(|cause| {
+        CliError::Value {
+            parameter: parameter.name.clone(),
+            cause,
+        }
     })?;
     let mut session = Session::open(&args.bus, &device)?;
     if !args.no_identity_check {
         crate::identity_check::verify(&mut session, &device)?;
     }
     session.write(parameter, &bytes)?;
-    let shown = codec::show(&device, parameter, &bytes);
+    let shown = drivebus::interpret::show(&device, parameter, &bytes);
     if args.json {
         println!("{}", super::read::to_json(parameter, &shown));
     } else {
@@ -47,7 +49,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
             "{} = {} (raw {}) written to {}",
             parameter.name,
             shown.text,
-            shown.raw,
+            codec::raw_json(&shown.raw),
             session.target()
         );
     }

@@ -9,11 +9,11 @@ mod expected_identity;
 mod expr;
 mod indexed;
 mod model;
-mod number;
 mod pdo;
 mod read_block;
 mod readable_registers;
 mod refinement;
+mod run_time_model;
 mod safety;
 mod scale_inputs;
 mod srdo;
@@ -22,11 +22,11 @@ mod variant_selector;
 
 pub use bounds::Bounds;
 pub use data_type::DataType;
+pub use drivebus::interpret::{Number, Range};
 pub use expected_identity::ExpectedIdentity;
 pub use expr::{Expr, ExprError, Op};
 pub use indexed::IndexedParameter;
 pub use model::{Constant, Model};
-pub use number::Number;
 pub use pdo::{pdo_bits, CobId, PdoDirection, PdoMapping};
 pub use read_block::ReadBlock;
 pub use readable_registers::{PlannerLimits, RegisterRun};
@@ -691,37 +691,6 @@ impl Command {
     /// Every value of the command register, the first one first.
     pub fn values(&self) -> impl Iterator<Item = &Command> {
         std::iter::once(self).chain(&self.more)
-    }
-}
-
-/// An inclusive raw range.
-#[derive(Debug, Clone, Serialize)]
-pub struct Range {
-    /// Smallest raw value.
-    pub min: Number,
-    /// Largest raw value.
-    pub max: Number,
-}
-
-impl Range {
-    /// Where a value lies, given how it compares with a bound: `Less` below the minimum,
-    /// `Greater` above the maximum, `Equal` within; `None` if it does not compare (NaN). The one
-    /// range check of described values, for the validator, the simulator and the CLI alike.
-    pub fn locate(
-        &self,
-        compare: impl Fn(Number) -> Option<std::cmp::Ordering>,
-    ) -> Option<std::cmp::Ordering> {
-        use std::cmp::Ordering::{Equal, Greater, Less};
-        match (compare(self.min)?, compare(self.max)?) {
-            (Less, _) => Some(Less),
-            (_, Greater) => Some(Greater),
-            _ => Some(Equal),
-        }
-    }
-
-    /// Whether `n` lies within the range, compared exactly ([`Number::compare`]).
-    pub fn contains(&self, n: Number) -> bool {
-        self.locate(|bound| n.compare(bound)) == Some(std::cmp::Ordering::Equal)
     }
 }
 

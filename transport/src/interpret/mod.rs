@@ -1,12 +1,34 @@
-//! The run-time interpreter's codecs: parameter values as the bytes and registers a described
-//! [`DataType`](crate::DataType) occupies, for tools that read a description at run time (the
-//! `drivegen` CLI, the simulator) instead of compiling it. Scaling is the same
-//! [`Scale`](crate::Scale) generated code uses.
+//! The run-time interpreter: a device model loaded at run time ([`Model`], implemented by
+//! drivegen's IR) read and written by name through the same [`Scale`](crate::Scale), type and
+//! range checks as generated code. Tools that read a description instead of compiling it (the
+//! `drivegen` CLI, the simulator) use it: values as people type and read them ([`parse`],
+//! [`show`]), the one validity [`check`], and the bytes and registers a described
+//! [`DataType`](crate::DataType) occupies ([`raw`], [`registers`]).
 
+#[cfg(feature = "std")]
+mod bounds_check;
+#[cfg(feature = "std")]
+mod input;
+#[cfg(feature = "std")]
+mod model;
+mod number;
+mod range;
 #[cfg(feature = "std")]
 pub mod raw;
 mod raw_value;
 #[cfg(feature = "std")]
 pub mod registers;
+#[cfg(feature = "std")]
+mod shown;
 
+#[cfg(feature = "std")]
+pub use bounds_check::{check, Breach};
+#[cfg(feature = "std")]
+pub use input::{parse, InputError};
+#[cfg(feature = "std")]
+pub use model::{Described, Model, Symbols};
+pub use number::Number;
+pub use range::Range;
 pub use raw_value::RawValue;
+#[cfg(feature = "std")]
+pub use shown::{show, Engineering, Raw, Shown};

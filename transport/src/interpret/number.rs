@@ -1,10 +1,11 @@
-//! Raw numbers of defaults, ranges and allowed values: exact integers, or floats for float types.
+//! Raw numbers of defaults, ranges and allowed values as a description writes them: exact
+//! integers, or floats for float types. The generator's model and the run-time interpreter share
+//! them.
 
-use std::cmp::Ordering;
-use std::fmt;
+use core::cmp::Ordering;
+use core::fmt;
 
-use drivebus::interpret::RawValue;
-use serde::{Serialize, Serializer};
+use super::RawValue;
 
 /// A raw value as written in a description.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -50,6 +51,15 @@ impl Number {
     }
 }
 
+impl From<Number> for RawValue {
+    fn from(number: Number) -> RawValue {
+        match number {
+            Number::Int(i) => RawValue::Int(i.into()),
+            Number::Float(f) => RawValue::Float(f),
+        }
+    }
+}
+
 /// As written in diagnostics, docs and EDS files: a float in its shortest exact form, with an
 /// exponent when it is very large or small (`1e300`, not 301 digits) and a `.0` when integral,
 /// so that it reads back as the same float.
@@ -62,8 +72,9 @@ impl fmt::Display for Number {
     }
 }
 
-impl Serialize for Number {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+#[cfg(feature = "serde")]
+impl serde::Serialize for Number {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         match self {
             Number::Int(i) => serializer.serialize_i64(*i),
             Number::Float(f) => serializer.serialize_f64(*f),

@@ -1,0 +1,56 @@
+//! The device model the interpreter reads: what it needs to know of a described parameter, and
+//! the names a description gives to raw values. `drivegen`'s IR implements both, so a description
+//! loaded at run time is read and written through the same scale and checks as generated code.
+
+use std::vec::Vec;
+
+use super::{Number, Range};
+use crate::{DataType, Scale};
+
+/// A described parameter, as the interpreter sees it.
+pub trait Described {
+    /// The parameter's name (snake_case), for messages.
+    fn name(&self) -> &str;
+    /// The type of its raw value.
+    fn data_type(&self) -> DataType;
+    /// Its unit symbol, if it has one.
+    fn unit(&self) -> Option<&str>;
+    /// Its fixed scale ([`Scale::IDENTITY`] when unscaled); `None` when the scale is computed at
+    /// run time from other parameters, so only raw values can be converted.
+    fn fixed_scale(&self) -> Option<Scale>;
+    /// Its raw range, if described.
+    fn range(&self) -> Option<&Range>;
+    /// Its allowed raw values (empty: any value in range).
+    fn allowed(&self) -> &[Number];
+}
+
+/// A device model loaded at run time: parameters by name and the names of their raw values.
+pub trait Model {
+    /// The model's parameter type.
+    type Parameter: Described;
+    /// The parameter called `name`.
+    fn parameter(&self, name: &str) -> Option<&Self::Parameter>;
+    /// The enumeration or bit field that names the raw values of `parameter`.
+    fn symbols<'a>(&'a self, parameter: &'a Self::Parameter) -> Symbols<'a>;
+}
+
+/// How a description names the raw values of a parameter.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Symbols<'a> {
+    /// Plain numbers, not named.
+    Plain,
+    /// An enumeration: its name and its `(name, value)` pairs.
+    Enum {
+        /// The enumeration's name.
+        name: &'a str,
+        /// Its values.
+        values: Vec<(&'a str, i64)>,
+    },
+    /// A bit field: its name and its `(name, bit)` pairs, bit 0 the least significant.
+    Flags {
+        /// The bit field's name.
+        name: &'a str,
+        /// Its bits.
+        bits: Vec<(&'a str, u32)>,
+    },
+}
