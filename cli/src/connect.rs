@@ -8,20 +8,19 @@ use clap::Args;
 use drivebus::canopen::backend::candump::CandumpBus;
 use drivebus::canopen::backend::slcan::{Bitrate, SlcanBus};
 use drivebus::canopen::blocking::BlockingSdo;
-use drivebus::canopen::{CanBus, CanFrame, NodeId, SdoBus};
-use drivebus::interpret::registers;
+use drivebus::canopen::{CanBus, CanFrame, CanOpenLink, NodeId};
+use drivebus::interpret::{self, InterpretError};
 use drivebus::modbus::rtu::{Parity, StopBits};
 use drivebus::modbus::transport::SerialStream;
 use drivebus::modbus::transport::{ModbusTcpClient, SerialConfig, SerialRtuClient, TcpConfig};
-use drivebus::modbus::{ModbusLimits, RegisterBus, UnitId, MAX_IN_FLIGHT};
-use drivebus::rs232::data::Request;
+use drivebus::modbus::{ModbusLimits, ModbusLink, RegisterBus, UnitId, MAX_IN_FLIGHT};
 use drivebus::rs232::serial::{Rs232Client, Rs232Config, DEFAULT_BAUD};
-use drivebus::rs232::{LoopMode, Rs232Error, StationId, TelegramBus};
+use drivebus::rs232::{LoopMode, Rs232Link, StationId};
 use drivebus::BusError;
-use drivegen::ir::{self, Device, Parameter};
+use drivegen::ir::{Device, Parameter};
 
 use crate::error::CliError;
-use crate::modbus_batch;
+use crate::modbus_limits;
 
 /// How to reach the drive.
 #[derive(Debug, Args, Clone)]
@@ -220,7 +219,7 @@ impl Session {
             link: Link::Modbus {
                 bus,
                 unit: UnitId(unit),
-                limits: modbus_batch::limits(device),
+                limits: modbus_limits::limits(device),
             },
             target,
             relay: None,
@@ -232,77 +231,55 @@ impl Session {
         &self.target
     }
 
-    /// Reads the raw bytes of each parameter: over Modbus with the fewest requests the device's
-    /// limits allow (sent together with `--max-in-flight`), over CANopen an SDO upload each.
+    /// Reads the raw bytes of each parameter through the run-time interpreter: over Modbus with
+    /// the fewest requests the device's limits allow (sent together with `--max-in-flight`),
+    /// over CANopen and RS-232 an upload each.
     pub fn read_many(&mut self, parameters: &[&Parameter]) -> Result<Vec<Vec<u8>>, CliError> {
-        let target = &self.target;
-        match &mut self.link {
-            Link::CanOpen { sdo, node } => parameters
-                .iter()
-                .map(|p| {
-                    let address = object_address(p, &p.canopen, "CANopen", true)?;
-                    upload(sdo, *node, p, address).map_err(|e| bus_error(target, p, e))
-                })
-                .collect(),
-            Link::Rs232 { bus, station } => parameters
-                .iter()
-                .map(|p| {
-                    let address = object_address(p, &p.rs232, "RS-232", true)?;
-                    rs232_upload(bus, *station, address).map_err(|e| bus_error(target, p, e))
-                })
-                .collect(),
+        let read = match &mut self.link {
             Link::Modbus { bus, unit, limits } => {
-                let wire = parameters
-                    .iter()
-                    .map(|p| modbus_address(p, true).map(|a| a.wire))
-                    .collect::<Result<Vec<_>, _>>()?;
-                let values = modbus_batch::read_wire(&mut **bus, *unit, *limits, &wire).map_err(
-                    |failure| bus_error(target, parameters[failure.value], failure.cause),
-                )?;
-                parameters
-                    .iter()
-                    .zip(values)
-                    .map(|(parameter, wire)| {
-                        registers::from_wire(parameter.data_type, wire).map_err(|_| {
-                            let why = "the registers hold a value outside the parameter's type";
-                            bus_error(target, parameter, BusError::Frame(why))
-                        })
-                    })
-                    .collect()
-            }
-        }
-    }
-
-    /// Writes the raw bytes of `parameter`.
-    pub fn write(&mut self, parameter: &Parameter, bytes: &[u8]) -> Result<(), CliError> {
-        let result = match &mut self.link {
-            Link::Modbus { bus, unit, limits } => {
-                let address = modbus_address(parameter, false)?;
-                let regs = registers::to_registers(
-                    parameter.data_type,
-                    bytes,
-                    address.words,
-                    address.word_order,
-                );
-                if regs.len() > 1 && limits.write_multiple {
-                    bus.write_registers(*unit, address.address, &regs)
-                } else {
-                    // FC 0x06 per word, in address order.
-                    (0..).zip(&regs).try_for_each(|(i, &word)| {
-                        bus.write_register(*unit, address.address.wrapping_add(i), word)
-                    })
-                }
+                interpret::read_raw(&mut ModbusLink::new(&mut **bus, *unit, *limits), parameters)
             }
             Link::CanOpen { sdo, node } => {
-                let address = object_address(parameter, &parameter.canopen, "CANopen", false)?;
-                sdo.download(*node, address.index, address.subindex, bytes)
+                interpret::read_raw(&mut CanOpenLink::new(sdo, *node), parameters)
             }
             Link::Rs232 { bus, station } => {
-                let address = object_address(parameter, &parameter.rs232, "RS-232", false)?;
-                rs232_download(bus, *station, address, bytes)
+                interpret::read_raw(&mut Rs232Link::new(bus, *station), parameters)
             }
         };
-        result.map_err(|e| bus_error(&self.target, parameter, e))
+        read.map_err(|e| interpret_error(&self.target, e))
+    }
+
+    /// Writes the raw bytes of `parameter` through the run-time interpreter.
+    pub fn write(&mut self, parameter: &Parameter, bytes: &[u8]) -> Result<(), CliError> {
+        let written = match &mut self.link {
+            Link::Modbus { bus, unit, limits } => interpret::write_raw(
+                &mut ModbusLink::new(&mut **bus, *unit, *limits),
+                parameter,
+                bytes,
+            ),
+            Link::CanOpen { sdo, node } => {
+                interpret::write_raw(&mut CanOpenLink::new(sdo, *node), parameter, bytes)
+            }
+            Link::Rs232 { bus, station } => {
+                interpret::write_raw(&mut Rs232Link::new(bus, *station), parameter, bytes)
+            }
+        };
+        written.map_err(|e| interpret_error(&self.target, e))
+    }
+}
+
+/// A failure of the interpreter reaching `target`, as the CLI reports it.
+fn interpret_error(target: &str, error: InterpretError) -> CliError {
+    match error {
+        InterpretError::Bus { parameter, cause } => CliError::Bus {
+            target: target.to_owned(),
+            parameter,
+            cause,
+        },
+        InterpretError::NoAccess { .. } => CliError::NoAccess(error.to_string()),
+        InterpretError::UnknownParameter(_) | InterpretError::Input { .. } => {
+            CliError::Usage(error.to_string())
+        }
     }
 }
 
@@ -334,96 +311,10 @@ pub fn can_backend(spec: &str) -> Result<(Box<dyn CanBus + Send>, Option<Child>)
     )))
 }
 
-/// A bus failure reaching `target`, naming the parameter it was for.
-fn bus_error(target: &str, parameter: &Parameter, cause: BusError) -> CliError {
-    CliError::Bus {
-        target: target.to_owned(),
-        parameter: parameter.name.clone(),
-        cause,
-    }
-}
-
-/// The value of `parameter` at `address`, by SDO upload.
-fn upload(
-    sdo: &mut BlockingSdo<DynCan>,
-    node: NodeId,
-    parameter: &Parameter,
-    address: &ir::ObjectAddress,
-) -> Result<Vec<u8>, BusError> {
-    let mut buf = vec![0u8; (parameter.data_type.bytes() as usize).max(8)];
-    sdo.upload(node, address.index, address.subindex, &mut buf)
-        .map(|len| buf[..len].to_vec())
-}
-
-fn no_access(parameter: &Parameter, protocol: &str, read: bool) -> CliError {
-    let (verb, what) = if read {
-        ("read", "write-only")
-    } else {
-        ("written", "read-only")
-    };
-    CliError::NoAccess(format!(
-        "{} cannot be {verb} over {protocol} (it is {what} there, or has no {protocol} address)",
-        parameter.name
-    ))
-}
-
-fn modbus_address(parameter: &Parameter, read: bool) -> Result<&ir::ModbusAddress, CliError> {
-    parameter
-        .modbus
-        .iter()
-        .find(|a| if read { a.access.read } else { a.access.write })
-        .ok_or_else(|| no_access(parameter, "Modbus", read))
-}
-
-/// The first of `addresses` (the parameter's CANopen or RS-232 objects) that allows the access.
-fn object_address<'a>(
-    parameter: &Parameter,
-    addresses: &'a [ir::ObjectAddress],
-    protocol: &str,
-    read: bool,
-) -> Result<&'a ir::ObjectAddress, CliError> {
-    addresses
-        .iter()
-        .find(|a| if read { a.access.read } else { a.access.write })
-        .ok_or_else(|| no_access(parameter, protocol, read))
-}
-
 /// The RS-232 station: --node-id, else the description's CANopen node id (the drive's one id,
 /// manual line 2183), else 1.
 fn station_id(args: &BusArgs, device: &Device) -> u8 {
     args.node_id
         .or(device.canopen.as_ref().map(|c| c.default_node_id))
         .unwrap_or(1)
-}
-
-/// The value at `address`, by RS-232 upload.
-fn rs232_upload(
-    bus: &mut Rs232Client<SerialStream>,
-    station: StationId,
-    address: &ir::ObjectAddress,
-) -> Result<Vec<u8>, BusError> {
-    let request = Request::upload(address.index, address.subindex);
-    let answer = bus.exchange(station, &request)?;
-    answer
-        .value()
-        .map(<[u8]>::to_vec)
-        .ok_or(BusError::Frame("an upload was answered without a value"))
-}
-
-/// Writes `bytes` to `address` by RS-232 download.
-fn rs232_download(
-    bus: &mut Rs232Client<SerialStream>,
-    station: StationId,
-    address: &ir::ObjectAddress,
-    bytes: &[u8],
-) -> Result<(), BusError> {
-    let request = Request::download(address.index, address.subindex, bytes).map_err(
-        |error: Rs232Error| {
-            error.about(drivebus::rs232::data::Object {
-                index: address.index,
-                subindex: address.subindex,
-            })
-        },
-    )?;
-    bus.exchange(station, &request).map(drop)
 }

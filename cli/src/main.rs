@@ -7,7 +7,7 @@ mod commands;
 mod connect;
 mod error;
 mod identity_check;
-mod modbus_batch;
+mod modbus_limits;
 mod pdo_mappings;
 mod suggest;
 mod table;

@@ -136,7 +136,7 @@ fn refusals_name_the_object_and_the_cause() {
     let read = drivegen(&pty, &["read", "positioning_select"], &[]);
     assert!(!read.status.success());
     assert!(
-        text(&read.stderr).contains("no RS-232 address"),
+        text(&read.stderr).contains("no Kinco RS-232 address"),
         "{}",
         text(&read.stderr)
     );

@@ -200,3 +200,48 @@ fn raw_bytes_show_with_units_and_names() {
     assert_eq!(show(&device, mode, &2u16.to_le_bytes()).text, "velocity");
     assert_eq!(show(&device, mode, &9u16.to_le_bytes()).text, "unknown (9)");
 }
+
+/// The manual's own register values (modbus.txt line 1333: 0xF448 is −3000 rpm; line 484:
+/// 0x1356 is 49.5 V), read and written by name over the Modbus link generated code uses.
+#[test]
+fn parameters_are_read_and_written_by_name_over_a_link() {
+    use drivebus::interpret::{read, write, InterpretError};
+    use drivebus::memory::MemoryBus;
+    use drivebus::modbus::{ModbusLimits, ModbusLink, Table, UnitId};
+
+    let device = lafert();
+    let mut bus = MemoryBus::new();
+    bus.set_register(Table::Input, 0x0064, 0x1356)
+        .set_register(Table::Input, 0x0042, 0xF448)
+        .set_register(Table::Holding, 0x0042, 0);
+    let mut link = ModbusLink::new(&mut bus, UnitId(1), ModbusLimits::SPEC);
+    assert_eq!(
+        read(&device, &mut link, "bus_dc_link").unwrap().text,
+        "49.50 V"
+    );
+    assert_eq!(
+        read(&device, &mut link, "speed_setpoint").unwrap().text,
+        "-3000 rpm"
+    );
+    write(&device, &mut link, "speed_setpoint", "-3000rpm").unwrap();
+    assert_eq!(bus.register(Table::Holding, 0x0042), Some(0xF448));
+
+    let mut link = ModbusLink::new(&mut bus, UnitId(1), ModbusLimits::SPEC);
+    assert!(matches!(
+        write(&device, &mut link, "speed_setpoint", "40000rpm"),
+        Err(InterpretError::Input {
+            cause: InputError::OutOfRange(_),
+            ..
+        })
+    ));
+    assert!(matches!(
+        write(&device, &mut link, "bus_dc_link", "48V"),
+        Err(InterpretError::NoAccess { .. })
+    ));
+    assert_eq!(
+        read(&device, &mut link, "no_such_thing"),
+        Err(InterpretError::UnknownParameter("no_such_thing".into()))
+    );
+    // Nothing refused was sent.
+    assert_eq!(bus.register(Table::Holding, 0x0042), Some(0xF448));
+}

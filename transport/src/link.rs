@@ -49,4 +49,13 @@ pub trait Link {
         }
         Ok(())
     }
+
+    /// After [`read_many`](Link::read_many) failed: the request whose read failed, judged from
+    /// what was read. This default reads in order, so it is the first request left unread.
+    fn failed_request(
+        &self,
+        requests: &[ReadRequest<'_, <Self::Protocol as Protocol>::Address>],
+    ) -> Option<usize> {
+        requests.iter().position(|request| request.len == 0)
+    }
 }

@@ -2,9 +2,12 @@
 //! description loaded at run time is read and written by name through the same scale and checks
 //! as generated code.
 
-use drivebus::interpret::{Described, Model, Symbols};
+use drivebus::canopen::CanOpen;
+use drivebus::interpret::{Access, Addressed, Described, Model, Symbols};
+use drivebus::modbus::Modbus;
+use drivebus::rs232::Rs232;
 
-use super::{DataType, Device, Number, Parameter, Range, Scale};
+use super::{DataType, Device, Number, ObjectAddress, Parameter, Range, Scale};
 
 impl Described for Parameter {
     fn name(&self) -> &str {
@@ -66,4 +69,49 @@ impl Model for Device {
         }
         Symbols::Plain
     }
+}
+
+fn allows(access: super::Access, wanted: Access) -> bool {
+    match wanted {
+        Access::Read => access.read,
+        Access::Write => access.write,
+    }
+}
+
+impl Addressed<Modbus> for Parameter {
+    fn address(&self, access: Access) -> Option<drivebus::modbus::ModbusAddress> {
+        let described = self.modbus.iter().find(|a| allows(a.access, access))?;
+        Some(described.wire)
+    }
+}
+
+impl Addressed<CanOpen> for Parameter {
+    fn address(&self, access: Access) -> Option<drivebus::canopen::ObjectAddress> {
+        object_address(self, &self.canopen, access)
+    }
+}
+
+impl Addressed<Rs232> for Parameter {
+    fn address(&self, access: Access) -> Option<drivebus::canopen::ObjectAddress> {
+        object_address(self, &self.rs232, access)
+    }
+}
+
+/// The first of `addresses` (CANopen or RS-232 objects) that allows `access`, with the value's
+/// width; 0 (as the object says) for text and octets, which go as long as they are.
+fn object_address(
+    parameter: &Parameter,
+    addresses: &[ObjectAddress],
+    access: Access,
+) -> Option<drivebus::canopen::ObjectAddress> {
+    let object = addresses.iter().find(|a| allows(a.access, access))?;
+    let bytes = match parameter.data_type {
+        DataType::String(_) | DataType::Octets(_) => 0,
+        data_type => data_type.bytes(),
+    };
+    Some(drivebus::canopen::ObjectAddress {
+        index: object.index,
+        subindex: object.subindex,
+        bytes,
+    })
 }

@@ -1,9 +1,10 @@
 //! The run-time interpreter: a device model loaded at run time ([`Model`], implemented by
 //! drivegen's IR) read and written by name through the same [`Scale`](crate::Scale), type and
 //! range checks as generated code. Tools that read a description instead of compiling it (the
-//! `drivegen` CLI, the simulator) use it: values as people type and read them ([`parse`],
-//! [`show`]), the one validity [`check`], and the bytes and registers a described
-//! [`DataType`](crate::DataType) occupies ([`raw`], [`registers`]).
+//! `drivegen` CLI, the simulator) use it: parameters read and written by name over any
+//! [`Link`](crate::link::Link) ([`read`], [`write`], [`read_raw`], [`write_raw`]), values as
+//! people type and read them ([`parse`], [`show`]), the one validity [`check`], and the bytes
+//! and registers a described [`DataType`](crate::DataType) occupies ([`raw`], [`registers`]).
 
 #[cfg(feature = "std")]
 mod bounds_check;
@@ -12,6 +13,8 @@ mod input;
 #[cfg(feature = "std")]
 mod model;
 mod number;
+#[cfg(feature = "std")]
+mod over_link;
 mod range;
 #[cfg(feature = "std")]
 pub mod raw;
@@ -28,6 +31,8 @@ pub use input::{parse, InputError};
 #[cfg(feature = "std")]
 pub use model::{Described, Model, Symbols};
 pub use number::Number;
+#[cfg(feature = "std")]
+pub use over_link::{read, read_raw, write, write_raw, Access, Addressed, InterpretError};
 pub use range::Range;
 pub use raw_value::RawValue;
 #[cfg(feature = "std")]

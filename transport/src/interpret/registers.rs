@@ -30,14 +30,20 @@ impl fmt::Display for Unfit {
     }
 }
 
-/// The `words` registers (wire order) holding the little-endian value `bytes` of `data_type`.
-pub fn to_registers(data_type: DataType, bytes: &[u8], words: u16, order: WordOrder) -> Vec<u16> {
-    let wire_len = 2 * words as usize;
+/// The `width` little-endian wire bytes holding the little-endian value `bytes` of `data_type`:
+/// integers sign- (or zero-) extended, other types copied and zero-padded.
+pub fn to_wire(data_type: DataType, bytes: &[u8], width: usize) -> Vec<u8> {
     let mut wire = match raw::to_int(data_type, bytes) {
-        Some(value) => value.to_le_bytes()[..wire_len.min(16)].to_vec(),
+        Some(value) => value.to_le_bytes()[..width.min(16)].to_vec(),
         None => bytes.to_vec(),
     };
-    wire.resize(wire_len, 0);
+    wire.resize(width, 0);
+    wire
+}
+
+/// The `words` registers (wire order) holding the little-endian value `bytes` of `data_type`.
+pub fn to_registers(data_type: DataType, bytes: &[u8], words: u16, order: WordOrder) -> Vec<u16> {
+    let wire = to_wire(data_type, bytes, 2 * words as usize);
     let mut regs = vec![0u16; words as usize];
     le_to_registers(&wire, order, &mut regs);
     regs

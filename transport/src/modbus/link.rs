@@ -102,6 +102,18 @@ impl<B: RegisterBus> Link for ModbusLink<B> {
         address.words as usize * 2
     }
 
+    /// A request the device's limits refuse, else the unread request of the lowest address: the
+    /// planner reads in (table, address) order, not in the order values were asked for.
+    fn failed_request(&self, requests: &[ReadRequest<'_, ModbusAddress>]) -> Option<usize> {
+        let refused = requests
+            .iter()
+            .position(|request| check_item(&self.limits, &request.address).is_err());
+        let unread = (0..requests.len()).filter(|&i| requests[i].len == 0);
+        refused.or_else(|| {
+            unread.min_by_key(|&i| (requests[i].address.table, requests[i].address.address))
+        })
+    }
+
     /// Reads the batch with the fewest requests the device's limits allow (see
     /// [`planner`](super::planner)), handed to the bus [`MAX_IN_FLIGHT`](super::MAX_IN_FLIGHT) reads at a time
     /// ([`RegisterBus::read_register_batch`]) so a client that pipelines sends them together. On an error, the values already read keep their `len`;
@@ -221,6 +233,37 @@ mod tests {
         bus.set_register(Table::Input, 0x6B, 0x5678)
             .set_register(Table::Input, 0x6C, 0x1234);
         bus
+    }
+
+    /// Reads `addresses` in one batch, two registers per request at most; the failed request.
+    fn failed_batch(addresses: &[ModbusAddress]) -> Option<usize> {
+        let two_at_a_time = ModbusLimits {
+            max_read_registers: 2,
+            ..ModbusLimits::SPEC
+        };
+        let mut link = ModbusLink::new(lafert_bus(), UnitId(1), two_at_a_time);
+        let mut bufs = [[0u8; 8]; 2];
+        let mut requests: std::vec::Vec<_> = addresses
+            .iter()
+            .zip(&mut bufs)
+            .map(|(address, buf)| ReadRequest {
+                address: *address,
+                buf,
+                len: 0,
+            })
+            .collect();
+        assert!(link.read_many(&mut requests).is_err());
+        link.failed_request(&requests)
+    }
+
+    #[test]
+    fn a_failed_batch_names_the_request_that_failed() {
+        assert_eq!(failed_batch(&[input(0x60, 1), input(0x71, 1)]), Some(1));
+        // Reads go by address, not by the order values were asked for: the failing read of 0x50
+        // leaves 0x60 unread too, yet 0x50 is named.
+        assert_eq!(failed_batch(&[input(0x60, 1), input(0x50, 1)]), Some(1));
+        // A value wider than a read is refused before any read: that value is named.
+        assert_eq!(failed_batch(&[input(0x60, 1), input(0x61, 3)]), Some(1));
     }
 
     #[test]
