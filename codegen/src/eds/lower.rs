@@ -79,6 +79,7 @@ pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
         section: Some(section),
         line: Some(line),
         example: None,
+        name: None,
         span: span.clone(),
     };
     let is_record = |kind| matches!(kind, ObjectKind::Array | ObjectKind::Record);
@@ -212,6 +213,7 @@ impl EdsEntry {
             section: Some(self.section()),
             line: Some(self.variable.line),
             example: None,
+            name: None,
             span: self.variable.span.clone(),
         }
     }

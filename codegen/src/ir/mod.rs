@@ -307,6 +307,10 @@ pub struct Citation {
     pub line: Option<u32>,
     /// A worked example quoted from the manual.
     pub example: Option<String>,
+    /// The manual's own name of the register or object (`"BUS DC LINK"`, `"C01"`), a search
+    /// alias of the generated item. Left out of the JSON when absent.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
     /// Where the citation is written.
     #[serde(skip)]
     pub span: Span,

@@ -98,6 +98,8 @@ pub struct RawCitation {
     pub section: Option<String>,
     pub line: Option<Spanned<i64>>,
     pub example: Option<String>,
+    /// The manual's own name of the register or object (`"BUS DC LINK"`, `"C01"`).
+    pub name: Option<String>,
 }
 
 #[derive(Debug, Deserialize)]

@@ -14,6 +14,7 @@ mod defaults_within_range;
 mod enum_values_fit_type;
 mod identity_names_a_parameter;
 mod indexed_names_are_unique;
+mod manual_names_are_search_aliases;
 mod models_give_constants;
 mod names_are_unique;
 mod parameters_have_addresses;
@@ -113,6 +114,10 @@ pub const PASSES: &[(&str, Pass)] = &[
     (
         "variant_selectors_resolve",
         variant_selectors_resolve::check,
+    ),
+    (
+        "manual_names_are_search_aliases",
+        manual_names_are_search_aliases::check,
     ),
 ];
 

@@ -190,10 +190,12 @@ fn command_text(c: &Command) -> String {
     }
 }
 
-/// `#[doc(alias = "...")]` with the addresses the manuals print, so rustdoc's search finds a
-/// parameter by them: `0x0064` for a Modbus register, `6041h` and `0x6041` for an object (and
-/// `6041h:01` for a sub-index other than 0).
+/// `#[doc(alias = "...")]` with the names and addresses the manuals print, so rustdoc's search
+/// finds a parameter by them: the manual's own name (`BUS DC LINK`, from the citation's `name`),
+/// `0x0064` for a Modbus register, `6041h` and `0x6041` for an object (and `6041h:01` for a
+/// sub-index other than 0).
 pub fn aliases(p: &Parameter) -> TokenStream {
+    let manual_name = p.source.as_ref().and_then(|c| c.name.clone());
     let modbus = p.modbus.iter().map(|a| format!("0x{:04X}", a.address));
     let objects = p.canopen.iter().chain(&p.rs232).flat_map(|a| {
         let sub = (a.subindex != 0).then(|| format!("{:04X}h:{:02X}", a.index, a.subindex));
@@ -205,7 +207,11 @@ pub fn aliases(p: &Parameter) -> TokenStream {
         .into_iter()
         .flatten()
     });
-    let unique: BTreeSet<String> = modbus.chain(objects).collect();
+    let unique: BTreeSet<String> = manual_name
+        .into_iter()
+        .chain(modbus)
+        .chain(objects)
+        .collect();
     let attrs = unique.iter().map(|alias| quote! { #[doc(alias = #alias)] });
     quote! { #( #attrs )* }
 }

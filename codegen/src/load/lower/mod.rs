@@ -322,6 +322,7 @@ impl Lowering<'_> {
             section: c.section.clone(),
             line,
             example: c.example.clone(),
+            name: c.name.clone(),
             span: self.span(raw),
         })
     }
