@@ -326,12 +326,13 @@ pub struct RawParameter {
     pub safety: Option<bool>,
 }
 
-/// `bounds = { min, max }`: parameters whose current values bound this one.
+/// `bounds = { min, max, magnitude }`: parameters whose current values bound this one.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawBounds {
     pub min: Option<String>,
     pub max: Option<String>,
+    pub magnitude: Option<String>,
 }
 
 #[derive(Debug, Deserialize)]

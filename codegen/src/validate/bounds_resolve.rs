@@ -1,6 +1,7 @@
-//! `bounds = { min, max }` names other parameters that exist wherever the bounded one does, are
-//! readable, and carry the same integer type, scale and unit, so their raw values compare with
-//! its own.
+//! `bounds = { min, max, magnitude }` names other parameters that exist wherever the bounded one
+//! does, are readable, and carry the same scale and unit, so their raw values compare with its
+//! own: `min` and `max` the same integer type, `magnitude` any integer type (an unsigned full
+//! scale bounds a signed setpoint).
 
 use crate::diagnostic::Diagnostic;
 use crate::ir::{Device, Parameter};
@@ -13,9 +14,9 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
     for p in &device.parameters {
         let Some(bounds) = &p.bounds else { continue };
         let error = |message: String| Diagnostic::error(RULE, bounds.span.clone(), message);
-        if bounds.min.is_none() && bounds.max.is_none() {
+        if bounds.names().next().is_none() {
             out.push(error(format!(
-                "`{}` has `bounds` without `min` or `max`",
+                "`{}` has `bounds` without `min`, `max` or `magnitude`",
                 p.name
             )));
         }
@@ -25,10 +26,12 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
                 p.name
             )));
         }
+        let same_type = bounds.min.iter().chain(&bounds.max).map(|n| (n, true));
+        let any_integer = bounds.magnitude.iter().map(|n| (n, false));
         out.extend(
-            bounds
-                .names()
-                .filter_map(|name| problem(device, p, name))
+            same_type
+                .chain(any_integer)
+                .filter_map(|(name, same)| problem(device, p, name, same))
                 .map(error),
         );
     }
@@ -36,14 +39,16 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
 }
 
 /// What is wrong with bound `name` of `p`, if anything.
-fn problem(device: &Device, p: &Parameter, name: &str) -> Option<String> {
+fn problem(device: &Device, p: &Parameter, name: &str, same_type: bool) -> Option<String> {
     let Some(bound) = device.parameter(name) else {
         return Some(format!("bound `{name}` of `{}` is not a parameter", p.name));
     };
     let why = if bound.name == p.name {
         "it is the parameter itself"
-    } else if bound.data_type != p.data_type {
+    } else if same_type && bound.data_type != p.data_type {
         "its type differs"
+    } else if !bound.data_type.is_integer() {
+        "it is not an integer"
     } else if format!("{:?}", bound.scale) != format!("{:?}", p.scale) || bound.unit != p.unit {
         "its scale or unit differs"
     } else if !(bound.modbus.iter().any(|a| a.access.read)
@@ -104,6 +109,18 @@ source = {{ doc = "m", line = 3 }}
     }
 
     #[test]
+    fn a_magnitude_of_another_integer_type_bounds_a_value() {
+        let source = body(r#"{ magnitude = "minimum" }"#, "i16");
+        assert!(messages("bounds_resolve", &source).is_empty());
+        let bounds = device(&source).parameters[0].bounds.clone().unwrap();
+        assert_eq!(bounds.names().collect::<Vec<_>>(), ["minimum"]);
+        assert_eq!(
+            messages("bounds_resolve", &body(r#"{ min = "minimum" }"#, "i16")),
+            ["bound `minimum` of `speed` cannot bound it: its type differs"]
+        );
+    }
+
+    #[test]
     fn unknown_self_and_mismatched_bounds_are_reported() {
         assert_eq!(
             messages(
@@ -121,7 +138,7 @@ source = {{ doc = "m", line = 3 }}
         );
         assert_eq!(
             messages("bounds_resolve", &body("{}", "u16")),
-            ["`speed` has `bounds` without `min` or `max`"]
+            ["`speed` has `bounds` without `min`, `max` or `magnitude`"]
         );
     }
 }

@@ -338,3 +338,31 @@ fn error_codes_carry_the_table_2_class_led_code_and_meaning() {
     assert!(!inside_range.is_known());
     assert_eq!((inside_range.raw(), inside_range.class()), (0x5540, None));
 }
+
+#[test]
+fn the_speed_setpoint_lies_within_the_full_scale_velocity() {
+    // Line 1333: "range [-Full scale velocity: Full scale velocity]"; line 783: holding 0x0003
+    // = 0x1194 (4500) → 4500 rpm.
+    let mut drive = drive_with(&[
+        (Table::Holding, 0x0003, 0x1194),
+        (Table::Holding, 0x0042, 0),
+    ]);
+    let beyond = |raw, limit| lafert_smartris::BoundedWriteError::OutsideBound {
+        parameter: "speed_setpoint",
+        bound: "full_scale_velocity",
+        raw,
+        limit,
+    };
+    assert_eq!(
+        drive.write_speed_setpoint(Rpm(4501.0)),
+        Err(beyond(4501, 4500))
+    );
+    assert_eq!(
+        drive.write_speed_setpoint(Rpm(-4501.0)),
+        Err(beyond(-4501, 4500))
+    );
+    drive.write_speed_setpoint(Rpm(-4500.0)).unwrap();
+    // Line 1333's example: 0xF448 is -3000 rpm, so -4500 is 0xEE6C.
+    let bus = drive.into_link().into_bus();
+    assert_eq!(bus.register(Table::Holding, 0x0042), Some(0xEE6C));
+}

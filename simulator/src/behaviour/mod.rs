@@ -8,6 +8,7 @@ use std::time::Duration;
 use crate::refusal::Refusal;
 use crate::store::{ParamId, Store};
 
+pub mod bounds;
 pub mod cia402;
 pub mod commands;
 pub mod motor;
@@ -52,10 +53,13 @@ pub trait Behaviour: Debug + Send {
     fn reset(&mut self, _store: &mut Store, _shared: &mut Shared) {}
 }
 
-/// The behaviours a description calls for, in the order they run: commands, state machines, the
-/// motor, the SRDO configuration-valid flag.
+/// The behaviours a description calls for, in the order they run: bounds set by other
+/// parameters, commands, state machines, the motor, the SRDO configuration-valid flag.
 pub fn for_device(store: &mut Store) -> Vec<Box<dyn Behaviour>> {
     let mut behaviours: Vec<Box<dyn Behaviour>> = Vec::new();
+    if let Some(b) = bounds::Bounds::detect(store) {
+        behaviours.push(Box::new(b));
+    }
     if let Some(b) = commands::Commands::detect(store) {
         behaviours.push(Box::new(b));
     }

@@ -4,19 +4,18 @@
 //! Speeds are raw values: the setpoint and the actual speed registers of one drive use the same
 //! scale in every shipped description. The ramp comes from whichever the description has:
 //! Lafert-style ramp times (`speed_ramp_up` / `speed_ramp_down`, ms from 0 to
-//! `full_scale_velocity`, switched by `ramp_enable`), or CiA 402 profile acceleration /
+//! the setpoint's magnitude bound, switched by `ramp_enable`), or CiA 402 profile acceleration /
 //! deceleration (6083h / 6084h, speed units per second). Without either, the speed jumps.
-//! Where the ramp times have a full-scale velocity, the state machine's setpoint is bounded by
-//! it (Lafert RTU Modbus manual §4.2, line 1333).
+//! The bound itself is checked by [`Bounds`](super::bounds::Bounds).
 
 use std::time::Duration;
 
+use super::bounds::Bounds;
 use super::vl_ramp::VlRamp;
 use super::{object, Behaviour, Motion, Shared};
-use crate::refusal::Refusal;
 use crate::store::{ParamId, Store};
 
-/// Span a ramp time refers to when the description has no full-scale velocity value.
+/// Span a ramp time refers to when the setpoint has no (set) magnitude bound.
 const DEFAULT_FULL_SCALE: f64 = 3000.0;
 
 /// Lafert-style ramp: milliseconds from 0 to full scale.
@@ -24,7 +23,6 @@ const DEFAULT_FULL_SCALE: f64 = 3000.0;
 struct RampTimes {
     up: ParamId,
     down: ParamId,
-    full_scale: Option<ParamId>,
     enable: Option<ParamId>,
 }
 
@@ -41,8 +39,6 @@ pub struct Motor {
     actuals: Vec<ParamId>,
     times: Option<RampTimes>,
     rates: Option<RampRates>,
-    /// The setpoint the description's state machine follows.
-    setpoint: Option<ParamId>,
     vl: Option<VlRamp>,
     speed: f64,
 }
@@ -64,23 +60,15 @@ impl Motor {
             .map(|(up, down)| RampTimes {
                 up,
                 down,
-                full_scale: store.id("full_scale_velocity"),
                 enable: store.id("ramp_enable"),
             });
         let rates = object(store, 0x6083, 0)
             .zip(object(store, 0x6084, 0))
             .map(|(up, down)| RampRates { up, down });
-        let setpoint = store
-            .device()
-            .state_machine
-            .as_ref()
-            .and_then(|m| m.setpoint.as_deref())
-            .and_then(|name| store.id(name));
         Some(Self {
             actuals,
             times,
             rates,
-            setpoint,
             vl: VlRamp::detect(store),
             speed: 0.0,
         })
@@ -103,8 +91,7 @@ impl Motor {
             return None;
         }
         let ms = value(if speeding_up { times.up } else { times.down });
-        let span = times
-            .full_scale
+        let span = Bounds::magnitude_of(store, setpoint)
             .map(value)
             .filter(|v| *v > 0.0)
             .unwrap_or(DEFAULT_FULL_SCALE);
@@ -113,25 +100,6 @@ impl Motor {
 }
 
 impl Behaviour for Motor {
-    /// The setpoint stays within ± the full-scale velocity once the drive knows it (non-zero).
-    fn accept(&self, store: &Store, id: ParamId, bytes: &[u8]) -> Result<(), Refusal> {
-        if Some(id) != self.setpoint {
-            return Ok(());
-        }
-        let full_scale = self
-            .times
-            .and_then(|t| t.full_scale)
-            .and_then(|f| store.int(f))
-            .unwrap_or(0);
-        let value = crate::raw::to_int(store.parameter(id).data_type, bytes).unwrap_or(0);
-        match value {
-            _ if full_scale == 0 => Ok(()),
-            v if v > full_scale => Err(Refusal::TooHigh),
-            v if v < -full_scale => Err(Refusal::TooLow),
-            _ => Ok(()),
-        }
-    }
-
     fn tick(&mut self, store: &mut Store, shared: &mut Shared, dt: Duration) {
         let (setpoint, target) = match shared.motion {
             Motion::Following(setpoint) => (setpoint, store.int(setpoint).unwrap_or(0) as f64),

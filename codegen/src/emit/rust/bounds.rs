@@ -1,4 +1,4 @@
-//! Writes checked against bounds set by other parameters (`bounds = { min, max }`): a
+//! Writes checked against bounds set by other parameters (`bounds = { min, max, magnitude }`): a
 //! `BoundedWriteError` type, and per writable bounded parameter a handle method
 //! `write_<name>(value)` that reads the bounds' current raw values, refuses a value beyond them
 //! naming the bound, and only then writes.
@@ -34,17 +34,38 @@ fn writable(p: &Parameter) -> bool {
 /// One bound check: `raw` must not lie `beyond` the current value of `bound`.
 fn check(p: &Parameter, bound: &str, beyond: TokenStream) -> TokenStream {
     let marker = ident(&names::camel(bound));
-    let name = &p.name;
+    let refusal = outside(p, bound);
     quote! {
         let limit = self.device.read_raw::<params::#marker>()?;
         if raw #beyond limit {
-            return Err(BoundedWriteError::OutsideBound {
-                parameter: #name,
-                bound: #bound,
-                raw: raw as i128,
-                limit: limit as i128,
-            });
+            #refusal
         }
+    }
+}
+
+/// The magnitude check: `raw` must lie within ± the current value of `bound`, compared wide
+/// because the bound may be of another integer type (an unsigned full scale).
+fn check_magnitude(p: &Parameter, bound: &str) -> TokenStream {
+    let marker = ident(&names::camel(bound));
+    let refusal = outside(p, bound);
+    quote! {
+        let limit = self.device.read_raw::<params::#marker>()?;
+        if (raw as i128).abs() > limit as i128 {
+            #refusal
+        }
+    }
+}
+
+/// Refuses the write: `raw` lies beyond `limit`, the current value of `bound`.
+fn outside(p: &Parameter, bound: &str) -> TokenStream {
+    let name = &p.name;
+    quote! {
+        return Err(BoundedWriteError::OutsideBound {
+            parameter: #name,
+            bound: #bound,
+            raw: raw as i128,
+            limit: limit as i128,
+        });
     }
 }
 
@@ -52,9 +73,17 @@ fn method(p: &Parameter, handle: &proc_macro2::Ident) -> TokenStream {
     let bounds = p.bounds.as_ref().expect("filtered on bounds");
     let marker = ident(&names::camel(&p.name));
     let method = ident(&format!("write_{}", names::snake(&p.name)));
-    let bound_markers: Vec<_> = bounds.names().map(|b| ident(&names::camel(b))).collect();
+    let marker_of = |b: &String| ident(&names::camel(b));
+    let same_raw: Vec<_> = bounds
+        .min
+        .iter()
+        .chain(&bounds.max)
+        .map(marker_of)
+        .collect();
+    let magnitude_marker: Vec<_> = bounds.magnitude.iter().map(marker_of).collect();
     let min = bounds.min.as_deref().map(|b| check(p, b, quote! { < }));
     let max = bounds.max.as_deref().map(|b| check(p, b, quote! { > }));
+    let magnitude = bounds.magnitude.as_deref().map(|b| check_magnitude(p, b));
     let described = bounds
         .names()
         .map(|b| format!("`{b}`"))
@@ -70,7 +99,8 @@ fn method(p: &Parameter, handle: &proc_macro2::Ident) -> TokenStream {
         impl<L: ::drivebus::Link> #handle<L>
         where
             params::#marker: ::drivebus::Writable<L::Protocol>,
-            #( params::#bound_markers: ::drivebus::Readable<L::Protocol, Raw = <params::#marker as ::drivebus::Parameter>::Raw>, )*
+            #( params::#same_raw: ::drivebus::Readable<L::Protocol, Raw = <params::#marker as ::drivebus::Parameter>::Raw>, )*
+            #( params::#magnitude_marker: ::drivebus::Readable<L::Protocol>, )*
         {
             #docs
             pub fn #method(
@@ -81,6 +111,7 @@ fn method(p: &Parameter, handle: &proc_macro2::Ident) -> TokenStream {
                 let raw = <params::#marker as ::drivebus::Parameter>::encode(value, scale)?;
                 #min
                 #max
+                #magnitude
                 self.device.write_raw::<params::#marker>(raw)?;
                 Ok(())
             }

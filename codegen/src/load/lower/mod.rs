@@ -960,6 +960,7 @@ impl Lowering<'_> {
             bounds: raw.bounds.as_ref().map(|b| ir::Bounds {
                 min: b.get_ref().min.clone(),
                 max: b.get_ref().max.clone(),
+                magnitude: b.get_ref().magnitude.clone(),
                 span: self.span(b),
             }),
             allowed,
