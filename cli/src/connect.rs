@@ -249,23 +249,45 @@ impl Session {
         read.map_err(|e| interpret_error(&self.target, e))
     }
 
-    /// Writes the raw bytes of `parameter` through the run-time interpreter.
-    pub fn write(&mut self, parameter: &Parameter, bytes: &[u8]) -> Result<(), CliError> {
+    /// Writes the raw bytes of `parameter` through the run-time interpreter, after checking them
+    /// against the current values of the parameters that bound it.
+    pub fn write(
+        &mut self,
+        device: &Device,
+        parameter: &Parameter,
+        bytes: &[u8],
+    ) -> Result<(), CliError> {
         let written = match &mut self.link {
-            Link::Modbus { bus, unit, limits } => interpret::write_raw(
+            Link::Modbus { bus, unit, limits } => checked_write(
+                device,
                 &mut ModbusLink::new(&mut **bus, *unit, *limits),
                 parameter,
                 bytes,
             ),
             Link::CanOpen { sdo, node } => {
-                interpret::write_raw(&mut CanOpenLink::new(sdo, *node), parameter, bytes)
+                checked_write(device, &mut CanOpenLink::new(sdo, *node), parameter, bytes)
             }
             Link::Rs232 { bus, station } => {
-                interpret::write_raw(&mut Rs232Link::new(bus, *station), parameter, bytes)
+                checked_write(device, &mut Rs232Link::new(bus, *station), parameter, bytes)
             }
         };
         written.map_err(|e| interpret_error(&self.target, e))
     }
+}
+
+/// The bound check, then the write, over one link.
+fn checked_write<L>(
+    device: &Device,
+    link: &mut L,
+    parameter: &Parameter,
+    bytes: &[u8],
+) -> Result<(), InterpretError>
+where
+    L: drivebus::Link,
+    Parameter: interpret::Addressed<L::Protocol>,
+{
+    interpret::check_bounds(device, link, parameter, bytes)?;
+    interpret::write_raw(link, parameter, bytes)
 }
 
 /// A failure of the interpreter reaching `target`, as the CLI reports it.
@@ -277,6 +299,7 @@ fn interpret_error(target: &str, error: InterpretError) -> CliError {
             cause,
         },
         InterpretError::NoAccess { .. } => CliError::NoAccess(error.to_string()),
+        InterpretError::OutsideBound { .. } => CliError::OutsideBound(error.to_string()),
         InterpretError::UnknownParameter(_) | InterpretError::Input { .. } => {
             CliError::Usage(error.to_string())
         }

@@ -52,6 +52,9 @@ pub enum CliError {
     },
     /// `diff` found changes that break code written against the old description.
     Breaking(usize),
+    /// The value lies beyond the current value of a parameter that bounds it; nothing was
+    /// written.
+    OutsideBound(String),
 }
 
 impl fmt::Display for CliError {
@@ -85,6 +88,7 @@ impl fmt::Display for CliError {
                 cause,
             } => write!(f, "{parameter}: {target}: {cause}"),
             CliError::Usage(text) | CliError::Io(text) => write!(f, "{text}"),
+            CliError::OutsideBound(why) => write!(f, "{why} (nothing was written)"),
             CliError::IdentityMismatch {
                 parameter,
                 expected,

@@ -33,6 +33,8 @@ fn simulated_lafert() -> (Simulator, TcpServer, String) {
     let sim = Simulator::load(lafert_path()).unwrap();
     sim.preset("operation_mode", 2).unwrap();
     sim.preset("bus_dc_link", 4950).unwrap();
+    // An L motor (line 783): the speed setpoint lies within ±3000 rpm.
+    sim.preset("full_scale_velocity", 3000).unwrap();
     let server = sim.serve_modbus_tcp("127.0.0.1:0", UnitId(1)).unwrap();
     let addr = server.local_addr().to_string();
     (sim, server, addr)
@@ -161,6 +163,21 @@ fn write_takes_engineering_units_and_names() {
     ]);
     assert!(speed.status.success(), "{}", stderr(&speed));
     assert_eq!(raw(&sim, "speed_setpoint"), -1500);
+    let beyond = drivegen(&[
+        "write",
+        lafert,
+        "speed_setpoint",
+        "-3001rpm",
+        "--modbus-tcp",
+        &addr,
+    ]);
+    assert!(!beyond.status.success());
+    assert!(
+        stderr(&beyond).contains("beyond the current value 3000 of full_scale_velocity"),
+        "{}",
+        stderr(&beyond)
+    );
+    assert_eq!(raw(&sim, "speed_setpoint"), -1500, "nothing written");
 }
 
 #[test]

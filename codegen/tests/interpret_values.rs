@@ -211,9 +211,11 @@ fn parameters_are_read_and_written_by_name_over_a_link() {
 
     let device = lafert();
     let mut bus = MemoryBus::new();
+    // Line 783: full scale velocity 0x0003 = 0x1194 (4500) bounds the setpoint (line 1333).
     bus.set_register(Table::Input, 0x0064, 0x1356)
         .set_register(Table::Input, 0x0042, 0xF448)
-        .set_register(Table::Holding, 0x0042, 0);
+        .set_register(Table::Holding, 0x0042, 0)
+        .set_register(Table::Holding, 0x0003, 0x1194);
     let mut link = ModbusLink::new(&mut bus, UnitId(1), ModbusLimits::SPEC);
     assert_eq!(
         read(&device, &mut link, "bus_dc_link").unwrap().text,
@@ -234,6 +236,15 @@ fn parameters_are_read_and_written_by_name_over_a_link() {
             ..
         })
     ));
+    assert_eq!(
+        write(&device, &mut link, "speed_setpoint", "-4501rpm"),
+        Err(InterpretError::OutsideBound {
+            parameter: "speed_setpoint".into(),
+            bound: "full_scale_velocity".into(),
+            raw: -4501,
+            limit: 4500
+        })
+    );
     assert!(matches!(
         write(&device, &mut link, "bus_dc_link", "48V"),
         Err(InterpretError::NoAccess { .. })

@@ -40,7 +40,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     if !args.no_identity_check {
         crate::identity_check::verify(&mut session, &device)?;
     }
-    session.write(parameter, &bytes)?;
+    session.write(&device, parameter, &bytes)?;
     let shown = drivebus::interpret::show(&device, parameter, &bytes);
     if args.json {
         println!("{}", super::read::to_json(parameter, &shown));

@@ -3,7 +3,7 @@
 //! as generated code.
 
 use drivebus::canopen::CanOpen;
-use drivebus::interpret::{Access, Addressed, Described, Model, Symbols};
+use drivebus::interpret::{Access, Addressed, BoundedBy, Described, Model, Symbols};
 use drivebus::modbus::Modbus;
 use drivebus::rs232::Rs232;
 
@@ -36,6 +36,16 @@ impl Described for Parameter {
 
     fn allowed(&self) -> &[Number] {
         &self.allowed
+    }
+
+    fn bounded_by(&self) -> BoundedBy<'_> {
+        self.bounds
+            .as_ref()
+            .map_or_else(BoundedBy::default, |b| BoundedBy {
+                min: b.min.as_deref(),
+                max: b.max.as_deref(),
+                magnitude: b.magnitude.as_deref(),
+            })
     }
 }
 

@@ -29,10 +29,12 @@ pub use bounds_check::{check, Breach};
 #[cfg(feature = "std")]
 pub use input::{parse, InputError};
 #[cfg(feature = "std")]
-pub use model::{Described, Model, Symbols};
+pub use model::{BoundedBy, Described, Model, Symbols};
 pub use number::Number;
 #[cfg(feature = "std")]
-pub use over_link::{read, read_raw, write, write_raw, Access, Addressed, InterpretError};
+pub use over_link::{
+    check_bounds, read, read_raw, write, write_raw, Access, Addressed, InterpretError,
+};
 pub use range::Range;
 pub use raw_value::RawValue;
 #[cfg(feature = "std")]

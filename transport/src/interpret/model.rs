@@ -22,6 +22,22 @@ pub trait Described {
     fn range(&self) -> Option<&Range>;
     /// Its allowed raw values (empty: any value in range).
     fn allowed(&self) -> &[Number];
+    /// The parameters whose current values bound it (none by default).
+    fn bounded_by(&self) -> BoundedBy<'_> {
+        BoundedBy::default()
+    }
+}
+
+/// The parameters whose current raw values bound a parameter: it lies within `min ..= max` and
+/// within ± `magnitude`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct BoundedBy<'a> {
+    /// The parameter whose value is the least allowed value.
+    pub min: Option<&'a str>,
+    /// The parameter whose value is the greatest allowed value.
+    pub max: Option<&'a str>,
+    /// The parameter whose value `v` bounds it to `-v ..= v`.
+    pub magnitude: Option<&'a str>,
 }
 
 /// A device model loaded at run time: parameters by name and the names of their raw values.

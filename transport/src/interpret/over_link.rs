@@ -49,6 +49,18 @@ pub enum InterpretError {
         /// Why.
         cause: InputError,
     },
+    /// The value lies beyond the current value of a parameter that bounds it; nothing was
+    /// written.
+    OutsideBound {
+        /// The parameter being written.
+        parameter: String,
+        /// The parameter whose current value it broke.
+        bound: String,
+        /// The raw value asked for.
+        raw: i128,
+        /// The bound's current raw value.
+        limit: i128,
+    },
     /// The bus failed, or the drive refused or answered a value outside the parameter's type.
     Bus {
         /// The parameter.
@@ -77,6 +89,15 @@ impl fmt::Display for InterpretError {
                 )
             }
             InterpretError::Input { parameter, cause } => write!(f, "{parameter}: {cause}"),
+            InterpretError::OutsideBound {
+                parameter,
+                bound,
+                raw,
+                limit,
+            } => write!(
+                f,
+                "{parameter}: raw value {raw} is beyond the current value {limit} of {bound}"
+            ),
             InterpretError::Bus { parameter, cause } => write!(f, "{parameter}: {cause}"),
         }
     }
@@ -203,8 +224,51 @@ where
         parameter: name.into(),
         cause,
     })?;
+    check_bounds(model, link, parameter, &bytes)?;
     write_raw(link, parameter, &bytes)?;
     Ok(bytes)
+}
+
+/// Reads the parameters that bound `parameter` ([`Described::bounded_by`]) and refuses the raw
+/// value `bytes` if it lies beyond one's current value, as generated `write_<name>` methods do.
+pub fn check_bounds<M, L>(
+    model: &M,
+    link: &mut L,
+    parameter: &M::Parameter,
+    bytes: &[u8],
+) -> Result<(), InterpretError>
+where
+    M: Model,
+    L: Link,
+    M::Parameter: Addressed<L::Protocol>,
+{
+    let Some(raw) = super::raw::to_int(parameter.data_type(), bytes) else {
+        return Ok(());
+    };
+    let bounds = parameter.bounded_by();
+    let beyond = [
+        (
+            bounds.min,
+            (|raw, limit| raw < limit) as fn(i128, i128) -> bool,
+        ),
+        (bounds.max, |raw, limit| raw > limit),
+        (bounds.magnitude, |raw: i128, limit| raw.abs() > limit),
+    ];
+    for (name, broken) in beyond {
+        let Some(name) = name else { continue };
+        let bound = find(model, name)?;
+        let current = read_raw(link, &[bound])?;
+        let limit = super::raw::to_int(bound.data_type(), &current[0]).unwrap_or_default();
+        if broken(raw, limit) {
+            return Err(InterpretError::OutsideBound {
+                parameter: parameter.name().into(),
+                bound: name.into(),
+                raw,
+                limit,
+            });
+        }
+    }
+    Ok(())
 }
 
 fn find<'m, M: Model>(model: &'m M, name: &str) -> Result<&'m M::Parameter, InterpretError> {
