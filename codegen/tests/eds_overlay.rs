@@ -69,13 +69,19 @@ fn node_relative_defaults_are_generated_as_a_function_of_the_node_id() {
 fn import_and_check(eds: &Path, scratch: &Scratch) -> drivegen::Checked {
     let copy = scratch.0.join(eds.file_name().unwrap());
     std::fs::copy(eds, &copy).unwrap();
-    let overlay = drivegen::eds::import_overlay(&copy).unwrap_or_else(|e| panic!("{e}"));
     let path = scratch.0.join(format!(
         "{}.toml",
         eds.file_stem().unwrap().to_string_lossy()
     ));
-    std::fs::write(&path, overlay).unwrap();
-    drivegen::check(&path)
+    let imported = drivegen::eds::import_overlay(&copy, &path).unwrap_or_else(|e| panic!("{e}"));
+    std::fs::write(&path, &imported.overlay).unwrap();
+    let checked = drivegen::check(&path);
+    assert_eq!(
+        checked.render(),
+        imported.checked.render(),
+        "the import checks the overlay as it is saved"
+    );
+    checked
 }
 
 #[test]
@@ -109,10 +115,51 @@ fn imported_overlays_check_as_written_and_keep_every_object() {
 }
 
 #[test]
-fn an_eds_with_errors_is_not_imported() {
-    let error = drivegen::eds::import_overlay(Path::new("tests/eds/data_type_missing.eds"));
-    let text = error.expect_err("no DataType").to_string();
-    assert!(text.contains("has no DataType"), "{text}");
+fn an_unreadable_eds_is_not_imported() {
+    let missing = Path::new("tests/eds/no_such_file.eds");
+    let error = drivegen::eds::import_overlay(missing, Path::new("tests/eds/no_such_file.toml"));
+    let text = error.expect_err("no file").to_string();
+    assert!(text.contains("cannot read"), "{text}");
+}
+
+#[test]
+fn an_imported_overlay_that_does_not_check_says_why() {
+    // A default outside the EDS's own limits: the skeleton is written, and its check fails.
+    let scratch = Scratch::new("eds-import-fails");
+    let eds = scratch.0.join("default_outside_limits.eds");
+    std::fs::write(
+        &eds,
+        "[DeviceInfo]\nProductName=Odd\n\n[2000]\nParameterName=Speed\nDataType=0x0006\nAccessType=rw\nDefaultValue=5\nLowLimit=10\nHighLimit=20\n",
+    )
+    .unwrap();
+    let imported = drivegen::eds::import_overlay(&eds, &scratch.0.join("odd.toml")).unwrap();
+    assert!(!imported.checks());
+    assert!(
+        imported.overlay.contains("index = 0x2000"),
+        "{}",
+        imported.overlay
+    );
+    let findings = imported.checked.render();
+    assert!(findings.contains("defaults_within_range"), "{findings}");
+}
+
+#[test]
+fn an_overlay_saved_elsewhere_names_the_eds_relative_to_it() {
+    let scratch = Scratch::new("eds-import-elsewhere");
+    let eds = scratch.0.join("vendor").join("minimal_var.eds");
+    std::fs::create_dir_all(eds.parent().unwrap()).unwrap();
+    std::fs::copy("tests/eds/minimal_var.eds", &eds).unwrap();
+    let overlay = scratch.0.join("overlays").join("drive.toml");
+    std::fs::create_dir_all(overlay.parent().unwrap()).unwrap();
+    let imported = drivegen::eds::import_overlay(&eds, &overlay).unwrap();
+    assert!(
+        imported
+            .overlay
+            .contains("eds = \"../vendor/minimal_var.eds\""),
+        "{}",
+        imported.overlay
+    );
+    assert!(imported.checks(), "{}", imported.checked.render());
 }
 
 #[test]

@@ -6,7 +6,7 @@ use std::sync::Arc;
 use super::data_type::{from_code, Code, UNSIZED_CAPACITY};
 use super::dictionary::{Dictionary, ObjectKind, Text, Variable};
 use super::names::{repeated, snake_name, unique_names, Address, NameList};
-use super::node_id::{parse_value, EdsValue};
+use super::node_id::{is_float_bit_pattern, parse_value, EdsValue};
 use crate::diagnostic::{Diagnostic, FileId, Files, Span};
 use crate::ir::{self, DataType, Number};
 
@@ -216,24 +216,40 @@ impl EdsEntry {
         }
     }
 
-    /// The diagnostic for an entry whose type is unknown.
+    /// The diagnostic for an entry whose type is unknown: a warning, the entry being read as an
+    /// octet string (see [`EdsEntry::usable_type`]).
     pub fn type_problem(&self, problem: TypeProblem) -> Diagnostic {
-        let (message, help) = match problem {
-            TypeProblem::Missing => (
-                format!("object {} has no DataType", self.address()),
-                "add `DataType=0x...` to the EDS, or give `type` in an overlay `[[parameter]]` with this `canopen` address",
-            ),
-            TypeProblem::Unsupported(code) => (
-                format!("object {} has DataType {code:#06X}, which CiA 301 reserves or does not define", self.address()),
-                "use a code of 0x0001..=0x001B, or give `type` in an overlay `[[parameter]]` with this `canopen` address",
+        let message = match problem {
+            TypeProblem::Missing => format!("object {} has no DataType", self.address()),
+            TypeProblem::Unsupported(code) => format!(
+                "object {} has DataType {code:#06X}, which CiA 301 reserves or does not define (vendor-specific?)",
+                self.address()
             ),
         };
-        Diagnostic::error(RULE_TYPE, self.variable.span.clone(), message).help(help)
+        Diagnostic::error(RULE_TYPE, self.variable.span.clone(), message)
+            .warning()
+            .label("read as an octet string (DOMAIN)")
+            .help("give its `type` in an overlay `[[parameter]]` with this `canopen` address (`drivegen eds import` marks it)")
     }
 
-    /// `0x1018 sub 1`.
+    /// Its type; when the EDS gives none usable, an octet string of unknown length, with a
+    /// warning (the overlay may give the real `type`).
+    pub fn usable_type(&self, diagnostics: &mut Vec<Diagnostic>) -> DataType {
+        match self.data_type {
+            Ok(ty) => ty,
+            Err(problem) => {
+                push_once_per_range(self, diagnostics, self.type_problem(problem));
+                DataType::Octets(UNSIZED_CAPACITY)
+            }
+        }
+    }
+
+    /// `0x1018 sub 1`, or `0x2300 subs 1..=24` for the shared description of a compact array.
     pub fn address(&self) -> String {
-        format!("{:#06X} sub {}", self.index, self.variable.subindex)
+        match self.variable.compact {
+            Some(count) => format!("{:#06X} subs 1..={count}", self.index),
+            None => format!("{:#06X} sub {}", self.index, self.variable.subindex),
+        }
     }
 
     /// The parameter this entry of the EDS `cited` describes, with type `ty`.
@@ -294,29 +310,16 @@ impl EdsEntry {
     ) -> ir::Parameter {
         let v = &self.variable;
         let (access, constant, pdo) = self.access(diagnostics);
-        let value = |t: &Option<Text>, what: &str, d: &mut Vec<Diagnostic>| {
-            let t = t.as_ref()?;
-            match parse_value(&t.value, ty) {
-                Ok(value) => value.map(|x| (x, t.span(v.span.file))),
-                Err(why) => {
-                    d.push(
-                        Diagnostic::error(
-                            RULE_VALUE,
-                            t.span(v.span.file),
-                            format!("{what}: {why}"),
-                        )
-                        .warning()
-                        .label("ignored"),
-                    );
-                    None
-                }
-            }
-        };
-        let default = value(&v.default, "DefaultValue", diagnostics);
-        let parameter_value = value(&v.parameter_value, "ParameterValue", diagnostics);
-        let low = constant_limit(value(&v.low, "LowLimit", diagnostics), diagnostics);
-        let high = constant_limit(value(&v.high, "HighLimit", diagnostics), diagnostics);
-        let range = limits(ty, low.clone(), high.clone());
+        let mut found = Vec::new();
+        let default = self.value(&v.default, "DefaultValue", ty, &mut found);
+        let parameter_value = self.value(&v.parameter_value, "ParameterValue", ty, &mut found);
+        let low = constant_limit(self.value(&v.low, "LowLimit", ty, &mut found), &mut found);
+        let high = constant_limit(self.value(&v.high, "HighLimit", ty, &mut found), &mut found);
+        let range = self.range(ty, low.clone(), high.clone(), &mut found);
+        let range_span = range.as_ref().and(low.or(high)).map(|(_, s)| s);
+        for d in found {
+            push_once_per_range(self, diagnostics, d);
+        }
         let (default, default_plus_node_id, default_span) = match default.or(parameter_value) {
             Some((EdsValue::Number(n), span)) => (Some(n), false, Some(span)),
             Some((EdsValue::NodeIdPlus(n), span)) => (Some(Number::Int(n)), true, Some(span)),
@@ -357,10 +360,114 @@ impl EdsEntry {
                 name: v.span.clone(),
                 data_type: v.span.clone(),
                 default: default_span,
-                range: low.or(high).map(|(_, s)| s),
+                range: range_span,
                 ..Default::default()
             },
         }
+    }
+
+    /// The value of `t` (the key `what`) for type `ty`; a value that does not parse is a
+    /// warning and ignored, a float written as its bit pattern is a warning naming the value read.
+    fn value(
+        &self,
+        t: &Option<Text>,
+        what: &str,
+        ty: DataType,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) -> Option<(EdsValue, Span)> {
+        let t = t.as_ref()?;
+        let span = t.span(self.variable.span.file);
+        if let Some(name) = self.time_type() {
+            diagnostics.push(
+                Diagnostic::error(
+                    RULE_VALUE,
+                    span,
+                    format!("{what} `{}` of a {name} is not kept", &*t.value),
+                )
+                .warning()
+                .label("ignored")
+                .help(format!(
+                    "drivegen reads a {name} as 6 raw octets (ms after midnight, days since 1984-01-01) and keeps no default for it"
+                )),
+            );
+            return None;
+        }
+        match parse_value(&t.value, ty) {
+            Ok(value) => {
+                if let (true, Some(EdsValue::Number(n))) =
+                    (is_float_bit_pattern(&t.value, ty), value)
+                {
+                    diagnostics.push(
+                        Diagnostic::error(
+                            RULE_VALUE,
+                            span.clone(),
+                            format!(
+                                "{what} `{}` of a {} is read as its IEEE-754 bit pattern",
+                                &*t.value,
+                                float_name(ty)
+                            ),
+                        )
+                        .warning()
+                        .label(format!("read as {n}")),
+                    );
+                }
+                value.map(|x| (x, span))
+            }
+            Err(why) => {
+                diagnostics.push(
+                    Diagnostic::error(RULE_VALUE, span, format!("{what}: {why}"))
+                        .warning()
+                        .label("ignored"),
+                );
+                None
+            }
+        }
+    }
+
+    /// `TIME_OF_DAY` / `TIME_DIFFERENCE` when the entry has one of these types.
+    fn time_type(&self) -> Option<&'static str> {
+        match self.variable.data_type {
+            Some(0x000C) => Some("TIME_OF_DAY"),
+            Some(0x000D) => Some("TIME_DIFFERENCE"),
+            _ => None,
+        }
+    }
+
+    /// The range of the limits; limits that would invert it are dropped with a warning (a signed
+    /// type's hex limits `0x00`..`0xFF` read as two's complement give 0..=-1: the vendor means the
+    /// whole range, which the type's bounds already give).
+    fn range(
+        &self,
+        ty: DataType,
+        low: Option<(Number, Span)>,
+        high: Option<(Number, Span)>,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) -> Option<ir::Range> {
+        if let (Some((min, span)), Some((max, _))) = (&low, &high) {
+            if min.compare(*max) == Some(std::cmp::Ordering::Greater) {
+                let hex = [&self.variable.low, &self.variable.high]
+                    .into_iter()
+                    .flatten()
+                    .any(|t| {
+                        t.value
+                            .trim_start()
+                            .get(..2)
+                            .is_some_and(|p| p.eq_ignore_ascii_case("0x"))
+                    });
+                let why = if hex && matches!(ty, DataType::Signed(_)) {
+                    format!("hex limits of a signed type ({}) read as two's complement give {min}..={max}, an inverted range; read as the whole range of the type", ty.name())
+                } else {
+                    format!("LowLimit {min} is above HighLimit {max}; the limits are ignored")
+                };
+                diagnostics.push(
+                    Diagnostic::error(RULE_VALUE, span.clone(), why)
+                        .warning()
+                        .label("range dropped: the type's bounds apply"),
+                );
+                return None;
+            }
+        }
+        limits(ty, low, high)
     }
 
     fn access(&self, diagnostics: &mut Vec<Diagnostic>) -> (ir::Access, bool, ir::Pdo) {
@@ -382,7 +489,9 @@ impl EdsEntry {
                 } else {
                     format!("unknown AccessType `{written}`; read as `ro`")
                 };
-                diagnostics.push(
+                push_once_per_range(
+                    self,
+                    diagnostics,
                     Diagnostic::error(RULE_VALUE, span, message)
                         .warning()
                         .help("CiA 306 access types: ro, wo, rw, rwr, rww, const"),
@@ -400,6 +509,26 @@ impl EdsEntry {
     }
 }
 
+/// Pushes `d`, a diagnostic about `entry`, unless `entry` is a sub-index of a compact array and
+/// the same diagnostic was reported already: the sub-indices of a compact array share one
+/// description, whose problems are reported once, naming the range.
+pub fn push_once_per_range(entry: &EdsEntry, diagnostics: &mut Vec<Diagnostic>, mut d: Diagnostic) {
+    let v = &entry.variable;
+    let own_value = v.parameter_value.as_ref().filter(|_| v.own_value);
+    let own_span = own_value.map(|t| t.span(v.span.file));
+    if v.compact.is_none() || d.span == own_span {
+        diagnostics.push(d);
+        return;
+    }
+    let range = entry.address();
+    if !d.message.contains(&range) {
+        d.message = format!("{} (object {range}, a compact array)", d.message);
+    }
+    if !diagnostics.contains(&d) {
+        diagnostics.push(d);
+    }
+}
+
 /// The strings a parameter takes from its entry.
 struct Names {
     name: String,
@@ -414,6 +543,15 @@ fn canonical_access(written: &str) -> &'static str {
         .into_iter()
         .find(|a| written.eq_ignore_ascii_case(a))
         .unwrap_or("")
+}
+
+/// The CiA 301 name of a float type.
+fn float_name(ty: DataType) -> &'static str {
+    if ty == DataType::F32 {
+        "REAL32"
+    } else {
+        "REAL64"
+    }
 }
 
 /// Limits are constants: a `$NODEID` limit is dropped with a warning.
