@@ -127,11 +127,7 @@ fn an_imported_overlay_that_does_not_check_says_why() {
     // A default outside the EDS's own limits: the skeleton is written, and its check fails.
     let scratch = Scratch::new("eds-import-fails");
     let eds = scratch.0.join("default_outside_limits.eds");
-    std::fs::write(
-        &eds,
-        "[DeviceInfo]\nProductName=Odd\n\n[2000]\nParameterName=Speed\nDataType=0x0006\nAccessType=rw\nDefaultValue=5\nLowLimit=10\nHighLimit=20\n",
-    )
-    .unwrap();
+    std::fs::copy("tests/eds/default_outside_limits.eds", &eds).unwrap();
     let imported = drivegen::eds::import_overlay(&eds, &scratch.0.join("odd.toml")).unwrap();
     assert!(!imported.checks());
     assert!(
@@ -140,7 +136,39 @@ fn an_imported_overlay_that_does_not_check_says_why() {
         imported.overlay
     );
     let findings = imported.checked.render();
-    assert!(findings.contains("defaults_within_range"), "{findings}");
+    assert!(
+        findings.contains(
+            "error[defaults_within_range]: default of `speed` 5 is outside its range 10..=20"
+        ),
+        "{findings}"
+    );
+}
+
+#[test]
+fn an_unknown_data_type_is_marked_in_the_skeleton_for_the_user_to_type() {
+    let scratch = Scratch::new("eds-import-vendor-type");
+    let eds = scratch.0.join("data_type_vendor.eds");
+    std::fs::copy("tests/eds/data_type_vendor.eds", &eds).unwrap();
+    let path = scratch.0.join("data_type_vendor.toml");
+    let imported = drivegen::eds::import_overlay(&eds, &path).unwrap();
+    assert!(imported.checks(), "{}", imported.checked.render());
+    let marked = "name = \"motor_table\"\n# DataType 0x0040 is vendor-specific or reserved: read as an octet string. Give the type the vendor documents, e.g.\n# type = \"u32\"\n";
+    assert!(imported.overlay.contains(marked), "{}", imported.overlay);
+    let warned = |checked: &drivegen::Checked| checked.render().contains("DataType 0x0040");
+    assert!(warned(&imported.checked));
+    // The user types it: the object is a u32 and the warning is gone.
+    let typed = imported
+        .overlay
+        .replace(marked, "name = \"motor_table\"\ntype = \"u32\"\n");
+    std::fs::write(&path, typed).unwrap();
+    let checked = drivegen::check(&path);
+    assert!(!warned(&checked), "{}", checked.render());
+    let device = checked.device.expect("the typed overlay checks");
+    let motor_table = device.parameters.iter().find(|p| p.name == "motor_table");
+    assert_eq!(
+        motor_table.map(|p| p.data_type),
+        Some(drivegen::ir::DataType::Unsigned(4))
+    );
 }
 
 #[test]
