@@ -382,7 +382,7 @@ impl EdsEntry {
                 Diagnostic::error(
                     RULE_VALUE,
                     span,
-                    format!("{what} `{}` of a {name} is not kept", &*t.value),
+                    format!("{what} `{}` is not kept ({name})", &*t.value),
                 )
                 .warning()
                 .label("ignored")
@@ -390,6 +390,21 @@ impl EdsEntry {
                     "drivegen reads a {name} as 6 raw octets (ms after midnight, days since 1984-01-01) and keeps no default for it"
                 )),
             );
+            return None;
+        }
+        if matches!(ty, DataType::String(_) | DataType::Octets(_)) {
+            if !t.value.trim().is_empty() {
+                diagnostics.push(
+                    Diagnostic::error(
+                        RULE_VALUE,
+                        span,
+                        format!("{what} `{}` is not kept ({})", &*t.value, self.type_name(ty)),
+                    )
+                    .warning()
+                    .label("ignored")
+                    .help("drivegen keeps numeric defaults only; the generated crate and `eds export` carry none for this object"),
+                );
+            }
             return None;
         }
         match parse_value(&t.value, ty) {
@@ -402,7 +417,7 @@ impl EdsEntry {
                             RULE_VALUE,
                             span.clone(),
                             format!(
-                                "{what} `{}` of a {} is read as its IEEE-754 bit pattern",
+                                "{what} `{}` ({}) is read as its IEEE-754 bit pattern",
                                 &*t.value,
                                 float_name(ty)
                             ),
@@ -421,6 +436,19 @@ impl EdsEntry {
                 );
                 None
             }
+        }
+    }
+
+    /// How the EDS names the type `ty` it gives this entry (`ty` is the IR's reading).
+    fn type_name(&self, ty: DataType) -> String {
+        match (self.data_type, self.variable.data_type) {
+            (Err(_), Some(code)) => format!("DataType {code:#06X}"),
+            (Err(_), None) => "no DataType".into(),
+            (Ok(_), Some(0x0009)) => "VISIBLE_STRING".into(),
+            (Ok(_), Some(0x000A)) => "OCTET_STRING".into(),
+            (Ok(_), Some(0x000B)) => "UNICODE_STRING".into(),
+            (Ok(_), Some(0x000F)) | (Ok(_), None) => "DOMAIN".into(),
+            (Ok(_), _) => ty.name().to_owned(),
         }
     }
 
