@@ -86,21 +86,40 @@ fn eds_reference(eds_path: &Path, overlay_path: &Path) -> String {
     relative.to_string_lossy().into_owned()
 }
 
-/// `target` relative to `base` (both absolute), or `None` when they share no root.
+/// `target` relative to `base` (both absolute), or `None` when they share nothing but the root
+/// (an absolute path reads better than a climb to the root).
 fn relative_path(target: &Path, base: &Path) -> Option<PathBuf> {
-    let (target, base): (Vec<_>, Vec<_>) =
-        (target.components().collect(), base.components().collect());
-    if target.first() != base.first()
-        || !matches!(
-            target.first(),
-            Some(Component::RootDir | Component::Prefix(_))
-        )
-    {
+    let target: Vec<_> = target.components().collect();
+    let base: Vec<_> = base.components().collect();
+    let rooted =
+        |c: Option<&Component>| matches!(c, Some(Component::RootDir | Component::Prefix(_)));
+    if !rooted(target.first()) || !rooted(base.first()) {
         return None;
     }
     let common = target.iter().zip(&base).take_while(|(a, b)| a == b).count();
+    if common < 2 && target.len() > 1 {
+        return None;
+    }
     let up = base[common..].iter().map(|_| Component::ParentDir);
     Some(up.chain(target[common..].iter().copied()).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_eds_is_named_relative_to_the_overlay_unless_only_the_root_is_shared() {
+        let relative = |t: &str, b: &str| relative_path(Path::new(t), Path::new(b));
+        assert_eq!(relative("/a/b", "/a/b"), Some(PathBuf::new()));
+        assert_eq!(
+            relative("/a/vendor", "/a/overlays"),
+            Some("../vendor".into())
+        );
+        assert_eq!(relative("/a/b/c", "/a"), Some("b/c".into()));
+        assert_eq!(relative("/work/x", "/tmp"), None);
+        assert_eq!(relative("a/b", "/a/b"), None);
+    }
 }
 
 fn quote(text: &str) -> String {
