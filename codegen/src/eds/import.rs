@@ -104,24 +104,6 @@ fn relative_path(target: &Path, base: &Path) -> Option<PathBuf> {
     Some(up.chain(target[common..].iter().copied()).collect())
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_eds_is_named_relative_to_the_overlay_unless_only_the_root_is_shared() {
-        let relative = |t: &str, b: &str| relative_path(Path::new(t), Path::new(b));
-        assert_eq!(relative("/a/b", "/a/b"), Some(PathBuf::new()));
-        assert_eq!(
-            relative("/a/vendor", "/a/overlays"),
-            Some("../vendor".into())
-        );
-        assert_eq!(relative("/a/b/c", "/a"), Some("b/c".into()));
-        assert_eq!(relative("/work/x", "/tmp"), None);
-        assert_eq!(relative("a/b", "/a/b"), None);
-    }
-}
-
 fn quote(text: &str) -> String {
     toml::Value::String(text.to_owned()).to_string()
 }
@@ -218,5 +200,23 @@ fn cite(out: &mut String, citation: Option<&crate::ir::Citation>) {
             "source = {{ doc = \"eds\", section = {}, line = {line} }}",
             quote(section)
         );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_eds_is_named_relative_to_the_overlay_unless_only_the_root_is_shared() {
+        let relative = |t: &str, b: &str| relative_path(Path::new(t), Path::new(b));
+        assert_eq!(relative("/a/b", "/a/b"), Some(PathBuf::new()));
+        assert_eq!(
+            relative("/a/vendor", "/a/overlays"),
+            Some("../vendor".into())
+        );
+        assert_eq!(relative("/a/b/c", "/a"), Some("b/c".into()));
+        assert_eq!(relative("/work/x", "/tmp"), None);
+        assert_eq!(relative("a/b", "/a/b"), None);
     }
 }
