@@ -219,17 +219,24 @@ impl EdsEntry {
     /// The diagnostic for an entry whose type is unknown: a warning, the entry being read as an
     /// octet string (see [`EdsEntry::usable_type`]).
     pub fn type_problem(&self, problem: TypeProblem) -> Diagnostic {
-        let message = match problem {
-            TypeProblem::Missing => format!("object {} has no DataType", self.address()),
-            TypeProblem::Unsupported(code) => format!(
-                "object {} has DataType {code:#06X}, which CiA 301 reserves or does not define (vendor-specific?)",
-                self.address()
+        const OVERLAY: &str = "give its `type` in an overlay `[[parameter]]` with this `canopen` address (`drivegen eds import` marks it)";
+        let (message, help) = match problem {
+            TypeProblem::Missing => (
+                format!("object {} has no DataType", self.address()),
+                format!("add `DataType=0x...` to the EDS, or {OVERLAY}"),
+            ),
+            TypeProblem::Unsupported(code) => (
+                format!(
+                    "object {} has DataType {code:#06X}, which CiA 301 reserves or does not define (vendor-specific?)",
+                    self.address()
+                ),
+                OVERLAY.to_owned(),
             ),
         };
         Diagnostic::error(RULE_TYPE, self.variable.span.clone(), message)
             .warning()
             .label("read as an octet string (DOMAIN)")
-            .help("give its `type` in an overlay `[[parameter]]` with this `canopen` address (`drivegen eds import` marks it)")
+            .help(help)
     }
 
     /// Its type; when the EDS gives none usable, an octet string of unknown length, with a
