@@ -382,7 +382,8 @@ impl EdsEntry {
         ty: DataType,
         diagnostics: &mut Vec<Diagnostic>,
     ) -> Option<(EdsValue, Span)> {
-        let t = t.as_ref()?;
+        // An empty value (`DefaultValue=`) is no value: nothing is lost by reading it so.
+        let t = t.as_ref().filter(|t| !t.value.trim().is_empty())?;
         let span = t.span(self.variable.span.file);
         if let Some(name) = self.time_type() {
             diagnostics.push(
@@ -400,8 +401,7 @@ impl EdsEntry {
             return None;
         }
         if matches!(ty, DataType::String(_) | DataType::Octets(_)) {
-            if !t.value.trim().is_empty() {
-                diagnostics.push(
+            diagnostics.push(
                     Diagnostic::error(
                         RULE_VALUE,
                         span,
@@ -410,8 +410,7 @@ impl EdsEntry {
                     .warning()
                     .label("ignored")
                     .help("drivegen keeps numeric defaults only; the generated crate and `eds export` carry none for this object"),
-                );
-            }
+            );
             return None;
         }
         match parse_value(&t.value, ty) {
