@@ -4,9 +4,9 @@
 use std::sync::Arc;
 
 use super::data_type::{from_code, Code, UNSIZED_CAPACITY};
-use super::dictionary::{Dictionary, ObjectKind, Text, Variable};
+use super::dictionary::{Dictionary, ObjectKind, Variable};
 use super::names::{repeated, snake_name, unique_names, Address, NameList};
-use super::node_id::{is_float_bit_pattern, parse_value, EdsValue};
+use super::node_id::EdsValue;
 use crate::diagnostic::{Diagnostic, FileId, Files, Span};
 use crate::ir::{self, DataType, Number};
 
@@ -317,17 +317,8 @@ impl EdsEntry {
     ) -> ir::Parameter {
         let v = &self.variable;
         let (access, constant, pdo) = self.access(diagnostics);
-        let mut found = Vec::new();
-        let default = self.value(&v.default, "DefaultValue", ty, &mut found);
-        let parameter_value = self.value(&v.parameter_value, "ParameterValue", ty, &mut found);
-        let low = constant_limit(self.value(&v.low, "LowLimit", ty, &mut found), &mut found);
-        let high = constant_limit(self.value(&v.high, "HighLimit", ty, &mut found), &mut found);
-        let range = self.range(ty, low.clone(), high.clone(), &mut found);
-        let range_span = range.as_ref().and(low.or(high)).map(|(_, s)| s);
-        for d in found {
-            push_once_per_range(self, diagnostics, d);
-        }
-        let (default, default_plus_node_id, default_span) = match default.or(parameter_value) {
+        let values = self.values(ty, diagnostics);
+        let (default, default_plus_node_id, default_span) = match values.default {
             Some((EdsValue::Number(n), span)) => (Some(n), false, Some(span)),
             Some((EdsValue::NodeIdPlus(n), span)) => (Some(Number::Int(n)), true, Some(span)),
             None => (None, false, None),
@@ -340,7 +331,7 @@ impl EdsEntry {
             scale: None,
             default,
             default_plus_node_id,
-            range,
+            range: values.range,
             allowed: Vec::new(),
             enumeration: None,
             flags: None,
@@ -367,141 +358,10 @@ impl EdsEntry {
                 name: v.span.clone(),
                 data_type: v.span.clone(),
                 default: default_span,
-                range: range_span,
+                range: values.range_span,
                 ..Default::default()
             },
         }
-    }
-
-    /// The value of `t` (the key `what`) for type `ty`; a value that does not parse is a
-    /// warning and ignored, a float written as its bit pattern is a warning naming the value read.
-    fn value(
-        &self,
-        t: &Option<Text>,
-        what: &str,
-        ty: DataType,
-        diagnostics: &mut Vec<Diagnostic>,
-    ) -> Option<(EdsValue, Span)> {
-        // An empty value (`DefaultValue=`) is no value: nothing is lost by reading it so.
-        let t = t.as_ref().filter(|t| !t.value.trim().is_empty())?;
-        let span = t.span(self.variable.span.file);
-        if let Some(name) = self.time_type() {
-            diagnostics.push(
-                Diagnostic::error(
-                    RULE_VALUE,
-                    span,
-                    format!("{what} `{}` is not kept ({name})", &*t.value),
-                )
-                .warning()
-                .label("ignored")
-                .help(format!(
-                    "drivegen reads a {name} as 6 raw octets (ms after midnight, days since 1984-01-01) and keeps no default for it"
-                )),
-            );
-            return None;
-        }
-        if matches!(ty, DataType::String(_) | DataType::Octets(_)) {
-            diagnostics.push(
-                    Diagnostic::error(
-                        RULE_VALUE,
-                        span,
-                        format!("{what} `{}` is not kept ({})", &*t.value, self.type_name(ty)),
-                    )
-                    .warning()
-                    .label("ignored")
-                    .help("drivegen keeps numeric defaults only; the generated crate and `eds export` carry none for this object"),
-            );
-            return None;
-        }
-        match parse_value(&t.value, ty) {
-            Ok(value) => {
-                if let (true, Some(EdsValue::Number(n))) =
-                    (is_float_bit_pattern(&t.value, ty), value)
-                {
-                    diagnostics.push(
-                        Diagnostic::error(
-                            RULE_VALUE,
-                            span.clone(),
-                            format!(
-                                "{what} `{}` ({}) is read as its IEEE-754 bit pattern",
-                                &*t.value,
-                                float_name(ty)
-                            ),
-                        )
-                        .warning()
-                        .label(format!("read as {n}")),
-                    );
-                }
-                value.map(|x| (x, span))
-            }
-            Err(why) => {
-                diagnostics.push(
-                    Diagnostic::error(RULE_VALUE, span, format!("{what}: {why}"))
-                        .warning()
-                        .label("ignored"),
-                );
-                None
-            }
-        }
-    }
-
-    /// How the EDS names the type `ty` it gives this entry (`ty` is the IR's reading).
-    fn type_name(&self, ty: DataType) -> String {
-        match (self.data_type, self.variable.data_type) {
-            (Err(_), Some(code)) => format!("DataType {code:#06X}"),
-            (Err(_), None) => "no DataType".into(),
-            (Ok(_), Some(0x0009)) => "VISIBLE_STRING".into(),
-            (Ok(_), Some(0x000A)) => "OCTET_STRING".into(),
-            (Ok(_), Some(0x000B)) => "UNICODE_STRING".into(),
-            (Ok(_), Some(0x000F)) | (Ok(_), None) => "DOMAIN".into(),
-            (Ok(_), _) => ty.name().to_owned(),
-        }
-    }
-
-    /// `TIME_OF_DAY` / `TIME_DIFFERENCE` when the entry has one of these types.
-    fn time_type(&self) -> Option<&'static str> {
-        match self.variable.data_type {
-            Some(0x000C) => Some("TIME_OF_DAY"),
-            Some(0x000D) => Some("TIME_DIFFERENCE"),
-            _ => None,
-        }
-    }
-
-    /// The range of the limits; limits that would invert it are dropped with a warning (a signed
-    /// type's hex limits `0x00`..`0xFF` read as two's complement give 0..=-1: the vendor means the
-    /// whole range, which the type's bounds already give).
-    fn range(
-        &self,
-        ty: DataType,
-        low: Option<(Number, Span)>,
-        high: Option<(Number, Span)>,
-        diagnostics: &mut Vec<Diagnostic>,
-    ) -> Option<ir::Range> {
-        if let (Some((min, span)), Some((max, _))) = (&low, &high) {
-            if min.compare(*max) == Some(std::cmp::Ordering::Greater) {
-                let hex = [&self.variable.low, &self.variable.high]
-                    .into_iter()
-                    .flatten()
-                    .any(|t| {
-                        t.value
-                            .trim_start()
-                            .get(..2)
-                            .is_some_and(|p| p.eq_ignore_ascii_case("0x"))
-                    });
-                let why = if hex && matches!(ty, DataType::Signed(_)) {
-                    format!("hex limits of a signed type ({}) read as two's complement give {min}..={max}, an inverted range; read as the whole range of the type", ty.name())
-                } else {
-                    format!("LowLimit {min} is above HighLimit {max}; the limits are ignored")
-                };
-                diagnostics.push(
-                    Diagnostic::error(RULE_VALUE, span.clone(), why)
-                        .warning()
-                        .label("range dropped: the type's bounds apply"),
-                );
-                return None;
-            }
-        }
-        limits(ty, low, high)
     }
 
     fn access(&self, diagnostics: &mut Vec<Diagnostic>) -> (ir::Access, bool, ir::Pdo) {
@@ -546,7 +406,11 @@ impl EdsEntry {
 /// Pushes `d`, a diagnostic about `entry`, unless `entry` is a sub-index of a compact array and
 /// the same diagnostic was reported already: the sub-indices of a compact array share one
 /// description, whose problems are reported once, naming the range.
-pub fn push_once_per_range(entry: &EdsEntry, diagnostics: &mut Vec<Diagnostic>, mut d: Diagnostic) {
+pub(super) fn push_once_per_range(
+    entry: &EdsEntry,
+    diagnostics: &mut Vec<Diagnostic>,
+    mut d: Diagnostic,
+) {
     let v = &entry.variable;
     let own_value = v.parameter_value.as_ref().filter(|_| v.own_value);
     let own_span = own_value.map(|t| t.span(v.span.file));
@@ -577,58 +441,6 @@ fn canonical_access(written: &str) -> &'static str {
         .into_iter()
         .find(|a| written.eq_ignore_ascii_case(a))
         .unwrap_or("")
-}
-
-/// The CiA 301 name of a float type.
-fn float_name(ty: DataType) -> &'static str {
-    if ty == DataType::F32 {
-        "REAL32"
-    } else {
-        "REAL64"
-    }
-}
-
-/// Limits are constants: a `$NODEID` limit is dropped with a warning.
-fn constant_limit(
-    limit: Option<(EdsValue, Span)>,
-    diagnostics: &mut Vec<Diagnostic>,
-) -> Option<(Number, Span)> {
-    match limit? {
-        (EdsValue::Number(n), span) => Some((n, span)),
-        (EdsValue::NodeIdPlus(_), span) => {
-            diagnostics.push(
-                Diagnostic::error(RULE_VALUE, span, "a limit relative to `$NODEID` is ignored")
-                    .warning(),
-            );
-            None
-        }
-    }
-}
-
-/// A range from one or both limits; a missing side is the type's bound.
-fn limits(
-    ty: DataType,
-    low: Option<(Number, Span)>,
-    high: Option<(Number, Span)>,
-) -> Option<ir::Range> {
-    if low.is_none() && high.is_none() {
-        return None;
-    }
-    let (min, max) = match ty.integer_bounds() {
-        Some((min, max)) => (
-            Number::Int(i64::try_from(min).unwrap_or(i64::MIN)),
-            Number::Int(i64::try_from(max).unwrap_or(i64::MAX)),
-        ),
-        None if ty == DataType::F32 => (
-            Number::Float(f32::MIN.into()),
-            Number::Float(f32::MAX.into()),
-        ),
-        None => (Number::Float(f64::MIN), Number::Float(f64::MAX)),
-    };
-    Some(ir::Range {
-        min: low.map_or(min, |(n, _)| n),
-        max: high.map_or(max, |(n, _)| n),
-    })
 }
 
 #[cfg(test)]

@@ -20,6 +20,7 @@ mod parse;
 mod pdo_objects;
 mod short_text;
 mod trim;
+mod values;
 mod word_hash;
 
 use std::path::Path;
@@ -33,7 +34,7 @@ pub use dictionary::{DeviceInfo, Dictionary, Object, ObjectKind, Text, Variable}
 pub use encoding::{decode, Encoding};
 pub use export::export;
 pub use import::{default_overlay_path, import_overlay, ImportError, Imported};
-pub use lower::{push_once_per_range, EdsEntry, EdsModel, TypeProblem, EDS_SOURCE_ID};
+pub use lower::{EdsEntry, EdsModel, TypeProblem, EDS_SOURCE_ID};
 pub use names::snake_name;
 pub use node_id::{parse_value, EdsValue};
 pub use parse::{parse_ini, Ini};
