@@ -43,8 +43,20 @@ fn parse_float(text: &str, ty: DataType) -> Result<Number, String> {
         ));
     }
     match t.parse::<f64>() {
-        Ok(f) if f.is_finite() => Ok(Number::Float(f)),
+        Ok(f) if f.is_finite() => Ok(Number::Float(nearest_f32_when_beyond(f, ty))),
         _ => Err(format!("`{t}` is not a number")),
+    }
+}
+
+/// A REAL32 value written a hair beyond the largest `f32` (`3.4028235E+38`, how `FLT_MAX` is
+/// printed) is that `f32`: the value on the wire is the same.
+fn nearest_f32_when_beyond(f: f64, ty: DataType) -> f64 {
+    let max = f64::from(f32::MAX);
+    // Rounding to the nearest f32 is the point.
+    let nearest = f as f32;
+    match ty == DataType::F32 && f.abs() > max && nearest.is_finite() {
+        true => f64::from(nearest),
+        false => f,
     }
 }
 
@@ -282,6 +294,14 @@ mod tests {
         assert!(parse_value("0x7F800000", f32_).is_err(), "infinity");
         assert!(parse_value("0x141200000", f32_).is_err(), "nine digits");
         assert!(parse_value("0x", f32_).is_err());
+        assert_eq!(
+            int("-3.4028235E+38", f32_),
+            EdsValue::Number(Number::Float(f64::from(f32::MIN)))
+        );
+        assert_eq!(
+            int("3.4028235E+38", DataType::F64),
+            EdsValue::Number(Number::Float(3.4028235e38))
+        );
         assert!(is_float_bit_pattern(" 0X3F800000 ", f32_));
         assert!(!is_float_bit_pattern("0x3F800000", DataType::Unsigned(4)));
         assert!(!is_float_bit_pattern("1.5", f32_));
