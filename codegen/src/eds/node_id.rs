@@ -43,21 +43,22 @@ fn parse_float(text: &str, ty: DataType) -> Result<Number, String> {
         ));
     }
     match t.parse::<f64>() {
-        Ok(f) if f.is_finite() => Ok(Number::Float(nearest_f32_when_beyond(f, ty))),
+        Ok(f) if f.is_finite() => fit_f32(f, ty)
+            .map(Number::Float)
+            .ok_or_else(|| format!("`{t}` does not fit f32")),
         _ => Err(format!("`{t}` is not a number")),
     }
 }
 
 /// A REAL32 value written a hair beyond the largest `f32` (`3.4028235E+38`, how `FLT_MAX` is
-/// printed) is that `f32`: the value on the wire is the same.
-fn nearest_f32_when_beyond(f: f64, ty: DataType) -> f64 {
-    let max = f64::from(f32::MAX);
+/// printed) is that `f32`, the same value on the wire; one beyond any `f32` does not fit.
+fn fit_f32(f: f64, ty: DataType) -> Option<f64> {
+    if ty != DataType::F32 || f.abs() <= f64::from(f32::MAX) {
+        return Some(f);
+    }
     // Rounding to the nearest f32 is the point.
     let nearest = f as f32;
-    match ty == DataType::F32 && f.abs() > max && nearest.is_finite() {
-        true => f64::from(nearest),
-        false => f,
-    }
+    nearest.is_finite().then(|| f64::from(nearest))
 }
 
 /// Whether `text`, a value of type `ty`, is a float written as its IEEE-754 bit pattern.
@@ -302,6 +303,7 @@ mod tests {
             int("3.4028235E+38", DataType::F64),
             EdsValue::Number(Number::Float(3.4028235e38))
         );
+        assert!(parse_value("3.5e38", f32_).is_err());
         assert!(is_float_bit_pattern(" 0X3F800000 ", f32_));
         assert!(!is_float_bit_pattern("0x3F800000", DataType::Unsigned(4)));
         assert!(!is_float_bit_pattern("1.5", f32_));
