@@ -65,3 +65,50 @@ fn exporting_a_modbus_only_description_is_refused() {
     assert!(!export.status.success());
     assert!(String::from_utf8_lossy(&export.stderr).contains("no CANopen objects"));
 }
+
+#[test]
+fn import_prints_the_findings_of_the_overlay_and_fails_when_it_does_not_check() {
+    let dir = std::env::temp_dir().join(format!("drivegen-eds-import-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let corpus = Path::new(env!("CARGO_MANIFEST_DIR")).join("../codegen/tests/eds");
+    // A vendor data type: the overlay checks, with a warning naming the object.
+    let vendor = dir.join("vendor.toml");
+    let eds = corpus.join("data_type_vendor.eds");
+    let import = run(&[
+        "eds",
+        "import",
+        eds.to_str().unwrap(),
+        "-o",
+        vendor.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&import.stderr);
+    assert!(import.status.success(), "{stderr}");
+    assert!(stderr.contains("DataType 0x0040"), "{stderr}");
+    assert!(stderr.contains("the overlay checks as"), "{stderr}");
+    // A default outside its limits: the skeleton is written, the error printed, the exit non-zero.
+    let odd = dir.join("odd.toml");
+    let eds = corpus.join("default_outside_limits.eds");
+    let import = run(&[
+        "eds",
+        "import",
+        eds.to_str().unwrap(),
+        "-o",
+        odd.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&import.stderr);
+    assert!(!import.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("error[defaults_within_range]") && stderr.contains("does not check"),
+        "{stderr}"
+    );
+    assert!(std::fs::read_to_string(&odd)
+        .unwrap()
+        .contains("index = 0x2000"));
+    // To standard output, it is checked as saved beside the EDS.
+    let import = run(&["eds", "import", eds.to_str().unwrap()]);
+    assert!(!import.status.success());
+    assert!(
+        String::from_utf8_lossy(&import.stdout).contains("eds = \"default_outside_limits.eds\"")
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -58,6 +58,24 @@ pub fn check(path: &Path) -> Checked {
     let mut files = Files::default();
     let mut diagnostics = Vec::new();
     let loaded = load::read_files(path, &mut files, &mut diagnostics);
+    check_loaded(loaded, files, diagnostics)
+}
+
+/// [`check`] of a description file `path` whose text is `text`, not read from disk (an overlay
+/// checked before it is written).
+pub fn check_text(path: &Path, text: String) -> Checked {
+    let mut files = Files::default();
+    let mut diagnostics = Vec::new();
+    let loaded = load::read_files_with_text(path, text, &mut files, &mut diagnostics);
+    check_loaded(loaded, files, diagnostics)
+}
+
+/// Lowers and validates the files of a description (and the EDS it overlays).
+fn check_loaded(
+    loaded: Vec<load::LoadedFile>,
+    mut files: Files,
+    mut diagnostics: Vec<Diagnostic>,
+) -> Checked {
     let overlay_of = loaded.first().and_then(|root| {
         let eds = root.raw.eds.as_ref()?;
         let span = diagnostic::Span::new(root.id, eds.span());

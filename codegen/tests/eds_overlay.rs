@@ -69,13 +69,19 @@ fn node_relative_defaults_are_generated_as_a_function_of_the_node_id() {
 fn import_and_check(eds: &Path, scratch: &Scratch) -> drivegen::Checked {
     let copy = scratch.0.join(eds.file_name().unwrap());
     std::fs::copy(eds, &copy).unwrap();
-    let overlay = drivegen::eds::import_overlay(&copy).unwrap_or_else(|e| panic!("{e}"));
     let path = scratch.0.join(format!(
         "{}.toml",
         eds.file_stem().unwrap().to_string_lossy()
     ));
-    std::fs::write(&path, overlay).unwrap();
-    drivegen::check(&path)
+    let imported = drivegen::eds::import_overlay(&copy, &path).unwrap_or_else(|e| panic!("{e}"));
+    std::fs::write(&path, &imported.overlay).unwrap();
+    let checked = drivegen::check(&path);
+    assert_eq!(
+        checked.render(),
+        imported.checked.render(),
+        "the import checks the overlay as it is saved"
+    );
+    checked
 }
 
 #[test]
@@ -109,10 +115,79 @@ fn imported_overlays_check_as_written_and_keep_every_object() {
 }
 
 #[test]
-fn an_eds_with_errors_is_not_imported() {
-    let error = drivegen::eds::import_overlay(Path::new("tests/eds/data_type_missing.eds"));
-    let text = error.expect_err("no DataType").to_string();
-    assert!(text.contains("has no DataType"), "{text}");
+fn an_unreadable_eds_is_not_imported() {
+    let missing = Path::new("tests/eds/no_such_file.eds");
+    let error = drivegen::eds::import_overlay(missing, Path::new("tests/eds/no_such_file.toml"));
+    let text = error.expect_err("no file").to_string();
+    assert!(text.contains("cannot read"), "{text}");
+}
+
+#[test]
+fn an_imported_overlay_that_does_not_check_says_why() {
+    // A default outside the EDS's own limits: the skeleton is written, and its check fails.
+    let scratch = Scratch::new("eds-import-fails");
+    let eds = scratch.0.join("default_outside_limits.eds");
+    std::fs::copy("tests/eds/default_outside_limits.eds", &eds).unwrap();
+    let imported = drivegen::eds::import_overlay(&eds, &scratch.0.join("odd.toml")).unwrap();
+    assert!(!imported.checks());
+    assert!(
+        imported.overlay.contains("index = 0x2000"),
+        "{}",
+        imported.overlay
+    );
+    let findings = imported.checked.render();
+    assert!(
+        findings.contains(
+            "error[defaults_within_range]: default of `speed` 5 is outside its range 10..=20"
+        ),
+        "{findings}"
+    );
+}
+
+#[test]
+fn an_unknown_data_type_is_marked_in_the_skeleton_for_the_user_to_type() {
+    let scratch = Scratch::new("eds-import-vendor-type");
+    let eds = scratch.0.join("data_type_vendor.eds");
+    std::fs::copy("tests/eds/data_type_vendor.eds", &eds).unwrap();
+    let path = scratch.0.join("data_type_vendor.toml");
+    let imported = drivegen::eds::import_overlay(&eds, &path).unwrap();
+    assert!(imported.checks(), "{}", imported.checked.render());
+    let marked = "name = \"motor_table\"\n# DataType 0x0040 is vendor-specific or reserved: read as an octet string. Give the type the vendor documents, e.g.\n# type = \"u32\"\n";
+    assert!(imported.overlay.contains(marked), "{}", imported.overlay);
+    let warned = |checked: &drivegen::Checked| checked.render().contains("DataType 0x0040");
+    assert!(warned(&imported.checked));
+    // The user types it: the object is a u32 and the warning is gone.
+    let typed = imported
+        .overlay
+        .replace(marked, "name = \"motor_table\"\ntype = \"u32\"\n");
+    std::fs::write(&path, typed).unwrap();
+    let checked = drivegen::check(&path);
+    assert!(!warned(&checked), "{}", checked.render());
+    let device = checked.device.expect("the typed overlay checks");
+    let motor_table = device.parameters.iter().find(|p| p.name == "motor_table");
+    assert_eq!(
+        motor_table.map(|p| p.data_type),
+        Some(drivegen::ir::DataType::Unsigned(4))
+    );
+}
+
+#[test]
+fn an_overlay_saved_elsewhere_names_the_eds_relative_to_it() {
+    let scratch = Scratch::new("eds-import-elsewhere");
+    let eds = scratch.0.join("vendor").join("minimal_var.eds");
+    std::fs::create_dir_all(eds.parent().unwrap()).unwrap();
+    std::fs::copy("tests/eds/minimal_var.eds", &eds).unwrap();
+    let overlay = scratch.0.join("overlays").join("drive.toml");
+    std::fs::create_dir_all(overlay.parent().unwrap()).unwrap();
+    let imported = drivegen::eds::import_overlay(&eds, &overlay).unwrap();
+    assert!(
+        imported
+            .overlay
+            .contains("eds = \"../vendor/minimal_var.eds\""),
+        "{}",
+        imported.overlay
+    );
+    assert!(imported.checks(), "{}", imported.checked.render());
 }
 
 #[test]

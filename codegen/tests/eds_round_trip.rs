@@ -87,9 +87,9 @@ fn in_default_variant(device: &Device, p: &Parameter) -> bool {
 /// `drivegen eds import`'s overlay skeleton of `eds` checks as written, with the objects of the
 /// EDS alone (`alone`).
 fn imported_overlay_keeps_the_objects(eds: &Path, alone: &Device) -> Result<(), String> {
-    let overlay = drivegen::eds::import_overlay(eds).map_err(|e| format!("import: {e}"))?;
     let path = eds.with_extension("toml");
-    std::fs::write(&path, overlay).unwrap();
+    let imported = drivegen::eds::import_overlay(eds, &path).map_err(|e| format!("import: {e}"))?;
+    std::fs::write(&path, imported.overlay).unwrap();
     let checked = drivegen::check(&path);
     let Some(imported) = checked.device else {
         return Err(format!(

@@ -51,15 +51,42 @@ fn export(description: &Path, out: &Path) -> Result<(), CliError> {
     write(out, &drivegen::eds::export(&device))
 }
 
+/// Writes the overlay skeleton (to `out`, else standard output), then prints the findings of its
+/// check as saved (at `out`, else beside the EDS); fails when the overlay does not check.
 fn import(eds: &Path, out: Option<&Path>) -> Result<(), CliError> {
-    let overlay =
-        drivegen::eds::import_overlay(eds).map_err(|e| CliError::Invalid(e.to_string()))?;
+    let saved_at = out.map_or_else(
+        || drivegen::eds::default_overlay_path(eds),
+        Path::to_path_buf,
+    );
+    let imported = drivegen::eds::import_overlay(eds, &saved_at)
+        .map_err(|e| CliError::Invalid(e.to_string()))?;
     match out {
-        Some(path) => write(path, &overlay),
-        None => {
-            print!("{overlay}");
-            Ok(())
-        }
+        Some(path) => write(path, &imported.overlay)?,
+        None => print!("{}", imported.overlay),
+    }
+    let findings = imported.checked.render();
+    if !findings.is_empty() {
+        eprintln!("{findings}");
+    }
+    let (errors, warnings) = imported
+        .checked
+        .diagnostics
+        .iter()
+        .fold((0, 0), |(e, w), d| match d.severity {
+            drivegen::Severity::Error => (e + 1, w),
+            drivegen::Severity::Warning => (e, w + 1),
+        });
+    if imported.checks() {
+        eprintln!(
+            "the overlay checks as {} ({warnings} warnings)",
+            saved_at.display()
+        );
+        Ok(())
+    } else {
+        Err(CliError::Invalid(format!(
+            "the overlay does not check as {} ({errors} errors, {warnings} warnings): fix it (or the EDS) as the errors above say",
+            saved_at.display()
+        )))
     }
 }
 

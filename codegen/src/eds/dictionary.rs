@@ -81,6 +81,11 @@ pub struct Variable {
     pub default: Option<Text>,
     /// `ParameterValue` (DCF).
     pub parameter_value: Option<Text>,
+    /// For sub-indices 1..=N of a `CompactSubObj=N` object: N. Their keys are the object's, one
+    /// text shared by all N (a problem with them is reported once, naming the range).
+    pub compact: Option<u8>,
+    /// Whether `parameter_value` is this sub-index's own (from `[XXXXValue]`), not shared.
+    pub own_value: bool,
 }
 
 /// One object (index).
@@ -471,7 +476,7 @@ fn object(
         ObjectKind::Array | ObjectKind::Record => match compact_count(&keys, diagnostics) {
             Some(count) if count > 0 => {
                 let object = (section, &keys, index, name.as_str());
-                compact(ini, object, count, variables, diagnostics)
+                compact(ini, object, count, subs, variables, diagnostics)
             }
             _ => members(subs, &keys, index, variables, diagnostics),
         },
@@ -615,6 +620,7 @@ fn compact(
     ini: &Ini,
     (section, keys, index, name): (&Section, &ObjectKeys, u16, &str),
     count: u8,
+    subs: &SubSections<'_>,
     variables: &mut Vec<Variable>,
     diagnostics: &mut Vec<Diagnostic>,
 ) {
@@ -622,22 +628,15 @@ fn compact(
     let values = ini.section(&format!("{index:04x}value"));
     // The up-front reservation counted one variable for this section; it holds count + 1.
     variables.reserve(usize::from(count) + 1);
-    let template = variable(section, keys, 1, String::new(), diagnostics);
-    let count_text = Text::new(ShortText::from(count.to_string().as_str()), section.span);
-    variables.push(Variable {
-        subindex: 0,
-        name: "Number of entries".into(),
-        description: None,
-        data_type: Some(0x0005),
-        access: Some(Text::new(ShortText::from("ro"), section.span)),
-        pdo_mapping: false,
-        low: None,
-        high: None,
-        default: Some(count_text),
-        parameter_value: None,
-        span: section.span.clone(),
-        line: section.line,
-    });
+    let mut template = variable(section, keys, 1, String::new(), diagnostics);
+    template.compact = Some(count);
+    variables.push(compact_count_entry(
+        section,
+        index,
+        count,
+        subs,
+        diagnostics,
+    ));
     for sub in 1..=count {
         let key = sub.to_string();
         let mut v = template.clone();
@@ -647,9 +646,64 @@ fn compact(
             .map_or_else(|| format!("{name}{sub}"), |e| e.value.to_owned());
         if let Some(value) = values.and_then(|s| s.get(&key)) {
             v.parameter_value = Some(text(value));
+            v.own_value = true;
         }
         variables.push(v);
     }
+}
+
+/// Sub 0 of a compact array: its `[XXXXsub0]` section when the EDS has one, else the implicit
+/// UNSIGNED8 holding `count`, read-only unless CiA 301 makes it writable
+/// ([`sub0_is_writable`]).
+fn compact_count_entry(
+    section: &Section,
+    index: u16,
+    count: u8,
+    subs: &SubSections<'_>,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> Variable {
+    for &(sub, ignored) in subs.of_object(index).filter(|(sub, _)| *sub != 0) {
+        diagnostics.push(
+            Diagnostic::error(
+                RULE_OBJECT,
+                ignored.span.clone(),
+                format!("sub-section {sub} of a compact array is ignored: `CompactSubObj={count}` describes subs 1..={count}"),
+            )
+            .warning()
+            .help("name sub-indices in `[XXXXName]`, give their values in `[XXXXValue]`"),
+        );
+    }
+    if let Some(&(_, own)) = subs.of_object(index).find(|(sub, _)| *sub == 0) {
+        let keys = ObjectKeys::of(own);
+        let name = parameter_name(own, &keys, diagnostics, || "Number of entries".into());
+        return variable(own, &keys, 0, name, diagnostics);
+    }
+    let access = if sub0_is_writable(index) { "rw" } else { "ro" };
+    Variable {
+        subindex: 0,
+        name: "Number of entries".into(),
+        description: None,
+        data_type: Some(0x0005),
+        access: Some(Text::new(ShortText::from(access), section.span)),
+        pdo_mapping: false,
+        low: None,
+        high: None,
+        default: Some(Text::new(
+            ShortText::from(count.to_string().as_str()),
+            section.span,
+        )),
+        parameter_value: None,
+        compact: None,
+        own_value: false,
+        span: section.span.clone(),
+        line: section.line,
+    }
+}
+
+/// Objects whose sub 0 CiA 301 makes writable: 1003h (writing 0 clears the error history) and
+/// the PDO mapping parameters 1600h..17FFh / 1A00h..1BFFh (the number of mapped objects).
+pub fn sub0_is_writable(index: u16) -> bool {
+    matches!(index, 0x1003 | 0x1600..=0x17FF | 0x1A00..=0x1BFF)
 }
 
 fn variable(
@@ -670,11 +724,15 @@ fn variable(
     let data_type = keys.get(Key::DataType).and_then(|e| {
         let code = parse_small(e.value).and_then(|c| u16::try_from(c).ok());
         if code.is_none() {
-            diagnostics.push(Diagnostic::error(
-                "eds_data_type",
-                e.value_span(),
-                format!("DataType `{}` is not a number", e.value),
-            ));
+            diagnostics.push(
+                Diagnostic::error(
+                    "eds_data_type",
+                    e.value_span(),
+                    format!("DataType `{}` is not a number", e.value),
+                )
+                .warning()
+                .label("ignored"),
+            );
         }
         code
     });
@@ -705,6 +763,8 @@ fn variable(
         high: text(keys.get(Key::HighLimit)),
         default: text(keys.get(Key::DefaultValue)),
         parameter_value: text(keys.get(Key::ParameterValue)),
+        compact: None,
+        own_value: false,
     }
 }
 

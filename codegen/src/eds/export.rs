@@ -175,10 +175,11 @@ fn access_type(a: &ir::ObjectAddress) -> &'static str {
     }
 }
 
+/// `$NODEID+0x...`; with an explicit `+0x0` for the node id itself, since python canopen drops a
+/// bare `$NODEID` default (it parses what is left after removing `$NODEID+`).
 fn node_relative(offset: Number) -> String {
     match offset.as_int() {
-        Some(0) => "$NODEID".into(),
-        Some(o) if o > 0 => format!("$NODEID+0x{o:X}"),
+        Some(o) if o >= 0 => format!("$NODEID+0x{o:X}"),
         _ => format!("$NODEID+{offset}"),
     }
 }
@@ -206,6 +207,6 @@ mod tests {
     #[test]
     fn node_relative_defaults_stay_relative() {
         assert_eq!(node_relative(Number::Int(0x180)), "$NODEID+0x180");
-        assert_eq!(node_relative(Number::Int(0)), "$NODEID");
+        assert_eq!(node_relative(Number::Int(0)), "$NODEID+0x0");
     }
 }

@@ -4,9 +4,9 @@
 use std::sync::Arc;
 
 use super::data_type::{from_code, Code, UNSIZED_CAPACITY};
-use super::dictionary::{Dictionary, ObjectKind, Text, Variable};
+use super::dictionary::{Dictionary, ObjectKind, Variable};
 use super::names::{repeated, snake_name, unique_names, Address, NameList};
-use super::node_id::{parse_value, EdsValue};
+use super::node_id::EdsValue;
 use crate::diagnostic::{Diagnostic, FileId, Files, Span};
 use crate::ir::{self, DataType, Number};
 
@@ -218,24 +218,47 @@ impl EdsEntry {
         }
     }
 
-    /// The diagnostic for an entry whose type is unknown.
+    /// The diagnostic for an entry whose type is unknown: a warning, the entry being read as an
+    /// octet string (see [`EdsEntry::usable_type`]).
     pub fn type_problem(&self, problem: TypeProblem) -> Diagnostic {
+        const OVERLAY: &str = "give its `type` in an overlay `[[parameter]]` with this `canopen` address (`drivegen eds import` marks it)";
         let (message, help) = match problem {
             TypeProblem::Missing => (
                 format!("object {} has no DataType", self.address()),
-                "add `DataType=0x...` to the EDS, or give `type` in an overlay `[[parameter]]` with this `canopen` address",
+                format!("add `DataType=0x...` to the EDS, or {OVERLAY}"),
             ),
             TypeProblem::Unsupported(code) => (
-                format!("object {} has DataType {code:#06X}, which CiA 301 reserves or does not define", self.address()),
-                "use a code of 0x0001..=0x001B, or give `type` in an overlay `[[parameter]]` with this `canopen` address",
+                format!(
+                    "object {} has DataType {code:#06X}, which CiA 301 reserves or does not define (vendor-specific?)",
+                    self.address()
+                ),
+                OVERLAY.to_owned(),
             ),
         };
-        Diagnostic::error(RULE_TYPE, self.variable.span.clone(), message).help(help)
+        Diagnostic::error(RULE_TYPE, self.variable.span.clone(), message)
+            .warning()
+            .label("read as an octet string (DOMAIN)")
+            .help(help)
     }
 
-    /// `0x1018 sub 1`.
+    /// Its type; when the EDS gives none usable, an octet string of unknown length, with a
+    /// warning (the overlay may give the real `type`).
+    pub fn usable_type(&self, diagnostics: &mut Vec<Diagnostic>) -> DataType {
+        match self.data_type {
+            Ok(ty) => ty,
+            Err(problem) => {
+                push_once_per_range(self, diagnostics, self.type_problem(problem));
+                DataType::Octets(UNSIZED_CAPACITY)
+            }
+        }
+    }
+
+    /// `0x1018 sub 1`, or `0x2300 subs 1..=24` for the shared description of a compact array.
     pub fn address(&self) -> String {
-        format!("{:#06X} sub {}", self.index, self.variable.subindex)
+        match self.variable.compact {
+            Some(count) => format!("{:#06X} subs 1..={count}", self.index),
+            None => format!("{:#06X} sub {}", self.index, self.variable.subindex),
+        }
     }
 
     /// The parameter this entry of the EDS `cited` describes, with type `ty`.
@@ -296,30 +319,8 @@ impl EdsEntry {
     ) -> ir::Parameter {
         let v = &self.variable;
         let (access, constant, pdo) = self.access(diagnostics);
-        let value = |t: &Option<Text>, what: &str, d: &mut Vec<Diagnostic>| {
-            let t = t.as_ref()?;
-            match parse_value(&t.value, ty) {
-                Ok(value) => value.map(|x| (x, t.span(v.span.file))),
-                Err(why) => {
-                    d.push(
-                        Diagnostic::error(
-                            RULE_VALUE,
-                            t.span(v.span.file),
-                            format!("{what}: {why}"),
-                        )
-                        .warning()
-                        .label("ignored"),
-                    );
-                    None
-                }
-            }
-        };
-        let default = value(&v.default, "DefaultValue", diagnostics);
-        let parameter_value = value(&v.parameter_value, "ParameterValue", diagnostics);
-        let low = constant_limit(value(&v.low, "LowLimit", diagnostics), diagnostics);
-        let high = constant_limit(value(&v.high, "HighLimit", diagnostics), diagnostics);
-        let range = limits(ty, low.clone(), high.clone());
-        let (default, default_plus_node_id, default_span) = match default.or(parameter_value) {
+        let values = self.values(ty, diagnostics);
+        let (default, default_plus_node_id, default_span) = match values.default {
             Some((EdsValue::Number(n), span)) => (Some(n), false, Some(span)),
             Some((EdsValue::NodeIdPlus(n), span)) => (Some(Number::Int(n)), true, Some(span)),
             None => (None, false, None),
@@ -332,7 +333,7 @@ impl EdsEntry {
             scale: None,
             default,
             default_plus_node_id,
-            range,
+            range: values.range,
             allowed: Vec::new(),
             enumeration: None,
             flags: None,
@@ -359,7 +360,7 @@ impl EdsEntry {
                 name: v.span.clone(),
                 data_type: v.span.clone(),
                 default: default_span,
-                range: low.or(high).map(|(_, s)| s),
+                range: values.range_span,
                 ..Default::default()
             },
         }
@@ -384,7 +385,9 @@ impl EdsEntry {
                 } else {
                     format!("unknown AccessType `{written}`; read as `ro`")
                 };
-                diagnostics.push(
+                push_once_per_range(
+                    self,
+                    diagnostics,
                     Diagnostic::error(RULE_VALUE, span, message)
                         .warning()
                         .help("CiA 306 access types: ro, wo, rw, rwr, rww, const"),
@@ -402,6 +405,30 @@ impl EdsEntry {
     }
 }
 
+/// Pushes `d`, a diagnostic about `entry`, unless `entry` is a sub-index of a compact array and
+/// the same diagnostic was reported already: the sub-indices of a compact array share one
+/// description, whose problems are reported once, naming the range.
+pub(super) fn push_once_per_range(
+    entry: &EdsEntry,
+    diagnostics: &mut Vec<Diagnostic>,
+    mut d: Diagnostic,
+) {
+    let v = &entry.variable;
+    let own_value = v.parameter_value.as_ref().filter(|_| v.own_value);
+    let own_span = own_value.map(|t| t.span(v.span.file));
+    if v.compact.is_none() || d.span == own_span {
+        diagnostics.push(d);
+        return;
+    }
+    let range = entry.address();
+    if !d.message.contains(&range) {
+        d.message = format!("{} (object {range}, a compact array)", d.message);
+    }
+    if !diagnostics.contains(&d) {
+        diagnostics.push(d);
+    }
+}
+
 /// The strings a parameter takes from its entry.
 struct Names {
     name: String,
@@ -416,49 +443,6 @@ fn canonical_access(written: &str) -> &'static str {
         .into_iter()
         .find(|a| written.eq_ignore_ascii_case(a))
         .unwrap_or("")
-}
-
-/// Limits are constants: a `$NODEID` limit is dropped with a warning.
-fn constant_limit(
-    limit: Option<(EdsValue, Span)>,
-    diagnostics: &mut Vec<Diagnostic>,
-) -> Option<(Number, Span)> {
-    match limit? {
-        (EdsValue::Number(n), span) => Some((n, span)),
-        (EdsValue::NodeIdPlus(_), span) => {
-            diagnostics.push(
-                Diagnostic::error(RULE_VALUE, span, "a limit relative to `$NODEID` is ignored")
-                    .warning(),
-            );
-            None
-        }
-    }
-}
-
-/// A range from one or both limits; a missing side is the type's bound.
-fn limits(
-    ty: DataType,
-    low: Option<(Number, Span)>,
-    high: Option<(Number, Span)>,
-) -> Option<ir::Range> {
-    if low.is_none() && high.is_none() {
-        return None;
-    }
-    let (min, max) = match ty.integer_bounds() {
-        Some((min, max)) => (
-            Number::Int(i64::try_from(min).unwrap_or(i64::MIN)),
-            Number::Int(i64::try_from(max).unwrap_or(i64::MAX)),
-        ),
-        None if ty == DataType::F32 => (
-            Number::Float(f32::MIN.into()),
-            Number::Float(f32::MAX.into()),
-        ),
-        None => (Number::Float(f64::MIN), Number::Float(f64::MAX)),
-    };
-    Some(ir::Range {
-        min: low.map_or(min, |(n, _)| n),
-        max: high.map_or(max, |(n, _)| n),
-    })
 }
 
 #[cfg(test)]

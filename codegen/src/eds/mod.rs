@@ -6,7 +6,7 @@
 //!   paths); a TOML description with a top-level `eds = "vendor.eds"` key is an *overlay* that adds
 //!   names, enums, units... to the EDS's objects (see `docs/description-format.md`).
 //! * [`export`] writes the EDS of a description's CANopen objects.
-//! * [`import_overlay`] writes a TOML overlay skeleton for an EDS.
+//! * [`import_overlay`] writes a TOML overlay skeleton for an EDS, and checks it.
 
 mod data_type;
 mod dictionary;
@@ -20,6 +20,7 @@ mod parse;
 mod pdo_objects;
 mod short_text;
 mod trim;
+mod values;
 mod word_hash;
 
 use std::path::Path;
@@ -32,7 +33,7 @@ pub use data_type::{from_code, to_code, Code};
 pub use dictionary::{DeviceInfo, Dictionary, Object, ObjectKind, Text, Variable};
 pub use encoding::{decode, Encoding};
 pub use export::export;
-pub use import::{import_overlay, ImportError};
+pub use import::{default_overlay_path, import_overlay, ImportError, Imported};
 pub use lower::{EdsEntry, EdsModel, TypeProblem, EDS_SOURCE_ID};
 pub use names::snake_name;
 pub use node_id::{parse_value, EdsValue};
@@ -164,7 +165,8 @@ pub fn empty_device(name: &str, model: &EdsModel) -> ir::Device {
     }
 }
 
-/// The parameters of `entries` of the EDS `cited`; entries without a usable type are errors.
+/// The parameters of `entries` of the EDS `cited`; entries without a usable type are octet
+/// strings, with a warning.
 pub fn typed_parameters(
     mut entries: Vec<EdsEntry>,
     cited: &Arc<ir::CitedDoc>,
@@ -173,10 +175,8 @@ pub fn typed_parameters(
     // Sized up front: parameters are large, and growing a vector of thousands moves megabytes.
     let mut parameters = Vec::with_capacity(entries.len());
     for e in &mut entries {
-        match e.data_type {
-            Ok(ty) => parameters.push(e.take_parameter(cited, ty, diagnostics)),
-            Err(problem) => diagnostics.push(e.type_problem(problem)),
-        }
+        let ty = e.usable_type(diagnostics);
+        parameters.push(e.take_parameter(cited, ty, diagnostics));
     }
     parameters
 }

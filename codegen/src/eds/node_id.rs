@@ -1,10 +1,16 @@
 //! Numeric EDS values: decimal, hex, negative hex, floats, and `$NODEID` terms kept symbolic.
 //!
 //! `$NODEID+0x180`, `0x180+$NODEID` and `$NodeID + 0x200` all mean "the node id plus 384"; the
-//! value stays a function of the node id (a COB-ID default differs on every node).
+//! value stays a function of the node id (a COB-ID default differs on every node). A REAL32 or
+//! REAL64 value written in hex is its IEEE-754 bit pattern (`0x41200000` is 10.0).
 
 use super::trim::trim;
 use crate::ir::{DataType, Number};
+
+/// The lowest node ID a `$NODEID` term stands for (CiA 301: 1..=127).
+pub const FIRST_NODE_ID: u8 = 1;
+/// The highest node ID a `$NODEID` term stands for.
+pub const LAST_NODE_ID: u8 = 127;
 
 /// A value of `DefaultValue`, `LowLimit`, `HighLimit` or `ParameterValue`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -20,21 +26,84 @@ pub enum EdsValue {
 pub fn parse_value(text: &str, ty: DataType) -> Result<Option<EdsValue>, String> {
     match ty {
         DataType::String(_) | DataType::Octets(_) => Ok(None),
-        DataType::F32 | DataType::F64 => parse_float(text).map(|f| Some(EdsValue::Number(f))),
+        DataType::F32 | DataType::F64 => parse_float(text, ty).map(|f| Some(EdsValue::Number(f))),
         DataType::Bool => parse_bool(text).map(|b| Some(EdsValue::Number(Number::Int(b)))),
         DataType::Unsigned(_) | DataType::Signed(_) => parse_integer(text, ty).map(Some),
     }
 }
 
-fn parse_float(text: &str) -> Result<Number, String> {
+fn parse_float(text: &str, ty: DataType) -> Result<Number, String> {
     let t = trim(text);
-    if let Ok(f) = t.parse::<f64>() {
-        if f.is_finite() {
-            return Ok(Number::Float(f));
-        }
+    if let Some(digits) = float_bit_digits(t) {
+        return float_from_bits(t, digits, ty);
     }
-    let (int, _) = parse_int(t).ok_or_else(|| format!("`{t}` is not a number"))?;
-    Ok(Number::Float(int as f64))
+    if is_signed_hex(t) {
+        return Err(format!(
+            "`{t}`: a float in hex is its IEEE-754 bit pattern, which takes no sign"
+        ));
+    }
+    match t.parse::<f64>() {
+        Ok(f) if f.is_finite() => fit_f32(f, ty)
+            .map(Number::Float)
+            .ok_or_else(|| format!("`{t}` does not fit f32")),
+        _ => Err(format!("`{t}` is not a number")),
+    }
+}
+
+/// A REAL32 value written a hair beyond the largest `f32` (`3.4028235E+38`, how `FLT_MAX` is
+/// printed) is that `f32`, the same value on the wire; one beyond any `f32` does not fit.
+fn fit_f32(f: f64, ty: DataType) -> Option<f64> {
+    if ty != DataType::F32 || f.abs() <= f64::from(f32::MAX) {
+        return Some(f);
+    }
+    // Rounding to the nearest f32 is the point.
+    let nearest = f as f32;
+    nearest.is_finite().then(|| f64::from(nearest))
+}
+
+/// Whether `text`, a value of type `ty`, is a float written as its IEEE-754 bit pattern.
+pub fn is_float_bit_pattern(text: &str, ty: DataType) -> bool {
+    matches!(ty, DataType::F32 | DataType::F64) && float_bit_digits(trim(text)).is_some()
+}
+
+/// The hex digits of `0x...` (no sign).
+fn float_bit_digits(t: &str) -> Option<&str> {
+    t.strip_prefix("0x").or_else(|| t.strip_prefix("0X"))
+}
+
+fn is_signed_hex(t: &str) -> bool {
+    t.strip_prefix(['-', '+'])
+        .and_then(float_bit_digits)
+        .is_some()
+}
+
+/// The float whose REAL32 / REAL64 bits are the hex `digits` (of the value `t`).
+fn float_from_bits(t: &str, digits: &str, ty: DataType) -> Result<Number, String> {
+    let width = if ty == DataType::F32 { 8 } else { 16 };
+    let name = if ty == DataType::F32 {
+        "REAL32"
+    } else {
+        "REAL64"
+    };
+    if digits.is_empty() || digits.len() > width {
+        return Err(format!(
+            "`{t}` is not a {name} bit pattern (1 to {width} hex digits)"
+        ));
+    }
+    let bits = digits_value(digits, 16)
+        .and_then(|b| u64::try_from(b).ok())
+        .ok_or_else(|| format!("`{t}` is not a {name} bit pattern (1 to {width} hex digits)"))?;
+    let value = match u32::try_from(bits) {
+        Ok(bits) if ty == DataType::F32 => f64::from(f32::from_bits(bits)),
+        _ => f64::from_bits(bits),
+    };
+    if value.is_finite() {
+        Ok(Number::Float(value))
+    } else {
+        Err(format!(
+            "`{t}` is the {name} bit pattern of {value}, not a number"
+        ))
+    }
 }
 
 fn parse_bool(text: &str) -> Result<i64, String> {
@@ -72,8 +141,18 @@ fn parse_integer(text: &str, ty: DataType) -> Result<EdsValue, String> {
         return Err(format!("`{compact}` names `$NODEID` more than once"));
     }
     let (min, max) = ty.integer_bounds().unwrap_or((i128::MIN, i128::MAX));
-    let lowest = if node_terms == 1 { sum + 1 } else { sum };
-    if lowest < min || sum > max {
+    if node_terms == 1 {
+        let (lowest, highest) = (
+            sum + i128::from(FIRST_NODE_ID),
+            sum + i128::from(LAST_NODE_ID),
+        );
+        if lowest < min || highest > max {
+            return Err(format!(
+                "$NODEID+{sum} does not fit {} for every node ID {FIRST_NODE_ID}..={LAST_NODE_ID} ({lowest}..={highest})",
+                ty.name()
+            ));
+        }
+    } else if sum < min || sum > max {
         return Err(format!("{sum} does not fit {}", ty.name()));
     }
     let value = i64::try_from(sum).map_err(|_| format!("{sum} does not fit {}", ty.name()))?;
@@ -189,11 +268,45 @@ mod tests {
             EdsValue::Number(Number::Float(1e20))
         );
         let float = DataType::F64;
-        assert_eq!(int("0x+1F", float), EdsValue::Number(Number::Float(31.0)));
-        assert_eq!(int("-0x1F", float), EdsValue::Number(Number::Float(-31.0)));
+        assert!(parse_value("0x+1F", float).is_err());
+        assert!(parse_value("-0x1F", float).is_err());
         assert!(parse_value("0x+", U32).is_err());
         assert!(parse_value("0x-1", U32).is_err());
         assert!(parse_value("1_000", U32).is_err());
+    }
+
+    #[test]
+    fn hex_floats_are_bit_patterns() {
+        let f32_ = DataType::F32;
+        assert_eq!(
+            int("0x41200000", f32_),
+            EdsValue::Number(Number::Float(10.0))
+        );
+        assert_eq!(
+            int("0x40490FDB", f32_),
+            EdsValue::Number(Number::Float(f64::from(std::f32::consts::PI)))
+        );
+        assert_eq!(
+            int("0x400921FB54442D18", DataType::F64),
+            EdsValue::Number(Number::Float(std::f64::consts::PI))
+        );
+        assert_eq!(int("0x0", f32_), EdsValue::Number(Number::Float(0.0)));
+        assert!(parse_value("0x7FC00000", f32_).is_err(), "NaN");
+        assert!(parse_value("0x7F800000", f32_).is_err(), "infinity");
+        assert!(parse_value("0x141200000", f32_).is_err(), "nine digits");
+        assert!(parse_value("0x", f32_).is_err());
+        assert_eq!(
+            int("-3.4028235E+38", f32_),
+            EdsValue::Number(Number::Float(f64::from(f32::MIN)))
+        );
+        assert_eq!(
+            int("3.4028235E+38", DataType::F64),
+            EdsValue::Number(Number::Float(3.4028235e38))
+        );
+        assert!(parse_value("3.5e38", f32_).is_err());
+        assert!(is_float_bit_pattern(" 0X3F800000 ", f32_));
+        assert!(!is_float_bit_pattern("0x3F800000", DataType::Unsigned(4)));
+        assert!(!is_float_bit_pattern("1.5", f32_));
     }
 
     #[test]

@@ -44,12 +44,31 @@ pub fn read_files(
     } else {
         path.to_path_buf()
     };
+    read_from(&root, None, files, diagnostics)
+}
+
+/// [`read_files`] of a description file whose text is `text` (not read from disk: an overlay
+/// checked before it is written); the files it includes are read from disk.
+pub fn read_files_with_text(
+    path: &Path,
+    text: String,
+    files: &mut Files,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> Vec<LoadedFile> {
+    read_from(path, Some(text), files, diagnostics)
+}
+
+fn read_from(
+    root: &Path,
+    text: Option<String>,
+    files: &mut Files,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> Vec<LoadedFile> {
     let mut loaded = Vec::new();
     let mut chain = Vec::new();
     read_recursive(
-        &root,
-        None,
-        None,
+        root,
+        (None, None, text),
         files,
         diagnostics,
         &mut loaded,
@@ -58,10 +77,11 @@ pub fn read_files(
     loaded
 }
 
+/// Reads `path` (whose text is given when it is not to be read from disk), brought in by the
+/// include at `included_at` with its `only` filter, and what it includes.
 fn read_recursive(
     path: &Path,
-    only: Option<raw::RawOnly>,
-    included_at: Option<Span>,
+    (only, included_at, given): (Option<raw::RawOnly>, Option<Span>, Option<String>),
     files: &mut Files,
     diagnostics: &mut Vec<Diagnostic>,
     loaded: &mut Vec<LoadedFile>,
@@ -76,7 +96,7 @@ fn read_recursive(
         diagnostics.push(located(format!("`{}` includes itself", path.display())));
         return;
     }
-    let text = match std::fs::read_to_string(path) {
+    let text = match given.map_or_else(|| std::fs::read_to_string(path), Ok) {
         Ok(text) => text,
         Err(e) => {
             diagnostics.push(located(format!("cannot read `{}`: {e}", path.display())));
@@ -107,8 +127,7 @@ fn read_recursive(
         let span = Span::new(id, range);
         read_recursive(
             &base.join(target),
-            only,
-            Some(span),
+            (only, Some(span), None),
             files,
             diagnostics,
             loaded,

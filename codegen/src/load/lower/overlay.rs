@@ -90,17 +90,12 @@ impl<'m> Overlay<'m> {
             .zip(&self.matched)
             .filter(|(_, m)| !**m)
         {
-            match entry.data_type {
-                Ok(ty) => {
-                    let mut p = entry.parameter(&self.model.cited, ty, diagnostics);
-                    if taken.contains(&p.name) {
-                        p.name =
-                            format!("{}_{:04x}_{}", p.name, entry.index, entry.variable.subindex);
-                    }
-                    device.parameters.push(p);
-                }
-                Err(problem) => diagnostics.push(entry.type_problem(problem)),
+            let ty = entry.usable_type(diagnostics);
+            let mut p = entry.parameter(&self.model.cited, ty, diagnostics);
+            if taken.contains(&p.name) {
+                p.name = format!("{}_{:04x}_{}", p.name, entry.index, entry.variable.subindex);
             }
+            device.parameters.push(p);
         }
         for p in &mut device.parameters {
             if let Some(name) = p.record.as_deref().and_then(|r| renamed.get(r)) {
@@ -159,12 +154,8 @@ impl Lowering<'_> {
         }
         let model = self.overlay.as_ref().map(|o| o.model);
         let entry = matched.zip(model).map(|(i, m)| &m.entries[i]);
-        match entry.map(|e| (e, e.data_type)) {
-            Some((_, Ok(ty))) => Some(with_length(ty, raw)),
-            Some((entry, Err(problem))) => {
-                self.diagnostics.push(entry.type_problem(problem));
-                None
-            }
+        match entry {
+            Some(entry) => Some(with_length(entry.usable_type(self.diagnostics), raw)),
             None => {
                 let span = self.span(&raw.name);
                 self.diagnostics.push(

@@ -1,0 +1,117 @@
+//! The EDS corpus end to end, as a user points `drivegen eds import` at a vendor file: every
+//! `tests/eds/*.eds` / `*.dcf` imports with the findings of the EDS alone, its overlay skeleton
+//! checks as written (but for the one file meant to fail), the crates generated
+//! from all of them compile (one crate build), and the EDS exported from each loads in python
+//! canopen 2.4.1 with the objects of the IR (tests/peers/eds_import_check.py). The peer is
+//! required: run tests/peers/setup.sh or set DRIVEGEN_PYTHON.
+
+mod support;
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use drivegen::Severity;
+use peer_support::python;
+use support::crate_build::assert_descriptions_compile;
+use support::{workspace_root, Scratch};
+
+/// Node id the relative defaults are resolved with.
+const NODE_ID: u8 = 5;
+
+/// Every EDS / DCF of the corpus.
+fn corpus() -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir("tests/eds")
+        .expect("tests/eds exists")
+        .map(|e| e.unwrap().path())
+        .filter(|p| drivegen::eds::is_eds_path(p))
+        .collect();
+    files.sort();
+    files
+}
+
+/// The findings of a check, without their file paths (the import checks a copy of the EDS).
+fn findings(checked: &drivegen::Checked) -> Vec<(Severity, &'static str, String)> {
+    let all = checked.diagnostics.iter();
+    all.map(|d| (d.severity, d.rule, d.message.clone()))
+        .collect()
+}
+
+/// Copies `eds` into `scratch`, imports it there and saves the overlay beside it. The overlay's
+/// path when it checks (`None` when the EDS alone does not check either, with the same errors),
+/// or why the import is wrong.
+fn import(eds: &Path, scratch: &Path) -> Result<Option<PathBuf>, String> {
+    let copy = scratch.join(eds.file_name().unwrap());
+    std::fs::copy(eds, &copy).unwrap();
+    let overlay = drivegen::eds::default_overlay_path(&copy);
+    let imported = drivegen::eds::import_overlay(&copy, &overlay).map_err(|e| e.to_string())?;
+    std::fs::write(&overlay, &imported.overlay).unwrap();
+    let alone = drivegen::check(eds);
+    // The import reports exactly what checking the EDS alone reports (each once).
+    match (
+        imported.checks(),
+        findings(&imported.checked) == findings(&alone),
+    ) {
+        (true, true) => Ok(Some(overlay)),
+        (false, true) => Ok(None),
+        _ => Err(format!(
+            "the skeleton's check:\n{}\ndiffers from the EDS's:\n{}",
+            imported.checked.render(),
+            alone.render()
+        )),
+    }
+}
+
+/// Exports the device of `overlay` and has python canopen compare it with the IR.
+fn python_loads_the_export(overlay: &Path) -> Result<(), String> {
+    let device = support::device(overlay);
+    let eds = overlay.with_extension("exported.eds");
+    let ir = overlay.with_extension("ir.json");
+    std::fs::write(&eds, drivegen::eds::export(&device)).unwrap();
+    std::fs::write(&ir, serde_json::to_string(&device).unwrap()).unwrap();
+    let script = workspace_root().join("tests/peers/eds_import_check.py");
+    let output = Command::new(python())
+        .arg(&script)
+        .arg(&eds)
+        .arg(&ir)
+        .arg(NODE_ID.to_string())
+        .output()
+        .unwrap_or_else(|e| {
+            panic!(
+                "cannot start {}: {e}; run tests/peers/setup.sh",
+                python().display()
+            )
+        });
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    match output.status.success() && stdout.contains("objects compared") {
+        true => Ok(()),
+        false => Err(format!(
+            "python canopen: {stdout}\n{}",
+            String::from_utf8_lossy(&output.stderr)
+        )),
+    }
+}
+
+#[test]
+fn every_corpus_file_imports_checks_compiles_and_exports_for_python_canopen() {
+    let scratch = Scratch::new("eds-corpus-round-trip");
+    let mut failures = Vec::new();
+    let mut overlays = Vec::new();
+    let mut refused = 0;
+    let files = corpus();
+    assert!(files.len() >= 40, "the corpus holds {} files", files.len());
+    for eds in &files {
+        let result = import(eds, &scratch.0).and_then(|overlay| {
+            overlay.as_deref().map_or(Ok(()), python_loads_the_export)?;
+            Ok(overlay)
+        });
+        match result {
+            Ok(Some(overlay)) => overlays.push(overlay),
+            Ok(None) => refused += 1,
+            Err(why) => failures.push(format!("--- {}: {why}", eds.display())),
+        }
+    }
+    // Only default_outside_limits.eds is meant not to check.
+    assert_eq!(refused, 1, "corpus files that do not check");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    assert_descriptions_compile("eds_corpus_round_trip", &overlays);
+}
