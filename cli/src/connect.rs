@@ -150,16 +150,7 @@ impl Session {
             return Ok(Self::modbus(Box::new(bus), args.unit, device, target));
         }
         if let Some(path) = &args.serial {
-            let config = SerialConfig {
-                parity: parity(&args.parity)?,
-                stop_bits: if args.stop_bits == 2 {
-                    StopBits::Two
-                } else {
-                    StopBits::One
-                },
-                timeout,
-                ..SerialConfig::new(args.baud.unwrap_or(19_200))
-            };
+            let config = serial_config(args.baud, &args.parity, args.stop_bits, timeout)?;
             let target = format!("Modbus RTU {path} unit {}", args.unit);
             let bus =
                 SerialRtuClient::open(path, &config).map_err(|e| connect_error(&target, e))?;
@@ -252,23 +243,7 @@ impl Session {
                 })
                 .collect(),
             Link::Modbus { bus, unit, limits } => {
-                let wire = parameters
-                    .iter()
-                    .map(|p| modbus_address(p, true).map(|a| a.wire))
-                    .collect::<Result<Vec<_>, _>>()?;
-                let values = modbus_batch::read_wire(&mut **bus, *unit, *limits, &wire).map_err(
-                    |failure| bus_error(target, parameters[failure.value], failure.cause),
-                )?;
-                parameters
-                    .iter()
-                    .zip(values)
-                    .map(|(parameter, wire)| {
-                        registers::from_wire(parameter.data_type, wire).map_err(|_| {
-                            let why = "the registers hold a value outside the parameter's type";
-                            bus_error(target, parameter, BusError::Frame(why))
-                        })
-                    })
-                    .collect()
+                read_modbus(&mut **bus, *unit, *limits, target, parameters)
             }
         }
     }
@@ -304,6 +279,52 @@ impl Session {
         };
         result.map_err(|e| bus_error(&self.target, parameter, e))
     }
+}
+
+/// Reads the raw bytes of each parameter from Modbus unit `unit` in the fewest requests `limits`
+/// allow; `target` names the bus and unit in errors.
+pub fn read_modbus(
+    bus: &mut dyn RegisterBus,
+    unit: UnitId,
+    limits: ModbusLimits,
+    target: &str,
+    parameters: &[&Parameter],
+) -> Result<Vec<Vec<u8>>, CliError> {
+    let wire = parameters
+        .iter()
+        .map(|p| modbus_address(p, true).map(|a| a.wire))
+        .collect::<Result<Vec<_>, _>>()?;
+    let values = modbus_batch::read_wire(bus, unit, limits, &wire)
+        .map_err(|failure| bus_error(target, parameters[failure.value], failure.cause))?;
+    parameters
+        .iter()
+        .zip(values)
+        .map(|(parameter, wire)| {
+            registers::from_wire(parameter.data_type, wire).map_err(|_| {
+                let why = "the registers hold a value outside the parameter's type";
+                bus_error(target, parameter, BusError::Frame(why))
+            })
+        })
+        .collect()
+}
+
+/// The serial line settings of `--baud` (default 19200), `--parity` and `--stop-bits`.
+pub fn serial_config(
+    baud: Option<u32>,
+    parity_name: &str,
+    stop_bits: u8,
+    timeout: Duration,
+) -> Result<SerialConfig, CliError> {
+    Ok(SerialConfig {
+        parity: parity(parity_name)?,
+        stop_bits: if stop_bits == 2 {
+            StopBits::Two
+        } else {
+            StopBits::One
+        },
+        timeout,
+        ..SerialConfig::new(baud.unwrap_or(19_200))
+    })
 }
 
 /// Opens a CAN backend; a relay process is returned for the session to stop.
@@ -367,7 +388,8 @@ fn no_access(parameter: &Parameter, protocol: &str, read: bool) -> CliError {
     ))
 }
 
-fn modbus_address(parameter: &Parameter, read: bool) -> Result<&ir::ModbusAddress, CliError> {
+/// The parameter's first Modbus address that allows the access.
+pub fn modbus_address(parameter: &Parameter, read: bool) -> Result<&ir::ModbusAddress, CliError> {
     parameter
         .modbus
         .iter()

@@ -22,8 +22,7 @@ pub fn verify(session: &mut Session, device: &Device) -> Result<(), CliError> {
     };
     let bytes = session.read_many(&[parameter])?.pop().unwrap_or_default();
     let shown = codec::show(device, parameter, &bytes);
-    let found = shown.raw.as_i64();
-    if found.is_some_and(|v| identity.values.contains(&v)) {
+    if shown.raw.as_i64().is_some_and(|v| identity.covers_value(v)) {
         return Ok(());
     }
     Err(CliError::IdentityMismatch {
