@@ -218,6 +218,16 @@ impl Session {
         }
     }
 
+    /// Whether the bus reaches `parameter` for reading (it has a readable address on this
+    /// protocol).
+    pub fn can_read(&self, parameter: &Parameter) -> bool {
+        match self.link {
+            Link::Modbus { .. } => parameter.readable_over_modbus(),
+            Link::CanOpen { .. } => parameter.readable_over_canopen(),
+            Link::Rs232 { .. } => parameter.readable_over_rs232(),
+        }
+    }
+
     /// Where the drive is, for messages.
     pub fn target(&self) -> &str {
         &self.target
@@ -389,7 +399,7 @@ fn no_access(parameter: &Parameter, protocol: &str, read: bool) -> CliError {
 }
 
 /// The parameter's first Modbus address that allows the access.
-pub fn modbus_address(parameter: &Parameter, read: bool) -> Result<&ir::ModbusAddress, CliError> {
+fn modbus_address(parameter: &Parameter, read: bool) -> Result<&ir::ModbusAddress, CliError> {
     parameter
         .modbus
         .iter()

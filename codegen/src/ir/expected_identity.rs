@@ -41,11 +41,6 @@ impl ExpectedIdentity {
                 .revisions
                 .is_none_or(|(min, max)| revision.is_some_and(|r| (min..=max).contains(&r)))
     }
-
-    /// Whether the identity parameter's raw value is one the description covers.
-    pub fn covers_value(&self, raw: i64) -> bool {
-        self.values.contains(&raw)
-    }
 }
 
 impl std::fmt::Display for ExpectedIdentity {
@@ -100,16 +95,5 @@ mod tests {
             ..swd(None, None)
         };
         assert!(!unknown_vendor.covers_node(Some(0), None, None));
-    }
-
-    #[test]
-    fn only_listed_values_of_the_identity_parameter_are_covered() {
-        let lenze = ExpectedIdentity {
-            parameter: Some("parameter_configuration".into()),
-            values: vec![400, 507],
-            ..swd(None, None)
-        };
-        assert!(lenze.covers_value(507));
-        assert!(!lenze.covers_value(401));
     }
 }

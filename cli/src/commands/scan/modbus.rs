@@ -13,19 +13,18 @@ use drivebus::modbus::retry::RetryPolicy;
 use drivebus::modbus::transport::{ModbusTcpClient, SerialConfig, SerialRtuClient, TcpConfig};
 use drivebus::modbus::{ModbusLimits, RegisterBus, UnitId};
 use drivebus::BusError;
-use drivegen::ir::{Device, ExpectedIdentity, Parameter};
+use drivegen::ir::{Device, IdentityCheck};
 
 use super::{names, verdict, Answer};
 use crate::codec;
-use crate::connect::{modbus_address, read_modbus};
+use crate::connect::read_modbus;
 use crate::error::CliError;
 use crate::modbus_batch;
 
 /// One candidate description's identity register.
 pub struct Probe<'a> {
     device: &'a Device,
-    identity: &'a ExpectedIdentity,
-    parameter: &'a Parameter,
+    check: IdentityCheck<'a>,
     limits: ModbusLimits,
 }
 
@@ -40,20 +39,21 @@ enum Reading {
     Refused(String),
 }
 
-/// The probes of every description whose `[identity]` parameter has a readable Modbus address.
+/// The probes of every description's identity parameters that have a readable Modbus address.
 pub fn probes(devices: &[Device]) -> Result<Vec<Probe<'_>>, CliError> {
     let probes: Vec<Probe> = devices
         .iter()
-        .filter_map(|device| {
-            let identity = device.identity.as_ref()?;
-            let parameter = device.parameter(identity.parameter.as_deref()?)?;
-            modbus_address(parameter, true).ok()?;
-            Some(Probe {
-                device,
-                identity,
-                parameter,
-                limits: modbus_batch::limits(device),
-            })
+        .flat_map(|device| {
+            let limits = modbus_batch::limits(device);
+            device
+                .identity_checks()
+                .into_iter()
+                .filter(|check| check.parameter.readable_over_modbus())
+                .map(move |check| Probe {
+                    device,
+                    check,
+                    limits,
+                })
         })
         .collect();
     if probes.is_empty() {
@@ -139,12 +139,14 @@ fn probe_unit(
     let target = format!("{target} unit {unit}");
     let mut readings = Vec::new();
     for probe in probes {
-        let parameters = [probe.parameter];
+        let parameters = [probe.check.parameter];
         let reading = match read_modbus(bus, UnitId(unit), probe.limits, &target, &parameters) {
             Ok(values) => {
                 let bytes = values.into_iter().next().unwrap_or_default();
-                let raw = codec::show(probe.device, probe.parameter, &bytes).raw;
-                let covered = raw.as_i64().is_some_and(|v| probe.identity.covers_value(v));
+                let raw = codec::show(probe.device, probe.check.parameter, &bytes).raw;
+                let covered = raw
+                    .as_i64()
+                    .is_some_and(|v| probe.check.covered.contains(v.into()));
                 Reading::Value { raw, covered }
             }
             Err(CliError::Bus {
@@ -187,7 +189,10 @@ fn answer(unit: u8, probes: &[Probe], readings: &[Reading]) -> Answer {
 
 /// `Lafert Smartris fw_release = 242`, or `... fw_release: <why not>`.
 fn shown(probe: &Probe, reading: &Reading) -> String {
-    let name = format!("{} {}", probe.device.device.name, probe.parameter.name);
+    let name = format!(
+        "{} {}",
+        probe.device.device.name, probe.check.parameter.name
+    );
     match reading {
         Reading::Value { raw, .. } => format!("{name} = {raw}"),
         Reading::Refused(why) => format!("{name}: {why}"),
@@ -197,8 +202,8 @@ fn shown(probe: &Probe, reading: &Reading) -> String {
 fn json(probe: &Probe, reading: &Reading) -> serde_json::Value {
     let mut object = serde_json::json!({
         "description": probe.device.device.name,
-        "parameter": probe.parameter.name,
-        "expected": probe.identity.values,
+        "parameter": probe.check.parameter.name,
+        "expected": probe.check.covered,
     });
     match reading {
         Reading::Value { raw, covered } => {
