@@ -1,7 +1,7 @@
 //! The Modbus scan: every unit id of a range is asked for the identity register of each
 //! candidate description (the `[identity]` parameter, e.g. the Lafert firmware release, the smd
-//! configuration register #50). A unit that stays silent at the first probe is absent and costs
-//! one timeout; a unit that answers, even with an exception, is listed with what each probe
+//! configuration register #50). A unit that stays silent at the first probe (or for which a
+//! gateway answers exception 0x0A / 0x0B) is absent and costs at most one timeout; a unit that answers, even with an exception, is listed with what each probe
 //! found. Over TCP several connections probe units at once; a serial line is one bus, probed
 //! unit after unit.
 
@@ -11,7 +11,7 @@ use std::time::Duration;
 
 use drivebus::modbus::retry::RetryPolicy;
 use drivebus::modbus::transport::{ModbusTcpClient, SerialConfig, SerialRtuClient, TcpConfig};
-use drivebus::modbus::{ModbusLimits, RegisterBus, UnitId};
+use drivebus::modbus::{ExceptionCode, ModbusLimits, RegisterBus, UnitId};
 use drivebus::BusError;
 use drivegen::ir::{Device, IdentityCheck};
 
@@ -149,16 +149,30 @@ fn probe_unit(
                     .is_some_and(|v| probe.check.covered.contains(v.into()));
                 Reading::Value { raw, covered }
             }
-            Err(CliError::Bus {
-                cause: BusError::Timeout,
-                ..
-            }) if readings.is_empty() => return None,
+            Err(CliError::Bus { cause, .. }) if readings.is_empty() && absent(&cause) => {
+                return None
+            }
             Err(CliError::Bus { cause, .. }) => Reading::Refused(cause.to_string()),
             Err(other) => Reading::Refused(other.to_string()),
         };
         readings.push(reading);
     }
     Some((unit, answer(unit, probes, &readings)))
+}
+
+/// Whether `cause` says nobody is at the unit: silence, or a gateway's exception 0x0A (no path
+/// to the target) or 0x0B (the target did not respond), as Modbus TCP gateways answer for an
+/// empty unit id.
+fn absent(cause: &BusError) -> bool {
+    matches!(
+        cause,
+        BusError::Timeout
+            | BusError::ModbusException {
+                code: ExceptionCode::GatewayPathUnavailable
+                    | ExceptionCode::GatewayTargetFailedToRespond,
+                ..
+            }
+    )
 }
 
 fn answer(unit: u8, probes: &[Probe], readings: &[Reading]) -> Answer {
@@ -213,4 +227,26 @@ fn json(probe: &Probe, reading: &Reading) -> serde_json::Value {
         Reading::Refused(why) => object["error"] = why.clone().into(),
     }
     object
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn silence_and_a_gateways_no_target_exceptions_mean_nobody_is_there() {
+        let gateway = |code| BusError::ModbusException {
+            function: 0x03,
+            code,
+        };
+        assert!(absent(&BusError::Timeout));
+        assert!(absent(&gateway(ExceptionCode::GatewayPathUnavailable)));
+        assert!(absent(&gateway(
+            ExceptionCode::GatewayTargetFailedToRespond
+        )));
+        assert!(
+            !absent(&gateway(ExceptionCode::IllegalDataAddress)),
+            "a drive refusing the address is there"
+        );
+    }
 }
