@@ -272,3 +272,37 @@ fn a_modbus_scan_needs_a_description_with_an_identity_register() {
         text(&output.stderr)
     );
 }
+
+#[test]
+fn sim_refuses_two_drives_at_one_id_and_presets_for_nobody() {
+    let lafert = path("lafert-smartris");
+    let run = |args: &[&str]| {
+        let output = Command::new(BIN).arg("sim").args(args).output().unwrap();
+        assert!(!output.status.success(), "{args:?} must be refused");
+        text(&output.stderr)
+    };
+    let twice = run(&[&lafert, &path("lenze-smd"), "--modbus-tcp", "127.0.0.1:0"]);
+    assert!(twice.contains("two drives at id 1"), "{twice}");
+    let nobody = run(&[
+        &lafert,
+        "--modbus-tcp",
+        "127.0.0.1:0",
+        "--unit",
+        "2",
+        "--set",
+        "9:fw_release=1",
+    ]);
+    assert!(nobody.contains("no drive at that id"), "{nobody}");
+    let pairs = run(&[
+        &lafert,
+        &lafert,
+        &lafert,
+        "--modbus-tcp",
+        "127.0.0.1:0",
+        "--unit",
+        "2",
+        "--unit",
+        "3",
+    ]);
+    assert!(pairs.contains("give one id per description"), "{pairs}");
+}

@@ -158,7 +158,9 @@ fn drives(args: &Args) -> Result<Vec<Drive>, CliError> {
     for (i, id) in ids.into_iter().enumerate() {
         let device = devices[i.min(devices.len() - 1)].clone();
         if drives.iter().any(|d: &Drive| d.id == id) {
-            return Err(CliError::Usage(format!("id {id} is given twice")));
+            return Err(CliError::Usage(format!(
+                "two drives at id {id}: give each description its own --unit / --node-id"
+            )));
         }
         let sim = Simulator::new(device.clone());
         drives.push(Drive { id, device, sim });
