@@ -149,16 +149,7 @@ impl Session {
             return Ok(Self::modbus(Box::new(bus), args.unit, device, target));
         }
         if let Some(path) = &args.serial {
-            let config = SerialConfig {
-                parity: parity(&args.parity)?,
-                stop_bits: if args.stop_bits == 2 {
-                    StopBits::Two
-                } else {
-                    StopBits::One
-                },
-                timeout,
-                ..SerialConfig::new(args.baud.unwrap_or(19_200))
-            };
+            let config = serial_config(args.baud, &args.parity, args.stop_bits, timeout)?;
             let target = format!("Modbus RTU {path} unit {}", args.unit);
             let bus =
                 SerialRtuClient::open(path, &config).map_err(|e| connect_error(&target, e))?;
@@ -226,6 +217,16 @@ impl Session {
         }
     }
 
+    /// Whether the bus reaches `parameter` for reading (it has a readable address on this
+    /// protocol).
+    pub fn can_read(&self, parameter: &Parameter) -> bool {
+        match self.link {
+            Link::Modbus { .. } => parameter.readable_over_modbus(),
+            Link::CanOpen { .. } => parameter.readable_over_canopen(),
+            Link::Rs232 { .. } => parameter.readable_over_rs232(),
+        }
+    }
+
     /// Where the drive is, for messages.
     pub fn target(&self) -> &str {
         &self.target
@@ -237,7 +238,7 @@ impl Session {
     pub fn read_many(&mut self, parameters: &[&Parameter]) -> Result<Vec<Vec<u8>>, CliError> {
         let read = match &mut self.link {
             Link::Modbus { bus, unit, limits } => {
-                interpret::read_raw(&mut ModbusLink::new(&mut **bus, *unit, *limits), parameters)
+                return read_modbus(&mut **bus, *unit, *limits, &self.target, parameters);
             }
             Link::CanOpen { sdo, node } => {
                 interpret::read_raw(&mut CanOpenLink::new(sdo, *node), parameters)
@@ -304,6 +305,38 @@ fn interpret_error(target: &str, error: InterpretError) -> CliError {
             CliError::Usage(error.to_string())
         }
     }
+}
+
+/// Reads the raw bytes of each parameter from `unit` through the run-time interpreter, with the
+/// fewest requests `limits` allow; a failure names the parameter and `target`.
+pub fn read_modbus(
+    bus: &mut dyn RegisterBus,
+    unit: UnitId,
+    limits: ModbusLimits,
+    target: &str,
+    parameters: &[&Parameter],
+) -> Result<Vec<Vec<u8>>, CliError> {
+    interpret::read_raw(&mut ModbusLink::new(bus, unit, limits), parameters)
+        .map_err(|e| interpret_error(target, e))
+}
+
+/// The serial line settings of `--baud` (default 19200), `--parity` and `--stop-bits`.
+pub fn serial_config(
+    baud: Option<u32>,
+    parity_name: &str,
+    stop_bits: u8,
+    timeout: Duration,
+) -> Result<SerialConfig, CliError> {
+    Ok(SerialConfig {
+        parity: parity(parity_name)?,
+        stop_bits: if stop_bits == 2 {
+            StopBits::Two
+        } else {
+            StopBits::One
+        },
+        timeout,
+        ..SerialConfig::new(baud.unwrap_or(19_200))
+    })
 }
 
 /// Opens a CAN backend; a relay process is returned for the session to stop.

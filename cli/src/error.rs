@@ -46,7 +46,7 @@ pub enum CliError {
         /// The identity parameter.
         parameter: String,
         /// The values the description covers.
-        expected: Vec<i64>,
+        expected: drivegen::ir::Covered,
         /// The raw value the drive reported.
         found: String,
     },
@@ -95,7 +95,7 @@ impl fmt::Display for CliError {
                 found,
             } => write!(
                 f,
-                "{parameter} reads {found}, the description covers {expected:?}: not written (--no-identity-check writes anyway)"
+                "{parameter} reads {found}, the description covers {expected}: not written (--no-identity-check writes anyway)"
             ),
             CliError::Breaking(count) => write!(
                 f,

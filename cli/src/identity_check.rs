@@ -1,5 +1,7 @@
-//! `drivegen write` checks the drive's identity first: the `[identity]` parameter must hold a
-//! value the description covers, or nothing is written (`--no-identity-check` skips this).
+//! `drivegen write` checks the drive's identity first: every `[identity]` parameter the bus
+//! reaches (the firmware / configuration parameter; over CANopen also the vendor-ID, product code
+//! and revision at 1018h) must hold a value the description covers, or nothing is written
+//! (`--no-identity-check` skips this).
 
 use drivegen::ir::Device;
 
@@ -7,28 +9,29 @@ use crate::codec;
 use crate::connect::Session;
 use crate::error::CliError;
 
-/// Reads the identity parameter and fails with [`CliError::IdentityMismatch`] when its value is
-/// not covered. A description without an identity parameter has nothing to check.
+/// Reads the identity parameters the session's bus reaches and fails with
+/// [`CliError::IdentityMismatch`] at the first value not covered. A description without
+/// `[identity]` has nothing to check.
 pub fn verify(session: &mut Session, device: &Device) -> Result<(), CliError> {
-    let Some(identity) = &device.identity else {
-        return Ok(());
-    };
-    let Some(parameter) = identity
-        .parameter
-        .as_deref()
-        .and_then(|name| device.parameter(name))
-    else {
-        return Ok(());
-    };
-    let bytes = session.read_many(&[parameter])?.pop().unwrap_or_default();
-    let shown = drivebus::interpret::show(device, parameter, &bytes);
-    let found = codec::raw_json(&shown.raw).as_i64();
-    if found.is_some_and(|v| identity.values.contains(&v)) {
-        return Ok(());
+    let mut checks = device.identity_checks();
+    checks.retain(|c| session.can_read(c.parameter));
+    for check in &checks {
+        let bytes = session
+            .read_many(&[check.parameter])?
+            .pop()
+            .unwrap_or_default();
+        let shown = drivebus::interpret::show(device, check.parameter, &bytes);
+        if codec::raw_json(&shown.raw)
+            .as_i64()
+            .is_some_and(|v| check.covered.contains(v.into()))
+        {
+            continue;
+        }
+        return Err(CliError::IdentityMismatch {
+            parameter: check.parameter.name.clone(),
+            expected: check.covered.clone(),
+            found: codec::raw_json(&shown.raw).to_string(),
+        });
     }
-    Err(CliError::IdentityMismatch {
-        parameter: parameter.name.clone(),
-        expected: identity.values.clone(),
-        found: codec::raw_json(&shown.raw).to_string(),
-    })
+    Ok(())
 }

@@ -46,7 +46,7 @@ enum Command {
     Decode(commands::decode::Args),
     /// Export a description as a CiA 306 EDS, or import a vendor EDS as a TOML overlay.
     Eds(commands::eds::Args),
-    /// Find the CANopen nodes on a bus and match their identity against descriptions.
+    /// Find the CANopen nodes or Modbus units on a bus and match their identity against descriptions.
     Scan(commands::scan::Args),
     /// CANopen Safety: the safety configuration signature of an SRDO.
     Safety(commands::safety::Args),

@@ -474,3 +474,37 @@ fn write_checks_the_identity_first_unless_told_not_to() {
     assert!(forced.status.success(), "{}", stderr(&forced));
     assert_eq!(raw(&sim, "speed_setpoint"), -1500);
 }
+
+#[test]
+fn write_checks_the_canopen_vendor_id_first() {
+    // The SWD's [identity] covers vendor-ID 0x515 (1018h sub 1, manual line 1129); this
+    // simulated node reports 0x1234.
+    let swd = Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/ezwheel-swd");
+    let swd = swd.to_str().unwrap();
+    let can = format!(
+        "candump:exec:{BIN} sim {swd} --can candump:stdio --node-id 4 --set vendor_id=0x1234"
+    );
+    let write = |extra: &[&str]| {
+        let mut args = vec![
+            "write",
+            swd,
+            "controlword",
+            "raw:6",
+            "--can",
+            &can,
+            "--node-id",
+            "4",
+        ];
+        args.extend_from_slice(extra);
+        drivegen(&args)
+    };
+    let refused = write(&[]);
+    assert!(!refused.status.success());
+    assert!(
+        stderr(&refused).contains("vendor_id reads 4660, the description covers [1301]"),
+        "{}",
+        stderr(&refused)
+    );
+    let forced = write(&["--no-identity-check"]);
+    assert!(forced.status.success(), "{}", stderr(&forced));
+}

@@ -1,19 +1,20 @@
 //! python canopen 2.4.1 (RemoteNode SDO, BaseNode402) as an independent CANopen master of the
-//! simulator, reached through a candump stdio relay (`tests/peers/canopen_master.py`). A missing
+//! simulator, reached through a candump stdio relay (`tests/peers/canopen_relay.py`). A missing
 //! peer fails the test: run `tests/peers/setup.sh`.
 
-use std::process::{Command, Stdio};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
 use peer_support::{python, workspace_root};
 
-#[test]
-fn python_canopen_drives_the_simulated_lafert_to_operation_enabled() {
+const BIN: &str = env!("CARGO_BIN_EXE_drivegen");
+
+/// Runs a peer script with `args` (killed by its PID after a minute) and returns its output.
+fn peer(script: &str, args: &[&Path]) -> Output {
     let mut child = Command::new(python())
-        .arg(workspace_root().join("tests/peers/canopen_master.py"))
-        .arg(env!("CARGO_BIN_EXE_drivegen"))
-        .arg(workspace_root().join("descriptions/lafert-smartris"))
-        .arg("1")
+        .arg(workspace_root().join("tests/peers").join(script))
+        .args(args)
         .stdin(Stdio::null())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
@@ -26,12 +27,82 @@ fn python_canopen_drives_the_simulated_lafert_to_operation_enabled() {
         }
         std::thread::sleep(Duration::from_millis(50));
     }
-    let output = child.wait_with_output().unwrap();
+    child.wait_with_output().unwrap()
+}
+
+/// The last line of a peer's stdout, asserting it exited 0 with a line starting `ok`.
+fn passed(what: &str, output: &Output) -> String {
     let stdout = String::from_utf8_lossy(&output.stdout);
+    let last = stdout
+        .trim_end()
+        .lines()
+        .last()
+        .unwrap_or_default()
+        .to_owned();
     assert!(
-        output.status.success() && stdout.trim_end().ends_with("ok"),
-        "python canopen master failed ({}):\n{stdout}\n{}",
+        output.status.success() && last.starts_with("ok"),
+        "{what} failed ({}):\n{stdout}\n{}",
         output.status,
         String::from_utf8_lossy(&output.stderr)
     );
+    last
+}
+
+#[test]
+fn python_canopen_drives_the_simulated_lafert_to_operation_enabled() {
+    let lafert = workspace_root().join("descriptions/lafert-smartris");
+    let output = peer(
+        "canopen_master.py",
+        &[Path::new(BIN), &lafert, Path::new("1")],
+    );
+    passed("python canopen master", &output);
+}
+
+/// The shipped descriptions with a CANopen side.
+fn canopen_descriptions() -> Vec<PathBuf> {
+    let mut found: Vec<PathBuf> = std::fs::read_dir(workspace_root().join("descriptions"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.join("device.toml").is_file())
+        .filter(|p| {
+            let checked = drivegen::check(p);
+            checked.device.is_some_and(|d| d.canopen.is_some())
+        })
+        .collect();
+    found.sort();
+    found
+}
+
+#[test]
+fn python_canopen_boots_every_canopen_description_through_its_exported_eds() {
+    let descriptions = canopen_descriptions();
+    assert!(
+        descriptions.len() >= 3,
+        "Lafert, SWD, Kinco: {descriptions:?}"
+    );
+    let scratch = std::env::temp_dir().join(format!("drivegen-boot-{}", std::process::id()));
+    std::fs::create_dir_all(&scratch).unwrap();
+    for description in &descriptions {
+        let name = description.file_name().unwrap().to_string_lossy();
+        let eds = scratch.join(format!("{name}.eds"));
+        let export = Command::new(BIN)
+            .args(["eds", "export"])
+            .arg(description)
+            .arg("-o")
+            .arg(&eds)
+            .output()
+            .unwrap();
+        assert!(export.status.success(), "{name}: eds export failed");
+        let output = peer(
+            "eds_boot_master.py",
+            &[Path::new(BIN), description, &eds, Path::new("7")],
+        );
+        let shown = passed(&format!("{name}: boot through the EDS"), &output);
+        assert!(shown.contains("NMT OPERATIONAL"), "{name}: {shown}");
+        assert!(
+            shown.contains("OPERATION ENABLED -> SWITCH ON DISABLED"),
+            "{name}: every shipped CANopen drive is a CiA 402 drive: {shown}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&scratch);
 }

@@ -8,9 +8,11 @@
 //! * [`modbus`] — a sans-I/O server core ([`modbus::ModbusServer`]) enforcing access, ranges,
 //!   allowed values, unknown addresses, function codes and the device's limits with the exception
 //!   codes the description names; blocking TCP ([`modbus::tcp::TcpServer`]) and RTU
-//!   ([`modbus::rtu::serve`]) loops.
+//!   ([`modbus::rtu::serve`]) loops, each serving one drive or several
+//!   by unit id ([`modbus::Units`]).
 //! * [`canopen`] — the object dictionary view with CiA 301 abort codes, and a [`canopen::Node`]
-//!   (boot-up, NMT, heartbeat, SDO) running on any CAN backend of `drivebus`.
+//!   (boot-up, NMT, heartbeat, SDO) running on any CAN backend of `drivebus`, alone or
+//!   with other nodes on one bus ([`canopen::nodes`]).
 //! * [`rs232`] — the Kinco RS-232 protocol from the parameters' `rs232` addresses: a sans-I/O
 //!   [`rs232::Rs232Server`] (point-to-point or multi-point loop) and a blocking loop
 //!   ([`rs232::serve`]) on a serial port or pty.

@@ -71,3 +71,37 @@ fn scan_finds_every_simulated_node_with_its_identity() {
         "127 ids scanned in {elapsed:?}: about one timeout per object, not one per node"
     );
 }
+
+#[test]
+fn several_nodes_run_on_one_endpoint_each_answering_for_itself() {
+    use drivesim::canopen::nodes;
+
+    let bus = InProcessBus::new();
+    let mut client = bus.endpoint();
+    let mut endpoint = bus.endpoint();
+    let stop = Arc::new(AtomicBool::new(false));
+    let flag = Arc::clone(&stop);
+    let swd = Simulator::load(description("ezwheel-swd")).unwrap();
+    let foreign = Simulator::load(description("ezwheel-swd")).unwrap();
+    foreign.preset("vendor_id", 0x1234).unwrap();
+    let thread = std::thread::spawn(move || {
+        let mut nodes: Vec<Node> = [(swd, 5), (foreign, 6)]
+            .into_iter()
+            .map(|(sim, id)| {
+                let config = NodeConfig {
+                    node: NodeId(id),
+                    heartbeat: None,
+                };
+                Node::new(sim.clone(), config, sim.variant())
+            })
+            .collect();
+        nodes::run_while(&mut nodes, &mut endpoint, || !flag.load(Ordering::Relaxed)).unwrap();
+    });
+    let candidates: Vec<NodeId> = (1..=10).map(NodeId).collect();
+    let found = scan(&mut client, &candidates, Duration::from_millis(200)).unwrap();
+    stop.store(true, Ordering::Relaxed);
+    thread.join().unwrap();
+    let vendors: Vec<(u8, Option<u32>)> =
+        found.iter().map(|n| (n.node.get(), n.vendor_id)).collect();
+    assert_eq!(vendors, [(5, Some(0x515)), (6, Some(0x1234))]);
+}

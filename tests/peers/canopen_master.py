@@ -15,13 +15,14 @@ import logging
 import os
 import subprocess
 import sys
-import threading
 import time
 
 import can
 import canopen
 from canopen import objectdictionary as od
 from canopen.sdo.exceptions import SdoAbortedError
+
+from canopen_relay import relay_process
 
 TYPES = {
     "bool": od.BOOLEAN, "u8": od.UNSIGNED8, "u16": od.UNSIGNED16, "u24": od.UNSIGNED24,
@@ -56,35 +57,6 @@ def dictionary(ir):
                 record.add_member(variable(parameter, address))
             result.add_object(record)
     return result
-
-
-def parse(line):
-    can_id, _, payload = line.partition("#")
-    return can.Message(arbitration_id=int(can_id, 16), is_extended_id=False,
-                       data=bytes.fromhex(payload))
-
-
-def compact(msg):
-    return f"{msg.arbitration_id:03X}#{bytes(msg.data).hex().upper()}\n"
-
-
-def relay(sim, bus):
-    """Copies frames between the simulator's stdio and the virtual bus."""
-    def from_sim():
-        for line in sim.stdout:
-            line = line.strip()
-            if "#" in line:
-                bus.send(parse(line))
-
-    def to_sim():
-        while sim.poll() is None:
-            msg = bus.recv(0.1)
-            if msg is not None:
-                sim.stdin.write(compact(msg))
-                sim.stdin.flush()
-
-    for target in (from_sim, to_sim):
-        threading.Thread(target=target, daemon=True).start()
 
 
 def abort_code(action):
@@ -138,7 +110,7 @@ def main():
         [binary, "sim", description, "--can", "candump:stdio", "--node-id", str(node_id)],
         stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, bufsize=1)
     try:
-        relay(sim, bus)
+        relay_process(sim, bus)
         node = canopen.BaseNode402(node_id, dictionary(ir))
         network.add_node(node)
         time.sleep(0.2)

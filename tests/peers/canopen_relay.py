@@ -31,6 +31,26 @@ def compact(msg):
     return f"{msg.arbitration_id:03X}#{bytes(msg.data).hex().upper()}"
 
 
+def relay_process(process, bus):
+    """Copies frames between a child process speaking candump compact lines on its stdio (e.g.
+    `drivegen sim ... --can candump:stdio`, started with text pipes) and `bus`, until it ends."""
+    def from_process():
+        for line in process.stdout:
+            line = line.strip()
+            if "#" in line:
+                bus.send(parse(line))
+
+    def to_process():
+        while process.poll() is None:
+            msg = bus.recv(0.1)
+            if msg is not None:
+                process.stdin.write(compact(msg) + "\n")
+                process.stdin.flush()
+
+    for target in (from_process, to_process):
+        threading.Thread(target=target, daemon=True).start()
+
+
 def main(install=None):
     """Runs the relay; `install(node)` may add behaviour (write callbacks) to the LocalNode."""
     eds, node_id = sys.argv[1], int(sys.argv[2], 0)

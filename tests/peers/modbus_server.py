@@ -4,9 +4,12 @@
                                         prints "PORT <n>" on stdout once listening
     modbus_server.py rtu-over-tcp    -> like tcp, with RTU frames (a serial gateway)
     modbus_server.py rtu <pty path>  -> serves Modbus RTU on the pty; prints "READY" once open
+    ... --firmware N                 -> FW RELEASE CUSTOMER (holding 0x01FF) holds N (default 242,
+                                        the release the Lafert description covers)
 
 Unit 1 holds a Lafert-like register map (non-shared tables, wire address 0 = first value):
   holding 0x0000..=0x00FF  value = address, except 0x0028 (drive address) = 1
+  holding 0x01FF           the firmware release (--firmware)
   input   0x0060..=0x0070  value = 0x1000 + address, except 0x006B/0x006C = 0x5678/0x1234
                            (AXIS POSITION LOW/HIGH = 0x12345678)
   coils   0..=31           True at even addresses
@@ -29,12 +32,22 @@ from pymodbus.simulator import DataType, SimData, SimDevice
 ADDRESS_REGISTER = 0x0028
 SPEED_SETPOINT = 0x0042
 FULL_SCALE_VELOCITY = 3000
+FIRMWARE_RELEASE = 0x01FF
+
+
+def option(name, default):
+    """The integer after `name` on the command line, else `default`."""
+    if name in sys.argv:
+        return int(sys.argv[sys.argv.index(name) + 1], 0)
+    return default
 
 
 def holding():
     values = list(range(0x100))
     values[ADDRESS_REGISTER] = 1
-    return [SimData(address=0, values=values, datatype=DataType.REGISTERS)]
+    firmware = option("--firmware", 242)
+    return [SimData(address=0, values=values, datatype=DataType.REGISTERS),
+            SimData(address=FIRMWARE_RELEASE, values=[firmware], datatype=DataType.REGISTERS)]
 
 
 def inputs():

@@ -1,4 +1,5 @@
-//! `drivegen sim`: serve a simulated drive until interrupted.
+//! `drivegen sim`: serve a simulated drive until interrupted, or several drives on one bus (one
+//! per unit id or node id, each with its own state), as a scan or a multi-drive master sees them.
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -12,7 +13,9 @@ use drivebus::modbus::UnitId;
 use drivebus::rs232::serial::{open_line, Rs232Config, DEFAULT_BAUD};
 use drivebus::rs232::{LoopMode, StationId};
 use drivegen::ir::Device;
-use drivesim::canopen::{Node, NodeConfig};
+use drivesim::canopen::{nodes, Node, NodeConfig};
+use drivesim::modbus::tcp::TcpServer;
+use drivesim::modbus::Units;
 use drivesim::Simulator;
 
 use crate::error::CliError;
@@ -20,8 +23,11 @@ use crate::error::CliError;
 /// Arguments of `sim`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Description file, or a folder with a device.toml.
-    description: PathBuf,
+    /// Description file, or a folder with a device.toml; several serve several drives on one
+    /// bus, paired in order with the --unit or --node-id values (one description and several ids:
+    /// the same drive at each id).
+    #[arg(required = true)]
+    descriptions: Vec<PathBuf>,
     /// Serve Modbus TCP on HOST:PORT (port 0: a free port, printed).
     #[arg(long, value_name = "HOST:PORT", group = "bus")]
     modbus_tcp: Option<String>,
@@ -43,42 +49,43 @@ pub struct Args {
     /// Baud rate of --serial (default 19200) or --kinco-rs232 (default 38400).
     #[arg(long)]
     baud: Option<u32>,
-    /// Modbus unit id.
-    #[arg(long, default_value_t = 1)]
-    unit: u8,
-    /// CANopen node id, or Kinco RS-232 station id (default: the description's CANopen node id,
-    /// else 1 on RS-232).
+    /// Modbus unit id (default 1); repeat it to serve several drives on one port.
     #[arg(long)]
-    node_id: Option<u8>,
+    unit: Vec<u8>,
+    /// CANopen node id, or Kinco RS-232 station id (default: the description's CANopen node id,
+    /// else 1 on RS-232); repeat it to put several nodes on one CAN bus.
+    #[arg(long)]
+    node_id: Vec<u8>,
     /// Heartbeat period in ms when the description has no 1017h (0: none).
     #[arg(long, default_value_t = 0)]
     heartbeat_ms: u64,
-    /// Preset a parameter to a raw value at start, e.g. --set operation_mode=2 (repeatable).
-    #[arg(long, value_name = "NAME=RAW")]
+    /// Preset a parameter to a raw value at start, e.g. --set operation_mode=2 (repeatable);
+    /// `--set 5:vendor_id=0x1234` presets it only in the drive at unit / node id 5.
+    #[arg(long, value_name = "[ID:]NAME=RAW")]
     set: Vec<String>,
+}
+
+/// One simulated drive and the unit / node id it answers at.
+struct Drive {
+    id: u8,
+    device: Device,
+    sim: Simulator,
 }
 
 /// Starts the simulator and serves until interrupted (or, on candump stdio, until stdin ends).
 pub fn run(args: Args) -> Result<(), CliError> {
-    let device = super::load(&args.description)?;
-    let sim = Simulator::new(device.clone());
+    let drives = drives(&args)?;
     for preset in &args.set {
-        let (name, raw) = preset
-            .split_once('=')
-            .and_then(|(n, r)| Some((n, parse_raw(r)?)))
-            .ok_or_else(|| CliError::Usage(format!("--set {preset}: expected NAME=RAW")))?;
-        super::parameter(&device, name)?;
-        sim.preset(name, raw)
-            .map_err(|e| CliError::Usage(e.to_string()))?;
+        apply(preset, &drives)?;
     }
     if let Some(addr) = &args.modbus_tcp {
-        let server = sim
-            .serve_modbus_tcp(addr.as_str(), UnitId(args.unit))
+        let units = Units::new(drives.iter().map(|d| (UnitId(d.id), d.sim.clone())));
+        let server = TcpServer::gateway(units, addr.as_str())
             .map_err(|e| CliError::Io(format!("cannot listen on {addr}: {e}")))?;
         announce(&format!(
             "listening on modbus-tcp {} unit {}",
             server.local_addr(),
-            args.unit
+            ids(&drives)
         ));
         server.join();
         return Ok(());
@@ -88,26 +95,36 @@ pub fn run(args: Args) -> Result<(), CliError> {
             .map_err(|e| CliError::Io(format!("cannot open {path}: {e}")))?;
         announce(&format!(
             "listening on modbus-rtu {path} unit {}",
-            args.unit
+            ids(&drives)
         ));
-        return drivesim::modbus::rtu::serve(&sim, &mut stream, UnitId(args.unit))
+        let units = Units::new(drives.iter().map(|d| (UnitId(d.id), d.sim.clone())));
+        return drivesim::modbus::rtu::serve_units(&units, &mut stream)
             .map_err(|e| CliError::Io(format!("{path}: {e}")));
     }
     if let Some(backend) = &args.can {
-        let node = args
-            .node_id
-            .or(device.canopen.as_ref().map(|c| c.default_node_id))
-            .and_then(NodeId::new)
-            .ok_or_else(|| CliError::Usage("give a CANopen --node-id (1..=127)".into()))?;
-        let config = NodeConfig {
-            node,
-            heartbeat: (args.heartbeat_ms > 0).then(|| Duration::from_millis(args.heartbeat_ms)),
-        };
-        let mut node_sim = Node::new(sim.clone(), config, sim.variant());
-        return run_can(&mut node_sim, backend, node);
+        let mut nodes = drives
+            .iter()
+            .map(|d| {
+                let node = NodeId::new(d.id).ok_or_else(|| {
+                    CliError::Usage(format!("node id {}: expected 1..=127", d.id))
+                })?;
+                let config = NodeConfig {
+                    node,
+                    heartbeat: (args.heartbeat_ms > 0)
+                        .then(|| Duration::from_millis(args.heartbeat_ms)),
+                };
+                Ok(Node::new(d.sim.clone(), config, d.sim.variant()))
+            })
+            .collect::<Result<Vec<_>, CliError>>()?;
+        return run_can(&mut nodes, backend, &ids(&drives));
     }
     if let Some(path) = &args.kinco_rs232 {
-        return serve_rs232(&sim, &args, &device, path);
+        let [drive] = drives.as_slice() else {
+            return Err(CliError::Usage(
+                "--kinco-rs232 serves one drive: give one description and one --node-id".into(),
+            ));
+        };
+        return serve_rs232(&drive.sim, &args, drive.id, path);
     }
     Err(CliError::Usage(
         "name a bus: --modbus-tcp HOST:PORT, --serial PATH, --can BACKEND or --kinco-rs232 PATH"
@@ -115,11 +132,86 @@ pub fn run(args: Args) -> Result<(), CliError> {
     ))
 }
 
-fn serve_rs232(sim: &Simulator, args: &Args, device: &Device, path: &str) -> Result<(), CliError> {
-    let station = args
-        .node_id
-        .or(device.canopen.as_ref().map(|c| c.default_node_id))
-        .unwrap_or(1);
+/// The drives to serve: each description paired with its id (or one description at every id).
+fn drives(args: &Args) -> Result<Vec<Drive>, CliError> {
+    let devices = args
+        .descriptions
+        .iter()
+        .map(|d| super::load(d))
+        .collect::<Result<Vec<_>, _>>()?;
+    let given = if args.modbus_tcp.is_some() || args.serial.is_some() {
+        &args.unit
+    } else {
+        &args.node_id
+    };
+    let ids: Vec<u8> = match (devices.len(), given.len()) {
+        (_, 0) => devices.iter().map(|d| default_id(args, d)).collect(),
+        (1, _) => given.clone(),
+        (n, m) if n == m => given.clone(),
+        (n, m) => {
+            return Err(CliError::Usage(format!(
+                "{n} descriptions and {m} ids: give one id per description"
+            )))
+        }
+    };
+    let mut drives = Vec::new();
+    for (i, id) in ids.into_iter().enumerate() {
+        let device = devices[i.min(devices.len() - 1)].clone();
+        if drives.iter().any(|d: &Drive| d.id == id) {
+            return Err(CliError::Usage(format!(
+                "two drives at id {id}: give each description its own --unit / --node-id"
+            )));
+        }
+        let sim = Simulator::new(device.clone());
+        drives.push(Drive { id, device, sim });
+    }
+    Ok(drives)
+}
+
+/// The id a drive answers at when none is given: unit 1 on Modbus, else the description's
+/// CANopen node id, else 1.
+fn default_id(args: &Args, device: &Device) -> u8 {
+    if args.modbus_tcp.is_some() || args.serial.is_some() {
+        return 1;
+    }
+    device.canopen.as_ref().map_or(1, |c| c.default_node_id)
+}
+
+/// Applies one `--set [ID:]NAME=RAW` to the drive at ID, or to every drive.
+fn apply(preset: &str, drives: &[Drive]) -> Result<(), CliError> {
+    let usage = || CliError::Usage(format!("--set {preset}: expected [ID:]NAME=RAW"));
+    let (target, raw) = preset.split_once('=').ok_or_else(usage)?;
+    let raw = parse_raw(raw).ok_or_else(usage)?;
+    let (id, name) = match target.split_once(':') {
+        Some((id, name)) => (Some(id.parse::<u8>().map_err(|_| usage())?), name),
+        None => (None, target),
+    };
+    let mut targets = drives
+        .iter()
+        .filter(|d| id.is_none_or(|id| d.id == id))
+        .peekable();
+    if targets.peek().is_none() {
+        return Err(CliError::Usage(format!(
+            "--set {preset}: no drive at that id"
+        )));
+    }
+    for drive in targets {
+        super::parameter(&drive.device, name)?;
+        drive
+            .sim
+            .preset(name, raw)
+            .map_err(|e| CliError::Usage(e.to_string()))?;
+    }
+    Ok(())
+}
+
+/// The ids, comma-separated, for the announcement.
+fn ids(drives: &[Drive]) -> String {
+    let ids: Vec<String> = drives.iter().map(|d| d.id.to_string()).collect();
+    ids.join(",")
+}
+
+fn serve_rs232(sim: &Simulator, args: &Args, station: u8, path: &str) -> Result<(), CliError> {
     let mode = if args.rs232_loop {
         LoopMode::MultiPoint
     } else {
@@ -139,13 +231,13 @@ fn serve_rs232(sim: &Simulator, args: &Args, device: &Device, path: &str) -> Res
         .map_err(|e| CliError::Io(format!("{path}: {e}")))
 }
 
-fn run_can(node_sim: &mut Node, backend: &str, node: NodeId) -> Result<(), CliError> {
+fn run_can(nodes: &mut [Node], backend: &str, ids: &str) -> Result<(), CliError> {
     let ended = |e| CliError::Io(format!("{backend}: {e}"));
     if backend == "candump:stdio" {
         // stdout carries the frames: the announcement goes to stderr.
-        eprintln!("listening on canopen candump:stdio node {}", node.0);
+        eprintln!("listening on canopen candump:stdio node {ids}");
         let mut bus = CandumpBus::new(std::io::stdin(), std::io::stdout());
-        return match node_sim.run(&mut bus) {
+        return match nodes::run(nodes, &mut bus) {
             Err(drivebus::BusError::Io(std::io::ErrorKind::UnexpectedEof)) => Ok(()),
             other => other.map_err(ended),
         };
@@ -153,8 +245,8 @@ fn run_can(node_sim: &mut Node, backend: &str, node: NodeId) -> Result<(), CliEr
     if let Some(addr) = backend.strip_prefix("slcan:") {
         let mut bus = SlcanBus::connect(addr).map_err(ended)?;
         bus.open(Bitrate::K500).map_err(ended)?;
-        announce(&format!("listening on canopen {backend} node {}", node.0));
-        return node_sim.run(&mut bus).map_err(ended);
+        announce(&format!("listening on canopen {backend} node {ids}"));
+        return nodes::run(nodes, &mut bus).map_err(ended);
     }
     Err(CliError::Usage(format!(
         "--can {backend}: expected candump:stdio or slcan:HOST:PORT"

@@ -13,6 +13,7 @@ mod commands_share_a_register;
 mod defaults_within_range;
 mod enum_values_fit_type;
 mod identity_names_a_parameter;
+mod identity_values_fit;
 mod indexed_names_are_unique;
 mod manual_names_are_search_aliases;
 mod models_give_constants;
@@ -107,6 +108,7 @@ pub const PASSES: &[(&str, Pass)] = &[
         "identity_names_a_parameter",
         identity_names_a_parameter::check,
     ),
+    ("identity_values_fit", identity_values_fit::check),
     (
         "canopen_has_mandatory_objects",
         canopen_has_mandatory_objects::check,

@@ -33,10 +33,16 @@ impl Drop for Server {
 
 /// Starts `modbus_server.py tcp` and reads the port it prints once listening.
 fn start_server() -> Server {
+    start_server_with(&[])
+}
+
+/// Starts `modbus_server.py tcp` with extra options (e.g. `--firmware 226`).
+fn start_server_with(options: &[&str]) -> Server {
     let python = python();
     let mut child = Command::new(&python)
         .arg(workspace_root().join("tests/peers/modbus_server.py"))
         .arg("tcp")
+        .args(options)
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())
         .stderr(Stdio::inherit())
@@ -163,4 +169,56 @@ fn store_and_reset_reports_the_refused_reset() {
         cause.bus().cloned(),
         exception(0x06, ExceptionCode::IllegalDataAddress)
     );
+}
+
+/// The speed setpoint register (holding 0x0042) as the server holds it, read around the API.
+fn setpoint_register(drive: &mut Smartris<ModbusLink<ModbusTcpClient>>) -> u16 {
+    use drivebus::modbus::{RegisterBus, Table};
+    let mut word = [0u16; 1];
+    let bus = drive.device().link_mut().bus_mut();
+    bus.read_registers(UnitId(1), Table::Holding, 0x0042, &mut word)
+        .unwrap();
+    word[0]
+}
+
+#[test]
+fn a_drive_reporting_a_foreign_firmware_gets_no_write() {
+    // pymodbus holds FW RELEASE CUSTOMER (0x01FF) = 226, firmware 2.2.6 (manual line 1022's
+    // example); the description covers 242 only (guide line 180).
+    let server = start_server_with(&["--firmware", "226"]);
+    let mut drive = connect(&server);
+    let mismatch = drivebus::WriteRefusal::IdentityMismatch {
+        parameter: "fw_release",
+        expected: &[242],
+        found: 226,
+    };
+    assert_eq!(
+        drive.verify_identity(),
+        Err(drivebus::Error::WritesRefused {
+            parameter: "fw_release",
+            reason: mismatch
+        })
+    );
+    let before = setpoint_register(&mut drive);
+    assert_eq!(
+        drive.speed_setpoint().write(Rpm(1500.0)),
+        Err(drivebus::Error::WritesRefused {
+            parameter: "speed_setpoint",
+            reason: mismatch
+        })
+    );
+    assert_eq!(
+        setpoint_register(&mut drive),
+        before,
+        "the server saw no write"
+    );
+}
+
+#[test]
+fn the_covered_firmware_verifies_and_is_written() {
+    let server = start_server_with(&["--firmware", "242"]);
+    let mut drive = connect(&server);
+    assert_eq!(drive.verify_identity(), Ok(()));
+    assert_eq!(drive.speed_setpoint().write(Rpm(1500.0)), Ok(()));
+    assert_eq!(setpoint_register(&mut drive), 1500);
 }

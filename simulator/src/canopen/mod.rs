@@ -3,6 +3,7 @@
 
 pub mod dictionary;
 pub mod node;
+pub mod nodes;
 pub mod srdo;
 
 pub use dictionary::Dictionary;

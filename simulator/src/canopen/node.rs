@@ -1,7 +1,7 @@
 //! A CANopen node: boot-up, NMT state, heartbeat producer, the SDO server and the SRDOs, sans-I/O,
 //! plus a blocking loop over any CAN backend.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use drivebus::canopen::emcy::{Emcy, ErrorRegister};
 use drivebus::canopen::frame::cob;
@@ -197,26 +197,16 @@ impl Node {
         bus: &mut B,
         keep_running: impl Fn() -> bool,
     ) -> Result<(), BusError> {
-        let epoch = Instant::now();
-        bus.send(&self.boot(epoch.elapsed()))?;
-        while keep_running() {
-            let received = bus.recv(Duration::from_millis(10))?;
-            let now = epoch.elapsed();
-            if let Some(frame) = received {
-                for reply in self.handle(&frame, now) {
-                    bus.send(&reply)?;
-                }
-            }
-            if let Some(emcy) = self.poll_emcy() {
-                bus.send(&emcy)?;
-            }
-            if let Some(heartbeat) = self.poll(now) {
-                bus.send(&heartbeat)?;
-            }
-            for srdo in self.poll_srdo(now) {
-                bus.send(&srdo)?;
-            }
-        }
-        Ok(())
+        super::nodes::run_while(std::slice::from_mut(self), bus, keep_running)
+    }
+
+    /// One turn at time `now`: the answers to `received` (if a frame came), then the EMCY,
+    /// heartbeat and SRDO frames that are due.
+    pub fn step(&mut self, received: Option<&CanFrame>, now: Duration) -> Vec<CanFrame> {
+        let mut out = received.map_or_else(Vec::new, |frame| self.handle(frame, now));
+        out.extend(self.poll_emcy());
+        out.extend(self.poll(now));
+        out.extend(self.poll_srdo(now));
+        out
     }
 }

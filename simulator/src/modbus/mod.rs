@@ -7,5 +7,7 @@ pub mod read_blocks;
 pub mod rtu;
 pub mod server;
 pub mod tcp;
+pub mod units;
 
 pub use server::ModbusServer;
+pub use units::Units;

@@ -13,6 +13,7 @@ use drivebus::modbus::transport::ByteStream;
 use drivebus::modbus::UnitId;
 use drivebus::BusError;
 
+use super::Units;
 use crate::Simulator;
 
 /// Silence after which buffered bytes are treated as a complete frame (far above t3.5 at any
@@ -60,7 +61,13 @@ fn head(buf: &[u8], silent: bool) -> Head {
 /// Serves `unit` on `stream` until the stream fails; broadcasts (unit 0) are executed without an
 /// answer.
 pub fn serve<S: ByteStream>(sim: &Simulator, stream: &mut S, unit: UnitId) -> Result<(), BusError> {
-    let server = sim.modbus_server();
+    serve_units(&Units::one(sim.clone(), unit), stream)
+}
+
+/// Serves every drive of `units` on one line until the stream fails, as drives sharing an RS-485
+/// bus: each answers for its own unit id, other ids get no answer, broadcasts (unit 0) are
+/// executed by every drive without an answer.
+pub fn serve_units<S: ByteStream>(units: &Units, stream: &mut S) -> Result<(), BusError> {
     let mut buf: Vec<u8> = Vec::with_capacity(2 * MAX_ADU);
     let mut chunk = [0u8; MAX_ADU];
     let mut response = [0u8; MAX_ADU];
@@ -77,13 +84,12 @@ pub fn serve<S: ByteStream>(sim: &Simulator, stream: &mut S, unit: UnitId) -> Re
                 Head::Frame(len) => {
                     let frame: Vec<u8> = buf.drain(..len).collect();
                     let to = frame[0];
-                    if to != unit.0 && to != 0 {
-                        continue;
-                    }
-                    response[0] = unit.0;
+                    response[0] = to;
                     let pdu = &frame[1..len - 2];
-                    let pdu_len = sim.with(|drive| server.handle(drive, pdu, &mut response[1..]));
-                    if to != 0 && pdu_len > 0 {
+                    let Some(pdu_len) = units.handle(to, pdu, &mut response[1..]) else {
+                        continue;
+                    };
+                    if pdu_len > 0 {
                         let total = seal(&mut response, 1 + pdu_len)?;
                         stream.send(&response[..total])?;
                     }

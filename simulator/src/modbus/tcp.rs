@@ -1,4 +1,5 @@
-//! Modbus TCP: a listener on a loopback (or any) address, one thread per connection.
+//! Modbus TCP: a listener on a loopback (or any) address, one thread per connection, serving one
+//! drive or, as a gateway, several drives by unit id ([`Units`]).
 
 use std::io::{ErrorKind, Read, Write};
 use std::net::{SocketAddr, TcpListener, TcpStream, ToSocketAddrs};
@@ -11,7 +12,7 @@ use drivebus::modbus::pdu::MAX_PDU;
 use drivebus::modbus::tcp::{Header, HEADER_LEN};
 use drivebus::modbus::UnitId;
 
-use super::ModbusServer;
+use super::Units;
 use crate::Simulator;
 
 /// How often idle connections look at the stop flag.
@@ -19,6 +20,9 @@ const POLL: Duration = Duration::from_millis(100);
 
 /// Unit id a Modbus TCP client sends when it does not address a unit behind a gateway.
 const TCP_ANY_UNIT: u8 = 0xFF;
+
+/// Unit id 0, a broadcast on a serial line; a Modbus TCP server ignores it.
+const BROADCAST: u8 = 0;
 
 /// A running Modbus TCP server; stops when dropped.
 #[derive(Debug)]
@@ -31,19 +35,24 @@ pub struct TcpServer {
 impl TcpServer {
     /// Listens on `addr` (port 0: any free port) for requests to `unit` (and 0xFF).
     pub fn start(sim: Simulator, addr: impl ToSocketAddrs, unit: UnitId) -> std::io::Result<Self> {
+        Self::gateway(Units::one(sim, unit), addr)
+    }
+
+    /// Listens on `addr` (port 0: any free port) for requests to any of `units`, as a gateway
+    /// in front of several drives; 0xFF reaches the first unit, other ids get no answer.
+    pub fn gateway(units: Units, addr: impl ToSocketAddrs) -> std::io::Result<Self> {
         let listener = TcpListener::bind(addr)?;
         let addr = listener.local_addr()?;
         let stop = Arc::new(AtomicBool::new(false));
         let flag = Arc::clone(&stop);
-        let server = sim.modbus_server();
         let thread = std::thread::spawn(move || {
             for stream in listener.incoming() {
                 if flag.load(Ordering::Relaxed) {
                     break;
                 }
                 let Ok(stream) = stream else { continue };
-                let (sim, server, flag) = (sim.clone(), server.clone(), Arc::clone(&flag));
-                std::thread::spawn(move || serve(stream, &sim, &server, unit, &flag));
+                let (units, flag) = (units.clone(), Arc::clone(&flag));
+                std::thread::spawn(move || serve(stream, &units, &flag));
             }
         });
         Ok(Self {
@@ -78,13 +87,7 @@ impl Drop for TcpServer {
 }
 
 /// Answers the requests of one connection until it closes or the server stops.
-fn serve(
-    mut stream: TcpStream,
-    sim: &Simulator,
-    server: &ModbusServer,
-    unit: UnitId,
-    stop: &AtomicBool,
-) {
+fn serve(mut stream: TcpStream, units: &Units, stop: &AtomicBool) {
     let _ = stream.set_read_timeout(Some(POLL));
     let _ = stream.set_nodelay(true);
     let mut request = [0u8; HEADER_LEN + MAX_PDU];
@@ -101,10 +104,15 @@ fn serve(
         if !matches!(read_exact_or_idle(&mut stream, body, stop), Ok(true)) {
             return;
         }
-        if header.unit != unit && header.unit.0 != TCP_ANY_UNIT {
-            continue; // Another unit's request: no answer, as behind a gateway.
-        }
-        let len = sim.with(|drive| server.handle(drive, body, &mut response[HEADER_LEN..]));
+        let to = match header.unit.0 {
+            TCP_ANY_UNIT => units.first().map_or(TCP_ANY_UNIT, |u| u.0),
+            BROADCAST => continue, // Not a unit over TCP: no answer, nothing done.
+            id => id,
+        };
+        // Another unit's request: no answer, as behind a gateway.
+        let Some(len) = units.handle(to, body, &mut response[HEADER_LEN..]) else {
+            continue;
+        };
         let reply = Header {
             pdu_len: len,
             ..header

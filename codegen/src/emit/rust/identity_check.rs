@@ -1,74 +1,163 @@
-//! The identity check on connect (`[identity]` with a `parameter`): the handle's
-//! `verify_identity` reads the firmware / configuration parameter and, when its value is not one
-//! the description covers, refuses every write (`WriteRefusal::IdentityMismatch`) and returns the
-//! refusal naming expected and found values. `trust_unverified` is the explicit opt-in to write
-//! anyway. A fresh handle is open: existing code keeps writing; calling `verify_identity` first
-//! is the documented way to connect.
+//! The identity check on connect (`[identity]`): the handle's `verify_identity` reads every
+//! identity parameter the link's protocol reaches (the firmware / configuration parameter, and
+//! over CANopen the vendor-ID, product code and revision at 1018h) and, on a value the
+//! description does not cover, refuses every write (`WriteRefusal::IdentityMismatch`) and returns
+//! the refusal naming the parameter, expected and found values. `trust_unverified` is the
+//! explicit opt-in to write anyway. A fresh handle is open: existing code keeps writing; calling
+//! `verify_identity` first is the documented way to connect.
+//!
+//! Which checks a protocol runs is known per protocol, so they live in the `IdentityChecks`
+//! trait, implemented for each protocol marker that reaches at least one identity parameter.
 
 use proc_macro2::TokenStream;
 use quote::quote;
 
-use super::{doc_attrs, ident, raw_type};
+use super::{doc_attrs, ident};
 use crate::emit::ident as names;
-use crate::ir::Device;
+use crate::ir::{Device, IdentityCheck, Parameter};
+
+/// A revision range wider than this is not listed in the generated code (and not checked there:
+/// the refusal names the covered values as a list).
+const LISTED_AT_MOST: usize = 256;
+
+type Readable = fn(&Parameter) -> bool;
 
 pub fn emit(device: &Device) -> TokenStream {
-    let Some(identity) = &device.identity else {
+    let checks: Vec<(IdentityCheck, Vec<i64>)> = device
+        .identity_checks()
+        .into_iter()
+        .filter_map(|check| {
+            let listed = check.covered.listed(LISTED_AT_MOST)?;
+            Some((check, listed))
+        })
+        .collect();
+    if checks.is_empty() {
         return TokenStream::new();
-    };
-    let Some(parameter) = identity
-        .parameter
-        .as_deref()
-        .and_then(|name| device.parameter(name))
-    else {
-        return TokenStream::new();
-    };
+    }
     let handle = ident(&names::camel(&device.device.handle));
-    let marker = ident(&names::camel(&parameter.name));
-    let raw = raw_type(parameter.data_type);
-    let name = &parameter.name;
-    let values = identity.values.iter().map(|v| i128::from(*v));
-    // In code spans: a bare `[242]` would be read as an intra-doc link.
-    let covered: Vec<String> = identity.values.iter().map(|v| format!("`{v}`")).collect();
-    let covered = covered.join(", ");
+    let protocols: [(TokenStream, Readable); 3] = [
+        (
+            quote! { ::drivebus::modbus::Modbus },
+            Parameter::readable_over_modbus,
+        ),
+        (
+            quote! { ::drivebus::canopen::CanOpen },
+            Parameter::readable_over_canopen,
+        ),
+        (
+            quote! { ::drivebus::rs232::Rs232 },
+            Parameter::readable_over_rs232,
+        ),
+    ];
+    let impls = protocols.iter().filter_map(|(protocol, readable)| {
+        let reached: Vec<TokenStream> = checks
+            .iter()
+            .filter(|(check, _)| readable(check.parameter))
+            .map(|(check, listed)| one_check(check.parameter, listed))
+            .collect();
+        (!reached.is_empty()).then(|| {
+            quote! {
+                impl IdentityChecks for #protocol {
+                    fn mismatch<L: ::drivebus::Link<Protocol = Self>>(
+                        device: &mut ::drivebus::Device<L>,
+                    ) -> Result<Option<(&'static str, ::drivebus::WriteRefusal)>, ::drivebus::Error> {
+                        #( #reached )*
+                        Ok(None)
+                    }
+                }
+            }
+        })
+    });
+    let described: Vec<String> = checks
+        .iter()
+        .map(|(check, _)| format!("`{}` in `{}`", check.parameter.name, check.covered))
+        .collect();
     let verify_doc = doc_attrs(&format!(
-        "Reads `{name}` and checks it against the values the description covers ({}). On a \
-         mismatch every later write is refused before sending, and the refusal (naming expected \
-         and found values) comes back as `Error::WritesRefused`; reads go on. Call it right after \
-         connecting; `trust_unverified` is the explicit opt-in to write anyway.",
-        covered
+        "Reads the identity parameters this link reaches ({}) and checks them against the values \
+         the description covers. On a mismatch every later write is refused before sending, and \
+         the refusal (naming the parameter, expected and found values) comes back as \
+         `Error::WritesRefused`; reads go on. Call it right after connecting; \
+         `trust_unverified` is the explicit opt-in to write anyway.",
+        described.join(", ")
     ));
+    let legacy = identity_values(&checks, device);
     quote! {
-        /// The values of the identity parameter this description covers.
-        pub const IDENTITY_VALUES: &[::core::primitive::i128] = &[#( #values ),*];
+        #legacy
+
+        /// The identity checks a protocol can run: the `[identity]` parameters it reads.
+        pub trait IdentityChecks: ::drivebus::Protocol {
+            /// Reads each identity parameter in turn; the first one holding a value the
+            /// description does not cover, with the refusal naming it.
+            fn mismatch<L: ::drivebus::Link<Protocol = Self>>(
+                device: &mut ::drivebus::Device<L>,
+            ) -> Result<Option<(&'static str, ::drivebus::WriteRefusal)>, ::drivebus::Error>;
+        }
+
+        #( #impls )*
 
         impl<L: ::drivebus::Link> #handle<L>
         where
-            params::#marker: ::drivebus::Readable<L::Protocol, Raw = #raw>,
+            L::Protocol: IdentityChecks,
         {
             #verify_doc
             pub fn verify_identity(&mut self) -> Result<(), ::drivebus::Error> {
-                let found = ::core::primitive::i128::from(self.device.read_raw::<params::#marker>()?);
-                if IDENTITY_VALUES.contains(&found) {
+                let Some((parameter, reason)) =
+                    <L::Protocol as IdentityChecks>::mismatch(&mut self.device)?
+                else {
                     return Ok(());
-                }
-                let reason = ::drivebus::WriteRefusal::IdentityMismatch {
-                    parameter: #name,
-                    expected: IDENTITY_VALUES,
-                    found,
                 };
                 self.device.refuse_writes(reason);
-                Err(::drivebus::Error::WritesRefused { parameter: #name, reason })
+                Err(::drivebus::Error::WritesRefused { parameter, reason })
             }
         }
 
         impl<L: ::drivebus::Link> #handle<L> {
             /// Writes to this drive although `verify_identity` found (or was not asked to check)
-            /// a firmware or configuration the description does not cover: the explicit,
+            /// a drive, firmware or configuration the description does not cover: the explicit,
             /// visible opt-in. Lifts every refusal of writes.
             pub fn trust_unverified(&mut self) {
                 self.device.lift_write_refusal();
             }
         }
+    }
+}
+
+/// Reads one identity parameter and returns the refusal when its value is not covered.
+fn one_check(parameter: &Parameter, listed: &[i64]) -> TokenStream {
+    let marker = ident(&names::camel(&parameter.name));
+    let name = &parameter.name;
+    let values = listed.iter().map(|v| i128::from(*v));
+    quote! {
+        {
+            const EXPECTED: &[::core::primitive::i128] = &[#( #values ),*];
+            let found = ::core::primitive::i128::from(device.read_raw::<params::#marker>()?);
+            if !EXPECTED.contains(&found) {
+                let reason = ::drivebus::WriteRefusal::IdentityMismatch {
+                    parameter: #name,
+                    expected: EXPECTED,
+                    found,
+                };
+                return Ok(Some((#name, reason)));
+            }
+        }
+    }
+}
+
+/// `IDENTITY_VALUES`: the values of the firmware / configuration parameter, when there is one.
+fn identity_values(checks: &[(IdentityCheck, Vec<i64>)], device: &Device) -> TokenStream {
+    let named = device
+        .identity
+        .as_ref()
+        .and_then(|i| i.parameter.as_deref());
+    let Some((_, listed)) = checks
+        .iter()
+        .find(|(check, _)| Some(check.parameter.name.as_str()) == named)
+    else {
+        return TokenStream::new();
+    };
+    let values = listed.iter().map(|v| i128::from(*v));
+    quote! {
+        /// The values of the identity parameter this description covers.
+        pub const IDENTITY_VALUES: &[::core::primitive::i128] = &[#( #values ),*];
     }
 }
