@@ -49,6 +49,7 @@ impl<S: ByteStream + ?Sized> ByteStream for &mut S {
 }
 
 /// Maps an I/O error to the bus error that carries its kind.
+#[cfg(feature = "serial")]
 pub(crate) fn io_error(error: std::io::Error) -> BusError {
     BusError::Io(error.kind())
 }

@@ -48,6 +48,23 @@ pub enum SafetyWriteError {
     },
     /// The configuration is not valid or cannot be signed; nothing was sent.
     Config(SrdoError),
+    /// The safety function has no such instance (SLS 9); nothing was sent.
+    NoSuchFunction {
+        /// The function.
+        function: &'static str,
+        /// The instance asked for.
+        instance: u8,
+    },
+    /// A value of an object the function's signature does not cover: writing it would change
+    /// the safety application without updating a signature; nothing was sent.
+    NotSigned {
+        /// The function whose signature was to be updated.
+        function: &'static str,
+        /// Object index of the value.
+        index: u16,
+        /// Sub-index of the value.
+        subindex: u8,
+    },
     /// The drive refused a write or the bus failed; the writes before it were made, the validity
     /// flag was not set.
     Bus {
@@ -68,6 +85,17 @@ impl fmt::Display for SafetyWriteError {
                 "safety configuration is written in NMT Pre-Operational only (node is {state:?}); nothing was sent"
             ),
             Self::Config(e) => write!(f, "{e}; nothing was sent"),
+            Self::NoSuchFunction { function, instance } => {
+                write!(f, "{function} has no instance {instance}; nothing was sent")
+            }
+            Self::NotSigned {
+                function,
+                index,
+                subindex,
+            } => write!(
+                f,
+                "{index:#06x}:{subindex} is not covered by the {function} signature; nothing was sent"
+            ),
             Self::Bus {
                 index,
                 subindex,
