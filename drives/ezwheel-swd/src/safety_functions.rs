@@ -222,7 +222,8 @@ pub const SMS: FunctionSignature = FunctionSignature {
 };
 
 impl<B: SdoBus> Swd<CanOpenLink<B>> {
-    /// The deliberate write of safety-function parameters: refused unless the node is in NMT
+    /// The deliberate write of safety-function parameters: refused while the handle refuses
+    /// writes (`verify_identity` found another drive), unless the node is in NMT
     /// Pre-Operational (`state`, as the caller knows it) and unless every value is covered by
     /// `function`'s signature, before any frame is sent; then writes `values`, reads back what
     /// the signature of `instance` covers and writes the recomputed signature. Returns the
@@ -245,6 +246,9 @@ impl<B: SdoBus> Swd<CanOpenLink<B>> {
         instance: u8,
         values: &[SafetyValue],
     ) -> Result<u16, SafetyWriteError> {
+        if let Some(reason) = self.device().write_refusal() {
+            return Err(SafetyWriteError::WritesRefused(reason));
+        }
         let link = self.device().link_mut();
         let node = link.node();
         write_safety_function(link.bus_mut(), node, state, function, instance, values)

@@ -14,7 +14,7 @@ use drivebus::canopen::srdo::{write_safety_function, SafetyValue, SafetyWriteErr
 use drivebus::canopen::{NodeId, SdoBus};
 use drivebus::memory::SdoRecorder;
 use drivebus::units::{Milliseconds, Rpm};
-use drivebus::BusError;
+use drivebus::{BusError, WriteRefusal};
 use ezwheel_swd::params::{SlsaPositiveVelocityLimit3, SlsaTimeToPositiveVelocityMonitoring3};
 use ezwheel_swd::safety_functions::{SLS, SLSA};
 use ezwheel_swd::Swd;
@@ -184,6 +184,28 @@ fn a_value_the_signature_does_not_cover_is_refused_before_sending() {
             function: "SLSa",
             instance: 9
         })
+    );
+    assert_eq!(
+        drive.device().link_mut().bus_mut().frames.len(),
+        frames_before
+    );
+}
+
+#[test]
+fn a_handle_that_refuses_writes_refuses_the_safety_write() {
+    let mut drive = Swd::canopen(SdoRecorder::default(), NodeId(0x10));
+    let value =
+        SafetyValue::of::<SlsaPositiveVelocityLimit3, _>(drive.device(), Rpm(500.0)).unwrap();
+    let reason = WriteRefusal::IdentityMismatch {
+        parameter: "vendor_id",
+        expected: &[0x515],
+        found: 0x99,
+    };
+    drive.device().refuse_writes(reason);
+    let frames_before = drive.device().link_mut().bus_mut().frames.len();
+    assert_eq!(
+        drive.write_safety_function(NmtState::PreOperational, &SLSA, 3, &[value]),
+        Err(SafetyWriteError::WritesRefused(reason))
     );
     assert_eq!(
         drive.device().link_mut().bus_mut().frames.len(),

@@ -48,6 +48,9 @@ pub enum SafetyWriteError {
     },
     /// The configuration is not valid or cannot be signed; nothing was sent.
     Config(SrdoError),
+    /// The handle refuses writes (the drive's identity or configuration is not the
+    /// description's); nothing was sent.
+    WritesRefused(crate::error::WriteRefusal),
     /// The safety function has no such instance (SLS 9); nothing was sent.
     NoSuchFunction {
         /// The function.
@@ -85,6 +88,9 @@ impl fmt::Display for SafetyWriteError {
                 "safety configuration is written in NMT Pre-Operational only (node is {state:?}); nothing was sent"
             ),
             Self::Config(e) => write!(f, "{e}; nothing was sent"),
+            Self::WritesRefused(reason) => {
+                write!(f, "safety write refused: {reason}; nothing was sent")
+            }
             Self::NoSuchFunction { function, instance } => {
                 write!(f, "{function} has no instance {instance}; nothing was sent")
             }
