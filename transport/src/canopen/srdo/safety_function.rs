@@ -1,10 +1,10 @@
 //! The one deliberate way to change safety-function parameters (the CiA 402-4 objects of a safety
 //! drive: command mappings, STO, SBC, SLS, SLSa, SDI, SMS): in NMT Pre-Operational only, write the
 //! values, read back every object the function's signature covers, and write the recomputed
-//! signature — the rules of the SWD manual: signatures are updated in Pre-Operational (line
-//! 3570), each function's signature is a CRC-16-CCITT with start value 0 over the listed objects
-//! in order (lines 3497-3562, 3633-3860), and a signature that does not match sets 6607h to 00h
-//! (line 3569).
+//! signature — the rules of the SWD manual: signatures are updated in Pre-Operational, and a
+//! signature that does not match sets 6607h to 00h (lines 3484, 3570); each function's signature
+//! is a CRC-16-CCITT with start value 0 over the listed objects in order (lines 3497-3562,
+//! 3633-3860).
 //!
 //! Generated drive crates give a parameter marked `safety = true` no setter; it implements
 //! [`SafetyFunctionParameter`] instead, and [`SafetyValue::of`] is the only way to turn a value
