@@ -408,6 +408,7 @@ impl SdoWrite {
         }
     }
     /// A write of 1, 2 or 4 little-endian bytes; `None` for another length.
+    #[cfg(feature = "srdo")]
     pub(crate) fn from_le_bytes(index: u16, subindex: u8, bytes: &[u8]) -> Option<Self> {
         match *bytes {
             [b] => Some(Self::u8(index, subindex, b)),
