@@ -7,11 +7,11 @@
 use std::collections::VecDeque;
 use std::time::Instant;
 
-use drivebus::modbus::transport::ByteStream;
 use drivebus::rs232::data::{Answer, Request, Value};
 use drivebus::rs232::serial::{Rs232Client, Rs232Config};
 use drivebus::rs232::telegram::{self, Telegram};
 use drivebus::rs232::{Rs232Link, StationId};
+use drivebus::stream::ByteStream;
 use drivebus::units::Rpm;
 use drivebus::{BusError, Error};
 use drivegen_tests::kinco_rs232::KincoRs232;

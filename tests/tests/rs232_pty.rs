@@ -6,9 +6,9 @@
 use std::io::{Read, Write};
 use std::time::Duration;
 
-use drivebus::modbus::transport::ByteStream;
 use drivebus::rs232::serial::{open_line, Rs232Client, Rs232Config};
 use drivebus::rs232::{LoopMode, Rs232Error, Rs232Link, StationId};
+use drivebus::stream::ByteStream;
 use drivebus::units::Rpm;
 use drivebus::{BusError, Error};
 use drivegen_tests::kinco_rs232::KincoRs232;
@@ -17,7 +17,7 @@ use peer_support::{pty_pair, PtyPair};
 
 const TIMEOUT: Duration = Duration::from_millis(300);
 
-type Drive = KincoRs232<Rs232Link<Rs232Client<drivebus::modbus::transport::SerialStream>>>;
+type Drive = KincoRs232<Rs232Link<Rs232Client<drivebus::stream::SerialStream>>>;
 
 fn fixture() -> Simulator {
     let sim =

@@ -10,6 +10,8 @@
 //! * [`link`] — the one trait a protocol binding implements; [`device`] drives it.
 //! * [`modbus`] / [`canopen`] / [`rs232`] — protocol addresses and the bus traits transports
 //!   implement.
+//! * `stream` (feature `std`) — the byte streams (serial port, TCP, test doubles) under the
+//!   Modbus clients and the RS-232 host.
 //! * [`interpret`] — raw values, and (feature `std`) byte and register codecs, for tools that read
 //!   a description at run time (the CLI, the simulator).
 //! * [`prelude`] — the names an application uses most, in one `use drivebus::prelude::*;`.
@@ -44,6 +46,8 @@ pub mod prelude;
 pub mod read_set;
 pub mod rs232;
 pub mod scale;
+#[cfg(feature = "std")]
+pub mod stream;
 pub mod units;
 pub mod value;
 

@@ -77,6 +77,15 @@ macro_rules! parameter {
         }
     };
 
+    // A safety-function parameter (`safety = true`): no `Writable`, only the deliberate write
+    // `drivebus::canopen::srdo::write_safety_function` (feature `srdo`).
+    (@capability $name:ident safety_write canopen $address:tt $($runtime:ident)?) => {
+        #[diagnostic::do_not_recommend]
+        impl $crate::canopen::srdo::SafetyFunctionParameter for $name {
+            const OBJECT: $crate::canopen::ObjectAddress = $crate::parameter!(@address canopen $address);
+        }
+    };
+
     (@runtime runtime $scale_fn:ident $protocol:ident) => {
         fn $scale_fn<L: $crate::Link<Protocol = $crate::parameter!(@protocol $protocol)>>(
             device: &mut $crate::Device<L>,

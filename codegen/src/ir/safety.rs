@@ -22,12 +22,21 @@ impl Parameter {
         self.safety || self.canopen.iter().any(is_safety_configuration)
     }
 
+    /// Whether this is a safety-function parameter written through the deliberate
+    /// `drivebus::canopen::srdo::write_safety_function`: marked `safety = true`, not an SRDO
+    /// configuration object, with a writable CANopen address.
+    pub fn is_safety_function_parameter(&self) -> bool {
+        self.safety
+            && !self.canopen.iter().any(is_safety_configuration)
+            && self.canopen.iter().any(|a| a.access.write)
+    }
+
     /// How a safety parameter is written, for its documentation; `None` for other parameters.
     pub fn safety_write_note(&self) -> Option<&'static str> {
         if self.canopen.iter().any(is_safety_configuration) {
             Some("written only through `drivebus::canopen::srdo::write_safety_configuration` (no setter)")
         } else if self.safety {
-            Some("safety-function parameter: no setter (the drive checks it against its function's signature)")
+            Some("safety-function parameter: no setter; written only through `drivebus::canopen::srdo::write_safety_function` (Pre-Operational, the function's signature recomputed after), which takes a `SafetyValue::of` this parameter")
         } else {
             None
         }

@@ -10,6 +10,7 @@ include!(concat!(env!("OUT_DIR"), "/drive.rs"));
 #[cfg(doctest)]
 mod compile_guarantees;
 mod emcy;
+pub mod safety_functions;
 #[cfg(feature = "std")]
 mod velocity_mode;
 mod wheel_speed;

@@ -65,8 +65,23 @@ impl<B: SdoBus> Swd<CanOpenLink<B>> {
     pub fn wheel_speed_setpoint(&mut self) -> Result<Rpm, Error> {
         let ratio = self.gear_ratio()?;
         let motor = self.vl_target_velocity().read()?;
-        wheel_speed(motor, ratio).ok_or(Error::Value(ValueError::BadScale {
-            parameter: GEAR_RATIO,
-        }))
+        at_the_wheel(motor, ratio)
     }
+
+    /// The measured wheel speed in rpm: the vl velocity actual value (6044h, rpm at the motor
+    /// through the dimension factor 604Ch) divided by the model's gear ratio. Without a model,
+    /// `ValueError::BadScale` naming `gear_ratio`, and nothing is read.
+    pub fn wheel_speed_actual(&mut self) -> Result<Rpm, Error> {
+        let ratio = self.gear_ratio()?;
+        let motor = self.vl_velocity_actual_value().read()?;
+        at_the_wheel(motor, ratio)
+    }
+}
+
+/// `motor` at the wheel through `ratio`; a zero ratio is `ValueError::BadScale`.
+#[cfg(feature = "std")]
+fn at_the_wheel(motor: Rpm, ratio: Ratio) -> Result<Rpm, Error> {
+    wheel_speed(motor, ratio).ok_or(Error::Value(ValueError::BadScale {
+        parameter: GEAR_RATIO,
+    }))
 }

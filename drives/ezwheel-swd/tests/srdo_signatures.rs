@@ -1,14 +1,14 @@
 //! The generated SRDO structs of the SWD's default SRDOs (lines 1715-1934) sign their default
 //! configurations to the signatures 13FFh prints (lines 3588-3600), and SRDO 1 with reception
-//! disabled signs to the quick start's BABDh (line 4111). SRDO 16 is not declared (ERRATA.md);
-//! its printed configuration with the decided SCT is signed from the mapping entries directly.
+//! disabled signs to the quick start's BABDh (line 4111); the SRDO 9 and 16 errata are the only
+//! readings that reproduce theirs.
 
 use drivebus::canopen::pdo::MappedObject;
 use drivebus::canopen::srdo::{signature, SrdoCommunication, SrdoConfig, SrdoDirection};
 use drivebus::canopen::NodeId;
 use drivegen::ir::{Device, Number};
 use ezwheel_swd::srdo::{
-    SafeActualValues, SafetyControl1, SafetyControl2, SafetyControl3, SafetyControl4,
+    SafeActualValues, SafeInputs, SafetyControl1, SafetyControl2, SafetyControl3, SafetyControl4,
     SafetyControl5, SafetyControl6, SafetyControl78, SafetyStatus,
 };
 
@@ -65,6 +65,10 @@ fn every_declared_srdo_signs_to_the_printed_default() {
             signature(&SafetyControl78::config(NODE)),
             printed::<u16>("srdo15_signature"),
         ),
+        (
+            signature(&SafeInputs::config(NODE)),
+            printed::<u16>("srdo16_signature"),
+        ),
     ];
     for (number, (computed, printed)) in signed.into_iter().enumerate() {
         assert_eq!(computed, Ok(printed), "SRDO #{number} of the list");
@@ -110,24 +114,44 @@ fn srdo9_signs_only_with_the_decided_cob_ids_and_entry() {
 }
 
 #[test]
-fn srdo16_signs_with_the_decided_sct() {
-    let mapping = [
-        MappedObject::new(0x2620, 2, 8),
-        MappedObject::new(0x2622, 2, 8),
-    ];
-    let config = |sct_ms| SrdoConfig {
-        number: 16,
-        communication: SrdoCommunication {
-            direction: SrdoDirection::Invalid,
-            sct_ms,
-            srvt_ms: 20,
-            transmission_type: 0xFE,
-            cob_id_normal: 0x113,
-            cob_id_inverted: 0x114,
-        },
-        mapping: &mapping,
-    };
+fn srdo16_signs_only_with_the_decided_sct_and_entry_width() {
+    let decided = SafeInputs::config(NODE);
+    assert_eq!(
+        decided.mapping,
+        [
+            MappedObject::new(0x2620, 2, 8),
+            MappedObject::new(0x2622, 2, 8),
+        ]
+    );
     assert_eq!(printed::<u16>("srdo16_sct"), 50);
-    assert_eq!(signature(&config(printed::<u16>("srdo16_sct"))), Ok(0x9941));
-    assert_ne!(signature(&config(25)), Ok(0x9941)); // the printed SCT (line 1926)
+    assert_eq!(signature(&decided), Ok(0x9941));
+    let printed_sct = SrdoConfig {
+        communication: SrdoCommunication {
+            sct_ms: 25, // line 1926
+            ..decided.communication
+        },
+        ..decided
+    };
+    assert_ne!(signature(&printed_sct), Ok(0x9941));
+    // 2620h sub 2 as the U32 its table at line 3068 prints.
+    let as_u32 = [
+        MappedObject::new(0x2620, 2, 32),
+        MappedObject::new(0x2622, 2, 32),
+    ];
+    let with_u32_entries = SrdoConfig {
+        mapping: &as_u32,
+        ..decided
+    };
+    assert_ne!(signature(&with_u32_entries), Ok(0x9941));
+}
+
+#[test]
+fn srdo16_carries_the_safein_controlword_in_one_byte() {
+    let inputs = SafeInputs {
+        safein_controlword: 0b0000_0011,
+    };
+    let payload = inputs.encode().expect("any u8 fits");
+    assert_eq!(payload.as_bytes(), [0x03]);
+    assert_eq!(SafeInputs::decode(payload.as_bytes()), Ok(inputs));
+    assert_eq!(SafeInputs::NUMBER, 16);
 }

@@ -60,3 +60,36 @@ fn without_a_model_the_wheel_speed_is_refused() {
     );
     assert_eq!(drive.vl_target_velocity().read_raw().unwrap(), 0);
 }
+
+#[test]
+fn the_measured_wheel_speed_is_the_vl_actual_value_through_the_ratio() {
+    use std::time::{Duration, Instant};
+    let (drive, _node) = start();
+    let mut drive = drive.with_model(Model::SwdCore4x);
+    assert_eq!(drive.wheel_speed_actual().unwrap(), Rpm(0.0));
+    let deadline = Instant::now() + Duration::from_secs(3);
+    drive.start_velocity_mode(deadline).unwrap();
+    drive.set_wheel_speed(Rpm(25.0)).unwrap();
+    // The simulated motor reaches 100 rpm at the motor along the vl ramp (500 rpm / s).
+    let wheel = loop {
+        let wheel = drive.wheel_speed_actual().unwrap();
+        if wheel == Rpm(25.0) || Instant::now() > deadline {
+            break wheel;
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    assert_eq!(wheel, Rpm(25.0));
+    // 6044h itself is rpm at the motor: 4 × 25.
+    assert_eq!(drive.vl_velocity_actual_value().read_raw().unwrap(), 100);
+}
+
+#[test]
+fn without_a_model_the_measured_wheel_speed_is_refused() {
+    let (mut drive, _node) = start();
+    assert_eq!(
+        drive.wheel_speed_actual(),
+        Err(Error::Value(ValueError::BadScale {
+            parameter: "gear_ratio"
+        }))
+    );
+}

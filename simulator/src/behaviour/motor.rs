@@ -50,6 +50,8 @@ impl Motor {
             .iter()
             .filter_map(|name| store.id(name))
             .chain(object(store, 0x606C, 0))
+            // The vl velocity actual value (e.g. the ez-Wheel SWD's), in the units of 6042h.
+            .chain(object(store, 0x6044, 0))
             .collect();
         if actuals.is_empty() {
             return None;

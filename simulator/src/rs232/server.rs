@@ -11,10 +11,10 @@ use std::time::{Duration, Instant};
 
 use drivebus::canopen::sdo::server::ObjectDictionary;
 use drivebus::canopen::sdo::AbortCode;
-use drivebus::modbus::transport::ByteStream;
 use drivebus::rs232::data::{Answer, Object, Request, Value};
 use drivebus::rs232::telegram::{self, Telegram, TELEGRAM_LEN};
 use drivebus::rs232::{LoopMode, StationId};
+use drivebus::stream::ByteStream;
 use drivebus::BusError;
 
 use crate::canopen::Dictionary;

@@ -407,6 +407,16 @@ impl SdoWrite {
             len: 4,
         }
     }
+    /// A write of 1, 2 or 4 little-endian bytes; `None` for another length.
+    #[cfg(feature = "srdo")]
+    pub(crate) fn from_le_bytes(index: u16, subindex: u8, bytes: &[u8]) -> Option<Self> {
+        match *bytes {
+            [b] => Some(Self::u8(index, subindex, b)),
+            [lo, hi] => Some(Self::u16(index, subindex, u16::from_le_bytes([lo, hi]))),
+            [a, b, c, d] => Some(Self::u32(index, subindex, u32::from_le_bytes([a, b, c, d]))),
+            _ => None,
+        }
+    }
     /// The little-endian bytes to download.
     pub fn data(&self) -> &[u8] {
         &self.value[..self.len as usize]

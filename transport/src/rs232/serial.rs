@@ -1,7 +1,7 @@
 //! A blocking RS-232 host over any [`ByteStream`], and how to open it on a serial port.
 //!
-//! The byte channel is the one the Modbus clients use ([`ByteStream`], [`SerialStream`]): a
-//! serial port, a pty, or a test double.
+//! The byte channel is the one the Modbus clients use too ([`ByteStream`], [`SerialStream`] in
+//! [`crate::stream`]): a serial port, a pty, or a test double.
 
 use core::time::Duration;
 use std::time::Instant;
@@ -11,7 +11,7 @@ use super::exchange::Exchange;
 use super::telegram::TELEGRAM_LEN;
 use super::{LoopMode, StationId, TelegramBus};
 use crate::error::BusError;
-use crate::modbus::transport::{ByteStream, SerialStream};
+use crate::stream::{ByteStream, SerialStream};
 
 /// The drive's factory baud rate (manual line 2173).
 pub const DEFAULT_BAUD: u32 = 38_400;
@@ -51,22 +51,13 @@ pub struct Rs232Client<S> {
 /// Opens the serial port at `path` with the protocol's line settings: 8N1 at `config.baud`
 /// (for a host, or for a simulated drive).
 pub fn open_line(path: &str, config: &Rs232Config) -> Result<SerialStream, BusError> {
-    let port = serialport::new(path, config.baud)
-        .data_bits(serialport::DataBits::Eight)
-        .parity(serialport::Parity::None)
-        .stop_bits(serialport::StopBits::One)
-        .flow_control(serialport::FlowControl::None)
-        .timeout(config.timeout)
-        .open()
-        .map_err(|e| {
-            BusError::Io(match e.kind {
-                serialport::ErrorKind::Io(kind) => kind,
-                serialport::ErrorKind::NoDevice => std::io::ErrorKind::NotFound,
-                serialport::ErrorKind::InvalidInput => std::io::ErrorKind::InvalidInput,
-                serialport::ErrorKind::Unknown => std::io::ErrorKind::Other,
-            })
-        })?;
-    Ok(SerialStream::from_port(port))
+    SerialStream::open_8_bits(
+        path,
+        config.baud,
+        serialport::Parity::None,
+        serialport::StopBits::One,
+        config.timeout,
+    )
 }
 
 impl Rs232Client<SerialStream> {

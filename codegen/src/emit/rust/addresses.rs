@@ -5,18 +5,19 @@ use quote::quote;
 
 use crate::ir::{Access, Device, ModbusAddress, ObjectAddress, Parameter, Table, WordOrder};
 
-/// Read or write.
+/// Read, write, or the deliberate safety-function write (`safety = true` parameters).
 #[derive(Clone, Copy)]
 pub enum Direction {
     Read,
     Write,
+    SafetyWrite,
 }
 
 impl Direction {
     fn allows(self, access: Access) -> bool {
         match self {
             Direction::Read => access.read,
-            Direction::Write => access.write,
+            Direction::Write | Direction::SafetyWrite => access.write,
         }
     }
 }
@@ -70,8 +71,10 @@ fn placement<A>(
 ) -> Option<TokenStream> {
     // Safety parameters get no write placement on any protocol: only the deliberate safety
     // write changes them (`Parameter::is_safety`).
-    if matches!(direction, Direction::Write) && p.is_safety() {
-        return None;
+    match direction {
+        Direction::Write if p.is_safety() => return None,
+        Direction::SafetyWrite if !p.is_safety_function_parameter() => return None,
+        _ => {}
     }
     let usable: Vec<&A> = addresses
         .iter()

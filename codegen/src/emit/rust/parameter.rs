@@ -170,6 +170,7 @@ fn capability(
     let direction = ident(match direction {
         Direction::Read => "read",
         Direction::Write => "write",
+        Direction::SafetyWrite => "safety_write",
     });
     let runtime = matches!(p.scale, Some(Scale::Runtime { .. })).then(|| quote! { runtime });
     Some(quote! { ; #direction #protocol #placement #runtime })
@@ -193,6 +194,12 @@ pub fn emit(p: &Parameter, device: &Device) -> TokenStream {
             ]
         })
         .flatten()
+        .chain(capability(
+            p,
+            "canopen",
+            Direction::SafetyWrite,
+            addresses::canopen(p, device, Direction::SafetyWrite),
+        ))
         .collect::<Vec<_>>();
     let declaration = quote! {
         #aliases

@@ -6,7 +6,9 @@
 //! pairs; everything else is an [`SrdoError`] and no value. The [`SrdoProducer`] emits the pair.
 //! Time is an input, as in every core of this crate. [`signature()`] computes the safety
 //! configuration signature (13FFh) of an [`SrdoConfig`]; [`write_safety_configuration`] is the
-//! only writer of safety configuration (Pre-Operational only, signature and validity flag after).
+//! only writer of safety configuration (Pre-Operational only, signature and validity flag after),
+//! [`write_safety_function`] the only writer of safety-function parameters (Pre-Operational
+//! only, the function's signature recomputed after).
 //!
 //! ```
 //! use core::time::Duration;
@@ -35,6 +37,7 @@ mod consumer;
 mod error;
 pub mod mapping;
 mod producer;
+pub mod safety_function;
 pub mod safety_write;
 pub mod signature;
 mod stored_signature;
@@ -46,6 +49,10 @@ pub use config::{SrdoCommunication, SrdoConfig, SrdoDirection, MAX_SRDO};
 pub use consumer::SrdoConsumer;
 pub use error::SrdoError;
 pub use producer::SrdoProducer;
+pub use safety_function::{
+    function_signature, write_safety_function, FunctionSignature, SafetyFunctionParameter,
+    SafetyValue, Signed,
+};
 pub use safety_write::{write_safety_configuration, MappingWrite, SafetyPlan, SafetyWriteError};
 pub use signature::{signature, verify, SignatureMismatch, VerifyError};
 pub use stored_signature::{check_stored_signature, StoredSignatureError};

@@ -48,6 +48,26 @@ pub enum SafetyWriteError {
     },
     /// The configuration is not valid or cannot be signed; nothing was sent.
     Config(SrdoError),
+    /// The handle refuses writes (the drive's identity or configuration is not the
+    /// description's); nothing was sent.
+    WritesRefused(crate::error::WriteRefusal),
+    /// The safety function has no such instance (SLS 9); nothing was sent.
+    NoSuchFunction {
+        /// The function.
+        function: &'static str,
+        /// The instance asked for.
+        instance: u8,
+    },
+    /// A value of an object the function's signature does not cover: writing it would change
+    /// the safety application without updating a signature; nothing was sent.
+    NotSigned {
+        /// The function whose signature was to be updated.
+        function: &'static str,
+        /// Object index of the value.
+        index: u16,
+        /// Sub-index of the value.
+        subindex: u8,
+    },
     /// The drive refused a write or the bus failed; the writes before it were made, the validity
     /// flag was not set.
     Bus {
@@ -68,6 +88,20 @@ impl fmt::Display for SafetyWriteError {
                 "safety configuration is written in NMT Pre-Operational only (node is {state:?}); nothing was sent"
             ),
             Self::Config(e) => write!(f, "{e}; nothing was sent"),
+            Self::WritesRefused(reason) => {
+                write!(f, "safety write refused: {reason}; nothing was sent")
+            }
+            Self::NoSuchFunction { function, instance } => {
+                write!(f, "{function} has no instance {instance}; nothing was sent")
+            }
+            Self::NotSigned {
+                function,
+                index,
+                subindex,
+            } => write!(
+                f,
+                "{index:#06x}:{subindex} is not covered by the {function} signature; nothing was sent"
+            ),
             Self::Bus {
                 index,
                 subindex,

@@ -53,7 +53,7 @@ use super::error::SrdoError;
 
 /// CRC-16/XMODEM from the `crc` catalogue, as the SDO block CRC (`sdo::block::crc16`), with the
 /// slice-by-16 table: a signature is a hundred bytes or so, where byte-wise tables dominate.
-const SIGNATURE_CRC: crc::Crc<u16, crc::Table<16>> =
+pub(super) const SIGNATURE_CRC: crc::Crc<u16, crc::Table<16>> =
     crc::Crc::<u16, crc::Table<16>>::new(&crc::CRC_16_XMODEM);
 
 /// The signature of one SRDO's configuration, as the drive expects it in 13FFh sub `number`.

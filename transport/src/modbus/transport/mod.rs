@@ -58,8 +58,10 @@ use core::ops::Range;
 use std::time::{Duration, Instant};
 
 pub use super::MAX_IN_FLIGHT;
+pub(crate) use crate::stream::io_error;
+pub use crate::stream::{ByteStream, SerialStream};
 pub use rtu_over_tcp::RtuOverTcpClient;
-pub use serial::{SerialConfig, SerialRtuClient, SerialStream};
+pub use serial::{SerialConfig, SerialRtuClient};
 pub use tcp::{ModbusTcpClient, NetStream, TcpConfig};
 
 use crate::error::BusError;
@@ -70,41 +72,6 @@ use super::retry::{is_transient, Idempotency, RetryPolicy};
 use super::rtu::RtuFraming;
 use super::tcp::TcpFraming;
 use super::{read_one_by_one, BitBus, RegisterBus, RegisterRead, Table, UnitId};
-
-/// The byte channel under a client: a serial port, a TCP connection, or a test double.
-pub trait ByteStream {
-    /// Sends all of `bytes`.
-    fn send(&mut self, bytes: &[u8]) -> Result<(), BusError>;
-    /// Waits until some bytes arrived or `deadline` passed; returns how many were stored in `buf`
-    /// (0: the deadline passed).
-    fn receive(&mut self, buf: &mut [u8], deadline: Instant) -> Result<usize, BusError>;
-    /// Drops input that arrived but was not read: late answers and line noise.
-    fn discard_input(&mut self) -> Result<(), BusError>;
-    /// Re-establishes the channel after an I/O failure (TCP reconnects). Default: nothing to do.
-    fn reconnect(&mut self) -> Result<(), BusError> {
-        Ok(())
-    }
-}
-
-impl<S: ByteStream + ?Sized> ByteStream for &mut S {
-    fn send(&mut self, bytes: &[u8]) -> Result<(), BusError> {
-        (**self).send(bytes)
-    }
-    fn receive(&mut self, buf: &mut [u8], deadline: Instant) -> Result<usize, BusError> {
-        (**self).receive(buf, deadline)
-    }
-    fn discard_input(&mut self) -> Result<(), BusError> {
-        (**self).discard_input()
-    }
-    fn reconnect(&mut self) -> Result<(), BusError> {
-        (**self).reconnect()
-    }
-}
-
-/// Maps an I/O error to the bus error that carries its kind.
-pub(crate) fn io_error(error: std::io::Error) -> BusError {
-    BusError::Io(error.kind())
-}
 
 /// How a client times, retries and paces requests.
 #[derive(Debug, Clone, PartialEq, Eq)]
