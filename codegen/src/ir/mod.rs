@@ -8,6 +8,7 @@ mod data_type;
 mod expected_identity;
 mod expr;
 mod indexed;
+mod lock;
 mod model;
 mod number;
 mod pdo;
@@ -25,6 +26,10 @@ pub use data_type::DataType;
 pub use expected_identity::ExpectedIdentity;
 pub use expr::{Expr, ExprError, Op};
 pub use indexed::IndexedParameter;
+pub use lock::{
+    Grant, GrantKey, Lock, LockScope, Requirement, TimeoutAction, TimeoutEffect, Unlock, UnlockEnd,
+    Watchdog,
+};
 pub use model::{Constant, Model};
 pub use number::Number;
 pub use pdo::{pdo_bits, CobId, PdoDirection, PdoMapping};
@@ -64,6 +69,9 @@ pub struct Device {
     /// The drive, firmware and configuration the description covers (`[identity]`), if given.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub identity: Option<ExpectedIdentity>,
+    /// Writes refused until the drive is unlocked (`[lock]`, `[[unlock]]`, `[watchdog]`), if any.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lock: Option<Lock>,
     /// Firmware / configuration variants; the first is the default.
     pub variants: Vec<Variant>,
     /// Enumerations.

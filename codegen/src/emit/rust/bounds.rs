@@ -20,7 +20,7 @@ pub fn emit(device: &Device) -> TokenStream {
         return TokenStream::new();
     }
     let handle = ident(&names::camel(&device.device.handle));
-    let methods = bounded.iter().map(|p| method(p, &handle));
+    let methods = bounded.iter().map(|p| method(p, &handle, device));
     quote! {
         #ERROR_TYPE
         #( #methods )*
@@ -32,11 +32,11 @@ fn writable(p: &Parameter) -> bool {
 }
 
 /// One bound check: `raw` must not lie `beyond` the current value of `bound`.
-fn check(p: &Parameter, bound: &str, beyond: TokenStream) -> TokenStream {
+fn check(p: &Parameter, bound: &str, beyond: TokenStream, at: &TokenStream) -> TokenStream {
     let marker = ident(&names::camel(bound));
     let name = &p.name;
     quote! {
-        let limit = self.device.read_raw::<params::#marker>()?;
+        let limit = #at.read_raw::<params::#marker>()?;
         if raw #beyond limit {
             return Err(BoundedWriteError::OutsideBound {
                 parameter: #name,
@@ -48,13 +48,46 @@ fn check(p: &Parameter, bound: &str, beyond: TokenStream) -> TokenStream {
     }
 }
 
-fn method(p: &Parameter, handle: &proc_macro2::Ident) -> TokenStream {
+/// Where the bounded write of `p` lives: the handle, or for a parameter that needs an unlock
+/// the guard of the unlocks opening its scope. Returns the impl header's generics and self type,
+/// its extra bounds and the path to the runtime device.
+fn receiver(
+    p: &Parameter,
+    handle: &proc_macro2::Ident,
+    device: &Device,
+) -> (TokenStream, TokenStream, TokenStream) {
+    match (device.lock.as_ref(), device.lock_scope_of(p)) {
+        (Some(lock), Some(scope)) => {
+            let opens = ident(&format!("Opens{}", names::camel(&scope.name)));
+            let command = ident(&names::camel(&lock.command));
+            (
+                quote! { <'d, L: ::drivebus::Link, U: unlock::#opens> Unlocked<'d, L, U> },
+                quote! { params::#command: ::drivebus::Writable<L::Protocol>, },
+                quote! { self.drive.device },
+            )
+        }
+        _ => (
+            quote! { <L: ::drivebus::Link> #handle<L> },
+            quote! {},
+            quote! { self.device },
+        ),
+    }
+}
+
+fn method(p: &Parameter, handle: &proc_macro2::Ident, device: &Device) -> TokenStream {
+    let (header, lock_bound, at) = receiver(p, handle, device);
     let bounds = p.bounds.as_ref().expect("filtered on bounds");
     let marker = ident(&names::camel(&p.name));
     let method = ident(&format!("write_{}", names::snake(&p.name)));
     let bound_markers: Vec<_> = bounds.names().map(|b| ident(&names::camel(b))).collect();
-    let min = bounds.min.as_deref().map(|b| check(p, b, quote! { < }));
-    let max = bounds.max.as_deref().map(|b| check(p, b, quote! { > }));
+    let min = bounds
+        .min
+        .as_deref()
+        .map(|b| check(p, b, quote! { < }, &at));
+    let max = bounds
+        .max
+        .as_deref()
+        .map(|b| check(p, b, quote! { > }, &at));
     let described = bounds
         .names()
         .map(|b| format!("`{b}`"))
@@ -67,8 +100,9 @@ fn method(p: &Parameter, handle: &proc_macro2::Ident) -> TokenStream {
         p.name
     ));
     quote! {
-        impl<L: ::drivebus::Link> #handle<L>
+        impl #header
         where
+            #lock_bound
             params::#marker: ::drivebus::Writable<L::Protocol>,
             #( params::#bound_markers: ::drivebus::Readable<L::Protocol, Raw = <params::#marker as ::drivebus::Parameter>::Raw>, )*
         {
@@ -77,11 +111,11 @@ fn method(p: &Parameter, handle: &proc_macro2::Ident) -> TokenStream {
                 &mut self,
                 value: <params::#marker as ::drivebus::Parameter>::Value,
             ) -> Result<(), BoundedWriteError> {
-                let scale = <params::#marker as ::drivebus::Writable<L::Protocol>>::write_scale(&mut self.device)?;
+                let scale = <params::#marker as ::drivebus::Writable<L::Protocol>>::write_scale(&mut #at)?;
                 let raw = <params::#marker as ::drivebus::Parameter>::encode(value, scale)?;
                 #min
                 #max
-                self.device.write_raw::<params::#marker>(raw)?;
+                #at.write_raw::<params::#marker>(raw)?;
                 Ok(())
             }
         }

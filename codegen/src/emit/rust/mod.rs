@@ -19,6 +19,7 @@ mod pdo_communication;
 mod read_blocks;
 mod srdo;
 mod triggers;
+mod unlock;
 mod variant_selection;
 mod variants;
 
@@ -113,6 +114,7 @@ pub fn tokens(device: &Device) -> TokenStream {
         read_blocks::emit(device),
         bounds::emit(device),
         triggers::emit(device),
+        unlock::emit(device),
         variant_selection::emit(device),
         identity_check::emit(device),
         given::emit(device),
