@@ -323,6 +323,14 @@ fn read_view() -> TokenStream {
             {
                 self.0.write(value)
             }
+
+            /// Does not compile: the parameter is written only while the drive is unlocked.
+            pub fn write_raw(self, raw: P::Raw) -> Result<(), ::drivebus::Error>
+            where
+                P: WritableWithoutUnlock + ::drivebus::Writable<L::Protocol>,
+            {
+                self.0.write_raw(raw)
+            }
         }
     }
 }
