@@ -22,6 +22,7 @@ mod triggers;
 mod unlock;
 mod variant_selection;
 mod variants;
+mod watchdog;
 
 use proc_macro2::{Delimiter, Group, Ident, Literal, Span, TokenStream, TokenTree};
 use quote::quote;
@@ -115,6 +116,7 @@ pub fn tokens(device: &Device) -> TokenStream {
         bounds::emit(device),
         triggers::emit(device),
         unlock::emit(device),
+        watchdog::emit(device),
         variant_selection::emit(device),
         identity_check::emit(device),
         given::emit(device),
