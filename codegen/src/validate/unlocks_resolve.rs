@@ -34,7 +34,45 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
     if let Some(watchdog) = &lock.watchdog {
         self::watchdog(device, lock, watchdog, &mut report);
     }
+    generated_names(device, lock, &mut report);
     out
+}
+
+/// Methods of the generated guard besides the setters.
+const GUARD_METHODS: [&str; 4] = ["drive", "lock", "new", "write_lock"];
+
+/// The generated `unlock` module's names (a marker per unlock, an `Opens<Scope>` trait per
+/// scope) are distinct, and no setter on the guard takes a name of the guard's own methods.
+fn generated_names(device: &Device, lock: &Lock, report: &mut impl FnMut(&Span, String)) {
+    let mut taken: BTreeSet<String> = BTreeSet::new();
+    let markers = lock
+        .unlocks
+        .iter()
+        .map(|u| (names::camel(&u.name), &u.span));
+    let traits = lock
+        .scopes
+        .iter()
+        .map(|s| (format!("Opens{}", names::camel(&s.name)), &s.span));
+    for (name, span) in markers.chain(traits) {
+        if !taken.insert(name.clone()) {
+            report(
+                span,
+                format!("the generated name `unlock::{name}` is taken twice"),
+            );
+        }
+    }
+    for p in &device.parameters {
+        let method = names::method(&p.name);
+        if device.lock_scope_of(p).is_some() && GUARD_METHODS.contains(&method.as_str()) {
+            report(
+                &lock.span,
+                format!(
+                    "the setter `{method}` of `{}` would shadow the unlock guard's own method",
+                    p.name
+                ),
+            );
+        }
+    }
 }
 
 /// Why `p` cannot be read as an integer, if it cannot.
@@ -461,6 +499,21 @@ source = { doc = "m", line = 11 }
         assert_eq!(
             messages("unlocks_resolve", &body(&lock)),
             ["unlock `controls` ends on `requirement_lost` but has no `requires`"]
+        );
+    }
+
+    #[test]
+    fn generated_names_do_not_collide() {
+        let lock = LOCK.replace(r#"name = "all""#, r#"name = "opens_controls""#);
+        assert_eq!(
+            messages("unlocks_resolve", &body(&lock)),
+            ["the generated name `unlock::OpensControls` is taken twice"]
+        );
+        let parameters = PARAMETERS.replace(r#"name = "control_source""#, r#"name = "drive""#);
+        let lock = LOCK.replace(r#"parameter = "control_source""#, r#"parameter = "drive""#);
+        assert_eq!(
+            messages("unlocks_resolve", &format!("{lock}\n{parameters}")),
+            ["the setter `drive` of `drive` would shadow the unlock guard's own method"]
         );
     }
 
