@@ -38,9 +38,12 @@ pub fn emit(device: &Device) -> TokenStream {
         .unlocks
         .iter()
         .map(|u| unlock_method(device, u, &handle, &lock_bound));
-    let refusal = lock.refusal;
+    let refusal: proc_macro2::Literal = format!("0x{:02X}", lock.refusal)
+        .parse()
+        .expect("a hexadecimal integer is a literal");
     let refusal_doc = doc_attrs(&format!(
-        "The Modbus exception code the drive answers a write with while it is locked ({refusal:#04x})."
+        "The Modbus exception code the drive answers a write with while it is locked ({:#04x}).",
+        lock.refusal
     ));
     let items = [
         markers(lock),
