@@ -1,6 +1,8 @@
 //! The Lenze smd's normal control sequence (manual section 4.9) through the generated, typed
-//! `lenze-smd` crate: detect the parameter configuration (#50), unlock controls, take the speed
-//! from the serial link, start at 41.2 Hz, watch the 6-word status block, stop, lock.
+//! `lenze-smd` crate: detect the parameter configuration (#50), unlock controls (the guard the
+//! description's `[[unlock]]` generates), take the speed from the serial link, start at 41.2 Hz,
+//! watch the 6-word status block, stop, lock. Outside the guard the commands and #40 have no
+//! setter; the simulator answers such writes with exception 01 as the drive does.
 //!
 //! ```sh
 //! cargo run --example lenze_smd                           # a simulated PC507 drive on 127.0.0.1
@@ -16,7 +18,7 @@ use drivebus::modbus::rtu::{Parity, StopBits};
 use drivebus::modbus::transport::{ModbusTcpClient, SerialConfig, SerialRtuClient, TcpConfig};
 use drivebus::modbus::{ModbusLink, RegisterBus, UnitId};
 use drivebus::units::Hertz;
-use lenze_smd::{Command, LenzeSmd};
+use lenze_smd::{Command, LenzeSmd, SmdError};
 
 /// The unit: the manual advises against address 1 (section 4.2, line 344).
 const UNIT: UnitId = UnitId(10);
@@ -53,18 +55,20 @@ fn run<B: RegisterBus>(bus: B) -> Result<(), Box<dyn Error>> {
     println!("drive family       {}", drive.drive_family().read()?);
     println!("control source     {:?}", drive.control_source().read()?);
 
-    let mut session = drive.unlock_controls()?; // #48 = 0, after checking #50 and C01
-    session.command(Command::SerialSpeedReference)?; // #1 = 0x0100
-    session.set_serial_speed(Hertz(41.2))?; // #40 = 412, within C10 ... C11
-    if let Err(refused) = session.set_serial_speed(Hertz(75.0)) {
-        println!("refused            {refused}");
+    let mut unlocked = drive.unlock_controls()?; // reads C01 (10 or 11), then #48 = 0
+    unlocked.command(Command::SerialSpeedReference)?; // #1 = 0x0100
+    unlocked
+        .write_serial_speed_command(Hertz(41.2)) // #40 = 412, within C10 ... C11
+        .map_err(SmdError::from)?;
+    if let Err(refused) = unlocked.write_serial_speed_command(Hertz(75.0)) {
+        println!("refused            {}", SmdError::from(refused));
     }
-    session.command(Command::Start)?; // #1 = 0x0008
+    unlocked.command(Command::Start)?; // #1 = 0x0008
     println!("  command   actual   load  status   fault");
     for _ in 0..3 {
         sleep(Duration::from_millis(100));
         // #24-#29 in one request; the simulator has no smd motor model, so it shows its presets.
-        let status = session.drive().status()?;
+        let status = unlocked.drive().status()?;
         let fault = status.fault_and_commanded_direction.present_fault();
         println!(
             "  {:<9} {:<8} {:<5} {:<8} {}",
@@ -75,11 +79,20 @@ fn run<B: RegisterBus>(bus: B) -> Result<(), Box<dyn Error>> {
             fault.meaning().unwrap_or("unknown code"),
         );
     }
-    session.command(Command::Stop)?; // #1 = 0x0004
-    session.lock()?; // #1 = 0x0002
+    unlocked.command(Command::Stop)?; // #1 = 0x0004
+    unlocked.lock()?; // #1 = 0x0002
     println!(
         "locked             serial speed {}",
         drive.serial_speed_command().read()?
+    );
+    // Past the lock only the raw device could still write #1, and the drive refuses it.
+    let refused = drive
+        .device()
+        .write_raw::<lenze_smd::params::Start>(lenze_smd::params::Start::TRIGGER)
+        .map_err(SmdError::from);
+    println!(
+        "start after lock   {}",
+        refused.err().map_or("accepted".into(), |e| e.to_string())
     );
     Ok(())
 }

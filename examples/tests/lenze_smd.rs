@@ -1,6 +1,7 @@
 //! The Lenze smd example runs end to end on its embedded simulator: the configuration comes from
 //! #50, the serial speed beyond C11 is refused naming the bound, the status block decodes, and
-//! the speed written inside the session reads back after the lock.
+//! the speed written inside the unlock guard reads back after the lock, and the simulator, like
+//! the drive, refuses a command after the lock with exception 01 (typed `Locked`).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -28,6 +29,7 @@ fn lenze_smd_runs_on_its_simulated_drive() {
         "of maximum_output_frequency",
         "NO FAULT",
         "locked             serial speed 41.2 Hz",
+        "start after lock   start: the drive is locked (exception 0x01)",
     ] {
         assert!(
             stdout.contains(expected),

@@ -70,6 +70,14 @@ impl Drive {
         }
     }
 
+    /// The drive received a request: behaviours that watch communication (a serial watchdog)
+    /// start counting again.
+    pub fn heard(&mut self) {
+        for b in &mut self.behaviours {
+            b.heard();
+        }
+    }
+
     /// Raises a fault with `code`; the state machines react at the next tick.
     pub fn inject_fault(&mut self, code: u16) {
         self.shared.fault = Some(code);

@@ -2,8 +2,10 @@
 //!
 //! The [`Drive`] holds every parameter's raw value (described defaults, 0 where none) and runs
 //! the behaviours the description calls for ([`behaviour`]): the CiA 402 state machine, the
-//! description's own `[state_machine]`, command registers and a motor whose speed follows the
-//! setpoint along the described ramp. Protocol fronts expose it:
+//! description's own `[state_machine]`, command registers, a motor whose speed follows the
+//! setpoint along the described ramp, and the write lock and serial watchdog of `[lock]`,
+//! `[[unlock]]` and `[watchdog]` (writes refused with the described exception until unlocked; a
+//! timeout ends the unlock and applies the action the description maps). Protocol fronts expose it:
 //!
 //! * [`modbus`] — a sans-I/O server core ([`modbus::ModbusServer`]) enforcing access, ranges,
 //!   allowed values, unknown addresses, function codes and the device's limits with the exception

@@ -22,6 +22,11 @@ pub enum Refusal {
     InvalidValue,
     /// The payload does not have the parameter's length.
     WrongLength,
+    /// The drive is locked: the write needs an unlock first (`[lock]`).
+    Locked {
+        /// The Modbus exception code the description says the drive answers with.
+        exception: u8,
+    },
 }
 
 impl Refusal {
@@ -36,6 +41,7 @@ impl Refusal {
             Refusal::TooHigh | Refusal::TooLow | Refusal::InvalidValue | Refusal::WrongLength => {
                 value
             }
+            Refusal::Locked { exception } => exception,
         }
     }
 
@@ -50,6 +56,7 @@ impl Refusal {
             Refusal::TooLow => AbortCode::ValueTooLow,
             Refusal::InvalidValue => AbortCode::InvalidValue,
             Refusal::WrongLength => AbortCode::LengthMismatch,
+            Refusal::Locked { .. } => AbortCode::CannotStoreLocalControl,
         }
     }
 }

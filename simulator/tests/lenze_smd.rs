@@ -91,15 +91,19 @@ fn the_status_block_and_c99_are_the_only_multi_register_reads() {
 
 #[test]
 fn every_command_of_register_1_is_accepted_and_others_refused() {
-    // Table 8 (manual lines 538-551): 0x0001 ... 0x0200, one bit per write.
+    // Table 8 (manual lines 538-551): 0x0001 ... 0x0200, one bit per write, once the controls
+    // are unlocked (C01 = 11, #48 = 0; section 4.5); 0x0002 locks again.
     let sim = lenze();
+    sim.preset("control_source", 11).unwrap();
     let server = sim.serve_modbus_tcp("127.0.0.1:0", UNIT).unwrap();
     let mut client = ModbusTcpClient::connect(server.local_addr(), &TcpConfig::default()).unwrap();
+    client.write_register(UNIT, 48, 0).unwrap();
     for word in [
-        0x0001, 0x0002, 0x0004, 0x0008, 0x0040, 0x0080, 0x0100, 0x0200,
+        0x0001, 0x0004, 0x0008, 0x0040, 0x0080, 0x0100, 0x0200, 0x0002,
     ] {
         assert_eq!(client.write_register(UNIT, 1, word), Ok(()), "{word:#06x}");
     }
+    client.write_register(UNIT, 48, 0).unwrap();
     assert!(matches!(
         client.write_register(UNIT, 1, 0x0010),
         Err(BusError::ModbusException {

@@ -6,6 +6,7 @@
 //! compiles but reads or writes differently (an address, scale, range or default moved), and
 //! *compatible* for pure additions.
 
+mod locks;
 mod mappings;
 mod models;
 mod parameters;
@@ -57,6 +58,7 @@ pub fn diff(old: &Device, new: &Device) -> Vec<Change> {
     let mut changes = Vec::new();
     types::device(old, new, &mut changes);
     parameters::compare(&old.parameters, &new.parameters, &mut changes);
+    locks::compare(old, new, &mut changes);
     pdos::compare(&old.pdos, &new.pdos, &mut changes);
     srdos::compare(&old.srdos, &new.srdos, &mut changes);
     models::compare(&old.models, &new.models, &mut changes);

@@ -149,6 +149,7 @@ pub fn empty_device(name: &str, model: &EdsModel) -> ir::Device {
             source: None,
         }),
         identity: None,
+        lock: None,
         variants: Vec::new(),
         enums: Vec::new(),
         flags: Vec::new(),

@@ -9,6 +9,7 @@ mod expected_identity;
 mod expr;
 mod identity_checks;
 mod indexed;
+mod lock;
 mod model;
 mod pdo;
 mod read_block;
@@ -28,6 +29,10 @@ pub use expected_identity::ExpectedIdentity;
 pub use expr::{Expr, ExprError, Op};
 pub use identity_checks::{Covered, IdentityCheck};
 pub use indexed::IndexedParameter;
+pub use lock::{
+    Grant, GrantKey, Lock, LockScope, Requirement, TimeoutAction, TimeoutEffect, Unlock, UnlockEnd,
+    Watchdog,
+};
 pub use model::{Constant, Model};
 pub use pdo::{pdo_bits, CobId, PdoDirection, PdoMapping};
 pub use read_block::ReadBlock;
@@ -66,6 +71,9 @@ pub struct Device {
     /// The drive, firmware and configuration the description covers (`[identity]`), if given.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub identity: Option<ExpectedIdentity>,
+    /// Writes refused until the drive is unlocked (`[lock]`, `[[unlock]]`, `[watchdog]`), if any.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lock: Option<Lock>,
     /// Firmware / configuration variants; the first is the default.
     pub variants: Vec<Variant>,
     /// Enumerations.

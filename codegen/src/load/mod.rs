@@ -4,6 +4,7 @@ mod lower;
 mod only;
 mod raw;
 mod raw_identity;
+mod raw_lock;
 mod raw_srdo;
 pub mod subindex_range;
 

@@ -21,6 +21,10 @@ pub struct RawFile {
     pub modbus: Option<RawModbusCaps>,
     pub canopen: Option<RawCanOpenCaps>,
     pub identity: Option<super::raw_identity::RawIdentity>,
+    pub lock: Option<super::raw_lock::RawLock>,
+    #[serde(default)]
+    pub unlock: Vec<super::raw_lock::RawUnlock>,
+    pub watchdog: Option<super::raw_lock::RawWatchdog>,
     #[serde(default)]
     pub variant: Vec<RawVariant>,
     #[serde(default, rename = "enum")]

@@ -36,6 +36,7 @@ mod srdo_timings_are_valid;
 mod state_machines_resolve;
 mod strings_have_length;
 mod units_are_known;
+mod unlocks_resolve;
 mod value_types_are_consistent;
 mod values_cite_sources;
 mod variant_selectors_resolve;
@@ -121,6 +122,7 @@ pub const PASSES: &[(&str, Pass)] = &[
         "manual_names_are_search_aliases",
         manual_names_are_search_aliases::check,
     ),
+    ("unlocks_resolve", unlocks_resolve::check),
 ];
 
 /// Runs every pass.

@@ -1,4 +1,5 @@
-//! Every parameter, PDO mapping, SRDO, enum, flags type, record and control table cites the manual line
+//! Every parameter, PDO mapping, SRDO, enum, flags type, record, control table, lock, unlock and
+//! watchdog cites the manual line
 //! it comes from.
 
 use crate::diagnostic::{Diagnostic, Span};
@@ -62,7 +63,22 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
         .srdos
         .iter()
         .map(|s| ("SRDO", &s.name, &s.span, &s.source));
+    let watchdog_name = String::from("watchdog");
+    let lock = device.lock.iter().flat_map(|l| {
+        let unlocks = l
+            .unlocks
+            .iter()
+            .map(|u| ("unlock", &u.name, &u.span, &u.source));
+        let watchdog = l
+            .watchdog
+            .iter()
+            .map(|w| ("table", &watchdog_name, &w.span, &w.source));
+        std::iter::once(("lock command", &l.command, &l.span, &l.source))
+            .chain(unlocks)
+            .chain(watchdog)
+    });
     parameters
+        .chain(lock)
         .chain(pdos)
         .chain(srdos)
         .chain(enums)

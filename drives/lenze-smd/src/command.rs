@@ -1,13 +1,14 @@
 //! Drive commands: register #1 takes one command bit per write (Note 1, lines 567-571: with
 //! several bits set the drive obeys only STOP, or answers exception 04). The description gives
 //! each bit as a command parameter of its own sharing #1 (`drive.start().trigger()`); a
-//! [`Command`] names one, so a write can never carry two. Locking is
-//! [`Session::lock`](crate::Session::lock).
+//! [`Command`] names one, so a write can never carry two. The commands are in the lock's
+//! `controls` scope: they are written only through an unlock guard ([`Unlocked::command`]), and
+//! locking is [`Unlocked::lock`].
 
 use drivebus::modbus::{ModbusLink, RegisterBus};
-use drivebus::Error;
 
-use crate::{params, LenzeSmd, Trigger};
+use crate::unlock::OpensControls;
+use crate::{params, Trigger, UnlockError, Unlocked};
 
 /// One command of the drive control register #1 (Table 8, lines 538-557).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -54,12 +55,11 @@ impl Command {
     }
 }
 
-impl<B: RegisterBus> LenzeSmd<ModbusLink<B>> {
-    /// Writes `command` to register #1 through its generated command parameter. Without an
-    /// unlock the drive answers exception 01; [`Session::command`](crate::Session::command) is
-    /// the checked path.
-    pub fn trigger(&mut self, command: Command) -> Result<(), Error> {
-        match command {
+impl<B: RegisterBus, U: OpensControls> Unlocked<'_, ModbusLink<B>, U> {
+    /// Writes `command` to register #1 through its generated command parameter. A drive whose
+    /// unlock ended answers exception 01: [`UnlockError::Locked`].
+    pub fn command(&mut self, command: Command) -> Result<(), UnlockError> {
+        let written = match command {
             Command::UpdateBuffers => self.update_buffers().trigger(),
             Command::Stop => self.stop().trigger(),
             Command::Start => self.start().trigger(),
@@ -67,6 +67,7 @@ impl<B: RegisterBus> LenzeSmd<ModbusLink<B>> {
             Command::Forward => self.set_forward().trigger(),
             Command::SerialSpeedReference => self.serial_speed_reference().trigger(),
             Command::LocalSpeedReference => self.local_speed_reference().trigger(),
-        }
+        };
+        Ok(written?)
     }
 }

@@ -1,16 +1,12 @@
-//! What the hand-written helpers of this crate report: bus and value failures from `drivebus`, and
-//! the refusals the manual's rules call for, each before anything is sent.
+//! What the hand-written helpers of this crate report: bus and value failures from `drivebus`,
+//! the generated unlock session's refusals ([`UnlockError`]) and bounded writes'
+//! ([`BoundedWriteError`]), in one type, each refusal before anything is sent.
 
 use core::fmt;
 
-use drivebus::modbus::ExceptionCode;
-use drivebus::{BusError, Error};
+use drivebus::{Error, WriteRefusal};
 
-use crate::types::ControlSource;
-use crate::BoundedWriteError;
-
-/// Exception code an smd answers a write with while it is locked (section 4.5, line 416).
-pub const LOCKED_EXCEPTION: ExceptionCode = ExceptionCode::IllegalFunction;
+use crate::{BoundedWriteError, UnlockError, LOCKED_EXCEPTION};
 
 /// Why a helper of this crate failed.
 #[derive(Debug, Clone, PartialEq)]
@@ -29,10 +25,15 @@ pub enum SmdError {
         /// The configuration number the drive reported.
         value: u16,
     },
-    /// C01 is not 10 or 11, so serial control cannot be unlocked (line 411). Nothing was sent.
-    NotSerialControl {
-        /// The control source C01 holds.
-        control_source: ControlSource,
+    /// An unlock's precondition does not hold (C01 must be 10 or 11 to unlock the controls,
+    /// line 411). Nothing was sent.
+    Requirement {
+        /// The parameter read (`control_source`, C01).
+        parameter: &'static str,
+        /// The raw value it holds.
+        found: i128,
+        /// The values that allow the unlock.
+        allowed: &'static [i128],
     },
     /// A value lies beyond a bound set by another parameter's current value (#40 within
     /// C10...C11, line 501; the description's `bounds`). Nothing was sent.
@@ -67,16 +68,35 @@ impl From<BoundedWriteError> for SmdError {
     }
 }
 
-impl From<Error> for SmdError {
-    /// A write refused with exception 0x01 becomes [`SmdError::Locked`].
-    fn from(error: Error) -> Self {
-        match &error {
-            Error::Bus {
+impl From<UnlockError> for SmdError {
+    fn from(error: UnlockError) -> Self {
+        match error {
+            UnlockError::Drive(Error::WritesRefused {
+                reason: WriteRefusal::UnknownVariant { value, .. },
+                ..
+            }) => Self::UnknownConfiguration {
+                value: u16::try_from(value).unwrap_or(u16::MAX),
+            },
+            UnlockError::Drive(error) => Self::Bus(error),
+            UnlockError::Locked { parameter } => Self::Locked { parameter },
+            UnlockError::Requirement {
                 parameter,
-                cause: BusError::ModbusException { code, .. },
-            } if *code == LOCKED_EXCEPTION => Self::Locked { parameter },
-            _ => Self::Bus(error),
+                found,
+                allowed,
+            } => Self::Requirement {
+                parameter,
+                found,
+                allowed,
+            },
         }
+    }
+}
+
+impl From<Error> for SmdError {
+    /// A write refused with exception 0x01 becomes [`SmdError::Locked`]; a write refused before
+    /// sending because #50 named no known configuration, [`SmdError::UnknownConfiguration`].
+    fn from(error: Error) -> Self {
+        UnlockError::from(error).into()
     }
 }
 
@@ -86,16 +106,19 @@ impl fmt::Display for SmdError {
             Self::Bus(e) => write!(f, "request failed: {e}"),
             Self::Locked { parameter } => write!(
                 f,
-                "{parameter}: the drive is locked (exception 01); unlock it first (register #48 or #49)"
+                "{parameter}: the drive is locked (exception {LOCKED_EXCEPTION:#04x}); unlock it first (register #48 or #49)"
             ),
             Self::UnknownConfiguration { value } => write!(
                 f,
                 "parameter configuration (#50) is {value}, not 400 or 507: writing is not attempted"
             ),
-            Self::NotSerialControl { control_source } => write!(
+            Self::Requirement {
+                parameter,
+                found,
+                allowed,
+            } => write!(
                 f,
-                "C01 is {} ({control_source:?}); serial control needs 10 or 11",
-                control_source.raw()
+                "{parameter} is {found}; unlocking needs one of {allowed:?} (C01 = 10 or 11 for serial control): nothing was written"
             ),
             Self::OutsideBound {
                 parameter,

@@ -12,10 +12,8 @@ use std::time::{Duration, Instant};
 use std::vec::Vec;
 
 use drivebus::modbus::{ModbusLink, RegisterBus};
-use drivebus::units::Milliseconds;
 use drivebus::Error;
 
-use crate::types::SerialTimeoutAction;
 use crate::LenzeSmd;
 
 /// Polls per timeout: three, so the interval stays under the manual's half.
@@ -48,25 +46,15 @@ pub struct KeepAlive {
     interval: Duration,
 }
 
-impl<B: RegisterBus> LenzeSmd<ModbusLink<B>> {
-    /// The watchdog timeout n23, or `None` while n22 says the watchdog is not active.
-    pub fn watchdog_timeout(&mut self) -> Result<Option<Duration>, Error> {
-        if self.serial_timeout_action().read()? == SerialTimeoutAction::NOT_ACTIVE {
-            return Ok(None);
-        }
-        let Milliseconds(ms) = self.serial_fault_time().read()?;
-        Ok(Some(Duration::from_millis(ms as u64)))
-    }
-}
-
 impl KeepAlive {
     /// The poll interval for a watchdog `timeout`: a third of it.
     pub fn interval_for(timeout: Duration) -> Duration {
         timeout / POLLS_PER_TIMEOUT
     }
 
-    /// Reads n22 and n23 and starts polling at a third of n23; `None` (nothing started) while
-    /// n22 says the watchdog is not active.
+    /// Reads n22 and n23 (the generated [`LenzeSmd::watchdog_timeout`] of the description's
+    /// `[watchdog]`) and starts polling at a third of n23; `None` (nothing started) while n22
+    /// says the watchdog is not active.
     pub fn for_drive<B: RegisterBus + Send + 'static>(
         drive: Arc<Mutex<LenzeSmd<ModbusLink<B>>>>,
     ) -> Result<Option<Self>, Error> {

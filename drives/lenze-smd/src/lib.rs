@@ -12,14 +12,10 @@ mod configuration;
 mod error;
 #[cfg(feature = "std")]
 mod keep_alive;
-mod session;
 mod status_block;
 
 pub use command::Command;
-pub use error::{SmdError, LOCKED_EXCEPTION};
+pub use error::SmdError;
 #[cfg(feature = "std")]
 pub use keep_alive::{KeepAlive, KeepAliveReport, MissedDeadline};
-pub use session::{
-    CanCommand, CanWriteParameters, Controls, ControlsAndParameters, Parameters, Session,
-};
 pub use status_block::{StatusBlock, STATUS_BLOCK_START, STATUS_BLOCK_WORDS};

@@ -18,7 +18,7 @@ use lenze_smd::types::{
     ControlSource, Direction, FaultCode, HardwareConfiguration, OperationalStatus,
     ParameterConfiguration, SpeedCommandSource, SpeedReference,
 };
-use lenze_smd::{Command, LenzeSmd, SmdError, Trigger, Variant, VariantSelection};
+use lenze_smd::{Command, LenzeSmd, SmdError, Trigger, UnlockError, Variant, VariantSelection};
 use scripted_line::{client, crc16_modbus, with_crc, with_crc_as_printed, ScriptedLine};
 
 const SA: u8 = 0x0A;
@@ -34,6 +34,14 @@ fn drive(answers: &[&[u8]]) -> Drive {
 fn sent(drive: Drive) -> Vec<Vec<u8>> {
     drive.into_link().into_bus().into_stream().sent
 }
+
+/// Reading C01 (#51, PC507 and PC400 alike) before unlocking the controls, and its answer 11.
+const READ_C01: [u8; 6] = [SA, 0x03, 0x00, 0x33, 0x00, 0x01];
+const C01_IS_11: [u8; 5] = [SA, 0x03, 0x02, 0x00, 0x0B];
+/// #48 = 0: unlock the controls (4.8 step 4, line 441), echoed.
+const UNLOCK_CONTROLS: [u8; 6] = [SA, 0x06, 0x00, 0x30, 0x00, 0x00];
+/// #1 = 0x0002: lock (4.8 step 9, line 446), echoed.
+const LOCK: [u8; 6] = [SA, 0x06, 0x00, 0x01, 0x00, 0x02];
 
 /// The request frames (without CRC) as the manual prints them.
 fn frames(requests: &[&[u8]]) -> Vec<Vec<u8>> {
@@ -87,15 +95,17 @@ fn drive_control_register_1_writes() {
     ];
     for (command, word) in words {
         let frame = [SA, 0x06, 0x00, 0x01, (word >> 8) as u8, word as u8];
-        let mut d = drive(&[&frame]);
-        d.trigger(command).unwrap();
+        let mut d = drive(&[&C01_IS_11, &UNLOCK_CONTROLS, &frame, &LOCK]);
+        let mut unlocked = d.unlock_controls().unwrap();
+        unlocked.command(command).unwrap();
+        unlocked.lock().unwrap();
         assert_eq!(command.word(), word);
-        assert_eq!(sent(d), frames(&[&frame]), "{command:?}");
+        assert_eq!(
+            sent(d),
+            frames(&[&READ_C01, &UNLOCK_CONTROLS, &frame, &LOCK]),
+            "{command:?}"
+        );
     }
-    let lock = [SA, 0x06, 0x00, 0x01, 0x00, 0x02];
-    let mut d = drive(&[&lock]);
-    d.lock_security().trigger().unwrap();
-    assert_eq!(sent(d), frames(&[&lock]));
 }
 
 #[test]
@@ -193,12 +203,26 @@ fn status_registers_24_to_30_one_word_each() {
 fn serial_speed_command_40_read_and_write() {
     // Lines 501-504; 412 → 41.2 Hz (section 7.3, line 1073).
     let write = [SA, 0x06, 0x00, 0x28, 0x01, 0x9C];
-    let mut d = drive(&[&[SA, 0x03, 0x02, 0x01, 0x9C], &write]);
+    let mut d = drive(&[
+        &[SA, 0x03, 0x02, 0x01, 0x9C],
+        &C01_IS_11,
+        &UNLOCK_CONTROLS,
+        &write,
+        &LOCK,
+    ]);
     assert!((d.serial_speed_command().read().unwrap().0 - 41.2).abs() < 1e-9);
-    d.serial_speed_command().write(Hertz(41.2)).unwrap();
+    let mut unlocked = d.unlock_controls().unwrap();
+    unlocked.serial_speed_command().write(Hertz(41.2)).unwrap();
+    drop(unlocked); // locks
     assert_eq!(
         sent(d),
-        frames(&[&[SA, 0x03, 0x00, 0x28, 0x00, 0x01], &write])
+        frames(&[
+            &[SA, 0x03, 0x00, 0x28, 0x00, 0x01],
+            &READ_C01,
+            &UNLOCK_CONTROLS,
+            &write,
+            &LOCK
+        ])
     );
 }
 
@@ -237,15 +261,20 @@ fn parameter_configuration_50_selects_the_variant() {
 fn one_word_parameter_read_and_write_6_1() {
     // Section 6.1 (lines 830-843) with C12, acceleration time, #61 (4.9 step 8, line 459):
     // read 50 (5.0 s, the default), write 100 (10.0 s).
+    // Parameters are unlocked with #49 = the password C94, factory default 0 (line 424).
     let write = [SA, 0x06, 0x00, 0x3D, 0x00, 0x64];
-    let mut d = drive(&[&[SA, 0x03, 0x02, 0x00, 0x32], &write]);
+    let unlock = [SA, 0x06, 0x00, 0x31, 0x00, 0x00];
+    let mut d = drive(&[&[SA, 0x03, 0x02, 0x00, 0x32], &unlock, &write, &LOCK]);
     assert_eq!(d.acceleration_time().read().unwrap().0, 5.0);
-    d.acceleration_time()
+    let mut unlocked = d.unlock_parameter_writing(0).unwrap();
+    unlocked
+        .acceleration_time()
         .write(drivebus::units::Seconds(10.0))
         .unwrap();
+    unlocked.lock().unwrap();
     assert_eq!(
         sent(d),
-        frames(&[&[SA, 0x03, 0x00, 0x3D, 0x00, 0x01], &write])
+        frames(&[&[SA, 0x03, 0x00, 0x3D, 0x00, 0x01], &unlock, &write, &LOCK])
     );
 }
 
@@ -269,14 +298,20 @@ fn software_version_c99_four_words_6_1() {
 #[test]
 fn a_locked_drive_answers_writes_with_exception_01() {
     // Section 4.5, line 416: exception 01 after a write while locked → typed `Locked`.
-    let mut d = drive(&[&[SA, 0x86, 0x01]]);
-    let error = d.start().trigger().unwrap_err();
+    // The unlock ended on the drive's side (a serial timeout, line 414) before `start`.
+    let mut d = drive(&[&C01_IS_11, &UNLOCK_CONTROLS, &[SA, 0x86, 0x01]]);
+    let mut unlocked = d.unlock_controls().unwrap();
+    let error = unlocked.start().trigger().unwrap_err();
     assert_eq!(
         error.bus(),
         Some(&BusError::ModbusException {
             function: 0x06,
             code: drivebus::modbus::ExceptionCode::IllegalFunction
         })
+    );
+    assert_eq!(
+        UnlockError::from(error.clone()),
+        UnlockError::Locked { parameter: "start" }
     );
     assert_eq!(
         SmdError::from(error),

@@ -1,13 +1,15 @@
 //! The manual's worked values and rules, through the generated API on an in-memory register map:
 //! internal units (Table 3), ranges refused before sending, the two configurations' registers,
-//! PC507-only parameters, and the fault table.
+//! PC507-only parameters, and the fault table. The map has no lock, so values are written through
+//! the raw device (`drive.device().write::<P>()`); the typed setters need an unlock guard
+//! (`tests/unlock_session.rs`).
 
 use drivebus::memory::{MemoryBus, Request};
 use drivebus::modbus::{ModbusLink, Table, UnitId};
 use drivebus::units::{Hertz, Milliseconds, Seconds};
 use drivebus::{Error, ValueError};
 use lenze_smd::types::{FaultAndCommandedDirection, FaultCode, SerialBaudRate};
-use lenze_smd::{LenzeSmd, Variant};
+use lenze_smd::{params, LenzeSmd, Variant};
 
 type Drive = LenzeSmd<ModbusLink<MemoryBus>>;
 
@@ -38,8 +40,12 @@ fn speeds_and_times_travel_in_internal_units() {
     // Table 3 (lines 303-304): 100 Hz = 1000, 30.0 s = 300. c40 is #97 in PC400 (line 946),
     // C12 #61 in both (line 890).
     let mut d = drive(Variant::Pc400, [97, 61]);
-    d.frequency_setpoint_command().write(Hertz(100.0)).unwrap();
-    d.acceleration_time().write(Seconds(30.0)).unwrap();
+    d.device()
+        .write::<params::FrequencySetpointCommand>(Hertz(100.0))
+        .unwrap();
+    d.device()
+        .write::<params::AccelerationTime>(Seconds(30.0))
+        .unwrap();
     let bus = d.into_link().into_bus();
     assert_eq!(bus.register(Table::Holding, 97), Some(1000));
     assert_eq!(bus.register(Table::Holding, 61), Some(300));
@@ -49,10 +55,15 @@ fn speeds_and_times_travel_in_internal_units() {
 fn watchdog_time_is_in_milliseconds_from_50() {
     // n23, line 387 and 966: 50-65535 ms; #115 in PC400, #133 in PC507.
     let mut d = drive(Variant::Pc507, [133]);
-    d.serial_fault_time().write(Milliseconds(200.0)).unwrap();
+    d.device()
+        .write::<params::SerialFaultTime>(Milliseconds(200.0))
+        .unwrap();
     assert_eq!(register(d, 133), Some(200));
     let mut d = drive(Variant::Pc400, [115]);
-    let refused = d.serial_fault_time().write(Milliseconds(49.0)).unwrap_err();
+    let refused = d
+        .device()
+        .write::<params::SerialFaultTime>(Milliseconds(49.0))
+        .unwrap_err();
     assert!(matches!(
         refused,
         Error::Value(ValueError::OutOfRange {
@@ -68,13 +79,19 @@ fn values_outside_the_printed_ranges_are_refused_before_sending() {
     // C11 maximum output frequency 7.5-240 Hz (line 889); C22 current limit 30-150 % (line 898);
     // C94 password 0-999 (line 925); #48 0-999 (line 505).
     let mut d = drive(Variant::Pc400, [60, 69, 88, 48]);
-    assert!(d.maximum_output_frequency().write(Hertz(7.4)).is_err());
-    assert!(d.maximum_output_frequency().write(Hertz(240.1)).is_err());
     assert!(d
-        .current_limit()
-        .write(drivebus::units::Percent(29.0))
+        .device()
+        .write::<params::MaximumOutputFrequency>(Hertz(7.4))
         .is_err());
-    assert!(d.user_password().write(1000).is_err());
+    assert!(d
+        .device()
+        .write::<params::MaximumOutputFrequency>(Hertz(240.1))
+        .is_err());
+    assert!(d
+        .device()
+        .write::<params::CurrentLimit>(drivebus::units::Percent(29.0))
+        .is_err());
+    assert!(d.device().write::<params::UserPassword>(1000).is_err());
     assert!(d.unlock_commands().write(1000).is_err());
     assert!(requests(d).is_empty());
 }
@@ -83,13 +100,13 @@ fn values_outside_the_printed_ranges_are_refused_before_sending() {
 fn register_95_is_c25_in_pc400_and_c99_in_pc507() {
     // Issue example and lines 926 / 944: c25 at #95 (PC400) and #103 (PC507).
     let mut d = drive(Variant::Pc400, [95]);
-    d.serial_baud_rate()
-        .write(SerialBaudRate::E81_9600)
+    d.device()
+        .write::<params::SerialBaudRate>(SerialBaudRate::E81_9600)
         .unwrap();
     assert_eq!(register(d, 95), Some(2));
     let mut d = drive(Variant::Pc507, [95, 103]);
-    d.serial_baud_rate()
-        .write(SerialBaudRate::O81_9600)
+    d.device()
+        .write::<params::SerialBaudRate>(SerialBaudRate::O81_9600)
         .unwrap();
     let bus = d.into_link().into_bus();
     assert_eq!(bus.register(Table::Holding, 103), Some(3));
@@ -144,15 +161,19 @@ fn fault_codes_0_to_26_have_their_meaning() {
 
 #[test]
 fn the_pi_setpoint_lies_within_c86_and_c87() {
-    // c81 (#117 in PC507) within c86 ... c87 (#119, #120; line 956), checked at run time.
+    // c81 (#117 in PC507) within c86 ... c87 (#119, #120; line 956), checked at run time by
+    // the bounded write of the parameter unlock's guard (#49, then #1 = lock).
     let mut bus = MemoryBus::new();
     bus.set_register(Table::Holding, 117, 0)
+        .set_register(Table::Holding, 1, 0)
+        .set_register(Table::Holding, 49, 0)
         .set_register(Table::Holding, 119, 100) // c86 = 10.0
         .set_register(Table::Holding, 120, 500); // c87 = 50.0
     let mut d: Drive = LenzeSmd::modbus(bus, UnitId(1));
     d.set_variant(Variant::Pc507);
+    let mut unlocked = d.unlock_parameter_writing(0).unwrap();
     assert_eq!(
-        d.write_pi_setpoint(50.1).unwrap_err(),
+        unlocked.write_pi_setpoint(50.1).unwrap_err(),
         lenze_smd::BoundedWriteError::OutsideBound {
             parameter: "pi_setpoint",
             bound: "pi_max_feedback",
@@ -161,16 +182,17 @@ fn the_pi_setpoint_lies_within_c86_and_c87() {
         }
     );
     assert!(matches!(
-        d.write_pi_setpoint(9.9).unwrap_err(),
+        unlocked.write_pi_setpoint(9.9).unwrap_err(),
         lenze_smd::BoundedWriteError::OutsideBound {
             bound: "pi_min_feedback",
             ..
         }
     ));
-    d.write_pi_setpoint(25.0).unwrap();
+    unlocked.write_pi_setpoint(25.0).unwrap();
+    drop(unlocked);
     let writes: Vec<Request> = requests(d)
         .into_iter()
-        .filter(|r| matches!(r, Request::Write { .. }))
+        .filter(|r| matches!(r, Request::Write { start: 117, .. }))
         .collect();
     assert_eq!(
         writes.len(),

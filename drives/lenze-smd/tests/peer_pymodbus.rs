@@ -105,9 +105,11 @@ fn pc507_status_version_and_a_control_session() {
 
     let mut session = drive.unlock_controls().unwrap();
     session.command(Command::SerialSpeedReference).unwrap();
-    session.set_serial_speed(Hertz(41.2)).unwrap();
+    session.write_serial_speed_command(Hertz(41.2)).unwrap();
     assert!(matches!(
-        session.set_serial_speed(Hertz(50.1)),
+        session
+            .write_serial_speed_command(Hertz(50.1))
+            .map_err(SmdError::from),
         Err(SmdError::OutsideBound {
             bound: "maximum_output_frequency",
             ..
@@ -117,9 +119,13 @@ fn pc507_status_version_and_a_control_session() {
     session.command(Command::Stop).unwrap();
     session.lock().unwrap();
     assert_eq!(drive.serial_speed_command().read(), Ok(Hertz(41.2)));
-    // Locked again: the peer answers exception 01, the crate says `Locked`.
+    // Locked again: the peer answers exception 01 to the raw device's write, the crate says
+    // `Locked` (the typed API has no setter for #1 outside a guard).
+    let unguarded = drive
+        .device()
+        .write_raw::<lenze_smd::params::Start>(lenze_smd::params::Start::TRIGGER);
     assert_eq!(
-        SmdError::from(drive.trigger(Command::Start).unwrap_err()),
+        SmdError::from(unguarded.unwrap_err()),
         SmdError::Locked { parameter: "start" }
     );
     // #48 = 0, SerialSpeedReference, #40, Start, Stop, lock.
@@ -141,7 +147,8 @@ fn pc400_places_the_moved_registers() {
     );
     let mut session = drive.unlock_all(0).unwrap();
     session
-        .write::<lenze_smd::params::AccelerationTime>(drivebus::units::Seconds(10.0))
+        .acceleration_time()
+        .write(drivebus::units::Seconds(10.0))
         .unwrap();
     session.lock().unwrap();
     assert_eq!(
@@ -157,16 +164,18 @@ fn an_unknown_configuration_reads_but_never_writes() {
     assert_eq!(selection, VariantSelection::Unknown(600));
     assert_eq!(drive.drive_family().read(), Ok(69));
     assert_eq!(
-        drive.unlock_controls().unwrap_err(),
+        SmdError::from(drive.unlock_controls().unwrap_err()),
         SmdError::UnknownConfiguration { value: 600 }
     );
     assert_eq!(
-        drive.unlock_parameter_writing(0).unwrap_err(),
+        SmdError::from(drive.unlock_parameter_writing(0).unwrap_err()),
         SmdError::UnknownConfiguration { value: 600 }
     );
-    // A plain generated setter is refused as well, before anything is sent (line 314).
+    // The raw device's write is refused as well, before anything is sent (line 314).
     assert_eq!(
-        drive.serial_speed_command().write(Hertz(10.0)),
+        drive
+            .device()
+            .write::<lenze_smd::params::SerialSpeedCommand>(Hertz(10.0)),
         Err(drivebus::Error::WritesRefused {
             parameter: "serial_speed_command",
             reason: drivebus::WriteRefusal::UnknownVariant {

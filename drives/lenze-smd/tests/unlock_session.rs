@@ -1,14 +1,14 @@
-//! Unlock sessions against a drive double that enforces the manual's lock rules (sections 4.5,
-//! 4.6): preconditions checked before anything is written, one command bit per write, the
-//! C10...C11 bound of #40, lock on `lock()` and on drop, and exception 01 as `Locked`.
+//! The generated unlock sessions (`[lock]` / `[[unlock]]` in the description) against a drive
+//! double that enforces the manual's lock rules (sections 4.5, 4.6): the C01 requirement checked
+//! before anything is written, one command bit per write, the C10...C11 bound of #40, lock on
+//! `lock()` and on drop, and exception 01 as `Locked`.
 
 #[path = "support/smd_double.rs"]
 mod smd_double;
 
 use drivebus::modbus::{ModbusLink, UnitId};
 use drivebus::units::{Hertz, Seconds};
-use lenze_smd::types::ControlSource;
-use lenze_smd::{params, Command, LenzeSmd, SmdError};
+use lenze_smd::{Command, LenzeSmd, SmdError, UnlockError};
 use smd_double::*;
 
 type Drive = LenzeSmd<ModbusLink<SmdDouble>>;
@@ -26,11 +26,12 @@ fn control_session_commands_and_locks() {
     let mut d = drive(SmdDouble::pc507(11, 0));
     let mut session = d.unlock_controls().unwrap();
     session.command(Command::SerialSpeedReference).unwrap();
-    session.set_serial_speed(Hertz(41.2)).unwrap();
+    session.write_serial_speed_command(Hertz(41.2)).unwrap();
     session.command(Command::Start).unwrap();
     session.command(Command::Stop).unwrap();
     session.lock().unwrap();
-    let error = d.trigger(Command::Start);
+    // Past the guard, only the raw device can still write #1: the drive refuses it.
+    let error = d.device().write_raw::<lenze_smd::params::Start>(0x0008);
     assert_eq!(
         SmdError::from(error.unwrap_err()),
         SmdError::Locked { parameter: "start" }
@@ -63,11 +64,20 @@ fn dropping_a_session_locks_the_drive() {
 #[test]
 fn serial_control_needs_c01_10_or_11_and_nothing_is_written_otherwise() {
     let mut d = drive(SmdDouble::pc507(8, 0));
+    let refused = d.unlock_controls().unwrap_err();
     assert_eq!(
-        d.unlock_controls().unwrap_err(),
-        SmdError::NotSerialControl {
-            control_source: ControlSource::ANALOG_TERMINAL_MODBUS
+        refused,
+        UnlockError::Requirement {
+            parameter: "control_source",
+            found: 8,
+            allowed: &[10, 11]
         }
+    );
+    assert!(refused.to_string().contains("control_source is 8"));
+    assert_eq!(
+        d.unlock_all(0).unwrap_err(),
+        refused,
+        "#48 = C94 unlocks the controls too"
     );
     assert!(accepted(d).is_empty());
 }
@@ -78,16 +88,16 @@ fn an_unknown_configuration_refuses_writes_but_reads_work() {
     double
         .memory
         .set_register(drivebus::modbus::Table::Holding, CONFIGURATION, 600);
-    let mut d = drive(double);
+    let (mut d, _) = LenzeSmd::open(double, UnitId(10)).unwrap();
     let refused = SmdError::UnknownConfiguration { value: 600 };
-    assert_eq!(d.unlock_controls().unwrap_err(), refused);
-    assert_eq!(d.unlock_all(0).unwrap_err(), refused);
-    assert_eq!(d.unlock_parameter_writing(0).unwrap_err(), refused);
-    assert!(refused.to_string().contains("600"));
+    assert_eq!(SmdError::from(d.unlock_controls().unwrap_err()), refused);
+    assert_eq!(SmdError::from(d.unlock_all(0).unwrap_err()), refused);
     assert_eq!(
-        d.control_source().read().unwrap(),
-        ControlSource::C40_MODBUS
+        SmdError::from(d.unlock_parameter_writing(0).unwrap_err()),
+        refused
     );
+    assert!(refused.to_string().contains("600"));
+    assert_eq!(d.control_source().read().unwrap().raw(), 11);
     assert!(accepted(d).is_empty());
 }
 
@@ -100,7 +110,7 @@ fn the_serial_speed_stays_within_c10_and_c11() {
     let mut d = drive(double);
     let mut session = d.unlock_controls().unwrap();
     assert_eq!(
-        session.set_serial_speed(Hertz(9.9)).unwrap_err(),
+        SmdError::from(session.write_serial_speed_command(Hertz(9.9)).unwrap_err()),
         SmdError::OutsideBound {
             parameter: "serial_speed_command",
             bound: "minimum_output_frequency",
@@ -108,7 +118,7 @@ fn the_serial_speed_stays_within_c10_and_c11() {
             limit: 100,
         }
     );
-    let above = session.set_serial_speed(Hertz(50.1)).unwrap_err();
+    let above = SmdError::from(session.write_serial_speed_command(Hertz(50.1)).unwrap_err());
     assert!(matches!(
         above,
         SmdError::OutsideBound {
@@ -116,7 +126,7 @@ fn the_serial_speed_stays_within_c10_and_c11() {
             ..
         }
     ));
-    session.set_serial_speed(Hertz(50.0)).unwrap();
+    session.write_serial_speed_command(Hertz(50.0)).unwrap();
     drop(session);
     let writes = accepted(d);
     let speeds: Vec<_> = writes.iter().filter(|(r, _)| *r == SERIAL_SPEED).collect();
@@ -128,18 +138,14 @@ fn parameter_session_writes_with_the_right_password_only() {
     let mut d = drive(SmdDouble::pc507(9, 123));
     let mut wrong = d.unlock_parameter_writing(7).unwrap();
     assert_eq!(
-        wrong
-            .write::<params::AccelerationTime>(Seconds(10.0))
-            .unwrap_err(),
-        SmdError::Locked {
+        UnlockError::from(wrong.acceleration_time().write(Seconds(10.0)).unwrap_err()),
+        UnlockError::Locked {
             parameter: "acceleration_time"
         }
     );
     drop(wrong);
     let mut right = d.unlock_parameter_writing(123).unwrap();
-    right
-        .write::<params::AccelerationTime>(Seconds(10.0))
-        .unwrap();
+    right.acceleration_time().write(Seconds(10.0)).unwrap();
     right.lock().unwrap();
     let writes = accepted(d);
     assert!(writes.contains(&(C12, 100)));
@@ -150,9 +156,7 @@ fn unlock_all_allows_commands_and_parameters() {
     let mut d = drive(SmdDouble::pc507(11, 5));
     let mut session = d.unlock_all(5).unwrap();
     session.command(Command::Reverse).unwrap();
-    session
-        .write::<params::AccelerationTime>(Seconds(2.5))
-        .unwrap();
+    session.acceleration_time().write(Seconds(2.5)).unwrap();
     session.lock().unwrap();
     let writes = accepted(d);
     assert_eq!(
@@ -180,7 +184,7 @@ fn an_unlock_the_drive_ended_surfaces_as_locked() {
         .controls_unlocked = false;
     assert_eq!(
         session.command(Command::Stop).unwrap_err(),
-        SmdError::Locked { parameter: "stop" }
+        UnlockError::Locked { parameter: "stop" }
     );
 }
 

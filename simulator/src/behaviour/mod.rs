@@ -15,6 +15,7 @@ pub mod motor;
 pub mod srdo_validity;
 pub mod state_machine;
 pub mod vl_ramp;
+pub mod write_lock;
 
 /// What the power stage is doing, as the active state machine commands it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -51,12 +52,17 @@ pub trait Behaviour: Debug + Send {
     fn tick(&mut self, _store: &mut Store, _shared: &mut Shared, _dt: Duration) {}
     /// Returns to the power-on state after a reboot (values already reloaded).
     fn reset(&mut self, _store: &mut Store, _shared: &mut Shared) {}
+    /// The drive received a request (any valid communication feeds a watchdog).
+    fn heard(&mut self) {}
 }
 
-/// The behaviours a description calls for, in the order they run: bounds set by other
-/// parameters, commands, state machines, the motor, the SRDO configuration-valid flag.
+/// The behaviours a description calls for, in the order they run: the write lock, bounds set by
+/// other parameters, commands, state machines, the motor, the SRDO configuration-valid flag.
 pub fn for_device(store: &mut Store) -> Vec<Box<dyn Behaviour>> {
     let mut behaviours: Vec<Box<dyn Behaviour>> = Vec::new();
+    if let Some(b) = write_lock::WriteLock::detect(store) {
+        behaviours.push(Box::new(b));
+    }
     if let Some(b) = bounds::Bounds::detect(store) {
         behaviours.push(Box::new(b));
     }

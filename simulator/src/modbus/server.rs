@@ -38,6 +38,7 @@ impl ModbusServer {
     /// Answers the request `request` (a PDU) into `out` (at least
     /// [`MAX_PDU`](drivebus::modbus::pdu::MAX_PDU) bytes); returns the length of the response PDU.
     pub fn handle(&self, drive: &mut Drive, request: &[u8], out: &mut [u8]) -> usize {
+        drive.heard();
         let function = request.first().copied().unwrap_or(0);
         let answer = self.answer(drive, request, out);
         let result = match answer {

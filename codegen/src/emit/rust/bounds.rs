@@ -20,7 +20,7 @@ pub fn emit(device: &Device) -> TokenStream {
         return TokenStream::new();
     }
     let handle = ident(&names::camel(&device.device.handle));
-    let methods = bounded.iter().map(|p| method(p, &handle));
+    let methods = bounded.iter().map(|p| method(p, &handle, device));
     quote! {
         #ERROR_TYPE
         #( #methods )*
@@ -32,11 +32,11 @@ fn writable(p: &Parameter) -> bool {
 }
 
 /// One bound check: `raw` must not lie `beyond` the current value of `bound`.
-fn check(p: &Parameter, bound: &str, beyond: TokenStream) -> TokenStream {
+fn check(p: &Parameter, bound: &str, beyond: TokenStream, at: &TokenStream) -> TokenStream {
     let marker = ident(&names::camel(bound));
     let refusal = outside(p, bound);
     quote! {
-        let limit = self.device.read_raw::<params::#marker>()?;
+        let limit = #at.read_raw::<params::#marker>()?;
         if raw #beyond limit {
             #refusal
         }
@@ -45,11 +45,11 @@ fn check(p: &Parameter, bound: &str, beyond: TokenStream) -> TokenStream {
 
 /// The magnitude check: `raw` must lie within ± the current value of `bound`, compared wide
 /// because the bound may be of another integer type (an unsigned full scale).
-fn check_magnitude(p: &Parameter, bound: &str) -> TokenStream {
+fn check_magnitude(p: &Parameter, bound: &str, at: &TokenStream) -> TokenStream {
     let marker = ident(&names::camel(bound));
     let refusal = outside(p, bound);
     quote! {
-        let limit = self.device.read_raw::<params::#marker>()?;
+        let limit = #at.read_raw::<params::#marker>()?;
         if (raw as i128).abs() > limit as i128 {
             #refusal
         }
@@ -69,7 +69,34 @@ fn outside(p: &Parameter, bound: &str) -> TokenStream {
     }
 }
 
-fn method(p: &Parameter, handle: &proc_macro2::Ident) -> TokenStream {
+/// Where the bounded write of `p` lives: the handle, or for a parameter that needs an unlock
+/// the guard of the unlocks opening its scope. Returns the impl header's generics and self type,
+/// its extra bounds and the path to the runtime device.
+fn receiver(
+    p: &Parameter,
+    handle: &proc_macro2::Ident,
+    device: &Device,
+) -> (TokenStream, TokenStream, TokenStream) {
+    match (device.lock.as_ref(), device.lock_scope_of(p)) {
+        (Some(lock), Some(scope)) => {
+            let opens = ident(&format!("Opens{}", names::camel(&scope.name)));
+            let command = ident(&names::camel(&lock.command));
+            (
+                quote! { <'d, L: ::drivebus::Link, U: unlock::#opens> Unlocked<'d, L, U> },
+                quote! { params::#command: ::drivebus::Writable<L::Protocol>, },
+                quote! { self.drive.device },
+            )
+        }
+        _ => (
+            quote! { <L: ::drivebus::Link> #handle<L> },
+            quote! {},
+            quote! { self.device },
+        ),
+    }
+}
+
+fn method(p: &Parameter, handle: &proc_macro2::Ident, device: &Device) -> TokenStream {
+    let (header, lock_bound, at) = receiver(p, handle, device);
     let bounds = p.bounds.as_ref().expect("filtered on bounds");
     let marker = ident(&names::camel(&p.name));
     let method = ident(&format!("write_{}", names::snake(&p.name)));
@@ -81,9 +108,18 @@ fn method(p: &Parameter, handle: &proc_macro2::Ident) -> TokenStream {
         .map(marker_of)
         .collect();
     let magnitude_marker: Vec<_> = bounds.magnitude.iter().map(marker_of).collect();
-    let min = bounds.min.as_deref().map(|b| check(p, b, quote! { < }));
-    let max = bounds.max.as_deref().map(|b| check(p, b, quote! { > }));
-    let magnitude = bounds.magnitude.as_deref().map(|b| check_magnitude(p, b));
+    let min = bounds
+        .min
+        .as_deref()
+        .map(|b| check(p, b, quote! { < }, &at));
+    let max = bounds
+        .max
+        .as_deref()
+        .map(|b| check(p, b, quote! { > }, &at));
+    let magnitude = bounds
+        .magnitude
+        .as_deref()
+        .map(|b| check_magnitude(p, b, &at));
     let described = bounds
         .names()
         .map(|b| format!("`{b}`"))
@@ -96,8 +132,9 @@ fn method(p: &Parameter, handle: &proc_macro2::Ident) -> TokenStream {
         p.name
     ));
     quote! {
-        impl<L: ::drivebus::Link> #handle<L>
+        impl #header
         where
+            #lock_bound
             params::#marker: ::drivebus::Writable<L::Protocol>,
             #( params::#same_raw: ::drivebus::Readable<L::Protocol, Raw = <params::#marker as ::drivebus::Parameter>::Raw>, )*
             #( params::#magnitude_marker: ::drivebus::Readable<L::Protocol>, )*
@@ -107,12 +144,12 @@ fn method(p: &Parameter, handle: &proc_macro2::Ident) -> TokenStream {
                 &mut self,
                 value: <params::#marker as ::drivebus::Parameter>::Value,
             ) -> Result<(), BoundedWriteError> {
-                let scale = <params::#marker as ::drivebus::Writable<L::Protocol>>::write_scale(&mut self.device)?;
+                let scale = <params::#marker as ::drivebus::Writable<L::Protocol>>::write_scale(&mut #at)?;
                 let raw = <params::#marker as ::drivebus::Parameter>::encode(value, scale)?;
                 #min
                 #max
                 #magnitude
-                self.device.write_raw::<params::#marker>(raw)?;
+                #at.write_raw::<params::#marker>(raw)?;
                 Ok(())
             }
         }

@@ -86,6 +86,13 @@ fn constructors(device: &Device, handle: &proc_macro2::Ident) -> TokenStream {
     quote! { #modbus #canopen #rs232 }
 }
 
+/// Whether any address of `p` allows reading.
+fn readable(p: &crate::ir::Parameter) -> bool {
+    p.modbus.iter().any(|a| a.access.read)
+        || p.canopen.iter().any(|a| a.access.read)
+        || p.rs232.iter().any(|a| a.access.read)
+}
+
 pub fn emit(device: &Device) -> TokenStream {
     let handle = ident(&names::camel(&device.device.handle));
     let title = doc::escape(&device.device.name);
@@ -94,6 +101,7 @@ pub fn emit(device: &Device) -> TokenStream {
         .parameters
         .iter()
         .filter(|p| !super::indexed::is_member(p, device))
+        .filter(|p| device.lock_scope_of(p).is_none() || readable(p))
         .map(|p| {
             let method = ident(&names::method(&p.name));
             let marker = ident(&names::camel(&p.name));
@@ -106,6 +114,22 @@ pub fn emit(device: &Device) -> TokenStream {
                 "{summary}\n\nSee [`params::{marker}`] for address, type, unit and source."
             ));
             let aliases = super::parameter_doc::aliases(p);
+            if let Some(scope) = device.lock_scope_of(p) {
+                // Written only through the guard of an unlock opening its scope.
+                let docs = doc_attrs(&format!(
+                    "{summary}\n\nRead here; written only while unlocked (scope `{}`, see \
+                     [`Unlocked`]). See [`params::{marker}`] for address, type, unit and source.",
+                    doc::escape(&scope.name)
+                ));
+                return quote! {
+                    #docs
+                    #aliases
+                    #[inline]
+                    pub fn #method(&mut self) -> LockedAccessor<'_, L, params::#marker> {
+                        LockedAccessor(self.device.parameter())
+                    }
+                };
+            }
             quote! {
                 #docs
                 #aliases

@@ -19,8 +19,10 @@ mod pdo_communication;
 mod read_blocks;
 mod srdo;
 mod triggers;
+mod unlock;
 mod variant_selection;
 mod variants;
+mod watchdog;
 
 use proc_macro2::{Delimiter, Group, Ident, Literal, Span, TokenStream, TokenTree};
 use quote::quote;
@@ -113,6 +115,8 @@ pub fn tokens(device: &Device) -> TokenStream {
         read_blocks::emit(device),
         bounds::emit(device),
         triggers::emit(device),
+        unlock::emit(device),
+        watchdog::emit(device),
         variant_selection::emit(device),
         identity_check::emit(device),
         given::emit(device),

@@ -8,6 +8,7 @@ use std::sync::Arc;
 mod commands;
 mod control;
 mod identity;
+mod lock;
 mod models;
 mod occupies;
 mod overlay;
@@ -166,6 +167,7 @@ impl Lowering<'_> {
             modbus: None,
             canopen: None,
             identity: None,
+            lock: None,
             variants: Vec::new(),
             enums: Vec::new(),
             flags: Vec::new(),
@@ -219,6 +221,7 @@ impl Lowering<'_> {
         device.modbus = raw.modbus.as_ref().map(|m| self.modbus_caps(m));
         device.canopen = raw.canopen.as_ref().map(|c| self.canopen_caps(c));
         device.identity = raw.identity.as_ref().map(|i| self.expected_identity(i));
+        device.lock = self.lock(raw.lock.as_ref(), &raw.unlock, raw.watchdog.as_ref());
         device.variants = raw.variant.iter().map(|v| self.variant(v)).collect();
         device.cia402 = raw.cia402.as_ref().map(|c| self.cia402(c));
         device.pdos = raw.pdo.iter().filter_map(|p| self.pdo_mapping(p)).collect();

@@ -1,0 +1,398 @@
+//! The write lock as a typed session (`[lock]`, `[[unlock]]`): a parameter that needs an unlock
+//! has no setter on the handle (its handle accessor is a [`LockedAccessor`]-style read view, or
+//! absent when it cannot be read); `drive.unlock_<name>(..)` checks the unlock's requirement,
+//! writes the grant and returns an `Unlocked` guard borrowing the handle, whose methods are the
+//! setters of the scopes the unlock opens. `lock()` or dropping the guard writes the lock
+//! command. A write the drive refuses with the lock's exception code converts into
+//! `UnlockError::Locked`.
+
+use proc_macro2::{Ident, TokenStream};
+use quote::quote;
+
+use super::{doc_attrs, enums::int_literal, ident};
+use crate::emit::{doc, ident as names};
+use crate::ir::{Device, GrantKey, Lock, LockScope, Parameter, Unlock};
+
+/// The trait an unlock marker implements for each scope it opens: `OpensControls`.
+fn opens_trait(scope: &str) -> Ident {
+    ident(&format!("Opens{}", names::camel(scope)))
+}
+
+/// The marker type of an unlock: `unlock::Controls`.
+fn marker(unlock: &Unlock) -> Ident {
+    ident(&names::camel(&unlock.name))
+}
+
+pub fn emit(device: &Device) -> TokenStream {
+    let Some(lock) = &device.lock else {
+        return TokenStream::new();
+    };
+    let handle = ident(&names::camel(&device.device.handle));
+    let lock_marker = ident(&names::camel(&lock.command));
+    let lock_bound = quote! { params::#lock_marker: ::drivebus::Writable<L::Protocol> };
+    let scopes = lock
+        .scopes
+        .iter()
+        .map(|s| scope_setters(device, s, &lock_bound));
+    let unlocks = lock
+        .unlocks
+        .iter()
+        .map(|u| unlock_method(device, u, &handle, &lock_bound));
+    let refusal: proc_macro2::Literal = format!("0x{:02X}", lock.refusal)
+        .parse()
+        .expect("a hexadecimal integer is a literal");
+    let refusal_doc = doc_attrs(&format!(
+        "The Modbus exception code the drive answers a write with while it is locked ({:#04x}).",
+        lock.refusal
+    ));
+    let items = [
+        markers(lock),
+        quote! {
+            #refusal_doc
+            pub const LOCKED_EXCEPTION: u8 = #refusal;
+        },
+        error_type(),
+        read_view(),
+        guard(&handle, &lock_marker, &lock_bound),
+    ];
+    quote! {
+        #( #items )*
+        #( #scopes )*
+        #( #unlocks )*
+    }
+}
+
+/// `pub mod unlock`: a trait per scope and a marker per unlock implementing the scopes it opens.
+fn markers(lock: &Lock) -> TokenStream {
+    let traits = lock.scopes.iter().map(|s| {
+        let name = opens_trait(&s.name);
+        let text = s.doc.as_deref().map(doc::escape).unwrap_or_default();
+        let docs = doc_attrs(&format!(
+            "Unlocks that open the scope `{}`. {text}",
+            doc::escape(&s.name)
+        ));
+        quote! { #docs pub trait #name {} }
+    });
+    let unlocks = lock.unlocks.iter().map(|u| {
+        let name = marker(u);
+        let text = u.doc.as_deref().map(doc::escape).unwrap_or_default();
+        let docs = doc_attrs(&format!(
+            "The unlock `{}` (`unlock_{}`). {text}",
+            doc::escape(&u.name),
+            names::snake(&u.name)
+        ));
+        let opens = u.allows.iter().map(|s| opens_trait(s));
+        quote! {
+            #docs
+            #[derive(Debug)]
+            pub enum #name {}
+            #( impl #opens for #name {} )*
+        }
+    });
+    quote! {
+        /// What an unlock opens: one trait per scope of parameters, one marker per way of unlocking.
+        pub mod unlock {
+            #( #traits )*
+            #( #unlocks )*
+        }
+    }
+}
+
+/// The guard's setters of one scope: one accessor per parameter of the scope.
+fn scope_setters(device: &Device, scope: &LockScope, lock_bound: &TokenStream) -> TokenStream {
+    let opens = opens_trait(&scope.name);
+    let setters = device
+        .parameters
+        .iter()
+        .filter(|p| {
+            device
+                .lock_scope_of(p)
+                .is_some_and(|s| s.name == scope.name)
+        })
+        .filter(|p| !super::indexed::is_member(p, device))
+        .map(setter);
+    quote! {
+        impl<'d, L: ::drivebus::Link, U: unlock::#opens> Unlocked<'d, L, U>
+        where
+            #lock_bound
+        {
+            #( #setters )*
+        }
+    }
+}
+
+fn setter(p: &Parameter) -> TokenStream {
+    let method = ident(&names::method(&p.name));
+    let marker = ident(&names::camel(&p.name));
+    let summary = doc::escape(p.doc.as_deref().unwrap_or(&p.name))
+        .lines()
+        .next()
+        .unwrap_or_default()
+        .to_owned();
+    let docs = doc_attrs(&format!(
+        "{summary}\n\nWritable while unlocked. See [`params::{marker}`] for address, type, unit and source."
+    ));
+    let aliases = super::parameter_doc::aliases(p);
+    quote! {
+        #docs
+        #aliases
+        #[inline]
+        pub fn #method(&mut self) -> ::drivebus::Accessor<'_, L, params::#marker> {
+            self.drive.device.parameter()
+        }
+    }
+}
+
+/// `drive.unlock_<name>(..)`: checks the requirement, writes the grant, returns the guard.
+fn unlock_method(
+    device: &Device,
+    unlock: &Unlock,
+    handle: &Ident,
+    lock_bound: &TokenStream,
+) -> TokenStream {
+    let method = ident(&format!("unlock_{}", names::snake(&unlock.name)));
+    let unlock_marker = marker(unlock);
+    let Some(grant) = device.parameter(&unlock.grant.parameter) else {
+        return TokenStream::new();
+    };
+    let grant_marker = ident(&names::camel(&grant.name));
+    let (argument, value, key_doc) = match &unlock.grant.key {
+        GrantKey::Value(v) => {
+            let literal = int_literal(i128::from(*v), grant.data_type);
+            (
+                quote! {},
+                quote! { #literal },
+                format!("writes {v} to `{}`", grant.name),
+            )
+        }
+        GrantKey::Password(password) => (
+            quote! { password: <params::#grant_marker as ::drivebus::Parameter>::Raw },
+            quote! { password },
+            format!(
+                "writes `password` (the drive's `{password}`) to `{}`",
+                grant.name
+            ),
+        ),
+    };
+    let (requirement, requirement_bound, requirement_doc) = match &unlock.requires {
+        Some(r) => {
+            let marker = ident(&names::camel(&r.parameter));
+            let name = &r.parameter;
+            let values = r.values.iter().map(|v| i128::from(*v));
+            let listed: Vec<String> = r.values.iter().map(i64::to_string).collect();
+            (
+                quote! {
+                    let found = ::core::primitive::i128::from(self.device.read_raw::<params::#marker>()?);
+                    const ALLOWED: &[::core::primitive::i128] = &[#( #values ),*];
+                    if !ALLOWED.contains(&found) {
+                        return Err(UnlockError::Requirement { parameter: #name, found, allowed: ALLOWED });
+                    }
+                },
+                quote! { params::#marker: ::drivebus::Readable<L::Protocol>, },
+                format!(
+                    " First reads `{name}`: unless it is {}, nothing is written and \
+                     [`UnlockError::Requirement`] names the value found.",
+                    listed.join(" or ")
+                ),
+            )
+        }
+        None => (quote! {}, quote! {}, String::new()),
+    };
+    let ends: Vec<String> = unlock
+        .ends
+        .iter()
+        .map(|e| format!("`{}`", e.name()))
+        .collect();
+    let text = unlock.doc.as_deref().map(doc::escape).unwrap_or_default();
+    let docs =
+        doc_attrs(&format!(
+        "Unlocks `{}`: {key_doc}, opening {}.{requirement_doc} {text}\n\nThe unlock lasts until \
+         the guard is locked or dropped, or the drive ends it ({}); a write after that fails \
+         with [`UnlockError::Locked`].",
+        unlock.name,
+        unlock.allows.iter().map(|s| format!("`{s}`")).collect::<Vec<_>>().join(" and "),
+        ends.join(", ")
+    ));
+    quote! {
+        impl<L: ::drivebus::Link> #handle<L>
+        where
+            #lock_bound,
+            params::#grant_marker: ::drivebus::Writable<L::Protocol>,
+            #requirement_bound
+        {
+            #docs
+            pub fn #method(&mut self, #argument) -> Result<Unlocked<'_, L, unlock::#unlock_marker>, UnlockError> {
+                #requirement
+                self.device.write_raw::<params::#grant_marker>(#value)?;
+                Ok(Unlocked::new(self))
+            }
+        }
+    }
+}
+
+/// The guard: borrows the handle while unlocked; locks on `lock()` and on drop.
+fn guard(handle: &Ident, lock_marker: &Ident, lock_bound: &TokenStream) -> TokenStream {
+    quote! {
+        /// A drive unlocked by `U` (a marker of [`unlock`]): its methods are the setters of the
+        /// scopes `U` opens. Locks the drive when dropped (best effort; [`Unlocked::lock`]
+        /// reports).
+        #[derive(Debug)]
+        pub struct Unlocked<'d, L: ::drivebus::Link, U>
+        where
+            #lock_bound
+        {
+            drive: &'d mut #handle<L>,
+            locked: bool,
+            unlock: ::core::marker::PhantomData<U>,
+        }
+
+        impl<'d, L: ::drivebus::Link, U> Unlocked<'d, L, U>
+        where
+            #lock_bound
+        {
+            fn new(drive: &'d mut #handle<L>) -> Self {
+                Self { drive, locked: false, unlock: ::core::marker::PhantomData }
+            }
+
+            /// The drive, for reads (a locked drive answers reads too).
+            pub fn drive(&mut self) -> &mut #handle<L> {
+                self.drive
+            }
+
+            /// Writes the lock command and ends the unlock. A drive that refuses it as locked
+            /// has ended the unlock already: that is success too.
+            pub fn lock(mut self) -> Result<(), UnlockError> {
+                self.locked = true;
+                match self.write_lock() {
+                    Err(UnlockError::Locked { .. }) => Ok(()),
+                    other => other,
+                }
+            }
+
+            fn write_lock(&mut self) -> Result<(), UnlockError> {
+                Ok(self.drive.device.write_raw::<params::#lock_marker>(params::#lock_marker::TRIGGER)?)
+            }
+        }
+
+        impl<L: ::drivebus::Link, U> Drop for Unlocked<'_, L, U>
+        where
+            #lock_bound
+        {
+            fn drop(&mut self) {
+                if !self.locked {
+                    // Best effort: a failure shows as `Locked` or a bus error at the next write.
+                    let _ = self.write_lock();
+                }
+            }
+        }
+    }
+}
+
+/// The handle's view of a parameter that needs an unlock: reads, and a `write` that does not
+/// compile.
+fn read_view() -> TokenStream {
+    quote! {
+        /// The bound no parameter meets: a parameter that needs an unlock is written through the
+        /// guard `drive.unlock_<name>(..)` returns, never through the handle.
+        #[diagnostic::on_unimplemented(
+            message = "`{Self}` is written only while the drive is unlocked",
+            label = "needs an unlock",
+            note = "unlock first (`let mut unlocked = drive.unlock_<name>(..)?;`) and write through the guard: `unlocked.<parameter>().write(..)`"
+        )]
+        pub trait WritableWithoutUnlock {}
+
+        /// A parameter that needs an unlock, seen from the handle: it can be read; writing it
+        /// does not compile (see [`WritableWithoutUnlock`]).
+        #[must_use = "an accessor does nothing until read"]
+        pub struct LockedAccessor<'d, L, P>(::drivebus::Accessor<'d, L, P>);
+
+        impl<L: ::drivebus::Link, P: ::drivebus::Readable<L::Protocol>> LockedAccessor<'_, L, P> {
+            /// Reads the value in engineering units.
+            #[inline]
+            pub fn read(self) -> Result<P::Value, ::drivebus::Error> {
+                self.0.read()
+            }
+
+            /// Reads the raw value.
+            #[inline]
+            pub fn read_raw(self) -> Result<P::Raw, ::drivebus::Error> {
+                self.0.read_raw()
+            }
+
+            /// Does not compile: the parameter is written only while the drive is unlocked.
+            pub fn write(self, value: impl ::drivebus::ValueOf<P>) -> Result<(), ::drivebus::Error>
+            where
+                P: WritableWithoutUnlock + ::drivebus::Writable<L::Protocol>,
+            {
+                self.0.write(value)
+            }
+
+            /// Does not compile: the parameter is written only while the drive is unlocked.
+            pub fn write_raw(self, raw: P::Raw) -> Result<(), ::drivebus::Error>
+            where
+                P: WritableWithoutUnlock + ::drivebus::Writable<L::Protocol>,
+            {
+                self.0.write_raw(raw)
+            }
+        }
+    }
+}
+
+/// The error type of unlocks and of writes under one.
+fn error_type() -> TokenStream {
+    quote! {
+        /// Why an unlock, or a write under one, failed.
+        #[derive(Debug, Clone, PartialEq)]
+        pub enum UnlockError {
+            /// A request failed (bus, exception, a value outside the description's range, or a
+            /// drive whose configuration the description does not cover).
+            Drive(::drivebus::Error),
+            /// The drive answered a write with [`LOCKED_EXCEPTION`]: it is locked. The unlock
+            /// ended (lock, power-down, a serial timeout, a changed requirement) or never began.
+            Locked {
+                /// The parameter whose write was refused.
+                parameter: &'static str,
+            },
+            /// The unlock's requirement does not hold; nothing was written.
+            Requirement {
+                /// The parameter read.
+                parameter: &'static str,
+                /// Its raw value.
+                found: ::core::primitive::i128,
+                /// The raw values that allow the unlock.
+                allowed: &'static [::core::primitive::i128],
+            },
+        }
+
+        impl From<::drivebus::Error> for UnlockError {
+            /// A write refused with [`LOCKED_EXCEPTION`] becomes [`UnlockError::Locked`].
+            fn from(error: ::drivebus::Error) -> Self {
+                match &error {
+                    ::drivebus::Error::Bus {
+                        parameter,
+                        cause: ::drivebus::BusError::ModbusException { code, .. },
+                    } if code.code() == LOCKED_EXCEPTION => Self::Locked { parameter },
+                    _ => Self::Drive(error),
+                }
+            }
+        }
+
+        impl ::core::fmt::Display for UnlockError {
+            fn fmt(&self, f: &mut ::core::fmt::Formatter<'_>) -> ::core::fmt::Result {
+                match self {
+                    Self::Drive(e) => write!(f, "{e}"),
+                    Self::Locked { parameter } => write!(
+                        f,
+                        "{parameter}: the drive is locked (exception {LOCKED_EXCEPTION:#04x}); unlock it first"
+                    ),
+                    Self::Requirement { parameter, found, allowed } => write!(
+                        f,
+                        "{parameter} is {found}; unlocking needs one of {allowed:?}: nothing was written"
+                    ),
+                }
+            }
+        }
+
+        impl ::core::error::Error for UnlockError {}
+    }
+}
