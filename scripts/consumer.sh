@@ -4,7 +4,7 @@
 # scripts/package.sh leaves in target/package/, unpacked and named in [patch.crates-io], the
 # stand-in for crates.io until they are published. It is built and run: it reads typed values
 # from a simulated Lafert Smartris whose description comes from the packaged drive crate.
-# Its dependencies build in target/consumer/, kept between runs.
+# Its dependencies build in target/consumer/ (without debug info), kept between runs.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -45,7 +45,7 @@ cp scripts/consumer/main.rs "$project/src/main.rs"
 cp Cargo.lock "$project/Cargo.lock"
 
 description=$(echo "$project"/crates/lafert-smartris-*/descriptions/lafert-smartris)
-output=$(cd "$project" && CARGO_TARGET_DIR="$root/target/consumer" \
+output=$(cd "$project" && CARGO_TARGET_DIR="$root/target/consumer" CARGO_PROFILE_DEV_DEBUG=false \
     cargo run --offline --quiet -- "$description")
 expected=$'bus_dc_link Volts(49.5)\noperation_mode velocity'
 if [[ $output != "$expected" ]]; then

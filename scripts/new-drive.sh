@@ -22,7 +22,8 @@ cp codegen/tests/eds/access_types.eds "$folder/vendor.eds"
 (
     cd "$folder"
     # Offline: the crates the workspace build downloaded are enough.
-    export PATH="$root/target/debug:$PATH" CARGO_TARGET_DIR="$root/target/consumer" CARGO_NET_OFFLINE=true
+    export PATH="$root/target/debug:$PATH" CARGO_TARGET_DIR="$root/target/consumer" CARGO_NET_OFFLINE=true \
+        CARGO_PROFILE_DEV_DEBUG=false
     set -x
     eval "$walkthrough"
 )
