@@ -53,13 +53,15 @@ pub fn run(args: Args) -> Result<(), CliError> {
 }
 
 fn crate_name(args: &Args) -> Result<String, CliError> {
-    let name = match &args.name {
-        Some(name) => name.clone(),
-        None => args
-            .path
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default(),
+    let name = match (&args.name, args.path.file_name()) {
+        (Some(name), _) => name.clone(),
+        (None, Some(folder)) => folder.to_string_lossy().into_owned(),
+        (None, None) => {
+            return Err(CliError::Usage(format!(
+                "{} names no folder to take the crate name from: give --name",
+                args.path.display()
+            )))
+        }
     };
     name::check(&name)
         .map_err(|why| CliError::Usage(format!("`{name}` cannot be a crate name: {why}")))?;
