@@ -161,3 +161,70 @@ impl Words {
             .replace("{handle}", &self.handle)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+
+    fn manifest_of(dependencies: &Dependencies) -> toml::Table {
+        let files = crate_files("acme-fd3", Description::Skeleton, dependencies);
+        let manifest = files
+            .iter()
+            .find(|f| f.path == Path::new("Cargo.toml"))
+            .unwrap();
+        std::str::from_utf8(&manifest.bytes)
+            .unwrap()
+            .parse()
+            .unwrap()
+    }
+
+    fn dependency<'a>(manifest: &'a toml::Table, table: &str, name: &str) -> &'a toml::Table {
+        manifest[table][name].as_table().unwrap()
+    }
+
+    #[test]
+    fn from_the_registry_the_dependencies_have_versions_only() {
+        let manifest = manifest_of(&Dependencies::Registry);
+        let drivebus = dependency(&manifest, "dependencies", "drivebus");
+        assert_eq!(drivebus["version"].as_str(), Some("0.1"));
+        assert_eq!(drivebus["default-features"].as_bool(), Some(false));
+        assert!(!drivebus.contains_key("path"));
+        let drivegen = dependency(&manifest, "build-dependencies", "drivegen");
+        assert_eq!(drivegen["version"].as_str(), Some("0.1"));
+        assert!(!drivegen.contains_key("path"));
+    }
+
+    #[test]
+    fn from_a_checkout_the_dependencies_also_have_paths() {
+        let root = PathBuf::from("/src/drive \"gen\"");
+        let manifest = manifest_of(&Dependencies::Checkout(root.clone()));
+        let drivebus = dependency(&manifest, "dependencies", "drivebus");
+        assert_eq!(drivebus["version"].as_str(), Some("0.1"));
+        let expected = root.join("transport").display().to_string();
+        assert_eq!(drivebus["path"].as_str(), Some(expected.as_str()));
+        let drivegen = dependency(&manifest, "build-dependencies", "drivegen");
+        let expected = root.join("codegen").display().to_string();
+        assert_eq!(drivegen["path"].as_str(), Some(expected.as_str()));
+    }
+
+    #[test]
+    fn the_names_follow_the_crate_name() {
+        let files = crate_files("acme-fd3", Description::Skeleton, &Dependencies::Registry);
+        let text = |path: &str| {
+            let file = files.iter().find(|f| f.path == Path::new(path)).unwrap();
+            String::from_utf8(file.bytes.clone()).unwrap()
+        };
+        let description = text("descriptions/acme-fd3/device.toml");
+        assert!(description.contains("name = \"Acme Fd3\""), "{description}");
+        assert!(
+            description.contains("handle = \"AcmeFd3\""),
+            "{description}"
+        );
+        assert!(text("build.rs").contains("Builder::new(\"descriptions/acme-fd3\")"));
+        assert!(!files
+            .iter()
+            .any(|f| String::from_utf8_lossy(&f.bytes).contains("{name}")));
+    }
+}
