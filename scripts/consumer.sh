@@ -45,6 +45,7 @@ cp scripts/consumer/main.rs "$project/src/main.rs"
 cp Cargo.lock "$project/Cargo.lock"
 
 description=$(echo "$project"/crates/lafert-smartris-*/descriptions/lafert-smartris)
+# Offline: the lock pins crates the workspace build has already downloaded.
 output=$(cd "$project" && CARGO_TARGET_DIR="$root/target/consumer" CARGO_PROFILE_DEV_DEBUG=false \
     cargo run --offline --quiet -- "$description")
 expected=$'bus_dc_link Volts(49.5)\noperation_mode velocity'

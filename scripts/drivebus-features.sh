@@ -12,7 +12,7 @@ print(" ".join(sorted(f for f in package["features"] if f != "default")))
 ')
 check() {
     echo "drivebus: $*"
-    cargo check --offline --quiet -p drivebus --lib "$@"
+    cargo check --quiet -p drivebus --lib "$@"
 }
 check --no-default-features
 for feature in $features; do

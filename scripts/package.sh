@@ -17,6 +17,6 @@ log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 status=0
 # shellcheck disable=SC2086 # one flag per word
-cargo package --offline --workspace $internal --allow-dirty >"$log" 2>&1 || status=$?
+cargo package --workspace $internal --allow-dirty >"$log" 2>&1 || status=$?
 grep -v -e '^warning: ignoring \(test\|benchmark\) `' -e '^ *Compiling ' "$log" || true
 exit "$status"
