@@ -32,6 +32,8 @@ enum Command {
     Dump(commands::dump::Args),
     /// Compare two descriptions: what changed, and whether it breaks code (exit code 1 if so).
     Diff(commands::diff::Args),
+    /// Create a drive crate that builds at once: a description skeleton or a vendor EDS overlay.
+    New(commands::new::Args),
     /// Generate a standalone drive crate (Cargo.toml + src/lib.rs) into a folder.
     Generate(commands::generate::Args),
     /// Simulate the described drive on Modbus TCP, Modbus RTU or CANopen until interrupted.
@@ -57,6 +59,7 @@ fn main() -> ExitCode {
         Command::Check(args) => commands::check::run(args),
         Command::Dump(args) => commands::dump::run(args),
         Command::Diff(args) => commands::diff::run(args),
+        Command::New(args) => commands::new::run(args),
         Command::Generate(args) => commands::generate::run(args),
         Command::Sim(args) => commands::sim::run(args),
         Command::Read(args) => commands::read::run(args),

@@ -1,8 +1,11 @@
 //! The `build.rs` entry point of drive crates, in the style of prost-build:
 //!
 //! ```no_run
-//! drivegen::Builder::new("../../descriptions/lafert-smartris").compile().unwrap();
+//! drivegen::Builder::new("descriptions/lafert-smartris").compile().unwrap();
 //! ```
+//!
+//! The path is relative to the crate, and the description (with the profiles it includes) should
+//! be inside it, so that the published crate builds on its own.
 
 use std::fmt;
 use std::path::{Path, PathBuf};

@@ -4,6 +4,7 @@ use std::path::{Path, PathBuf};
 
 use heck::ToKebabCase;
 
+use super::DRIVEBUS_VERSION;
 use crate::error::CliError;
 
 /// Arguments of `generate`.
@@ -21,9 +22,6 @@ pub struct Args {
     #[arg(long, value_name = "PATH")]
     drivebus_path: Option<PathBuf>,
 }
-
-/// The drivebus version generated code is written against.
-const DRIVEBUS_VERSION: &str = "0.1";
 
 /// Writes Cargo.toml and src/lib.rs.
 pub fn run(args: Args) -> Result<(), CliError> {

@@ -6,6 +6,7 @@ pub mod diff;
 pub mod dump;
 pub mod eds;
 pub mod generate;
+pub mod new;
 pub mod read;
 pub mod safety;
 pub mod scan;
@@ -19,6 +20,12 @@ use drivegen::ir::{Device, Parameter};
 
 use crate::error::CliError;
 use crate::suggest;
+
+/// The drivebus version generated code is written against.
+pub const DRIVEBUS_VERSION: &str = "0.1";
+
+/// The drivegen version a new drive crate's build script uses.
+pub const DRIVEGEN_VERSION: &str = "0.1";
 
 /// Loads and validates a description; warnings go to stderr.
 pub fn load(description: &Path) -> Result<Device, CliError> {
