@@ -158,15 +158,16 @@ fn an_invalid_crate_name_is_refused_before_anything_is_written() {
 #[test]
 fn an_eds_that_cannot_be_imported_writes_nothing() {
     let dir = scratch("bad-eds");
-    // Object 0x2000 of this EDS has no DataType: only an overlay could give it.
-    let eds = root().join("codegen/tests/fixtures/overlay/drive.eds");
+    // The default of this EDS's object lies outside its own limits: only an overlay could fix it.
+    let eds = root().join("codegen/tests/eds/default_outside_limits.eds");
     let refused = new_crate(
         &dir.join("vendor-drive"),
         &["--from", eds.to_str().unwrap()],
     );
     assert!(!refused.status.success());
     assert!(
-        stderr(&refused).contains("has no DataType"),
+        stderr(&refused).contains("is outside its range 10..=20")
+            && stderr(&refused).contains("no crate was made"),
         "{}",
         stderr(&refused)
     );

@@ -68,9 +68,21 @@ fn crate_name(args: &Args) -> Result<String, CliError> {
     Ok(name)
 }
 
+/// The EDS and its overlay skeleton, which lie side by side in the new crate as `device.toml`
+/// and the EDS's own file name; an EDS whose skeleton does not check makes no crate.
 fn eds_overlay(eds: &Path) -> Result<Description, CliError> {
-    let overlay =
-        drivegen::eds::import_overlay(eds).map_err(|e| CliError::Invalid(e.to_string()))?;
+    let beside = eds.with_file_name("device.toml");
+    let imported = drivegen::eds::import_overlay(eds, &beside)
+        .map_err(|e| CliError::Invalid(e.to_string()))?;
+    if !imported.checks() {
+        return Err(CliError::Invalid(format!(
+            "{}
+the overlay imported from {} does not check: no crate was made",
+            imported.checked.render(),
+            eds.display()
+        )));
+    }
+    let overlay = imported.overlay;
     let bytes = std::fs::read(eds)
         .map_err(|e| CliError::Io(format!("cannot read {}: {e}", eds.display())))?;
     let eds_name = eds
