@@ -95,7 +95,8 @@ fn run(
         println!("motor speed        {motor} rpm");
     }
     let ratio = drive.gear_ratio()?;
-    let wheel = ezwheel_swd::wheel_speed(Rpm(f64::from(motor)), ratio).ok_or("zero gear ratio")?;
+    // 6044h (rpm at the motor) through the model's gear ratio.
+    let wheel = drive.wheel_speed_actual()?;
     println!(
         "wheel speed        {:.1} rpm (SWD 150, ratio {:.3})",
         wheel.0,
