@@ -216,6 +216,18 @@ pub enum WriteRefusal {
         /// The raw value the drive reported.
         found: i128,
     },
+    /// An identity parameter the description covers as a range (a CANopen revision range,
+    /// 1018h sub 3) holds a value outside it (found by the handle's `verify_identity`).
+    IdentityOutOfRange {
+        /// The identity parameter, as in the description.
+        parameter: &'static str,
+        /// The smallest covered value.
+        min: i128,
+        /// The largest covered value.
+        max: i128,
+        /// The raw value the drive reported.
+        found: i128,
+    },
 }
 
 impl fmt::Display for WriteRefusal {
@@ -232,6 +244,15 @@ impl fmt::Display for WriteRefusal {
             } => write!(
                 f,
                 "{parameter} reads {found}; the description covers {expected:?}"
+            ),
+            Self::IdentityOutOfRange {
+                parameter,
+                min,
+                max,
+                found,
+            } => write!(
+                f,
+                "{parameter} reads {found:#x}; the description covers {min:#x}..={max:#x}"
             ),
         }
     }

@@ -31,19 +31,6 @@ impl Covered {
             Covered::Range { min, max } => (i128::from(*min)..=i128::from(*max)).contains(&raw),
         }
     }
-
-    /// Every covered value, when there are at most `limit` of them.
-    pub fn listed(&self, limit: usize) -> Option<Vec<i64>> {
-        match self {
-            Covered::Values(values) => Some(values.clone()),
-            Covered::Range { min, max } => {
-                let count = usize::try_from(max.checked_sub(*min)?)
-                    .ok()?
-                    .checked_add(1)?;
-                (count <= limit).then(|| (*min..=*max).collect())
-            }
-        }
-    }
 }
 
 impl std::fmt::Display for Covered {
@@ -166,8 +153,6 @@ source = { doc = "m", line = 1 }
     fn ranges_and_lists_cover_their_values_only() {
         let range = Covered::Range { min: 2, max: 4 };
         assert!(range.contains(4) && !range.contains(5) && !range.contains(1));
-        assert_eq!(range.listed(3), Some(vec![2, 3, 4]));
-        assert_eq!(range.listed(2), None);
         assert_eq!(range.to_string(), "0x2..=0x4");
         let values = Covered::Values(vec![400, 507]);
         assert!(values.contains(507) && !values.contains(401));

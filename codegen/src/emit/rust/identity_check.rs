@@ -1,7 +1,8 @@
 //! The identity check on connect (`[identity]`): the handle's `verify_identity` reads every
 //! identity parameter the link's protocol reaches (the firmware / configuration parameter, and
 //! over CANopen the vendor-ID, product code and revision at 1018h) and, on a value the
-//! description does not cover, refuses every write (`WriteRefusal::IdentityMismatch`) and returns
+//! description does not cover, refuses every write (`WriteRefusal::IdentityMismatch`, or
+//! `IdentityOutOfRange` for a revision range) and returns
 //! the refusal naming the parameter, expected and found values. `trust_unverified` is the
 //! explicit opt-in to write anyway. A fresh handle is open: existing code keeps writing; calling
 //! `verify_identity` first is the documented way to connect.
@@ -14,23 +15,12 @@ use quote::quote;
 
 use super::{doc_attrs, ident};
 use crate::emit::ident as names;
-use crate::ir::{Device, IdentityCheck, Parameter};
-
-/// A revision range wider than this is not listed in the generated code (and not checked there:
-/// the refusal names the covered values as a list).
-const LISTED_AT_MOST: usize = 256;
+use crate::ir::{Covered, Device, IdentityCheck, Parameter};
 
 type Readable = fn(&Parameter) -> bool;
 
 pub fn emit(device: &Device) -> TokenStream {
-    let checks: Vec<(IdentityCheck, Vec<i64>)> = device
-        .identity_checks()
-        .into_iter()
-        .filter_map(|check| {
-            let listed = check.covered.listed(LISTED_AT_MOST)?;
-            Some((check, listed))
-        })
-        .collect();
+    let checks: Vec<IdentityCheck> = device.identity_checks();
     if checks.is_empty() {
         return TokenStream::new();
     }
@@ -52,8 +42,8 @@ pub fn emit(device: &Device) -> TokenStream {
     let impls = protocols.iter().filter_map(|(protocol, readable)| {
         let reached: Vec<TokenStream> = checks
             .iter()
-            .filter(|(check, _)| readable(check.parameter))
-            .map(|(check, listed)| one_check(check.parameter, listed))
+            .filter(|check| readable(check.parameter))
+            .map(one_check)
             .collect();
         (!reached.is_empty()).then(|| {
             quote! {
@@ -70,7 +60,7 @@ pub fn emit(device: &Device) -> TokenStream {
     });
     let described: Vec<String> = checks
         .iter()
-        .map(|(check, _)| format!("`{}` in `{}`", check.parameter.name, check.covered))
+        .map(|check| format!("`{}` in `{}`", check.parameter.name, check.covered))
         .collect();
     let verify_doc = doc_attrs(&format!(
         "Reads the identity parameters this link reaches ({}) and checks them against the values \
@@ -123,20 +113,42 @@ pub fn emit(device: &Device) -> TokenStream {
 }
 
 /// Reads one identity parameter and returns the refusal when its value is not covered.
-fn one_check(parameter: &Parameter, listed: &[i64]) -> TokenStream {
-    let marker = ident(&names::camel(&parameter.name));
-    let name = &parameter.name;
-    let values = listed.iter().map(|v| i128::from(*v));
+fn one_check(check: &IdentityCheck) -> TokenStream {
+    let marker = ident(&names::camel(&check.parameter.name));
+    let name = &check.parameter.name;
+    let refusal = match &check.covered {
+        Covered::Values(values) => {
+            let values = values.iter().map(|v| i128::from(*v));
+            quote! {
+                const EXPECTED: &[::core::primitive::i128] = &[#( #values ),*];
+                (!EXPECTED.contains(&found)).then_some(
+                    ::drivebus::WriteRefusal::IdentityMismatch {
+                        parameter: #name,
+                        expected: EXPECTED,
+                        found,
+                    },
+                )
+            }
+        }
+        Covered::Range { min, max } => {
+            let (min, max) = (i128::from(*min), i128::from(*max));
+            quote! {
+                (!(#min..=#max).contains(&found)).then_some(
+                    ::drivebus::WriteRefusal::IdentityOutOfRange {
+                        parameter: #name,
+                        min: #min,
+                        max: #max,
+                        found,
+                    },
+                )
+            }
+        }
+    };
     quote! {
         {
-            const EXPECTED: &[::core::primitive::i128] = &[#( #values ),*];
             let found = ::core::primitive::i128::from(device.read_raw::<params::#marker>()?);
-            if !EXPECTED.contains(&found) {
-                let reason = ::drivebus::WriteRefusal::IdentityMismatch {
-                    parameter: #name,
-                    expected: EXPECTED,
-                    found,
-                };
+            let refusal: Option<::drivebus::WriteRefusal> = { #refusal };
+            if let Some(reason) = refusal {
                 return Ok(Some((#name, reason)));
             }
         }
@@ -144,18 +156,19 @@ fn one_check(parameter: &Parameter, listed: &[i64]) -> TokenStream {
 }
 
 /// `IDENTITY_VALUES`: the values of the firmware / configuration parameter, when there is one.
-fn identity_values(checks: &[(IdentityCheck, Vec<i64>)], device: &Device) -> TokenStream {
+fn identity_values(checks: &[IdentityCheck], device: &Device) -> TokenStream {
     let named = device
         .identity
         .as_ref()
         .and_then(|i| i.parameter.as_deref());
-    let Some((_, listed)) = checks
+    let Some(Covered::Values(values)) = checks
         .iter()
-        .find(|(check, _)| Some(check.parameter.name.as_str()) == named)
+        .find(|check| Some(check.parameter.name.as_str()) == named)
+        .map(|check| &check.covered)
     else {
         return TokenStream::new();
     };
-    let values = listed.iter().map(|v| i128::from(*v));
+    let values = values.iter().map(|v| i128::from(*v));
     quote! {
         /// The values of the identity parameter this description covers.
         pub const IDENTITY_VALUES: &[::core::primitive::i128] = &[#( #values ),*];
