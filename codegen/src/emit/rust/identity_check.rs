@@ -116,39 +116,43 @@ pub fn emit(device: &Device) -> TokenStream {
 fn one_check(check: &IdentityCheck) -> TokenStream {
     let marker = ident(&names::camel(&check.parameter.name));
     let name = &check.parameter.name;
-    let refusal = match &check.covered {
+    let (prelude, uncovered, reason) = match &check.covered {
         Covered::Values(values) => {
             let values = values.iter().map(|v| i128::from(*v));
-            quote! {
-                const EXPECTED: &[::core::primitive::i128] = &[#( #values ),*];
-                (!EXPECTED.contains(&found)).then_some(
+            (
+                quote! { const EXPECTED: &[::core::primitive::i128] = &[#( #values ),*]; },
+                quote! { !EXPECTED.contains(&found) },
+                quote! {
                     ::drivebus::WriteRefusal::IdentityMismatch {
                         parameter: #name,
                         expected: EXPECTED,
                         found,
-                    },
-                )
-            }
+                    }
+                },
+            )
         }
         Covered::Range { min, max } => {
             let (min, max) = (i128::from(*min), i128::from(*max));
-            quote! {
-                (!(#min..=#max).contains(&found)).then_some(
+            (
+                TokenStream::new(),
+                quote! { !(#min..=#max).contains(&found) },
+                quote! {
                     ::drivebus::WriteRefusal::IdentityOutOfRange {
                         parameter: #name,
                         min: #min,
                         max: #max,
                         found,
-                    },
-                )
-            }
+                    }
+                },
+            )
         }
     };
     quote! {
         {
+            #prelude
             let found = ::core::primitive::i128::from(device.read_raw::<params::#marker>()?);
-            let refusal: Option<::drivebus::WriteRefusal> = { #refusal };
-            if let Some(reason) = refusal {
+            if #uncovered {
+                let reason = #reason;
                 return Ok(Some((#name, reason)));
             }
         }
