@@ -8,7 +8,7 @@ use std::thread::sleep;
 use std::time::Duration;
 
 use drivebus::memory::MemoryBus;
-use drivebus::modbus::{ModbusLink, RegisterBus, Table, UnitId};
+use drivebus::modbus::{ModbusLink, RegisterBus, SharedBus, Table, UnitId};
 use drivebus::BusError;
 use lenze_smd::{KeepAlive, LenzeSmd};
 
@@ -153,4 +153,36 @@ fn for_drive_follows_n22_and_n23() {
         .memory
         .set_register(Table::Holding, 114, 0);
     assert!(KeepAlive::for_drive(drive).unwrap().is_none(), "n22 = 0");
+}
+
+#[test]
+fn one_line_carries_an_unlocked_drive_and_its_keep_alive() {
+    // On one RS-485 line there is no second connection: the application's handle and the
+    // keep-alive's share the line through `SharedBus`, request by request (line 372: poll at
+    // under half of n23 while unlocked).
+    let line = Line::default();
+    let mut memory = drive(&line).into_link().into_bus();
+    // C01 = 10 (serial control, line 411), #48 writable.
+    memory
+        .memory
+        .set_register(Table::Holding, 51, 10)
+        .set_register(Table::Holding, 48, 1)
+        .set_register(Table::Holding, 1, 0);
+    let bus = SharedBus::new(memory);
+    let mut application = LenzeSmd::modbus(bus.clone(), UnitId(1));
+    let polling = Arc::new(Mutex::new(LenzeSmd::modbus(bus.clone(), UnitId(1))));
+    let keep_alive = KeepAlive::spawn(polling, Duration::from_millis(90));
+    let session = application.unlock_controls().unwrap();
+    sleep(Duration::from_millis(300));
+    let report = keep_alive.report();
+    assert!(report.polls >= 2, "polled while unlocked: {report:?}");
+    assert!(report.missed.is_empty(), "{report:?}");
+    assert!(line.block_reads.load(Ordering::SeqCst) >= 2);
+    session.lock().unwrap();
+    drop(keep_alive);
+    assert_eq!(
+        bus.lock().memory.register(Table::Holding, 48),
+        Some(0),
+        "the unlock went over the shared line"
+    );
 }

@@ -29,6 +29,8 @@ pub mod planner;
 pub mod retry;
 #[cfg(feature = "modbus-core")]
 pub mod rtu;
+#[cfg(feature = "std")]
+mod shared_bus;
 pub mod tcp;
 #[cfg(feature = "modbus")]
 pub mod transport;
@@ -39,6 +41,8 @@ pub use address::{
 };
 pub use exception::ExceptionCode;
 pub use link::ModbusLink;
+#[cfg(feature = "std")]
+pub use shared_bus::SharedBus;
 
 use crate::error::BusError;
 use crate::Protocol;
