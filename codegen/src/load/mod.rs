@@ -5,6 +5,7 @@ mod only;
 mod raw;
 mod raw_identity;
 mod raw_srdo;
+mod read_text;
 pub mod subindex_range;
 
 use std::path::{Path, PathBuf};
@@ -13,6 +14,7 @@ use crate::diagnostic::{Diagnostic, FileId, Files, Span};
 use raw::{RawFile, RawInclude};
 
 pub use lower::lower;
+pub use read_text::MAX_FILE_BYTES;
 
 /// The file a folder description is loaded through.
 pub const DEVICE_FILE: &str = "device.toml";
@@ -68,22 +70,26 @@ fn read_recursive(
     chain: &mut Vec<PathBuf>,
 ) {
     let canonical = path.canonicalize().unwrap_or_else(|_| path.to_path_buf());
-    let located = |message: String| match &included_at {
-        Some(span) => Diagnostic::error("includes_resolve", span.clone(), message),
-        None => Diagnostic::error_at_no_place("io", message),
+    let located = |rule: Option<&'static str>, message: String| match &included_at {
+        Some(span) => Diagnostic::error(rule.unwrap_or("includes_resolve"), span.clone(), message),
+        None => Diagnostic::error_at_no_place(rule.unwrap_or("io"), message),
     };
-    if chain.contains(&canonical) || chain.len() >= MAX_INCLUDE_DEPTH {
-        diagnostics.push(located(format!("`{}` includes itself", path.display())));
+    if chain.contains(&canonical) {
+        let message = format!("`{}` includes itself", path.display());
+        diagnostics.push(located(Some("includes_resolve"), message));
         return;
     }
-    let text = match std::fs::read_to_string(path) {
-        Ok(text) => text,
-        Err(e) => {
-            diagnostics.push(located(format!("cannot read `{}`: {e}", path.display())));
-            return;
-        }
+    if chain.len() >= MAX_INCLUDE_DEPTH {
+        let message = format!(
+            "`{}` is included {MAX_INCLUDE_DEPTH} levels deep, the most allowed",
+            path.display()
+        );
+        diagnostics.push(located(Some("includes_resolve"), message));
+        return;
+    }
+    let Some(id) = read_text::read(path, files, diagnostics, located) else {
+        return;
     };
-    let id = files.add(path.to_path_buf(), text);
     let raw: RawFile = match toml::from_str(files.text(id)) {
         Ok(raw) => raw,
         Err(e) => {
