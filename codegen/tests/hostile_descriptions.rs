@@ -91,3 +91,44 @@ fn hostile_description_compiles_without_warnings_and_without_doctests() {
         built.stdout
     );
 }
+
+/// Integer types at their edges (ranges spanning the type, defaults at both ends, extreme
+/// scales and enum values) and names that differ only in Unicode normalisation generate code
+/// that compiles without warnings.
+#[test]
+fn numbers_at_type_edges_generate_code_that_compiles() {
+    let source = generate("tests/fixtures/hostile_numbers.toml");
+    let file = syn::parse_file(&source).expect("generated code parses");
+    assert!(!file.items.is_empty());
+    let built = build_and_doctest("hostile_numbers", &no_std_lib(&source));
+    assert!(
+        built.success,
+        "generated code does not build:\n{}",
+        built.stderr
+    );
+}
+
+/// Nesting as deep as a TOML parser's stack allows is a diagnostic, not a stack overflow.
+#[test]
+fn deeply_nested_toml_is_a_diagnostic() {
+    let dir = std::env::temp_dir().join(format!("drivegen-nested-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, open, close) in [("arrays", "[", "]"), ("tables", "{ a = ", " }")] {
+        let depth = 100_000;
+        let text = format!(
+            "format = 1\nx = {}1{}\n",
+            open.repeat(depth),
+            close.repeat(depth)
+        );
+        let path = dir.join(format!("{name}.toml"));
+        std::fs::write(&path, text).unwrap();
+        let checked = drivegen::check(&path);
+        assert!(checked.device.is_none(), "{name}: nesting accepted");
+        assert!(
+            checked.render().contains("error[syntax]"),
+            "{name}: {}",
+            checked.render()
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -6,6 +6,7 @@ mod raw;
 mod raw_identity;
 mod raw_lock;
 mod raw_srdo;
+mod read_text;
 pub mod subindex_range;
 
 use std::path::{Path, PathBuf};
@@ -14,6 +15,7 @@ use crate::diagnostic::{Diagnostic, FileId, Files, Span};
 use raw::{RawFile, RawInclude};
 
 pub use lower::lower;
+pub use read_text::MAX_FILE_BYTES;
 
 /// The file a folder description is loaded through.
 pub const DEVICE_FILE: &str = "device.toml";
@@ -89,22 +91,31 @@ fn read_recursive(
     chain: &mut Vec<PathBuf>,
 ) {
     let canonical = path.canonicalize().unwrap_or_else(|_| path.to_path_buf());
-    let located = |message: String| match &included_at {
-        Some(span) => Diagnostic::error("includes_resolve", span.clone(), message),
-        None => Diagnostic::error_at_no_place("io", message),
+    let located = |rule: Option<&'static str>, message: String| match &included_at {
+        Some(span) => Diagnostic::error(rule.unwrap_or("includes_resolve"), span.clone(), message),
+        None => Diagnostic::error_at_no_place(rule.unwrap_or("io"), message),
     };
-    if chain.contains(&canonical) || chain.len() >= MAX_INCLUDE_DEPTH {
-        diagnostics.push(located(format!("`{}` includes itself", path.display())));
+    if chain.contains(&canonical) {
+        let message = format!("`{}` includes itself", path.display());
+        diagnostics.push(located(Some("includes_resolve"), message));
         return;
     }
-    let text = match given.map_or_else(|| std::fs::read_to_string(path), Ok) {
-        Ok(text) => text,
-        Err(e) => {
-            diagnostics.push(located(format!("cannot read `{}`: {e}", path.display())));
-            return;
-        }
+    if chain.len() >= MAX_INCLUDE_DEPTH {
+        let message = format!(
+            "`{}` is included {MAX_INCLUDE_DEPTH} levels deep, the most allowed",
+            path.display()
+        );
+        diagnostics.push(located(Some("includes_resolve"), message));
+        return;
+    }
+    // Text given by the caller (an overlay checked before it is saved) is in memory already.
+    let read = match given {
+        Some(text) => Some(files.add(path.to_path_buf(), text)),
+        None => read_text::read(path, files, diagnostics, located),
     };
-    let id = files.add(path.to_path_buf(), text);
+    let Some(id) = read else {
+        return;
+    };
     let raw: RawFile = match toml::from_str(files.text(id)) {
         Ok(raw) => raw,
         Err(e) => {

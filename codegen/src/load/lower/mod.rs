@@ -594,12 +594,20 @@ impl Lowering<'_> {
             (RawNumber::Float(f), false) => Some(Number::Float(f)),
             (RawNumber::Float(f), true) => {
                 let span = self.span(raw);
-                self.error_help(
-                    VALUE_RULE,
-                    span,
-                    format!("{f} is not a raw integer"),
-                    "defaults, ranges and allowed values are raw wire values, before scaling",
-                );
+                // TOML reads an integer beyond i64 (u64::MAX, say) as a float: say so rather than
+                // call a whole number fractional.
+                let (message, help) = if f.fract() == 0.0 && f.abs() >= 9.2e18 {
+                    (
+                        format!("{f} is beyond the largest TOML integer, {}", i64::MAX),
+                        "a raw value of a u64 parameter can be at most i64::MAX here",
+                    )
+                } else {
+                    (
+                        format!("{f} is not a raw integer"),
+                        "defaults, ranges and allowed values are raw wire values, before scaling",
+                    )
+                };
+                self.error_help(VALUE_RULE, span, message, help);
                 None
             }
         }

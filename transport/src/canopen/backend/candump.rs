@@ -65,9 +65,15 @@ fn parse_timestamp(text: &[u8]) -> Result<u64, BusError> {
         if !b.is_ascii_digit() {
             return Err(bad);
         }
-        value = value.checked_mul(10).ok_or(bad.clone())? + u64::from(b - b'0');
+        value = value
+            .checked_mul(10)
+            .and_then(|v| v.checked_add(u64::from(b - b'0')))
+            .ok_or(bad.clone())?;
     }
-    Ok(value * 10u64.pow(6 - micros.len() as u32))
+    // A timestamp past u64 microseconds (year 586,524) is malformed, not an overflow.
+    value
+        .checked_mul(10u64.pow(6 - micros.len() as u32))
+        .ok_or(bad)
 }
 
 /// Parses one line; `Ok(None)` for blank lines and `#` comments.
@@ -391,6 +397,28 @@ mod tests {
             parse_line(b"123##100"),
             Err(BusError::Unsupported("CAN FD frames"))
         );
+    }
+
+    /// Found by the `candump_line` fuzz target: a timestamp whose microseconds overflow u64
+    /// once scaled (here `.4` is 400,000 µs) panicked with an arithmetic overflow.
+    #[test]
+    fn timestamps_past_u64_microseconds_are_malformed() {
+        for line in [
+            &b"(170000000022130.4) can0 585#00"[..],
+            b"(18446744073709.551616) can0 123#00",
+            b"(99999999999999999999.1) can0 123#00",
+        ] {
+            assert_eq!(
+                parse_line(line),
+                Err(BusError::Frame("candump: malformed timestamp")),
+                "{}",
+                std::string::String::from_utf8_lossy(line)
+            );
+        }
+        let largest = parse_line(b"(18446744073709.551615) can0 123#00")
+            .unwrap()
+            .unwrap();
+        assert_eq!(largest.timestamp_us, Some(u64::MAX));
     }
 
     #[test]

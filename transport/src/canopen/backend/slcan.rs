@@ -170,6 +170,11 @@ pub fn decode_line(line: &[u8]) -> Option<Result<CanFrame, BusError>> {
     } else {
         let digits = 2 * len as usize;
         match rest.get(4..4 + digits) {
+            // Only hex digits: the candump parser also skips `.` separators, which would let a
+            // line carry fewer bytes than its length digit says.
+            Some(data) if !data.iter().all(u8::is_ascii_hexdigit) => {
+                return Some(Err(BusError::Frame("SLCAN: data is not hex digits")))
+            }
             Some(data) => text.extend_from_slice(data),
             None => return Some(Err(BusError::Frame("SLCAN: truncated data"))),
         }
@@ -313,6 +318,16 @@ mod tests {
                 "{line:?}"
             );
         }
+        // Found by the `slcan_line` fuzz target: `.` in the data was skipped, so this line
+        // decoded as a 6-byte frame although its length digit says 7.
+        assert_eq!(
+            decode_line(b"t0117909541.41.3A876"),
+            Some(Err(BusError::Frame("SLCAN: data is not hex digits")))
+        );
+        assert_eq!(
+            decode_line(b"t12321.2."),
+            Some(Err(BusError::Frame("SLCAN: data is not hex digits")))
+        );
         let mut noisy = std::vec![b'x'; 200];
         noisy.extend_from_slice(b"\rt1230\r");
         let mut bus = bus(&noisy);

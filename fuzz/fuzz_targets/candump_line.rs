@@ -1,0 +1,27 @@
+//! The candump line parser fed arbitrary lines (a candump log or `candump -L` stream).
+//!
+//! Input: one line. Asserts that a parsed frame formats to compact text that parses to the same
+//! frame, and that a parsed timestamp survives the fields around it.
+#![no_main]
+
+use drivebus::canopen::backend::candump::{format_frame, parse_frame, parse_line};
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|line: &[u8]| {
+    let Ok(Some(record)) = parse_line(line) else {
+        return;
+    };
+    let mut text = Vec::new();
+    format_frame(&record.frame, &mut text);
+    assert_eq!(
+        parse_frame(&text),
+        Ok(record.frame),
+        "compact form {text:?}"
+    );
+    let mut logged = Vec::new();
+    if let Some(us) = record.timestamp_us {
+        logged.extend(format!("({}.{:06}) can0 ", us / 1_000_000, us % 1_000_000).bytes());
+    }
+    logged.extend(&text);
+    assert_eq!(parse_line(&logged), Ok(Some(record)), "log line {logged:?}");
+});

@@ -1,0 +1,172 @@
+#!/usr/bin/env python3
+"""Writes the seed corpora of the fuzz targets (fuzz/seeds/<target>/) from the project's test
+vectors and the manuals' frames. Run from anywhere: `python3 fuzz/seeds/make.py`. Each target's
+input layout is documented at the top of fuzz/fuzz_targets/<target>.rs; the seeds follow it.
+"""
+import pathlib
+import shutil
+import struct
+
+FUZZ = pathlib.Path(__file__).resolve().parent.parent
+ROOT = FUZZ.parent
+SEEDS = FUZZ / "seeds"
+
+
+def crc16_modbus(data):
+    crc = 0xFFFF
+    for b in data:
+        crc ^= b
+        for _ in range(8):
+            crc = (crc >> 1) ^ 0xA001 if crc & 1 else crc >> 1
+    return struct.pack("<H", crc)
+
+
+def write(target, name, data):
+    folder = SEEDS / target
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / name).write_bytes(bytes(data))
+
+
+def copy_files(target, pattern_dirs):
+    for folder, pattern in pattern_dirs:
+        for path in sorted((ROOT / folder).glob(pattern)):
+            write(target, path.name, path.read_bytes())
+
+
+# Lafert Modbus manual (001_ad8624675505a5b5.txt) lines 157-233: request PDUs after the address.
+LAFERT_REQUESTS = {
+    "line158_write_address": "06 00 28 00 02",
+    "line163_save_eeprom": "06 00 00 00 01",
+    "line168_reset": "06 A5 A5 00 01",
+    "line177_baud": "06 00 35 00 60",
+    "line198_com_setting": "06 00 2B 00 01",
+    "line219_read_status": "04 00 60 00 01",
+    "line226_read_17": "04 00 2B 00 17",
+    "line232_read_com": "03 00 2B 00 01",
+    "line240_read_6": "03 00 3C 00 06",
+}
+
+
+def hexbytes(text):
+    return [int(b, 16) for b in text.split()]
+
+
+def request_bytes(pdu):
+    """The 5-byte request layout of fuzz/src/modbus_request.rs for a read or single write PDU."""
+    kinds = {0x01: 0, 0x02: 1, 0x03: 2, 0x04: 3, 0x05: 4, 0x06: 5, 0x0F: 6, 0x10: 7}
+    return [kinds[pdu[0]]] + pdu[1:5]
+
+
+def answer_pdu(pdu):
+    """A normal answer to a request PDU: registers counting up, or the write's echo."""
+    function, count = pdu[0], (pdu[3] << 8) | pdu[4]
+    if function in (0x03, 0x04):
+        data = [i & 0xFF for i in range(2 * count)]
+        return [function, 2 * count] + data
+    return pdu[:5]
+
+
+def modbus_seeds():
+    for name, text in LAFERT_REQUESTS.items():
+        pdu = hexbytes(text)
+        write("modbus_server_request", name, [0] + pdu)
+        answer = answer_pdu(pdu)
+        rtu = [1] + answer
+        rtu += list(crc16_modbus(rtu))
+        # Garbage, an exception from the unit, then the answer.
+        exception = [1, pdu[0] | 0x80, 2]
+        exception += list(crc16_modbus(exception))
+        write("modbus_rtu_scan", name, [1, 4] + request_bytes(pdu) + rtu)
+        write("modbus_rtu_scan", name + "_after_garbage", [1, 7] + request_bytes(pdu) + [0xFF, 0x00] + rtu)
+        write("modbus_rtu_scan", name + "_exception", [1, 3] + request_bytes(pdu) + exception)
+        for tx in (7, 0xFFFF):
+            mbap = list(struct.pack(">HHHB", tx, 0, len(answer) + 1, 1)) + answer
+            stale = list(struct.pack(">HHHB", (tx - 1) & 0xFFFF, 0, len(answer) + 1, 1)) + answer
+            write("modbus_tcp_scan", f"{name}_tx{tx}", [1, 9] + list(struct.pack(">H", tx)) + request_bytes(pdu) + stale + mbap)
+    write("modbus_server_request", "write_coils", [0, 0x0F, 0, 1, 0, 10, 2, 0xFF, 0x03])
+    write("modbus_server_request", "write_registers", [1, 0x10, 0, 0x28, 0, 2, 4, 0, 1, 0, 2])
+    write("modbus_server_request", "read_coils_kinco", [2, 0x01, 0, 0, 0, 8])
+
+
+def sdo_client_seeds():
+    mux = [0x00, 0x20, 0x01]
+    expedited = [0x43] + mux + [1, 2, 3, 4]
+    write("sdo_client", "upload_expedited", [0, 8, 0] + [1, 0] + expedited)
+    segmented = [[0x41] + mux + [10, 0, 0, 0], [0x00] + list(range(7)), [0x13] + [7, 8, 9, 0, 0, 0, 0]]
+    write("sdo_client", "upload_segmented", [0, 16, 0] + sum(([1, 0] + f for f in segmented), []))
+    write("sdo_client", "download_expedited", [1, 2, 0] + [1, 0] + [0x60] + mux + [0] * 4)
+    segs = [[0x60] + mux + [0] * 4, [0x20] + [0] * 7, [0x30] + [0] * 7]
+    write("sdo_client", "download_segmented", [1, 10, 0] + sum(([1, 0] + f for f in segs), []))
+    write("sdo_client", "server_abort", [0, 8, 0] + [1, 0] + [0x80] + mux + [0x00, 0x00, 0x02, 0x06])
+    block = [[0xC4] + mux + [5, 0, 0, 0], [0x81, 1, 2, 3, 4, 5, 0, 0], [0xD5, 0, 0, 0, 0, 0, 0, 0]]
+    write("sdo_client", "block_upload", [2, 8, 4] + sum(([1, 0] + f for f in block), []))
+    block_down = [[0xA4] + mux + [4, 0, 0, 0], [0xA2, 1, 4, 0, 0, 0, 0, 0], [0xA1, 0, 0, 0, 0, 0, 0, 0]]
+    write("sdo_client", "block_download", [3, 10, 0] + sum(([1, 0] + f for f in block_down), []))
+
+
+def sdo_server_seeds():
+    frame = lambda data: [0] + data
+    write("sdo_server", "upload_expedited", [127] + frame([0x40, 0x00, 0x10, 0, 0, 0, 0, 0]))
+    write("sdo_server", "upload_segmented", [127] + frame([0x40, 0x08, 0x10, 0, 0, 0, 0, 0]) + frame([0x60] + [0] * 7) + frame([0x70] + [0] * 7))
+    write("sdo_server", "download_expedited", [127] + frame([0x2B, 0x00, 0x20, 1, 0x78, 0x56, 0, 0]))
+    write("sdo_server", "download_segmented", [127] + frame([0x21, 0x08, 0x10, 0, 9, 0, 0, 0]) + frame([0x00] + list(b"drivege")) + frame([0x1B, ord("n"), ord("!")] + [0] * 5))
+    write("sdo_server", "block_upload", [4] + frame([0xA4, 0x01, 0x20, 0, 4, 0, 0, 0]) + frame([0xA3] + [0] * 7) + frame([0xA2, 4, 4, 0, 0, 0, 0, 0]))
+    write("sdo_server", "block_download", [4] + frame([0xC6, 0x08, 0x10, 0, 3, 0, 0, 0]) + frame([0x81, 1, 2, 3, 0, 0, 0, 0]) + frame([0xD5, 0, 0, 0, 0, 0, 0, 0]))
+
+
+def can_line_seeds():
+    for i, line in enumerate([b"123#DEADBEEF", b"605#4000100000000000", b"123#", b"123#de.ad", b"123#R", b"123#R8",
+                              b"(1700000000.123456) can0 585#4B00100092010000", b"(0.5) vcan0 080#", b"# comment"]):
+        write("candump_line", f"line{i}", line)
+    for i, line in enumerate([b"t1238DEADBEEF01020304", b"t60580123456789ABCDEF", b"t1230", b"r1238", b"t12321122ABCD", b"T123456781AA", b"z"]):
+        write("slcan_line", f"line{i}", line)
+
+
+def rs232_seeds():
+    fixture = ROOT / "tests/fixtures/kinco-rs232/manual-telegrams.txt"
+    for row in fixture.read_text().splitlines():
+        if row.startswith("#") or not row.strip():
+            continue
+        line, hexes = row.split(" ", 1)
+        telegram = hexbytes(hexes)
+        # Point-to-point: the drive's confirmation; multi-point: the echo first.
+        answer = [telegram[0], 0x60] + telegram[2:5] + [0, 0, 0, 0]
+        answer.append((-sum(answer)) & 0xFF)
+        write("rs232_telegram", f"line{line}", [0, 3] + telegram + answer)
+        write("rs232_telegram", f"line{line}_loop", [1, 10] + telegram + telegram + answer)
+
+
+def srdo_seeds():
+    normal = [0x01, 0x02]
+    inverted = [b ^ 0xFF for b in normal]
+    frame = lambda to_inverted, data: [0x01 if to_inverted else 0x00] + data + [0] * (8 - len(data))
+    short = lambda to_inverted, data: [(len(data) << 3) | 0x04 | (0x01 if to_inverted else 0)] + data + [0] * (8 - len(data))
+    pair = [10, 0] + short(False, normal) + [1, 0] + short(True, inverted)
+    write("srdo_consumer", "pairs", [15, 100, 20] + pair * 3)
+    write("srdo_consumer", "srvt_expired", [15, 100, 20] + [10, 0] + short(False, normal) + [30, 1] + short(True, inverted))
+    write("srdo_consumer", "full_frames", [63, 50, 10] + [5, 0] + frame(False, [1] * 8) + [1, 0] + frame(True, [0xFE] * 8))
+
+
+def description_seeds():
+    copy_files("description_toml", [("codegen/tests/ui", "*.toml"), ("codegen/tests/fixtures", "*.toml")])
+    for family in ["lafert-smartris", "kinco-fd", "lenze-smd", "ezwheel-swd"]:
+        write("description_toml", family + ".toml", (ROOT / "descriptions" / family / "device.toml").read_bytes())
+    copy_files("eds_reader", [("codegen/tests/eds", "*.eds"), ("codegen/tests/eds", "*.dcf")])
+    overlay = (ROOT / "codegen/tests/ui/overlay_matches_eds.toml").read_bytes().replace(b"overlay_drive.eds", b"drive.eds")
+    write("eds_overlay", "overlay_matches_eds", overlay + b"\0" + (ROOT / "codegen/tests/ui/overlay_drive.eds").read_bytes())
+    fixture = ROOT / "codegen/tests/fixtures/overlay"
+    toml = (fixture / "device.toml").read_bytes()
+    write("eds_overlay", "fixture_overlay", toml + b"\0" + (fixture / "drive.eds").read_bytes())
+
+
+if __name__ == "__main__":
+    for target in SEEDS.iterdir():
+        if target.is_dir():
+            shutil.rmtree(target)
+    modbus_seeds()
+    sdo_client_seeds()
+    sdo_server_seeds()
+    can_line_seeds()
+    rs232_seeds()
+    srdo_seeds()
+    description_seeds()
