@@ -8,15 +8,10 @@
 mod support;
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use drivegen::Severity;
-use peer_support::python;
 use support::crate_build::assert_descriptions_compile;
-use support::{workspace_root, Scratch};
-
-/// Node id the relative defaults are resolved with.
-const NODE_ID: u8 = 5;
+use support::{python_eds, Scratch};
 
 /// Every EDS / DCF of the corpus.
 fn corpus() -> Vec<PathBuf> {
@@ -63,32 +58,8 @@ fn import(eds: &Path, scratch: &Path) -> Result<Option<PathBuf>, String> {
 
 /// Exports the device of `overlay` and has python canopen compare it with the IR.
 fn python_loads_the_export(overlay: &Path) -> Result<(), String> {
-    let device = support::device(overlay);
     let eds = overlay.with_extension("exported.eds");
-    let ir = overlay.with_extension("ir.json");
-    std::fs::write(&eds, drivegen::eds::export(&device)).unwrap();
-    std::fs::write(&ir, serde_json::to_string(&device).unwrap()).unwrap();
-    let script = workspace_root().join("tests/peers/eds_import_check.py");
-    let output = Command::new(python())
-        .arg(&script)
-        .arg(&eds)
-        .arg(&ir)
-        .arg(NODE_ID.to_string())
-        .output()
-        .unwrap_or_else(|e| {
-            panic!(
-                "cannot start {}: {e}; run tests/peers/setup.sh",
-                python().display()
-            )
-        });
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    match output.status.success() && stdout.contains("objects compared") {
-        true => Ok(()),
-        false => Err(format!(
-            "python canopen: {stdout}\n{}",
-            String::from_utf8_lossy(&output.stderr)
-        )),
-    }
+    python_eds::python_loads_the_export(&support::device(overlay), &eds)
 }
 
 #[test]

@@ -2,6 +2,7 @@
 #![allow(dead_code)] // Each test file uses part of this module.
 
 pub mod crate_build;
+pub mod python_eds;
 pub mod random_description;
 
 use std::path::{Path, PathBuf};
