@@ -115,7 +115,7 @@ impl<D: ObjectDictionary> SdoServer<D> {
 
     /// Handles one frame; returns the frames to send (none for foreign frames).
     pub fn handle(&mut self, frame: &CanFrame) -> Vec<CanFrame> {
-        if frame.id() != self.request_cob || frame.is_remote() {
+        if frame.id() != self.request_cob || frame.is_remote() || !super::is_full_length(frame) {
             return Vec::new();
         }
         let data = frame.padded();

@@ -840,3 +840,34 @@ proptest! {
         }
     }
 }
+
+// --- Frames cut short (found by the soak: a truncated upload response read as zeros). ---
+
+#[test]
+fn a_response_cut_short_is_not_taken_for_data() {
+    let mut buf = [0u8; 2];
+    let mut transfer = client().upload(0x2102, 0, &mut buf, Duration::ZERO);
+    transfer.poll_transmit();
+    // "4B 02 21 00 34 12 00 00" with its last four bytes lost: padded, it would read 0x0034.
+    let cut = CanFrame::new(0x585, &[0x4B, 0x02, 0x21, 0x00, 0x34]).unwrap();
+    assert_eq!(transfer.handle(&cut, Duration::ZERO), Progress::Pending);
+    assert_eq!(transfer.poll_transmit(), None, "nothing to abort");
+    let whole = response([0x4B, 0x02, 0x21, 0x00, 0x34, 0x12, 0, 0]);
+    assert_eq!(transfer.handle(&whole, Duration::ZERO), Progress::Done(2));
+    assert_eq!(buf, [0x34, 0x12]);
+}
+
+#[test]
+fn a_request_cut_short_is_not_executed() {
+    let mut server = server(&[((0x2102, 0), &[0x78, 0x56])]);
+    // "2B 02 21 00 34 12 00 00" cut after the first value byte: padded, it would write 0x0034.
+    let cut = CanFrame::new(0x605, &[0x2B, 0x02, 0x21, 0x00, 0x34]).unwrap();
+    assert_eq!(server.handle(&cut), Vec::<CanFrame>::new());
+    assert_eq!(server.dictionary()[&(0x2102, 0)], [0x78, 0x56]);
+    let whole = request([0x2B, 0x02, 0x21, 0x00, 0x34, 0x12, 0, 0]);
+    assert_eq!(
+        server.handle(&whole),
+        vec![response([0x60, 0x02, 0x21, 0x00, 0, 0, 0, 0])]
+    );
+    assert_eq!(server.dictionary()[&(0x2102, 0)], [0x34, 0x12]);
+}
