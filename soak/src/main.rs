@@ -5,6 +5,7 @@
 //! ```text
 //! cargo run --release -p drivegen-soak -- [--transactions N] [--seed S] [--fault-rate P]
 //!                                         [--transport modbus-tcp|modbus-rtu|sdo-candump]...
+//!                                         [--max-seconds S]
 //! ```
 //!
 //! Exits non-zero when a wrong value was delivered, a reported write is not held, or a
@@ -21,6 +22,7 @@ mod transports;
 mod truth;
 
 use std::process::ExitCode;
+use std::time::{Duration, Instant};
 
 use drivesim::Simulator;
 
@@ -37,6 +39,8 @@ struct Options {
     seed: u64,
     fault_rate: f64,
     transports: Vec<Transport>,
+    /// Stops each transport's run after this many seconds (the report says how many ran).
+    max_seconds: Option<u64>,
 }
 
 fn value<T: std::str::FromStr>(flag: &str, text: Option<String>) -> Result<T, String> {
@@ -50,12 +54,14 @@ fn parse(mut args: impl Iterator<Item = String>) -> Result<Options, String> {
         seed: 23,
         fault_rate: 0.01,
         transports: Vec::new(),
+        max_seconds: None,
     };
     while let Some(flag) = args.next() {
         match flag.as_str() {
             "--transactions" => options.transactions = value(&flag, args.next())?,
             "--seed" => options.seed = value(&flag, args.next())?,
             "--fault-rate" => options.fault_rate = value(&flag, args.next())?,
+            "--max-seconds" => options.max_seconds = Some(value(&flag, args.next())?),
             "--transport" => {
                 let name = args.next().unwrap_or_default();
                 let transport = Transport::ALL
@@ -86,7 +92,16 @@ fn soak(transport: Transport, options: &Options) -> Result<bool, String> {
     let plan = transport.plan(options.fault_rate);
     let (mut endpoint, _guard) = transport.connect(&sim, plan, options.seed, counts)?;
     let mut rng = Rng::stream(options.seed, transport.name());
-    let tally = run::soak(endpoint.as_mut(), &truth, options.transactions, &mut rng);
+    let deadline = options
+        .max_seconds
+        .map(|seconds| Instant::now() + Duration::from_secs(seconds));
+    let tally = run::soak(
+        endpoint.as_mut(),
+        &truth,
+        options.transactions,
+        deadline,
+        &mut rng,
+    );
     print!(
         "{}",
         Report {

@@ -10,15 +10,25 @@ use crate::rng::Rng;
 use crate::tally::Tally;
 use crate::truth::Truth;
 
-/// Runs `transactions` transactions on `endpoint`, half reads and half writes, from `rng`.
-pub fn soak(endpoint: &mut dyn Endpoint, truth: &Truth, transactions: u64, rng: &mut Rng) -> Tally {
+/// Runs `transactions` transactions on `endpoint`, half reads and half writes, from `rng`;
+/// stops early once `deadline` (if any) has passed.
+pub fn soak(
+    endpoint: &mut dyn Endpoint,
+    truth: &Truth,
+    transactions: u64,
+    deadline: Option<Instant>,
+    rng: &mut Rng,
+) -> Tally {
     let mut tally = Tally {
         rss_kib: (resident_kib(), None),
         ..Tally::default()
     };
     let (started, cpu) = (Instant::now(), cpu_time());
     let mut failed_writes = FailedWrites::default();
-    for _ in 0..transactions {
+    for done in 0..transactions {
+        if done % 1000 == 0 && deadline.is_some_and(|deadline| Instant::now() >= deadline) {
+            break;
+        }
         let first = rng.below(REGISTERS as u64) as usize;
         let span = 1 + rng.below(endpoint.max_span().min(REGISTERS - first) as u64) as usize;
         if rng.chance(0.5) {
