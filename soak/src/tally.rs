@@ -22,6 +22,9 @@ pub struct Tally {
     /// Writes reported done that an earlier failed write, executed late, overwrote: a failed
     /// write's outcome is unknown, and a link that holds requests back may execute it later.
     pub late_failed_writes: u64,
+    /// Writes confirmed before the simulator executed them, and executed right after: the
+    /// stale acknowledgement of a duplicated request taken for the next one's.
+    pub early_confirmations: u64,
     /// Extra copies of non-idempotent write requests the client sent (must stay 0).
     pub write_retries: u64,
     /// Failed transactions by error kind.
@@ -93,6 +96,7 @@ impl fmt::Display for Report<'_> {
         writeln!(f, "lost writes           {}", t.lost_writes)?;
         writeln!(f, "write retries         {}", t.write_retries)?;
         writeln!(f, "late failed writes    {}", t.late_failed_writes)?;
+        writeln!(f, "early confirmations   {}", t.early_confirmations)?;
         let injected: Vec<String> = Fault::ALL
             .iter()
             .map(|&fault| format!("{} {}", fault.name(), self.faults.get(fault)))
