@@ -243,3 +243,30 @@ fn the_rtu_client_survives_each_misbehaving_answer() {
         }
     }
 }
+
+#[test]
+fn a_server_that_never_stops_sending_ends_in_a_typed_error() {
+    let listener = TcpListener::bind("127.0.0.1:0").unwrap();
+    let addr = listener.local_addr().unwrap();
+    std::thread::spawn(move || {
+        let (mut stream, _) = listener.accept().unwrap();
+        // Garbage without end, from before the first request, until the client hangs up.
+        while stream.write_all(&[0x55; 4096]).is_ok() {}
+    });
+    let config = TcpConfig {
+        timeout: TIMEOUT,
+        retry: RetryPolicy::reads(0),
+        ..TcpConfig::default()
+    };
+    let mut client = ModbusTcpClient::connect(addr, &config).unwrap();
+    std::thread::sleep(Duration::from_millis(50));
+    let started = std::time::Instant::now();
+    for address in 0..3 {
+        let error = read(&mut client, address).unwrap_err();
+        assert!(
+            matches!(error, BusError::Timeout | BusError::Frame(_)),
+            "{error:?}"
+        );
+    }
+    assert!(started.elapsed() < TIMEOUT * 20, "{:?}", started.elapsed());
+}
