@@ -45,3 +45,34 @@ impl Rng {
         (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64 <= p && p > 0.0
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_same_seed_gives_the_same_sequence_and_streams_differ() {
+        let draw = |mut rng: Rng| (0..8).map(|_| rng.next_u64()).collect::<Vec<_>>();
+        assert_eq!(
+            draw(Rng::stream(23, "tcp request")),
+            draw(Rng::stream(23, "tcp request"))
+        );
+        assert_ne!(
+            draw(Rng::stream(23, "tcp request")),
+            draw(Rng::stream(23, "tcp response"))
+        );
+        assert_ne!(
+            draw(Rng::stream(23, "tcp request")),
+            draw(Rng::stream(24, "tcp request"))
+        );
+    }
+
+    #[test]
+    fn chance_follows_its_probability() {
+        let mut rng = Rng::new(1);
+        assert!((0..1000).all(|_| !rng.chance(0.0)));
+        assert!((0..1000).all(|_| rng.chance(1.0)));
+        let hits = (0..100_000).filter(|_| rng.chance(0.01)).count();
+        assert!((800..1200).contains(&hits), "{hits}");
+    }
+}

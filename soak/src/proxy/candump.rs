@@ -72,3 +72,39 @@ pub fn start(
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use drivebus::canopen::backend::candump::parse_line;
+
+    use super::*;
+
+    const LINE: &[u8] = b"585#4B00210034120000\n";
+
+    #[test]
+    fn a_corrupted_line_is_never_a_frame() {
+        let mut rng = Rng::new(7);
+        for _ in 0..200 {
+            let mut line = LINE.to_vec();
+            CandumpLines.corrupt(&mut line, &mut rng);
+            assert!(
+                parse_line(&line).is_err(),
+                "{}",
+                String::from_utf8_lossy(&line)
+            );
+        }
+    }
+
+    #[test]
+    fn a_truncated_line_is_malformed_or_carries_fewer_bytes() {
+        let whole = parse_line(LINE).unwrap().unwrap().frame;
+        let mut rng = Rng::new(7);
+        for _ in 0..200 {
+            let line = CandumpLines.truncate(LINE, &mut rng);
+            assert!(line.len() < LINE.len() && line.ends_with(b"\n"));
+            if let Ok(Some(record)) = parse_line(&line) {
+                assert!(record.frame.dlc() < whole.dlc());
+            }
+        }
+    }
+}

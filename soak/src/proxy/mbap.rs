@@ -114,3 +114,44 @@ fn relay(
         });
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn corruption_stays_in_the_header_and_function_code() {
+        let answer = [0, 7, 0, 0, 0, 5, 1, 0x03, 2, 0x12, 0x34];
+        let mut rng = Rng::new(3);
+        for _ in 0..200 {
+            let mut frame = answer.to_vec();
+            Mbap.corrupt(&mut frame, &mut rng);
+            assert_ne!(frame, answer);
+            assert_eq!(frame[HEADER + 1..], answer[HEADER + 1..]);
+        }
+    }
+
+    #[test]
+    fn frames_are_split_by_their_length_field() {
+        let stream = [0, 1, 0, 0, 0, 3, 1, 0x03, 0x00, 0, 2, 0, 0, 0, 2, 1, 0x83];
+        let mut from = &stream[..];
+        assert_eq!(
+            Mbap.read_frame(&mut from, Direction::Response)
+                .unwrap()
+                .unwrap()
+                .len(),
+            9
+        );
+        assert_eq!(
+            Mbap.read_frame(&mut from, Direction::Response)
+                .unwrap()
+                .unwrap()
+                .len(),
+            8
+        );
+        assert_eq!(
+            Mbap.read_frame(&mut from, Direction::Response).unwrap(),
+            None
+        );
+    }
+}

@@ -104,3 +104,49 @@ pub fn start(
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn frames_are_split_by_their_function_code() {
+        let read = [1, 0x03, 0x01, 0x00, 0x00, 0x02, 0xC5, 0xF7];
+        let write = [
+            1, 0x10, 0x01, 0x00, 0x00, 0x01, 0x02, 0xAB, 0xCD, 0x11, 0x22,
+        ];
+        let stream: Vec<u8> = read.iter().chain(&write).copied().collect();
+        let mut from = &stream[..];
+        assert_eq!(
+            Rtu.read_frame(&mut from, Direction::Request)
+                .unwrap()
+                .unwrap(),
+            read
+        );
+        assert_eq!(
+            Rtu.read_frame(&mut from, Direction::Request)
+                .unwrap()
+                .unwrap(),
+            write
+        );
+        assert_eq!(Rtu.read_frame(&mut from, Direction::Request).unwrap(), None);
+        let answers = [
+            1, 0x83, 0x02, 0xC0, 0xF1, 1, 0x03, 0x02, 0x12, 0x34, 0xB5, 0x33,
+        ];
+        let mut from = &answers[..];
+        assert_eq!(
+            Rtu.read_frame(&mut from, Direction::Response)
+                .unwrap()
+                .unwrap()
+                .len(),
+            5
+        );
+        assert_eq!(
+            Rtu.read_frame(&mut from, Direction::Response)
+                .unwrap()
+                .unwrap()
+                .len(),
+            7
+        );
+    }
+}
