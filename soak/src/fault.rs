@@ -3,6 +3,7 @@
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Duration;
 
+use crate::proxy::Direction;
 use crate::rng::Rng;
 
 /// What happens to one frame.
@@ -55,8 +56,10 @@ impl Fault {
 pub struct FaultPlan {
     /// Share of frames that get a fault (0.01: 1 %).
     pub rate: f64,
-    /// The faults this line can produce, picked with equal odds.
-    pub kinds: &'static [Fault],
+    /// The faults this line can produce on requests, picked with equal odds.
+    pub request_kinds: &'static [Fault],
+    /// The faults this line can produce on answers, picked with equal odds.
+    pub response_kinds: &'static [Fault],
     /// Longest [`Fault::Delay`].
     pub max_delay: Duration,
 }
@@ -87,21 +90,32 @@ pub struct Injector<'a> {
     /// The stream faults and their details (positions, masks, delays) are drawn from.
     pub rng: Rng,
     plan: FaultPlan,
+    kinds: &'static [Fault],
     counts: &'a FaultCounts,
 }
 
 impl<'a> Injector<'a> {
-    /// An injector following `plan`, drawing from `rng`, tallying into `counts`.
-    pub fn new(rng: Rng, plan: FaultPlan, counts: &'a FaultCounts) -> Self {
-        Self { rng, plan, counts }
+    /// An injector for frames travelling in `direction`, following `plan`, drawing from `rng`,
+    /// tallying into `counts`.
+    pub fn new(rng: Rng, plan: FaultPlan, direction: Direction, counts: &'a FaultCounts) -> Self {
+        let kinds = match direction {
+            Direction::Request => plan.request_kinds,
+            Direction::Response => plan.response_kinds,
+        };
+        Self {
+            rng,
+            plan,
+            kinds,
+            counts,
+        }
     }
 
     /// The fault for the next frame, if any.
     pub fn next_fault(&mut self) -> Option<Fault> {
-        if self.plan.kinds.is_empty() || !self.rng.chance(self.plan.rate) {
+        if self.kinds.is_empty() || !self.rng.chance(self.plan.rate) {
             return None;
         }
-        let fault = self.plan.kinds[self.rng.below(self.plan.kinds.len() as u64) as usize];
+        let fault = self.kinds[self.rng.below(self.kinds.len() as u64) as usize];
         self.counts.add(fault);
         Some(fault)
     }

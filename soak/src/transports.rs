@@ -35,6 +35,11 @@ const LINE_FAULTS: &[Fault] = &[
     Fault::Drop,
 ];
 
+/// The faults of an RTU line on requests: as [`LINE_FAULTS`], but not repeated. A line does not
+/// repeat a master's request, and the second answer a repeated request draws would reach the
+/// master after it moved on, where nothing tells it from the next answer of the same shape.
+const RTU_REQUEST_FAULTS: &[Fault] = &[Fault::Corrupt, Fault::Truncate, Fault::Delay, Fault::Drop];
+
 /// A transport the soak runs over.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Transport {
@@ -75,12 +80,22 @@ impl Transport {
             // Answers name their request: any fault, and delays beyond the timeout.
             Transport::ModbusTcp => FaultPlan {
                 rate,
-                kinds: &Fault::ALL,
+                request_kinds: &Fault::ALL,
+                response_kinds: &Fault::ALL,
                 max_delay: TIMEOUT * 2,
             },
-            Transport::ModbusRtu | Transport::SdoCandump => FaultPlan {
+            Transport::ModbusRtu => FaultPlan {
                 rate,
-                kinds: LINE_FAULTS,
+                request_kinds: RTU_REQUEST_FAULTS,
+                response_kinds: LINE_FAULTS,
+                max_delay: TIMEOUT / 2,
+            },
+            // CAN can repeat a frame either way (a receiver takes it, the sender sees an error in
+            // the last bit of its end of frame and sends it again).
+            Transport::SdoCandump => FaultPlan {
+                rate,
+                request_kinds: LINE_FAULTS,
+                response_kinds: LINE_FAULTS,
                 max_delay: TIMEOUT / 2,
             },
         }

@@ -60,7 +60,7 @@ pub fn start(
     for (direction, from, mut to) in directions {
         let rng = Rng::stream(seed, &format!("sdo {}", direction.name()));
         std::thread::spawn(move || {
-            let mut injector = Injector::new(rng, plan, counts);
+            let mut injector = Injector::new(rng, plan, direction, counts);
             pump(
                 &CandumpLines,
                 direction,

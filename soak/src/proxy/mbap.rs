@@ -104,7 +104,7 @@ fn relay(
         };
         let ends = [client.try_clone(), upstream.try_clone()];
         std::thread::spawn(move || {
-            let mut injector = Injector::new(rng, plan, counts);
+            let mut injector = Injector::new(rng, plan, direction, counts);
             let mut reader = BufReader::new(from);
             // Closed or cut, the pair is over: the client reconnects.
             let _: PumpEnd = pump(&Mbap, direction, &mut reader, &mut to, &mut injector);

@@ -90,7 +90,8 @@ pub fn pump<P: Protocol>(
                 }
                 sent
             }
-            Some(Fault::Duplicate) => send(to, &frame).and_then(|()| send(to, &frame)),
+            // Back to back, in one write: as a repeater's echo arrives.
+            Some(Fault::Duplicate) => send(to, &[&frame[..], &frame[..]].concat()),
             Some(Fault::Delay) => {
                 std::thread::sleep(injector.delay());
                 send(to, &frame)

@@ -92,7 +92,7 @@ pub fn start(
     for (direction, from, mut to) in directions {
         let rng = Rng::stream(seed, &format!("rtu {}", direction.name()));
         std::thread::spawn(move || {
-            let mut injector = Injector::new(rng, plan, counts);
+            let mut injector = Injector::new(rng, plan, direction, counts);
             pump(
                 &Rtu,
                 direction,
