@@ -46,8 +46,10 @@ fn head(buf: &[u8], silent: bool) -> Head {
     let len = match request_len(buf) {
         Some(len) => len,
         None if buf.len() < 2 => return Head::Incomplete,
-        None if silent && buf.len() >= 4 => buf.len(),
-        None if silent => return Head::Garbage,
+        None if silent && (4..=MAX_ADU).contains(&buf.len()) => buf.len(),
+        // No frame is longer than an ADU: a peer that never falls silent cannot make the buffer
+        // grow past one.
+        None if silent || buf.len() >= MAX_ADU => return Head::Garbage,
         None => return Head::Incomplete,
     };
     match buf.get(..len) {
@@ -122,6 +124,17 @@ mod tests {
         let mut noisy = vec![0x55];
         noisy.extend(&frame);
         assert_eq!(head(&noisy, false), Head::Garbage);
+    }
+
+    #[test]
+    fn noise_without_silence_is_dropped_once_it_is_longer_than_an_adu() {
+        let mut noise = vec![1, 0x2B];
+        noise.resize(MAX_ADU - 1, 0x55);
+        assert_eq!(head(&noise, false), Head::Incomplete);
+        noise.push(0x55);
+        assert_eq!(head(&noise, false), Head::Garbage);
+        noise.push(0x55);
+        assert_eq!(head(&noise, true), Head::Garbage);
     }
 
     #[test]

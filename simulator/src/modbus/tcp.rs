@@ -1,12 +1,13 @@
-//! Modbus TCP: a listener on a loopback (or any) address, one thread per connection, serving one
-//! drive or, as a gateway, several drives by unit id ([`Units`]).
+//! Modbus TCP: a listener on a loopback (or any) address, one thread per connection, at most
+//! [`MAX_CONNECTIONS`] at once, serving one drive or, as a gateway, several drives by unit id
+//! ([`Units`]).
 
 use std::io::{ErrorKind, Read, Write};
-use std::net::{SocketAddr, TcpListener, TcpStream, ToSocketAddrs};
+use std::net::{Shutdown, SocketAddr, TcpListener, TcpStream, ToSocketAddrs};
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use drivebus::modbus::pdu::MAX_PDU;
 use drivebus::modbus::tcp::{Header, HEADER_LEN};
@@ -24,11 +25,78 @@ const TCP_ANY_UNIT: u8 = 0xFF;
 /// Unit id 0, a broadcast on a serial line; a Modbus TCP server ignores it.
 const BROADCAST: u8 = 0;
 
+/// Most connections served at once. A connection beyond it makes room by closing the one that
+/// has never completed a request and was opened first, else the one idle the longest: a peer
+/// opening connections it never uses (half-open, or garbage it is disconnected for) cannot crowd
+/// out the clients that talk.
+pub const MAX_CONNECTIONS: usize = 16;
+
+/// One open connection, as the admission policy sees it.
+#[derive(Debug)]
+struct Open {
+    id: u64,
+    stream: TcpStream,
+    opened: Instant,
+    /// When it last completed a request.
+    served: Option<Instant>,
+}
+
+impl Open {
+    /// Orders connections by how readily they are closed: never served first, oldest first.
+    fn eviction_rank(&self) -> (bool, Instant) {
+        (self.served.is_some(), self.served.unwrap_or(self.opened))
+    }
+}
+
+/// The open connections of a server.
+#[derive(Debug, Default)]
+struct Connections(Mutex<Vec<Open>>);
+
+impl Connections {
+    fn open(&self) -> std::sync::MutexGuard<'_, Vec<Open>> {
+        self.0.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// Registers connection `id`, first closing one if the server is full.
+    fn admit(&self, id: u64, stream: &TcpStream) -> std::io::Result<()> {
+        let stream = stream.try_clone()?;
+        let mut open = self.open();
+        if open.len() >= MAX_CONNECTIONS {
+            if let Some(victim) = (0..open.len()).min_by_key(|&i| open[i].eviction_rank()) {
+                let _ = open.swap_remove(victim).stream.shutdown(Shutdown::Both);
+            }
+        }
+        open.push(Open {
+            id,
+            stream,
+            opened: Instant::now(),
+            served: None,
+        });
+        Ok(())
+    }
+
+    /// Notes that connection `id` completed a request.
+    fn served(&self, id: u64) {
+        if let Some(connection) = self.open().iter_mut().find(|c| c.id == id) {
+            connection.served = Some(Instant::now());
+        }
+    }
+
+    fn close(&self, id: u64) {
+        self.open().retain(|c| c.id != id);
+    }
+
+    fn count(&self) -> usize {
+        self.open().len()
+    }
+}
+
 /// A running Modbus TCP server; stops when dropped.
 #[derive(Debug)]
 pub struct TcpServer {
     addr: SocketAddr,
     stop: Arc<AtomicBool>,
+    connections: Arc<Connections>,
     thread: Option<JoinHandle<()>>,
 }
 
@@ -44,22 +112,41 @@ impl TcpServer {
         let listener = TcpListener::bind(addr)?;
         let addr = listener.local_addr()?;
         let stop = Arc::new(AtomicBool::new(false));
-        let flag = Arc::clone(&stop);
+        let connections = Arc::new(Connections::default());
+        let (flag, open) = (Arc::clone(&stop), Arc::clone(&connections));
         let thread = std::thread::spawn(move || {
-            for stream in listener.incoming() {
+            for (id, stream) in (0..).zip(listener.incoming()) {
                 if flag.load(Ordering::Relaxed) {
                     break;
                 }
                 let Ok(stream) = stream else { continue };
-                let (units, flag) = (units.clone(), Arc::clone(&flag));
-                std::thread::spawn(move || serve(stream, &units, &flag));
+                if open.admit(id, &stream).is_err() {
+                    continue;
+                }
+                let units = units.clone();
+                let (flag, open) = (Arc::clone(&flag), Arc::clone(&open));
+                std::thread::spawn(move || {
+                    let connection = Connection {
+                        id,
+                        open: &open,
+                        stop: &flag,
+                    };
+                    serve(stream, &units, &connection);
+                    open.close(id);
+                });
             }
         });
         Ok(Self {
             addr,
             stop,
+            connections,
             thread: Some(thread),
         })
+    }
+
+    /// How many connections are open (at most [`MAX_CONNECTIONS`]).
+    pub fn connections(&self) -> usize {
+        self.connections.count()
     }
 
     /// The address it listens on (with the real port).
@@ -86,8 +173,16 @@ impl Drop for TcpServer {
     }
 }
 
+/// What a connection's thread knows of its server.
+struct Connection<'a> {
+    id: u64,
+    open: &'a Connections,
+    stop: &'a AtomicBool,
+}
+
 /// Answers the requests of one connection until it closes or the server stops.
-fn serve(mut stream: TcpStream, units: &Units, stop: &AtomicBool) {
+fn serve(mut stream: TcpStream, units: &Units, connection: &Connection<'_>) {
+    let stop = connection.stop;
     let _ = stream.set_read_timeout(Some(POLL));
     let _ = stream.set_nodelay(true);
     let mut request = [0u8; HEADER_LEN + MAX_PDU];
@@ -122,6 +217,7 @@ fn serve(mut stream: TcpStream, units: &Units, stop: &AtomicBool) {
         {
             return;
         }
+        connection.open.served(connection.id);
     }
 }
 

@@ -98,8 +98,25 @@ impl<B: CanBus> BlockingSdo<B> {
             .is_some_and(|threshold| len >= threshold)
     }
 
+    /// Drops the SDO responses that arrived after their transfer ended — duplicates, answers
+    /// after a timeout — and keeps every other frame for [`CanBus::recv`]. SDO responses carry
+    /// no transaction id: a stale download acknowledgement would otherwise confirm the next
+    /// download of the same object before the server executed it. Looks at no more than
+    /// [`BACKLOG`] frames, so a flooded bus cannot hold the transfer back.
+    fn drop_stale_responses(&mut self, response_cob: u16) -> Result<(), BusError> {
+        for _ in 0..BACKLOG {
+            match self.bus.recv(Duration::ZERO)? {
+                Some(frame) if frame.id() == response_cob => {}
+                Some(frame) => self.keep(frame),
+                None => break,
+            }
+        }
+        Ok(())
+    }
+
     /// Drives `transfer` to its end: sends its frames, feeds it received frames and the time.
     pub fn run<T: Transfer>(&mut self, transfer: &mut T) -> Result<usize, BusError> {
+        self.drop_stale_responses(transfer.response_cob())?;
         let mut progress = Progress::Pending;
         loop {
             // Drained after the end too: a failure may have queued an abort for the server.
@@ -177,5 +194,53 @@ impl<B: CanBus> CanBus for BlockingSdo<B> {
             Some(frame) => Ok(Some(frame)),
             None => self.bus.recv(timeout),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::collections::VecDeque;
+    use std::vec::Vec;
+
+    use super::*;
+
+    /// A bus that delivers what is queued and records what is sent; no server answers.
+    #[derive(Default)]
+    struct Queued {
+        inbound: VecDeque<CanFrame>,
+        sent: Vec<CanFrame>,
+    }
+
+    impl CanBus for Queued {
+        fn send(&mut self, frame: &CanFrame) -> Result<(), BusError> {
+            self.sent.push(*frame);
+            Ok(())
+        }
+        fn recv(&mut self, _: Duration) -> Result<Option<CanFrame>, BusError> {
+            Ok(self.inbound.pop_front())
+        }
+    }
+
+    #[test]
+    fn a_stale_acknowledgement_does_not_confirm_the_next_download() {
+        let node = NodeId(5);
+        let mut bus = Queued::default();
+        // The duplicate of the acknowledgement of an earlier download of 2100h:00, and a
+        // heartbeat, arrived after that download had ended.
+        let stale = CanFrame::new(0x585, &[0x60, 0x00, 0x21, 0x00, 0, 0, 0, 0]).unwrap();
+        let heartbeat = CanFrame::new(0x705, &[0x7F]).unwrap();
+        bus.inbound.extend([stale, heartbeat]);
+        let mut sdo = BlockingSdo::new(bus).with_timeout(Duration::from_millis(20));
+        // The server never answers this one: it must not be reported done.
+        assert_eq!(
+            sdo.download(node, 0x2100, 0, &[1, 2]),
+            Err(BusError::Timeout)
+        );
+        assert_eq!(sdo.bus_mut().sent[0].data()[..4], [0x2B, 0x00, 0x21, 0x00]);
+        assert_eq!(
+            sdo.recv(Duration::ZERO),
+            Ok(Some(heartbeat)),
+            "other frames are kept"
+        );
     }
 }

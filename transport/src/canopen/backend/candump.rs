@@ -174,8 +174,60 @@ pub fn format_frame(frame: &CanFrame, out: &mut Vec<u8>) {
     }
 }
 
+/// Longest line [`CandumpReader`] reads (a log line with a long interface name is under 64
+/// bytes). A longer one is reported as malformed and skipped up to its newline, so a peer that
+/// never sends a newline cannot make the reader's buffer grow.
+pub const MAX_LINE: usize = 256;
+
+/// How a bounded line read ended.
+enum LineRead {
+    /// The stream ended.
+    End,
+    /// A line (with its newline, unless the stream ended first).
+    Line,
+    /// A line longer than [`MAX_LINE`], now skipped.
+    TooLong,
+}
+
+/// Reads one line of at most [`MAX_LINE`] bytes into `line`.
+fn read_line<R: BufRead>(reader: &mut R, line: &mut Vec<u8>) -> io::Result<LineRead> {
+    let read = reader
+        .by_ref()
+        .take(MAX_LINE as u64 + 1)
+        .read_until(b'\n', line)?;
+    if read == 0 {
+        return Ok(LineRead::End);
+    }
+    if read > MAX_LINE && line.last() != Some(&b'\n') {
+        skip_line(reader)?;
+        return Ok(LineRead::TooLong);
+    }
+    Ok(LineRead::Line)
+}
+
+/// Drops input up to and including the next newline (or the end of the stream).
+fn skip_line<R: BufRead>(reader: &mut R) -> io::Result<()> {
+    loop {
+        let buf = reader.fill_buf()?;
+        if buf.is_empty() {
+            return Ok(());
+        }
+        match buf.iter().position(|&b| b == b'\n') {
+            Some(newline) => {
+                reader.consume(newline + 1);
+                return Ok(());
+            }
+            None => {
+                let len = buf.len();
+                reader.consume(len);
+            }
+        }
+    }
+}
+
 /// Iterates the frames of a candump text stream (compact or log lines), skipping blank lines
-/// and comments; malformed lines are reported as errors and iteration continues.
+/// and comments; malformed lines (and lines over [`MAX_LINE`] bytes) are reported as errors and
+/// iteration continues.
 #[derive(Debug)]
 pub struct CandumpReader<R> {
     reader: R,
@@ -198,9 +250,12 @@ impl<R: BufRead> Iterator for CandumpReader<R> {
     fn next(&mut self) -> Option<Self::Item> {
         loop {
             self.line.clear();
-            match self.reader.read_until(b'\n', &mut self.line) {
-                Ok(0) => return None,
-                Ok(_) => match parse_line(&self.line) {
+            match read_line(&mut self.reader, &mut self.line) {
+                Ok(LineRead::End) => return None,
+                Ok(LineRead::TooLong) => {
+                    return Some(Err(BusError::Frame("candump: line too long")))
+                }
+                Ok(LineRead::Line) => match parse_line(&self.line) {
                     Ok(None) => continue,
                     Ok(Some(record)) => return Some(Ok(record)),
                     Err(e) => return Some(Err(e)),
@@ -453,6 +508,24 @@ mod tests {
         bus.send(&frame(0x605, &[0x40, 0, 0x10, 0, 0, 0, 0, 0]))
             .unwrap();
         assert_eq!(bus.writer_mut().as_slice(), b"605#4000100000000000\n");
+    }
+
+    #[test]
+    fn a_line_without_end_is_skipped_within_a_bounded_buffer() {
+        let mut stream = std::vec![b'A'; 1 << 20];
+        stream.extend_from_slice(b"\n123#00\n");
+        let mut reader = CandumpReader::new(&stream[..]);
+        assert_eq!(
+            reader.next(),
+            Some(Err(BusError::Frame("candump: line too long")))
+        );
+        assert!(
+            reader.line.capacity() <= 2 * MAX_LINE,
+            "{}",
+            reader.line.capacity()
+        );
+        assert_eq!(reader.next().unwrap().unwrap().frame, frame(0x123, &[0]));
+        assert_eq!(reader.next(), None);
     }
 
     #[test]

@@ -50,6 +50,18 @@ pub(crate) mod scs {
     pub const BLOCK_UPLOAD: u8 = 6;
 }
 
+/// Data length of every SDO frame, request or response (Lafert Smartris user guide, lines
+/// 4223-4233: "SDO (Write command) ... DLC 8"; Kinco FD manual, lines 2628-2640: both directions
+/// DLC 8).
+pub const FRAME_LEN: u8 = 8;
+
+/// Whether `frame` is long enough to be an SDO frame. A shorter one is a frame cut short, and
+/// its missing bytes, read as the zeros [`CanFrame::padded`] supplies, would be taken for data:
+/// client and server ignore it, as any other frame that is not theirs.
+pub(crate) const fn is_full_length(frame: &CanFrame) -> bool {
+    frame.dlc() == FRAME_LEN
+}
+
 /// The command specifier of an SDO frame.
 pub(crate) const fn specifier(data: &[u8; 8]) -> u8 {
     data[0] >> 5
@@ -194,7 +206,10 @@ impl Channel {
     /// The payload of `frame` if it is an SDO response of this channel and the transfer is live.
     /// A server abort for this object finishes the transfer and is returned as `Err`.
     pub(crate) fn accept(&mut self, frame: &CanFrame) -> Result<Option<[u8; 8]>, Progress> {
-        if self.finished || frame.id() != self.response_cob || frame.is_remote() || frame.dlc() == 0
+        if self.finished
+            || frame.id() != self.response_cob
+            || frame.is_remote()
+            || !is_full_length(frame)
         {
             return Ok(None);
         }

@@ -78,6 +78,10 @@ enum State {
     },
 }
 
+/// Most bytes a download may carry unless [`SdoServer::with_max_download`] says otherwise: the
+/// client decides how many segments it sends, so the server bounds what it buffers.
+pub const DEFAULT_MAX_DOWNLOAD: usize = 64 * 1024;
+
 /// A sans-I/O SDO server for one node.
 #[derive(Debug)]
 pub struct SdoServer<D> {
@@ -85,6 +89,7 @@ pub struct SdoServer<D> {
     response_cob: u16,
     dictionary: D,
     block_size: u8,
+    max_download: usize,
     state: State,
     mux: (u16, u8),
 }
@@ -97,6 +102,7 @@ impl<D: ObjectDictionary> SdoServer<D> {
             response_cob: cob::SDO_TX + u16::from(node.0),
             dictionary,
             block_size: MAX_BLOCK_SIZE,
+            max_download: DEFAULT_MAX_DOWNLOAD,
             state: State::Idle,
             mux: (0, 0),
         }
@@ -108,6 +114,21 @@ impl<D: ObjectDictionary> SdoServer<D> {
         self
     }
 
+    /// Sets the most bytes one download may carry; longer ones are aborted with
+    /// [`AbortCode::OutOfMemory`].
+    pub fn with_max_download(mut self, bytes: usize) -> Self {
+        self.max_download = bytes;
+        self
+    }
+
+    /// Refuses a download that has grown past the limit.
+    fn check_download_size(&self, buf: &[u8]) -> Result<(), AbortCode> {
+        if buf.len() > self.max_download {
+            return Err(AbortCode::OutOfMemory);
+        }
+        Ok(())
+    }
+
     /// The served objects.
     pub fn dictionary(&mut self) -> &mut D {
         &mut self.dictionary
@@ -115,7 +136,7 @@ impl<D: ObjectDictionary> SdoServer<D> {
 
     /// Handles one frame; returns the frames to send (none for foreign frames).
     pub fn handle(&mut self, frame: &CanFrame) -> Vec<CanFrame> {
-        if frame.id() != self.request_cob || frame.is_remote() {
+        if frame.id() != self.request_cob || frame.is_remote() || !super::is_full_length(frame) {
             return Vec::new();
         }
         let data = frame.padded();
@@ -232,6 +253,7 @@ impl<D: ObjectDictionary> SdoServer<D> {
                 }
                 let count = SEGMENT_BYTES - ((data[0] >> 1) & 0b111) as usize;
                 buf.extend_from_slice(&data[1..1 + count]);
+                self.check_download_size(&buf)?;
                 if data[0] & 1 != 0 {
                     self.dictionary.write(self.mux.0, self.mux.1, &buf)?;
                 } else {
@@ -406,6 +428,7 @@ impl<D: ObjectDictionary> SdoServer<D> {
         let in_order = seq == expected;
         if in_order {
             buf.extend_from_slice(&data[1..8]);
+            self.check_download_size(&buf)?;
         }
         let good = if in_order { expected } else { expected - 1 };
         if last || seq == self.block_size {

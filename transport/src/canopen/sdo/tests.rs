@@ -840,3 +840,87 @@ proptest! {
         }
     }
 }
+
+// --- Frames cut short (found by the soak: a truncated upload response read as zeros). ---
+
+#[test]
+fn a_response_cut_short_is_not_taken_for_data() {
+    let mut buf = [0u8; 2];
+    let mut transfer = client().upload(0x2102, 0, &mut buf, Duration::ZERO);
+    transfer.poll_transmit();
+    // "4B 02 21 00 34 12 00 00" with its last four bytes lost: padded, it would read 0x0034.
+    let cut = CanFrame::new(0x585, &[0x4B, 0x02, 0x21, 0x00, 0x34]).unwrap();
+    assert_eq!(transfer.handle(&cut, Duration::ZERO), Progress::Pending);
+    assert_eq!(transfer.poll_transmit(), None, "nothing to abort");
+    let whole = response([0x4B, 0x02, 0x21, 0x00, 0x34, 0x12, 0, 0]);
+    assert_eq!(transfer.handle(&whole, Duration::ZERO), Progress::Done(2));
+    assert_eq!(buf, [0x34, 0x12]);
+}
+
+#[test]
+fn a_request_cut_short_is_not_executed() {
+    let mut server = server(&[((0x2102, 0), &[0x78, 0x56])]);
+    // "2B 02 21 00 34 12 00 00" cut after the first value byte: padded, it would write 0x0034.
+    let cut = CanFrame::new(0x605, &[0x2B, 0x02, 0x21, 0x00, 0x34]).unwrap();
+    assert_eq!(server.handle(&cut), Vec::<CanFrame>::new());
+    assert_eq!(server.dictionary()[&(0x2102, 0)], [0x78, 0x56]);
+    let whole = request([0x2B, 0x02, 0x21, 0x00, 0x34, 0x12, 0, 0]);
+    assert_eq!(
+        server.handle(&whole),
+        vec![response([0x60, 0x02, 0x21, 0x00, 0, 0, 0, 0])]
+    );
+    assert_eq!(server.dictionary()[&(0x2102, 0)], [0x34, 0x12]);
+}
+
+// --- A client that never stops sending: the server's buffer is bounded. ---
+
+/// Sends a segmented download to 2100h:00 of endless 7-byte segments; returns how many segments
+/// the server took before its answer was an abort, and that answer.
+fn endless_segmented_download<D: ObjectDictionary>(server: &mut SdoServer<D>) -> (usize, CanFrame) {
+    let initiate = server.handle(&request([0x21, 0x00, 0x21, 0x00, 0, 0, 0, 0]));
+    assert_eq!(
+        initiate,
+        vec![response([0x60, 0x00, 0x21, 0x00, 0, 0, 0, 0])]
+    );
+    for segment in 0..100_000 {
+        let toggle = ((segment % 2) as u8) << 4;
+        let answer = server.handle(&request([toggle, 1, 2, 3, 4, 5, 6, 7]));
+        if answer[0].data()[0] == 0x80 {
+            return (segment, answer[0]);
+        }
+    }
+    panic!("the server buffered 700,000 bytes of one download");
+}
+
+#[test]
+fn an_endless_segmented_download_is_aborted_at_the_limit() {
+    let mut bounded = server(&[((0x2100, 0), &[0])]).with_max_download(20);
+    let (segments, abort) = endless_segmented_download(&mut bounded);
+    assert_eq!(segments, 2, "21 bytes are over the limit");
+    assert_eq!(
+        abort,
+        response([0x80, 0x00, 0x21, 0x00, 0x05, 0x00, 0x04, 0x05])
+    );
+    let (segments, _) = endless_segmented_download(&mut server(&[((0x2100, 0), &[0])]));
+    assert_eq!(segments, server::DEFAULT_MAX_DOWNLOAD / 7);
+}
+
+#[test]
+fn an_endless_block_download_is_aborted_at_the_limit() {
+    let mut server = server(&[((0x2100, 0), &[0])]).with_max_download(20);
+    let initiate = server.handle(&request([0xC0, 0x00, 0x21, 0x00, 0, 0, 0, 0]));
+    assert_eq!(initiate[0].data()[0], 0xA4);
+    let answers: Vec<CanFrame> = (1..=3)
+        .flat_map(|seq| server.handle(&request([seq, 1, 2, 3, 4, 5, 6, 7])))
+        .collect();
+    assert_eq!(
+        answers,
+        vec![response([0x80, 0x00, 0x21, 0x00, 0x05, 0x00, 0x04, 0x05])],
+        "the third segment (21 bytes) is over the limit"
+    );
+    // The transfer is over: the next download starts afresh.
+    assert_eq!(
+        server.handle(&request([0x2F, 0x00, 0x21, 0x00, 9, 0, 0, 0])),
+        vec![response([0x60, 0x00, 0x21, 0x00, 0, 0, 0, 0])]
+    );
+}
