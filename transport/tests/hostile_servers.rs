@@ -26,6 +26,9 @@ enum Answer {
     Good,
     /// Correctly, after twice the client's timeout.
     Slow,
+    /// Correctly, after one and a half times the client's timeout: late, and while the client
+    /// would already be waiting for its next answer.
+    Late,
     /// The first half of the answer, then nothing.
     Partial,
     /// For another transaction (TCP only).
@@ -59,7 +62,7 @@ fn bytes_for(
     other_transaction: Vec<u8>,
 ) -> Vec<u8> {
     match answer {
-        Answer::Good | Answer::Slow => good.to_vec(),
+        Answer::Good | Answer::Slow | Answer::Late => good.to_vec(),
         Answer::Partial | Answer::CloseMidFrame => good[..good.len() / 2].to_vec(),
         Answer::WrongTransaction => other_transaction,
         Answer::WrongUnit => other_unit,
@@ -200,8 +203,10 @@ fn rtu_server(path: &str, script: Vec<Answer>) {
             Answer::Oversized => oversized,
             _ => bytes_for(answer, &good, frame(request[0] + 1), good.clone()),
         };
-        if answer == Answer::Slow {
-            std::thread::sleep(TIMEOUT * 2);
+        match answer {
+            Answer::Slow => std::thread::sleep(TIMEOUT * 2),
+            Answer::Late => std::thread::sleep(TIMEOUT * 3 / 2),
+            _ => {}
         }
         if line.write_all(&bytes).is_err() {
             return;
@@ -269,4 +274,22 @@ fn a_server_that_never_stops_sending_ends_in_a_typed_error() {
         );
     }
     assert!(started.elapsed() < TIMEOUT * 20, "{:?}", started.elapsed());
+}
+
+#[test]
+fn a_late_rtu_answer_is_not_taken_for_the_next_one() {
+    // RTU answers carry no transaction id: the late answer to the read of 10 has the shape of
+    // the answer to the read of 11 sent right after the timeout. The client lets it pass first.
+    let pty = pty_pair();
+    let server_end = pty.server.to_str().unwrap().to_owned();
+    std::thread::spawn(move || rtu_server(&server_end, vec![Answer::Late]));
+    let config = SerialConfig {
+        timeout: TIMEOUT,
+        retry: RetryPolicy::reads(0),
+        ..SerialConfig::new(115_200)
+    };
+    let mut client = SerialRtuClient::open(pty.client.to_str().unwrap(), &config).unwrap();
+    assert_eq!(read(&mut client, 10), Err(BusError::Timeout));
+    assert_eq!(read(&mut client, 11), Ok(value_at(11)));
+    assert_eq!(read(&mut client, 12), Ok(value_at(12)));
 }

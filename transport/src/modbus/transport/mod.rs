@@ -118,6 +118,10 @@ pub struct Client<S, F> {
     rx_len: usize,
     last_io: Option<Instant>,
     broken: bool,
+    /// The unit whose answer timed out on a framing whose answers do not name their request
+    /// (RTU): it may still arrive, and would pass for the answer to that unit's next request of
+    /// the same shape. (Another unit's next answer is told apart by its unit id.)
+    late_answer_from: Option<UnitId>,
 }
 
 /// A Modbus RTU client over any byte stream.
@@ -137,6 +141,7 @@ impl<S: ByteStream, F: Framing> Client<S, F> {
             rx_len: 0,
             last_io: None,
             broken: false,
+            late_answer_from: None,
         }
     }
 
@@ -251,18 +256,31 @@ impl<S: ByteStream, F: Framing> Client<S, F> {
     }
 
     /// Waits out the idle gap, then drops stale input: the start of every exchange.
-    fn prepare_exchange(&mut self) -> Result<(), BusError> {
+    fn prepare_exchange(&mut self, unit: UnitId) -> Result<(), BusError> {
         if let Some(ready) = self.last_io.map(|at| at + self.config.idle_gap) {
             let now = Instant::now();
             if ready > now {
                 std::thread::sleep(ready - now);
             }
         }
+        if self.late_answer_from.take() == Some(unit) {
+            self.let_late_answer_pass()?;
+        }
         // Before every request, even where answers carry a transaction id: the flush is also
         // where a connection the peer closed while idle is found and reopened, before anything
         // (possibly a write that must not be repeated) is sent.
         self.stream.discard_input()?;
         self.rx_len = 0;
+        Ok(())
+    }
+
+    /// Before the next request to a unit whose answer timed out on RTU, listens for one more
+    /// timeout and drops what arrives: the slow device's late answer would otherwise be taken for
+    /// the answer to that request (RTU answers carry no transaction id). Costs one timeout after
+    /// a timeout, and only when the same unit is asked again.
+    fn let_late_answer_pass(&mut self) -> Result<(), BusError> {
+        let until = Instant::now() + self.config.timeout;
+        while Instant::now() < until && self.stream.receive(&mut self.rx, until)? != 0 {}
         Ok(())
     }
 
@@ -300,7 +318,7 @@ impl<S: ByteStream, F: Framing> Client<S, F> {
         request: &Request<'_>,
         mut scan: impl FnMut(&F, &[u8]) -> Result<Scan, BusError>,
     ) -> Result<Option<Range<usize>>, BusError> {
-        self.prepare_exchange()?;
+        self.prepare_exchange(unit)?;
         let len = self.framing.encode_request(unit, request, &mut self.tx)?;
         let deadline = self.send_encoded(len)?;
         if unit == BROADCAST {
@@ -319,6 +337,9 @@ impl<S: ByteStream, F: Framing> Client<S, F> {
                 }
             }
             if self.receive_more(deadline)? == 0 {
+                if !F::TAGGED_ANSWERS {
+                    self.late_answer_from = Some(unit);
+                }
                 return Err(rejected.map_or(BusError::Timeout, BusError::Frame));
             }
         }

@@ -57,7 +57,7 @@ impl<S: ByteStream, F: Framing> Client<S, F> {
         unit: UnitId,
         reads: &mut [RegisterRead<'_>],
     ) -> Result<(), BusError> {
-        self.prepare_exchange()?;
+        self.prepare_exchange(unit)?;
         let mut in_flight = [None; MAX_IN_FLIGHT];
         let mut len = 0;
         for (slot, (index, read)) in in_flight
