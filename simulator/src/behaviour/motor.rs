@@ -6,7 +6,7 @@
 //! Lafert-style ramp times (`speed_ramp_up` / `speed_ramp_down`, ms from 0 to
 //! the setpoint's magnitude bound, switched by `ramp_enable`), or CiA 402 profile acceleration /
 //! deceleration (6083h / 6084h, speed units per second). Without either, the speed jumps.
-//! The bound itself is checked by [`Bounds`](super::bounds::Bounds).
+//! The bound itself is checked by [`Bounds`].
 
 use std::time::Duration;
 

@@ -2,7 +2,7 @@
 //! drivegen's IR) read and written by name through the same [`Scale`](crate::Scale), type and
 //! range checks as generated code. Tools that read a description instead of compiling it (the
 //! `drivegen` CLI, the simulator) use it: parameters read and written by name over any
-//! [`Link`](crate::link::Link) ([`read`], [`write`], [`read_raw`], [`write_raw`]), values as
+//! [`Link`](crate::link::Link) ([`read()`], [`write()`], [`read_raw`], [`write_raw`]), values as
 //! people type and read them ([`parse`], [`show`]), the one validity [`check`], and the bytes
 //! and registers a described [`DataType`](crate::DataType) occupies ([`raw`], [`registers`]).
 
