@@ -4,6 +4,16 @@
 //! is Markdown: a fenced or indented block would become a doctest that runs description text as
 //! code. Backticks, angle brackets and leading indentation are therefore neutralised.
 
+/// The first line of an item's escaped doc text, or its name when it has none: the one-line
+/// summary of an accessor.
+pub fn summary(doc: Option<&str>, name: &str) -> String {
+    escape(doc.unwrap_or(name))
+        .lines()
+        .next()
+        .unwrap_or_default()
+        .to_owned()
+}
+
 /// Escapes description text for a rustdoc comment.
 pub fn escape(text: &str) -> String {
     text.lines()

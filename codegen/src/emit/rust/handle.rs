@@ -105,11 +105,7 @@ pub fn emit(device: &Device) -> TokenStream {
         .map(|p| {
             let method = ident(&names::method(&p.name));
             let marker = ident(&names::camel(&p.name));
-            let summary = doc::escape(p.doc.as_deref().unwrap_or(&p.name))
-                .lines()
-                .next()
-                .unwrap_or_default()
-                .to_owned();
+            let summary = doc::summary(p.doc.as_deref(), &p.name);
             let docs = doc_attrs(&format!(
                 "{summary}\n\nSee [`params::{marker}`] for address, type, unit and source."
             ));

@@ -60,11 +60,7 @@ fn handle_method(run: &IndexedParameter) -> TokenStream {
 }
 
 fn summary(run: &IndexedParameter) -> String {
-    doc::escape(run.doc.as_deref().unwrap_or(&run.name))
-        .lines()
-        .next()
-        .unwrap_or_default()
-        .to_owned()
+    doc::summary(run.doc.as_deref(), &run.name)
 }
 
 /// Readable and writable over some protocol, judged from the members' CANopen access (a run has

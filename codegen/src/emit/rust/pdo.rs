@@ -175,11 +175,7 @@ fn struct_doc(m: &PdoMapping, fields: &[Field], device: &Device) -> String {
 pub(super) fn field_doc(f: &Field) -> String {
     let p = f.parameter;
     let object = p.pdo_object().expect("validated: mapped objects exist");
-    let summary = doc::escape(p.doc.as_deref().unwrap_or(&p.name))
-        .lines()
-        .next()
-        .unwrap_or_default()
-        .to_owned();
+    let summary = doc::summary(p.doc.as_deref(), &p.name);
     let raw = if f.raw {
         " Raw: its scale is resolved at run time."
     } else {

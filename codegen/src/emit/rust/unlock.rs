@@ -124,11 +124,7 @@ fn scope_setters(device: &Device, scope: &LockScope, lock_bound: &TokenStream) -
 fn setter(p: &Parameter) -> TokenStream {
     let method = ident(&names::method(&p.name));
     let marker = ident(&names::camel(&p.name));
-    let summary = doc::escape(p.doc.as_deref().unwrap_or(&p.name))
-        .lines()
-        .next()
-        .unwrap_or_default()
-        .to_owned();
+    let summary = doc::summary(p.doc.as_deref(), &p.name);
     let docs = doc_attrs(&format!(
         "{summary}\n\nWritable while unlocked. See [`params::{marker}`] for address, type, unit and source."
     ));
