@@ -51,6 +51,26 @@ def relay_process(process, bus):
         threading.Thread(target=target, daemon=True).start()
 
 
+def relay_stdio(bus):
+    """Copies frames between this process's stdio (candump compact lines) and `bus`: for a master
+    whose node is the process at the other end of its pipes (a test running the simulated node)."""
+    def from_stdin():
+        for line in sys.stdin:
+            line = line.strip()
+            if "#" in line:
+                bus.send(parse(line))
+
+    def to_stdout():
+        while True:
+            msg = bus.recv(0.1)
+            if msg is not None:
+                sys.stdout.write(compact(msg) + "\n")
+                sys.stdout.flush()
+
+    for target in (from_stdin, to_stdout):
+        threading.Thread(target=target, daemon=True).start()
+
+
 def main(install=None):
     """Runs the relay; `install(node)` may add behaviour (write callbacks) to the LocalNode."""
     eds, node_id = sys.argv[1], int(sys.argv[2], 0)

@@ -9,12 +9,11 @@ state goes to stderr as `reached <STATE>`. Exit status 0 when every step was con
 """
 import logging
 import sys
-import threading
 
 import can
 import canopen
 
-from canopen_relay import compact, parse
+from canopen_relay import relay_stdio
 
 
 def scenario(node):
@@ -38,21 +37,7 @@ def main():
     node = canopen.BaseNode402(node_id, eds)
     network.add_node(node)
 
-    def pump_out():
-        while True:
-            msg = relay.recv(0.1)
-            if msg is not None:
-                sys.stdout.write(compact(msg) + "\n")
-                sys.stdout.flush()
-
-    def pump_in():
-        for line in sys.stdin:
-            line = line.strip()
-            if line:
-                relay.send(parse(line))
-
-    threading.Thread(target=pump_out, daemon=True).start()
-    threading.Thread(target=pump_in, daemon=True).start()
+    relay_stdio(relay)
     ok = scenario(node)
     network.disconnect()
     relay.shutdown()

@@ -1,4 +1,4 @@
-//! python canopen 2.4.1 as an independent SDO master (`tests/peers/eds_sdo_master.py`): it loads
+//! python canopen 2.4.1 as an independent SDO master (`tests/peers/swd_sdo_master.py` at the workspace root): it loads
 //! the EDS drivegen exports from the SWD description and reads every readable object of the
 //! simulated SWD, each value checked against the EDS type and default. The simulated node runs
 //! here on a candump stdio relay to the python process, which is stopped by its PID. A missing
@@ -32,7 +32,7 @@ fn python_canopen_reads_every_readable_object_through_the_exported_eds() {
     std::fs::write(&eds, drivegen::eds::export(&device)).unwrap();
 
     let mut child = Command::new(python())
-        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/peers/eds_sdo_master.py"))
+        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/peers/swd_sdo_master.py"))
         .arg(&eds)
         .arg("0x10")
         .stdin(Stdio::piped())

@@ -1,6 +1,6 @@
 //! python canopen 2.4.1 as an independent SDO master of the simulated Kinco FD, with the object
 //! dictionary of the EDS `drivegen::eds::export` writes from the Kinco description
-//! (tests/peers/kinco_sdo_master.py). The simulated node runs here on a candump stream over the
+//! (tests/peers/kinco_sdo_master.py at the workspace root). The simulated node runs here on a candump stream over the
 //! script's stdio; the script ends by itself and is reaped. A missing peer fails the test (run
 //! `tests/peers/setup.sh`).
 
@@ -24,7 +24,7 @@ fn python_canopen_reads_and_writes_through_the_exported_eds() {
     let mut child = Command::new(python())
         .arg(concat!(
             env!("CARGO_MANIFEST_DIR"),
-            "/tests/peers/kinco_sdo_master.py"
+            "/../../tests/peers/kinco_sdo_master.py"
         ))
         .arg(&eds)
         .arg("1")

@@ -13,35 +13,12 @@ values and an abort. Exits 0 on success; prints the failed check on stderr and e
 import logging
 import os
 import sys
-import threading
 
 import can
 import canopen
+
 from canopen.sdo.exceptions import SdoAbortedError
-
-
-def parse(line):
-    can_id, _, payload = line.partition("#")
-    return can.Message(arbitration_id=int(can_id, 16), is_extended_id=False,
-                       data=bytes.fromhex(payload))
-
-
-def relay(bus):
-    def from_node():
-        for line in sys.stdin:
-            line = line.strip()
-            if "#" in line:
-                bus.send(parse(line))
-
-    def to_node():
-        while True:
-            msg = bus.recv(0.1)
-            if msg is not None:
-                sys.stdout.write(f"{msg.arbitration_id:03X}#{bytes(msg.data).hex().upper()}\n")
-                sys.stdout.flush()
-
-    for target in (from_node, to_node):
-        threading.Thread(target=target, daemon=True).start()
+from canopen_relay import relay_stdio
 
 
 def aborted(action):
@@ -75,7 +52,7 @@ def main():
     bus = can.Bus(interface="virtual", channel=channel)
     network = canopen.Network()
     network.connect(interface="virtual", channel=channel)
-    relay(bus)
+    relay_stdio(bus)
     node = network.add_node(node_id, eds)
     try:
         scenario(node)

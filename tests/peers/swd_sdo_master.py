@@ -1,6 +1,6 @@
 """python canopen 2.4.1 as an independent SDO master of the simulated ez-Wheel SWD.
 
-    eds_sdo_master.py EDS NODE_ID
+    swd_sdo_master.py EDS NODE_ID
 
 Loads the EDS drivegen exported from descriptions/ezwheel-swd into a RemoteNode, relays frames
 between this process's stdio (candump compact lines, `123#DEADBEEF`) and python-can's virtual bus,
@@ -13,39 +13,15 @@ the first failed check. stdout carries frames only.
 import logging
 import os
 import sys
-import threading
 import time
 
 import can
 import canopen
+
 from canopen import objectdictionary as od
+from canopen_relay import relay_stdio
 
 READABLE = {"ro", "rw", "rwr", "rww", "const"}
-
-
-def parse(line):
-    can_id, _, payload = line.partition("#")
-    return can.Message(arbitration_id=int(can_id, 16), is_extended_id=False,
-                       data=bytes.fromhex(payload))
-
-
-def relay(bus):
-    """Copies frames between stdin/stdout and the virtual bus."""
-    def from_stdin():
-        for line in sys.stdin:
-            line = line.strip()
-            if "#" in line:
-                bus.send(parse(line))
-
-    def to_stdout():
-        while True:
-            msg = bus.recv(0.1)
-            if msg is not None:
-                sys.stdout.write(f"{msg.arbitration_id:03X}#{bytes(msg.data).hex().upper()}\n")
-                sys.stdout.flush()
-
-    for target in (from_stdin, to_stdout):
-        threading.Thread(target=target, daemon=True).start()
 
 
 def variables(dictionary):
@@ -82,7 +58,7 @@ def main():
     network = canopen.Network()
     network.connect(interface="virtual", channel=channel)
     try:
-        relay(bus)
+        relay_stdio(bus)
         node = canopen.RemoteNode(node_id, eds)
         network.add_node(node)
         time.sleep(0.2)
