@@ -24,6 +24,8 @@ struct RampTimes {
     up: ParamId,
     down: ParamId,
     enable: Option<ParamId>,
+    /// The state machine's setpoint's magnitude bound: the span the ramp times refer to.
+    span: Option<ParamId>,
 }
 
 /// CiA 402 profile ramp: speed units per second.
@@ -63,6 +65,7 @@ impl Motor {
                 up,
                 down,
                 enable: store.id("ramp_enable"),
+                span: setpoint_span(store),
             });
         let rates = object(store, 0x6083, 0)
             .zip(object(store, 0x6084, 0))
@@ -93,7 +96,8 @@ impl Motor {
             return None;
         }
         let ms = value(if speeding_up { times.up } else { times.down });
-        let span = Bounds::magnitude_of(store, setpoint)
+        let span = times
+            .span
             .map(value)
             .filter(|v| *v > 0.0)
             .unwrap_or(DEFAULT_FULL_SCALE);
@@ -130,4 +134,11 @@ impl Behaviour for Motor {
     fn reset(&mut self, store: &mut Store, shared: &mut Shared) {
         self.tick(store, shared, Duration::ZERO);
     }
+}
+
+/// The magnitude bound of the setpoint the description's state machine follows, looked up once.
+fn setpoint_span(store: &Store) -> Option<ParamId> {
+    let machine = store.device().state_machine.as_ref()?;
+    let setpoint = store.id(machine.setpoint.as_deref()?)?;
+    Bounds::magnitude_of(store, setpoint)
 }
