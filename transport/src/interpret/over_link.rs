@@ -6,7 +6,7 @@ use std::string::String;
 use std::vec;
 use std::vec::Vec;
 
-use super::registers::{self, Unfit};
+use super::registers;
 use super::{parse, show, Described, InputError, Model, Shown};
 use crate::error::BusError;
 use crate::link::{Link, ReadRequest};
@@ -165,17 +165,9 @@ where
         .map(|((parameter, mut wire), len)| {
             wire.truncate(len);
             registers::from_wire(parameter.data_type(), wire)
-                .map_err(|unfit| bus_error(*parameter, BusError::Frame(unfit_reason(unfit))))
+                .map_err(|unfit| bus_error(*parameter, BusError::Frame(unfit.reason())))
         })
         .collect()
-}
-
-fn unfit_reason(unfit: Unfit) -> &'static str {
-    match unfit {
-        Unfit::TooHigh => "the drive answered a value above the parameter's type",
-        Unfit::TooLow => "the drive answered a value below the parameter's type",
-        Unfit::WrongLength => "the drive answered more bytes than any integer type holds",
-    }
 }
 
 /// Writes the raw value `bytes` (little-endian, the parameter's type) of `parameter`, widened to

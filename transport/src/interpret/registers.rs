@@ -20,13 +20,20 @@ pub enum Unfit {
     WrongLength,
 }
 
+impl Unfit {
+    /// Why, in words (also what [`BusError::Frame`](crate::BusError::Frame) carries for it).
+    pub const fn reason(self) -> &'static str {
+        match self {
+            Self::TooHigh => "the drive answered a value above the parameter's type",
+            Self::TooLow => "the drive answered a value below the parameter's type",
+            Self::WrongLength => "the drive answered more bytes than any integer type holds",
+        }
+    }
+}
+
 impl fmt::Display for Unfit {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            Self::TooHigh => "the registers hold a value above the parameter's type",
-            Self::TooLow => "the registers hold a value below the parameter's type",
-            Self::WrongLength => "the registers are wider than any integer type",
-        })
+        f.write_str(self.reason())
     }
 }
 
