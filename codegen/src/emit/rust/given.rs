@@ -7,12 +7,10 @@
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
+use super::read_protocols::read_protocols;
 use super::{doc_attrs, ident, raw_type};
 use crate::emit::{doc, ident as names};
 use crate::ir::{Device, Parameter, Scale};
-
-/// Whether a parameter is readable over one protocol.
-type Readable = fn(&Parameter) -> bool;
 
 /// The parameters read by some run-time scale, each once, in first-use order.
 fn parameter_inputs(device: &Device) -> Vec<&Parameter> {
@@ -51,20 +49,7 @@ pub fn scale_inputs(device: &Device) -> TokenStream {
     if inputs.is_empty() {
         return quote! {};
     }
-    let protocols: [(TokenStream, Readable); 3] = [
-        (
-            quote! { ::drivebus::modbus::Modbus },
-            Parameter::readable_over_modbus,
-        ),
-        (
-            quote! { ::drivebus::canopen::CanOpen },
-            Parameter::readable_over_canopen,
-        ),
-        (
-            quote! { ::drivebus::rs232::Rs232 },
-            Parameter::readable_over_rs232,
-        ),
-    ];
+    let protocols = read_protocols();
     // Only the protocols the device has: a scale is never computed over another one.
     let reached: [bool; 3] = [
         device.parameters.iter().any(|p| !p.modbus.is_empty()),

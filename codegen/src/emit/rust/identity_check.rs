@@ -13,11 +13,11 @@
 use proc_macro2::TokenStream;
 use quote::quote;
 
+use super::read_protocols::read_protocols;
+
 use super::{doc_attrs, ident};
 use crate::emit::ident as names;
-use crate::ir::{Covered, Device, IdentityCheck, Parameter};
-
-type Readable = fn(&Parameter) -> bool;
+use crate::ir::{Covered, Device, IdentityCheck};
 
 pub fn emit(device: &Device) -> TokenStream {
     let checks: Vec<IdentityCheck> = device.identity_checks();
@@ -25,20 +25,7 @@ pub fn emit(device: &Device) -> TokenStream {
         return TokenStream::new();
     }
     let handle = ident(&names::camel(&device.device.handle));
-    let protocols: [(TokenStream, Readable); 3] = [
-        (
-            quote! { ::drivebus::modbus::Modbus },
-            Parameter::readable_over_modbus,
-        ),
-        (
-            quote! { ::drivebus::canopen::CanOpen },
-            Parameter::readable_over_canopen,
-        ),
-        (
-            quote! { ::drivebus::rs232::Rs232 },
-            Parameter::readable_over_rs232,
-        ),
-    ];
+    let protocols = read_protocols();
     let impls = protocols.iter().filter_map(|(protocol, readable)| {
         let reached: Vec<TokenStream> = checks
             .iter()

@@ -17,6 +17,7 @@ mod parameter_doc;
 mod pdo;
 mod pdo_communication;
 mod read_blocks;
+mod read_protocols;
 mod srdo;
 mod triggers;
 mod unlock;
