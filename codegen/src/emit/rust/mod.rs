@@ -50,12 +50,17 @@ pub(crate) fn raw_type(data_type: DataType) -> TokenStream {
 }
 
 /// `#[doc = "..."]` attributes from escaped text, one per line, so the generated source shows
-/// `///` lines as hand-written code would.
+/// `///` lines as hand-written code would. A lone carriage return (old Mac line ends in an EDS
+/// text) also ends a line: printed inside a `///` comment it would be a bare CR, which Rust
+/// refuses.
 pub(crate) fn doc_attrs(text: &str) -> TokenStream {
-    let lines = text.lines().map(|line| match line {
-        "" => String::new(),
-        line => format!(" {line}"),
-    });
+    let lines = text
+        .lines()
+        .flat_map(|line| line.split('\r'))
+        .map(|line| match line {
+            "" => String::new(),
+            line => format!(" {line}"),
+        });
     quote! { #( #[doc = #lines] )* }
 }
 
@@ -139,4 +144,26 @@ pub(crate) fn concat(parts: impl IntoIterator<Item = TokenStream>) -> TokenStrea
 /// `{ body }` as one token, built by moving `body`.
 pub(crate) fn braced(body: TokenStream) -> TokenStream {
     TokenTree::Group(Group::new(Delimiter::Brace, body)).into()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::doc_attrs;
+
+    /// The printed doc comments of `text` on an item, as a crate's source would show them.
+    fn printed(text: &str) -> String {
+        let docs = doc_attrs(text);
+        let file: syn::File = syn::parse2(quote::quote! { #docs pub struct S; }).unwrap();
+        prettyplease::unparse(&file)
+    }
+
+    #[test]
+    fn every_kind_of_line_end_starts_a_doc_line() {
+        let source = printed("first\rsecond\r\nthird\nfourth");
+        assert_eq!(
+            source,
+            "/// first\n/// second\n/// third\n/// fourth\npub struct S;\n"
+        );
+        syn::parse_file(&source).expect("the printed source parses");
+    }
 }
