@@ -97,7 +97,7 @@ impl Width {
     }
 
     #[inline]
-    const fn from_uploaded_command(command: u8) -> Option<Self> {
+    pub(super) const fn from_uploaded_command(command: u8) -> Option<Self> {
         match command {
             command::UPLOADED_1 => Some(Self::One),
             command::UPLOADED_2 => Some(Self::Two),
@@ -141,7 +141,7 @@ impl Value {
     }
 
     #[inline]
-    fn from_data(width: Width, data: &Data) -> Self {
+    pub(super) fn from_data(width: Width, data: &Data) -> Self {
         // Whole-word masking instead of a copy of variable length (a `memcpy` call).
         let all = u32::from_le_bytes([data[4], data[5], data[6], data[7]]);
         let mask = u32::MAX >> (32 - 8 * width.bytes() as u32);
@@ -175,7 +175,7 @@ impl Object {
     }
 
     #[inline]
-    fn read_from(data: &Data) -> Self {
+    pub(super) fn read_from(data: &Data) -> Self {
         Self {
             index: u16::from_le_bytes([data[1], data[2]]),
             subindex: data[3],
@@ -299,6 +299,33 @@ impl Answer {
             }
         }
         data
+    }
+
+    /// The answer `data` gives to the `request` it follows: about the request's object (else
+    /// [`Rs232Error::OtherObject`]), an upload's value or a download's confirmation as the
+    /// request's command asks (else [`Rs232Error::UnexpectedCommand`]), and an error answer as
+    /// [`Rs232Error::Refused`]. Decodes only what may answer the request, so an exchange does
+    /// not build a general [`Answer`] first and compare it afterwards.
+    pub fn reply_to(request: &Data, data: &Data) -> Result<Self, Rs232Error> {
+        if data[1..4] != request[1..4] {
+            let other = Object::read_from(data);
+            return Err(Rs232Error::OtherObject {
+                index: other.index,
+                subindex: other.subindex,
+            });
+        }
+        let object = Object::read_from(request);
+        let upload = request[0] == command::UPLOAD;
+        match data[0] {
+            command::ERROR => Err(Rs232Error::Refused {
+                cause: u32::from_le_bytes([data[4], data[5], data[6], data[7]]),
+            }),
+            command::DOWNLOADED if !upload => Ok(Self::Downloaded(object)),
+            other => match Width::from_uploaded_command(other) {
+                Some(width) if upload => Ok(Self::Uploaded(object, Value::from_data(width, data))),
+                _ => Err(Rs232Error::UnexpectedCommand { command: other }),
+            },
+        }
     }
 
     /// The answer in 8 data bytes; reserved bytes and bytes past the width are ignored.
