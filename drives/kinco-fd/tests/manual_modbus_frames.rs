@@ -3,11 +3,13 @@
 //! and checked against a CRC-16/MODBUS computed here bit by bit. Station 1; the encoder
 //! resolution is the manual's 10000.
 
+mod manual;
+
 use drivebus::memory::RtuRecorder;
 use drivebus::modbus::{ModbusLink, Table, UnitId};
-use drivebus::units::Rpm;
 use kinco_fd::types::ModesOfOperation;
 use kinco_fd::KincoFd;
+use manual::{hex, rpm_200_as_printed};
 
 /// CRC-16/MODBUS (poly 0xA001 reflected, init 0xFFFF), bit by bit: shares nothing with drivebus.
 fn crc16_modbus(bytes: &[u8]) -> u16 {
@@ -26,16 +28,13 @@ fn crc16_modbus(bytes: &[u8]) -> u16 {
 }
 
 /// A manual frame written as hex pairs; its last two bytes must be its CRC, low byte first.
-fn frame(hex: &str) -> Vec<u8> {
-    let bytes: Vec<u8> = hex
-        .split_whitespace()
-        .map(|b| u8::from_str_radix(b, 16).unwrap())
-        .collect();
+fn frame(printed: &str) -> Vec<u8> {
+    let bytes = hex(printed);
     let (body, crc) = bytes.split_at(bytes.len() - 2);
     assert_eq!(
         crc,
         crc16_modbus(body).to_le_bytes(),
-        "printed CRC of {hex}"
+        "printed CRC of {printed}"
     );
     bytes
 }
@@ -56,15 +55,6 @@ fn frames(drive: KincoFd<ModbusLink<RtuRecorder>>) -> Vec<Vec<u8>> {
     drive.into_link().into_bus().frames
 }
 
-/// The speed whose DEC value is `dec` at resolution 10000. The manual's "200 rpm" is 546133 DEC,
-/// 199.99988 rpm: 200 rpm itself is 546133.33 DEC, which the API refuses to round.
-fn rpm_of(dec: u32) -> Rpm {
-    Rpm(f64::from(dec) * 1875.0 / (512.0 * 10_000.0))
-}
-
-/// 0x00085555, the manual's "200 rpm" (lines 2474, 2495, 2505).
-const DEC_200_RPM: u32 = 0x0008_5555;
-
 const MODE_3: &str = "01 06 35 00 00 03 C6 07";
 const SPEED_200_RPM: &str = "01 10 6F 00 00 02 04 55 55 00 08 1A 47";
 const ENABLE: &str = "01 06 31 00 00 0F C7 32";
@@ -78,7 +68,7 @@ fn the_reference_crc_is_crc16_modbus() {
 fn write_multiple_example_10_4() {
     // Line 2466: target velocity 0x00085555 = 546133 DEC = 200 rpm (erratum: not "150 RPM").
     let mut drive = drive();
-    drive.target_velocity().write(rpm_of(DEC_200_RPM)).unwrap();
+    drive.target_velocity().write(rpm_200_as_printed()).unwrap();
     assert_eq!(frames(drive), [frame(SPEED_200_RPM)]);
 }
 
@@ -86,12 +76,7 @@ fn write_multiple_example_10_4() {
 fn speed_mode_10_5() {
     // Lines 2485-2487 and 2518-2520: mode 3, target speed, enable.
     let mut drive = drive();
-    drive
-        .modes_of_operation()
-        .write(ModesOfOperation::VELOCITY)
-        .unwrap();
-    drive.target_velocity().write(rpm_of(DEC_200_RPM)).unwrap();
-    drive.controlword().write_raw(0x0F).unwrap();
+    manual::speed_mode!(drive, rpm_200_as_printed());
     assert_eq!(
         frames(drive),
         [frame(MODE_3), frame(SPEED_200_RPM), frame(ENABLE)]
@@ -100,23 +85,8 @@ fn speed_mode_10_5() {
 
 #[test]
 fn homing_10_5() {
-    // Lines 2492-2497: enable, mode 6, method 33, switch speed 200 rpm, zero speed 150 rpm, start.
     let mut drive = drive();
-    drive.controlword().write_raw(0x0F).unwrap();
-    drive
-        .modes_of_operation()
-        .write(ModesOfOperation::HOMING)
-        .unwrap();
-    drive
-        .homing_method()
-        .write(kinco_fd::types::HomingMethod::METHOD33)
-        .unwrap();
-    drive
-        .homing_speed_switch()
-        .write(rpm_of(DEC_200_RPM))
-        .unwrap();
-    drive.homing_speed_zero().write(Rpm(150.0)).unwrap();
-    drive.controlword().write_raw(0x1F).unwrap();
+    manual::homing!(drive);
     let expected = [
         ENABLE,
         "01 06 35 00 00 06 06 04",
@@ -137,14 +107,7 @@ fn position_mode_10_5() {
         .modes_of_operation()
         .write(ModesOfOperation::POSITION)
         .unwrap();
-    drive
-        .target_position()
-        .write(drivebus::units::Increments(50_000.0))
-        .unwrap();
-    drive.profile_speed().write(rpm_of(DEC_200_RPM)).unwrap();
-    for command in [0x2F, 0x3F, 0x4F, 0x5F] {
-        drive.controlword().write_raw(command).unwrap();
-    }
+    manual::position_move!(drive);
     let expected = [
         ENABLE,
         "01 06 35 00 00 01 47 C6",

@@ -5,10 +5,11 @@
 //! section's controlword and mode lines (3264-3265) drop a digit and are left out; its other
 //! lines are intact.
 
+mod manual;
+
 use drivebus::canopen::{CanOpenLink, NodeId};
 use drivebus::memory::SdoRecorder;
-use drivebus::units::{Increments, Rpm};
-use kinco_fd::types::ModesOfOperation;
+use drivebus::units::Rpm;
 use kinco_fd::KincoFd;
 
 fn drive() -> KincoFd<CanOpenLink<SdoRecorder>> {
@@ -42,52 +43,26 @@ fn requests(mut drive: KincoFd<CanOpenLink<SdoRecorder>>) -> Vec<(u16, Vec<u8>)>
         .collect()
 }
 
-/// A printed request: `601` then its data bytes.
-fn printed(hex: &str) -> (u16, Vec<u8>) {
-    let bytes: Vec<u8> = hex
-        .split_whitespace()
-        .map(|b| u8::from_str_radix(b, 16).unwrap())
-        .collect();
-    (0x601, bytes)
-}
-
-fn assert_sent(sent: &[(u16, Vec<u8>)], manual: &[&str]) {
-    assert_eq!(sent.len(), manual.len(), "{sent:02X?}");
-    for ((id, data), hex) in sent.iter().zip(manual) {
-        let (cob_id, bytes) = printed(hex);
-        assert_eq!(*id, cob_id);
+/// Checks the requests sent against the printed ones: all to `601`, each printed request a
+/// prefix of its 8-byte frame, the rest zero.
+fn assert_sent(sent: &[(u16, Vec<u8>)], printed: &[&str]) {
+    assert_eq!(sent.len(), printed.len(), "{sent:02X?}");
+    for ((id, data), printed) in sent.iter().zip(printed) {
+        let bytes = manual::hex(printed);
+        assert_eq!(*id, 0x601);
         assert_eq!(data.len(), 8);
-        assert_eq!(data[..bytes.len()], bytes[..], "{hex}");
+        assert_eq!(data[..bytes.len()], bytes[..], "{printed}");
         assert!(
             data[bytes.len()..].iter().all(|&b| b == 0),
-            "{hex}: {data:02X?}"
+            "{printed}: {data:02X?}"
         );
     }
-}
-
-/// 0x00085555, the manual's "200 rpm": 199.99988 rpm at resolution 10000.
-fn rpm_200_as_printed() -> Rpm {
-    Rpm(f64::from(0x0008_5555u32) * 1875.0 / 5_120_000.0)
 }
 
 #[test]
 fn homing_lines_3254_3260() {
     let mut drive = drive();
-    drive.controlword().write_raw(0x0F).unwrap();
-    drive
-        .modes_of_operation()
-        .write(ModesOfOperation::HOMING)
-        .unwrap();
-    drive
-        .homing_method()
-        .write(kinco_fd::types::HomingMethod::METHOD33)
-        .unwrap();
-    drive
-        .homing_speed_switch()
-        .write(rpm_200_as_printed())
-        .unwrap();
-    drive.homing_speed_zero().write(Rpm(150.0)).unwrap();
-    drive.controlword().write_raw(0x1F).unwrap();
+    manual::homing!(drive);
     let status = drive.statusword().read_raw().unwrap();
     assert_eq!(status, 0xC037, "home found (line 3260)");
     assert_sent(
@@ -107,11 +82,7 @@ fn homing_lines_3254_3260() {
 #[test]
 fn position_lines_3266_3273() {
     let mut drive = drive();
-    drive.target_position().write(Increments(50_000.0)).unwrap();
-    drive.profile_speed().write(rpm_200_as_printed()).unwrap();
-    for command in [0x2F, 0x3F, 0x4F, 0x5F] {
-        drive.controlword().write_raw(command).unwrap();
-    }
+    manual::position_move!(drive);
     assert_sent(
         &requests(drive),
         &[
@@ -128,12 +99,7 @@ fn position_lines_3266_3273() {
 #[test]
 fn speed_lines_3278_3281() {
     let mut drive = drive();
-    drive
-        .modes_of_operation()
-        .write(ModesOfOperation::VELOCITY)
-        .unwrap();
-    drive.target_velocity().write(Rpm(150.0)).unwrap();
-    drive.controlword().write_raw(0x0F).unwrap();
+    manual::speed_mode!(drive, Rpm(150.0));
     assert_sent(
         &requests(drive),
         &[
