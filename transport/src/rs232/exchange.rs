@@ -9,7 +9,7 @@
 //! checksum without answering (line 2207), so the exchange never resends on its own: the caller
 //! decides whether a failed request may be repeated.
 
-use super::data::{Answer, Object, Request, Value, Width};
+use super::data::{command, Answer, Object, Request, Value, Width};
 use super::telegram::{self, Telegram, TELEGRAM_LEN};
 use super::{LoopMode, Rs232Error, StationId};
 
@@ -38,8 +38,10 @@ enum Verdict {
 #[derive(Debug, Clone)]
 pub struct Exchange {
     telegram: Telegram,
-    /// For an upload, the bytes its answer repeats (station, index and subindex) in their places
-    /// of the answer's first eight bytes: the key of the fast path. [`NO_UPLOAD`] for a download.
+    /// The key of the fast path: while an upload's answer is due and no part of a telegram is
+    /// held, the bytes that answer repeats (station, index and subindex) in their places of its
+    /// first eight bytes; [`NO_UPLOAD`] otherwise (a download, the echo still due, a telegram
+    /// arriving in pieces), so that the fast path checks the exchange's state in the same compare.
     upload_key: u64,
     mode: LoopMode,
     awaiting: Awaiting,
@@ -54,9 +56,9 @@ impl Exchange {
     pub fn new(station: StationId, request: Request, mode: LoopMode) -> Self {
         Self {
             telegram: telegram::encode(station, &request.encode()),
-            upload_key: match request {
-                Request::Upload(object) => upload_key(station, object),
-                Request::Download(..) => NO_UPLOAD,
+            upload_key: match (request, mode) {
+                (Request::Upload(object), LoopMode::PointToPoint) => upload_key(station, object),
+                _ => NO_UPLOAD,
             },
             mode,
             awaiting: match mode {
@@ -89,7 +91,25 @@ impl Exchange {
     /// echoes, downloads' answers, and every telegram that ends the exchange with an error. Out
     /// of line, so that the fast path stays small where it is inlined.
     #[inline(never)]
-    fn receive_any(&mut self, mut bytes: &[u8]) -> Result<Option<Answer>, Rs232Error> {
+    fn receive_any(&mut self, bytes: &[u8]) -> Result<Option<Answer>, Rs232Error> {
+        let answer = self.gather(bytes);
+        self.arm();
+        answer
+    }
+
+    /// Arms the fast path where it may take the next telegram: an upload's answer is due and no
+    /// part of a telegram is held.
+    fn arm(&mut self) {
+        let [head @ .., _, _] = &self.telegram;
+        let due = self.len == 0 && self.awaiting == Awaiting::Answer;
+        self.upload_key = match due && head[1] == command::UPLOAD {
+            true => u64::from_le_bytes(*head) & UPLOAD_KEY_BYTES,
+            false => NO_UPLOAD,
+        };
+    }
+
+    /// Gathers `bytes` into whole telegrams and judges each in turn.
+    fn gather(&mut self, mut bytes: &[u8]) -> Result<Option<Answer>, Rs232Error> {
         while !bytes.is_empty() {
             let take = (TELEGRAM_LEN - self.len).min(bytes.len());
             let (front, rest) = bytes.split_at(take);
@@ -109,15 +129,11 @@ impl Exchange {
     }
 
     /// The value of an upload if `bytes` are exactly its expected answer, whole and where it
-    /// is due: the right station and object, an upload answer's command, a good checksum.
-    /// `None` for anything else, which the general path then judges. The bytes are compared
-    /// with the upload key in registers, not with the request telegram in memory.
+    /// is due (the upload key is armed): the right station and object, an upload answer's
+    /// command, a good checksum. `None` for anything else, which the general path then judges.
     #[inline(always)]
     fn expected_upload(&self, bytes: &[u8]) -> Option<Answer> {
         let received: &Telegram = bytes.try_into().ok()?;
-        if self.len != 0 || self.awaiting != Awaiting::Answer {
-            return None;
-        }
         let [head @ .., _, _] = received;
         let key = u64::from_le_bytes(*head) & UPLOAD_KEY_BYTES;
         if key != self.upload_key || !telegram::sums_to_zero(received) {
@@ -303,6 +319,15 @@ mod tests {
     }
 
     #[test]
+    fn the_key_built_with_the_exchange_is_the_one_armed_from_its_telegram() {
+        let built = read_statusword(LoopMode::PointToPoint);
+        let mut armed = built.clone();
+        armed.arm();
+        assert_ne!(built.upload_key, NO_UPLOAD);
+        assert_eq!(built.upload_key, armed.upload_key);
+    }
+
+    #[test]
     fn an_error_answer_carries_its_cause() {
         let refused = telegram::encode(
             StationId(1),
@@ -337,12 +362,18 @@ mod tests {
             (at, byte) in (0..TELEGRAM_LEN, any::<u8>()),
             corrupt: bool,
             download: bool,
+            multi_point: bool,
         ) {
             let request = match download {
                 true => Request::download(0x6041, 0, &value[..width]).unwrap(),
                 false => Request::Upload(STATUSWORD),
             };
-            let exchange = Exchange::new(StationId(1), request, LoopMode::PointToPoint);
+            let mode = if multi_point { LoopMode::MultiPoint } else { LoopMode::PointToPoint };
+            let mut exchange = Exchange::new(StationId(1), request, mode);
+            if multi_point {
+                let echo = *exchange.telegram();
+                prop_assert_eq!(exchange.receive(&echo), Ok(None));
+            }
             let answer = Answer::Uploaded(STATUSWORD, Value::new(&value[..width]).unwrap());
             let mut wire = telegram::encode(StationId(1), &answer.encode());
             if corrupt {
