@@ -85,7 +85,8 @@ fn run<B: RegisterBus>(bus: B) -> Result<(), Box<dyn Error>> {
         "locked             serial speed {}",
         drive.serial_speed_command().read()?
     );
-    // Past the lock only the raw device could still write #1, and the drive refuses it.
+    // Past the lock only the raw device could still write #1; the handle, which sent the lock,
+    // refuses it before sending (the drive would answer exception 0x01).
     let refused = drive
         .device()
         .write_raw::<lenze_smd::params::Start>(lenze_smd::params::Start::TRIGGER)

@@ -1,7 +1,8 @@
 //! The Lenze smd example runs end to end on its embedded simulator: the configuration comes from
 //! #50, the serial speed beyond C11 is refused naming the bound, the status block decodes, and
-//! the speed written inside the unlock guard reads back after the lock, and the simulator, like
-//! the drive, refuses a command after the lock with exception 01 (typed `Locked`).
+//! the speed written inside the unlock guard reads back after the lock, and a command after the
+//! lock is refused as the drive would refuse it (exception 01), by the handle before sending
+//! (typed `Locked`).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;

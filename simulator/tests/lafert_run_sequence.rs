@@ -137,3 +137,40 @@ fn a_fault_stops_the_drive_until_reset() {
         assert_eq!(value(drive, "drive_status"), DRIVE_STATUS_STANDBY, "T9");
     });
 }
+
+#[test]
+fn with_the_ramp_disabled_the_speed_jumps_to_the_setpoint() {
+    // RAMP ENABLE = 0: speed ramp disabled (line 1309), the `enable` of the setpoint's `[[ramp]]`.
+    let sim = lafert();
+    sim.preset("operation_mode", 2).unwrap();
+    sim.preset("full_scale_velocity", 3000).unwrap();
+    sim.preset("ramp_enable", 0).unwrap();
+    sim.with(|drive| {
+        write(drive, "control_word", 0x0003).unwrap();
+        write(drive, "speed_setpoint", 1500).unwrap();
+        drive.tick(Duration::from_millis(1));
+        assert_eq!(value(drive, "velocity_average"), 1500);
+    });
+}
+
+#[test]
+fn the_canopen_target_velocity_ramps_with_the_profile_acceleration() {
+    // Profile velocity mode: 60FFh reached with 6083h / 6084h (user guide line 5235), the
+    // `[[ramp]]` of `target_velocity`; 2000 units per second up, 4000 down.
+    let sim = lafert();
+    sim.preset("profile_acceleration", 2000).unwrap();
+    sim.preset("profile_deceleration", 4000).unwrap();
+    sim.with(|drive| {
+        for word in [0x06, 0x07, 0x0F] {
+            write(drive, "controlword", word).unwrap();
+        }
+        write(drive, "target_velocity", 1000).unwrap();
+        drive.tick(Duration::from_millis(250));
+        assert_eq!(value(drive, "velocity_actual_value"), 500);
+        drive.tick(Duration::from_millis(500));
+        assert_eq!(value(drive, "velocity_actual_value"), 1000);
+        write(drive, "target_velocity", 0).unwrap();
+        drive.tick(Duration::from_millis(125));
+        assert_eq!(value(drive, "velocity_actual_value"), 500);
+    });
+}

@@ -8,6 +8,7 @@ use crate::link::{Link, MAX_VALUE_BYTES};
 use crate::parameter::{Parameter, Readable, ValueOf, Writable};
 use crate::read_set::ReadSet;
 use crate::value::WireValue;
+use crate::write_lock::{LockAccount, WriteLock};
 use crate::VariantId;
 
 /// A link plus the device's selected variant; generated drive handles wrap one.
@@ -17,6 +18,9 @@ pub struct Device<L> {
     variant: VariantId,
     /// Set while the drive is not one the description covers: every write fails before sending.
     refusal: Option<WriteRefusal>,
+    /// The drive's write lock and the unlocks sent through this handle, if it has a lock: a
+    /// write to a locked parameter fails before sending.
+    lock: Option<LockAccount>,
     /// Values given when the handle was opened (model constants, unreadable scale inputs).
     given: Given,
 }
@@ -32,8 +36,18 @@ impl<L: Link> Device<L> {
             link,
             variant,
             refusal: None,
+            lock: None,
             given: Given::default(),
         }
+    }
+
+    /// The device behind a write lock (`[lock]` in its description, the generated
+    /// `WRITE_LOCK`): it starts locked, as the drive powers up, and writes to a locked
+    /// parameter are refused until a grant that opens it is written through this handle (see
+    /// [`crate::write_lock`]).
+    pub fn with_write_lock(mut self, lock: &'static WriteLock) -> Self {
+        self.lock = Some(LockAccount::locked(lock));
+        self
     }
 
     /// The values the handle was given when opened (model constants, unreadable scale inputs).
@@ -65,15 +79,23 @@ impl<L: Link> Device<L> {
         self.refusal = Some(reason);
     }
 
-    /// Lifts any refusal of writes: the caller's explicit decision to write to a drive its
-    /// description was not verified against (the generated `trust_unverified`).
+    /// Lifts the refusal of every write: the caller's explicit decision to write to a drive its
+    /// description was not verified against (the generated `trust_unverified`). A locked
+    /// parameter stays refused until an unlock opens it.
     pub fn lift_write_refusal(&mut self) {
         self.refusal = None;
     }
 
-    /// Why writes are refused, if they are.
+    /// Why every write is refused, if it is.
     pub fn write_refusal(&self) -> Option<WriteRefusal> {
         self.refusal
+    }
+
+    /// Why a write to `P` would be refused before sending, if it would: the refusal of every
+    /// write, else the write lock.
+    pub fn write_refusal_of<P: Parameter>(&self) -> Option<WriteRefusal> {
+        self.refusal
+            .or_else(|| self.lock.as_ref()?.refusal(P::NAME))
     }
 
     /// The link, for protocol-specific operations.
@@ -113,8 +135,9 @@ impl<L: Link> Device<L> {
     }
 
     /// Writes a raw value; still checked against the description's range and allowed values.
+    /// Refused before sending while writes are refused ([`Self::write_refusal_of`]).
     pub fn write_raw<P: Writable<L::Protocol>>(&mut self, raw: P::Raw) -> Result<(), Error> {
-        if let Some(reason) = self.refusal {
+        if let Some(reason) = self.write_refusal_of::<P>() {
             return Err(Error::WritesRefused {
                 parameter: P::NAME,
                 reason,
@@ -135,7 +158,11 @@ impl<L: Link> Device<L> {
                 actual: len,
             }))?;
         raw.encode_le(bytes).map_err(named::<P>)?;
-        self.link.write(&address, bytes).map_err(bus_error(P::NAME))
+        let outcome = self.link.write(&address, bytes);
+        if let Some(lock) = &mut self.lock {
+            lock.follow(P::NAME, bytes, &outcome);
+        }
+        outcome.map_err(bus_error(P::NAME))
     }
 
     /// Reads several parameters at once, in as few requests as the link can manage.

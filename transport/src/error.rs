@@ -184,7 +184,7 @@ pub enum Error {
         /// Parameter name as in the description.
         parameter: &'static str,
     },
-    /// The device refuses every write until the reason is resolved; nothing was sent.
+    /// The device handle refused the write until the reason is resolved; nothing was sent.
     WritesRefused {
         /// The parameter that was to be written.
         parameter: &'static str,
@@ -193,8 +193,10 @@ pub enum Error {
     },
 }
 
-/// Why a device handle refuses writes before sending anything: the drive on the other end is
-/// not one its description covers, so a described address or scale could be wrong for it.
+/// Why a device handle refuses a write before sending anything: the drive on the other end is
+/// not one its description covers, so a described address or scale could be wrong for it (every
+/// write is refused), or the parameter is locked (writes to its lock scope are refused until an
+/// unlock opens it).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum WriteRefusal {
@@ -228,6 +230,15 @@ pub enum WriteRefusal {
         /// The raw value the drive reported.
         found: i128,
     },
+    /// The parameter is in a scope of the drive's write lock (`[lock]`) that no unlock sent
+    /// through this handle opens: the drive would refuse the write (Lenze smd: exception 01,
+    /// line 416). Unlock first: write a grant (the generated `unlock_<name>` methods do).
+    Locked {
+        /// The lock scope the parameter is in, as in the description.
+        scope: &'static str,
+        /// The unlocks that open the scope, as in the description.
+        opened_by: &'static [&'static str],
+    },
 }
 
 impl fmt::Display for WriteRefusal {
@@ -254,7 +265,25 @@ impl fmt::Display for WriteRefusal {
                 f,
                 "{parameter} reads {found:#x}; the description covers {min:#x}..={max:#x}"
             ),
+            Self::Locked { scope, opened_by } => write!(
+                f,
+                "the drive's `{scope}` parameters are locked; unlock first ({})",
+                UnlockNames(opened_by)
+            ),
         }
+    }
+}
+
+/// Unlock names as `a or b`.
+struct UnlockNames(&'static [&'static str]);
+
+impl fmt::Display for UnlockNames {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (i, name) in self.0.iter().enumerate() {
+            let separator = if i == 0 { "" } else { " or " };
+            write!(f, "{separator}`{name}`")?;
+        }
+        Ok(())
     }
 }
 

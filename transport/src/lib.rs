@@ -8,6 +8,8 @@
 //! * [`value`] — raw wire types and their little-endian codecs.
 //! * [`scale`] / [`units`] — exact rational scaling and the unit newtypes values are returned in.
 //! * [`link`] — the one trait a protocol binding implements; [`device`] drives it.
+//! * [`write_lock`] — a drive's write lock as a device handle tracks it: writes to a locked
+//!   parameter are refused before sending.
 //! * [`modbus`] / [`canopen`] / [`rs232`] — protocol addresses and the bus traits transports
 //!   implement.
 //! * `stream` (feature `std`) — the byte streams (serial port, TCP, test doubles) under the
@@ -50,6 +52,7 @@ pub mod scale;
 pub mod stream;
 pub mod units;
 pub mod value;
+pub mod write_lock;
 
 pub use data_type::DataType;
 pub use device::{Accessor, Device};

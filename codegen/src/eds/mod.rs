@@ -157,6 +157,7 @@ pub fn empty_device(name: &str, model: &EdsModel) -> ir::Device {
         parameters: Vec::new(),
         cia402: None,
         state_machine: None,
+        ramps: Vec::new(),
         pdos: Vec::new(),
         srdos: Vec::new(),
         indexed: Vec::new(),

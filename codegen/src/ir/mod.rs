@@ -12,6 +12,7 @@ mod indexed;
 mod lock;
 mod model;
 mod pdo;
+mod ramp;
 mod read_block;
 mod readable_registers;
 mod refinement;
@@ -35,6 +36,7 @@ pub use lock::{
 };
 pub use model::{Constant, Model};
 pub use pdo::{pdo_bits, CobId, PdoDirection, PdoMapping};
+pub use ramp::{per_second, Ramp, Slope};
 pub use read_block::ReadBlock;
 pub use readable_registers::{PlannerLimits, RegisterRun};
 pub use refinement::Refinement;
@@ -88,6 +90,9 @@ pub struct Device {
     pub cia402: Option<Cia402>,
     /// A vendor state machine (`[state_machine]`, `[[state]]`, `[[transition]]`), if declared.
     pub state_machine: Option<StateMachine>,
+    /// How fast the speed follows each setpoint (`[[ramp]]`), left out of the JSON when none.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub ramps: Vec<Ramp>,
     /// Declared PDO mappings (left out of the JSON when there are none).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub pdos: Vec<PdoMapping>,

@@ -42,6 +42,8 @@ pub struct RawFile {
     #[serde(default)]
     pub transition: Vec<Spanned<RawTransition>>,
     #[serde(default)]
+    pub ramp: Vec<super::raw_ramp::RawRamp>,
+    #[serde(default)]
     pub pdo: Vec<RawPdoMapping>,
     #[serde(default)]
     pub srdo: Vec<super::raw_srdo::RawSrdo>,

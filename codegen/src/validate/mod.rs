@@ -22,6 +22,7 @@ mod parameters_have_addresses;
 mod pdo_entries_are_mappable;
 mod pdo_mappings_fit_eight_bytes;
 mod pdo_numbers_are_unique;
+mod ramps_resolve;
 mod ranges_fit_type;
 mod read_blocks_are_described;
 mod records_hold_their_members;
@@ -123,6 +124,7 @@ pub const PASSES: &[(&str, Pass)] = &[
         manual_names_are_search_aliases::check,
     ),
     ("unlocks_resolve", unlocks_resolve::check),
+    ("ramps_resolve", ramps_resolve::check),
 ];
 
 /// Runs every pass.

@@ -21,6 +21,16 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
     };
     command(device, lock, &mut report);
     scopes(device, lock, &mut report);
+    if lock.unlocks.len() > drivebus::write_lock::MAX_UNLOCKS {
+        report(
+            &lock.span,
+            format!(
+                "{} unlocks: a lock has at most {} (the drive handle follows them in one word)",
+                lock.unlocks.len(),
+                drivebus::write_lock::MAX_UNLOCKS
+            ),
+        );
+    }
     let mut seen = BTreeSet::new();
     for unlock in &lock.unlocks {
         if !seen.insert(unlock.name.as_str()) {
@@ -514,6 +524,22 @@ source = { doc = "m", line = 11 }
         assert_eq!(
             messages("unlocks_resolve", &format!("{lock}\n{parameters}")),
             ["the setter `drive` of `drive` would shadow the unlock guard's own method"]
+        );
+    }
+
+    #[test]
+    fn a_lock_has_at_most_as_many_unlocks_as_the_handle_follows() {
+        let more: String = (0..drivebus::write_lock::MAX_UNLOCKS - 1)
+            .map(|i| {
+                format!(
+                    "[[unlock]]\nname = \"extra_{i}\"\ngrant = {{ parameter = \"unlock_word\", value = {i} }}\n\
+                     allows = [\"controls\"]\nends = [\"lock\"]\nsource = {{ doc = \"m\", line = 9 }}\n"
+                )
+            })
+            .collect();
+        assert_eq!(
+            messages("unlocks_resolve", &body(&format!("{LOCK}\n{more}"))),
+            ["33 unlocks: a lock has at most 32 (the drive handle follows them in one word)"]
         );
     }
 

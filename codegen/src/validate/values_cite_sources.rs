@@ -1,6 +1,5 @@
-//! Every parameter, PDO mapping, SRDO, enum, flags type, record, control table, lock, unlock and
-//! watchdog cites the manual line
-//! it comes from.
+//! Every parameter, PDO mapping, SRDO, enum, flags type, record, control table, lock, unlock,
+//! watchdog and ramp cites the manual line it comes from.
 
 use crate::diagnostic::{Diagnostic, Span};
 use crate::ir::{Citation, Device};
@@ -77,8 +76,13 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
             .chain(unlocks)
             .chain(watchdog)
     });
+    let ramps = device
+        .ramps
+        .iter()
+        .map(|r| ("ramp of", &r.setpoint, &r.span, &r.source));
     parameters
         .chain(lock)
+        .chain(ramps)
         .chain(pdos)
         .chain(srdos)
         .chain(enums)

@@ -13,8 +13,9 @@ use crate::{BoundedWriteError, UnlockError, LOCKED_EXCEPTION};
 pub enum SmdError {
     /// A request failed (bus, exception, or a value outside the description's range).
     Bus(Error),
-    /// The drive answered a write with exception 0x01: it is locked. The unlock ended (a lock,
-    /// C01 changed, power-down or a serial timeout; lines 414 and 425) or never happened.
+    /// The drive answered a write with exception 0x01, or the handle refused it before sending
+    /// (`WriteRefusal::Locked`): it is locked. The unlock ended (a lock, C01 changed,
+    /// power-down or a serial timeout; lines 414 and 425) or never happened.
     Locked {
         /// The parameter whose write was refused.
         parameter: &'static str,
@@ -93,8 +94,9 @@ impl From<UnlockError> for SmdError {
 }
 
 impl From<Error> for SmdError {
-    /// A write refused with exception 0x01 becomes [`SmdError::Locked`]; a write refused before
-    /// sending because #50 named no known configuration, [`SmdError::UnknownConfiguration`].
+    /// A write refused as locked (exception 0x01, or before sending) becomes
+    /// [`SmdError::Locked`]; a write refused before sending because #50 named no known
+    /// configuration, [`SmdError::UnknownConfiguration`].
     fn from(error: Error) -> Self {
         UnlockError::from(error).into()
     }

@@ -1,8 +1,10 @@
 //! The manual's worked values and rules, through the generated API on an in-memory register map:
 //! internal units (Table 3), ranges refused before sending, the two configurations' registers,
-//! PC507-only parameters, and the fault table. The map has no lock, so values are written through
-//! the raw device (`drive.device().write::<P>()`); the typed setters need an unlock guard
-//! (`tests/unlock_session.rs`).
+//! PC507-only parameters, and the fault table. Values are written through the raw device
+//! (`drive.device().write::<P>()`); the typed setters need an unlock guard
+//! (`tests/unlock_session.rs`). The map has no lock, but the handle follows the drive's: it opens
+//! locked, as the drive powers up (line 1055), so each drive first gets the grant #49 = 0, the
+//! factory password (lines 423-424), through the raw device too.
 
 use drivebus::memory::{MemoryBus, Request};
 use drivebus::modbus::{ModbusLink, Table, UnitId};
@@ -13,14 +15,30 @@ use lenze_smd::{params, LenzeSmd, Variant};
 
 type Drive = LenzeSmd<ModbusLink<MemoryBus>>;
 
-/// A drive whose map holds `registers` (all zero).
+/// #49, Unlock Parameters (line 507).
+const UNLOCK_PARAMETERS: u16 = 49;
+
+/// The grant each drive gets: the factory password 0 to #49.
+fn grant() -> Request {
+    Request::Write {
+        start: UNLOCK_PARAMETERS,
+        values: vec![0],
+    }
+}
+
+/// A drive whose map holds `registers` (all zero), its parameters unlocked by the grant.
 fn drive(variant: Variant, registers: impl IntoIterator<Item = u16>) -> Drive {
     let mut bus = MemoryBus::new();
+    bus.set_register(Table::Holding, UNLOCK_PARAMETERS, 0);
     for r in registers {
         bus.set_register(Table::Holding, r, 0);
     }
     let mut drive = LenzeSmd::modbus(bus, UnitId(1));
     drive.set_variant(variant);
+    drive
+        .device()
+        .write_raw::<params::UnlockParameters>(0)
+        .unwrap();
     drive
 }
 
@@ -31,8 +49,14 @@ fn register(drive: Drive, address: u16) -> Option<u16> {
         .register(Table::Holding, address)
 }
 
+/// The requests sent, but for the grants.
 fn requests(drive: Drive) -> Vec<Request> {
-    drive.into_link().into_bus().log().to_vec()
+    let bus = drive.into_link().into_bus();
+    bus.log()
+        .iter()
+        .filter(|r| **r != grant())
+        .cloned()
+        .collect()
 }
 
 #[test]

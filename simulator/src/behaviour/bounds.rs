@@ -44,12 +44,6 @@ impl Bounds {
             .collect();
         (!bounded.is_empty()).then_some(Self { bounded })
     }
-
-    /// The magnitude bound of `id`, if it has one (the span its ramp times refer to).
-    pub fn magnitude_of(store: &Store, id: ParamId) -> Option<ParamId> {
-        let name = store.parameter(id).bounds.as_ref()?.magnitude.as_deref()?;
-        store.id(name)
-    }
 }
 
 /// The current value of `bound`, unless it has not been set (see the module docs).

@@ -12,9 +12,9 @@ pub mod bounds;
 pub mod cia402;
 pub mod commands;
 pub mod motor;
+pub mod ramp;
 pub mod srdo_validity;
 pub mod state_machine;
-pub mod vl_ramp;
 pub mod write_lock;
 
 /// What the power stage is doing, as the active state machine commands it.

@@ -144,6 +144,11 @@ pub fn emit(device: &Device) -> TokenStream {
         }
     });
     let constructors = constructors(device, &handle);
+    // A drive with a write lock: the device follows it (`unlock.rs` emits `WRITE_LOCK`).
+    let write_lock = device
+        .lock
+        .is_some()
+        .then(|| quote! { .with_write_lock(&WRITE_LOCK) });
     quote! {
         #handle_doc
         #[derive(Debug)]
@@ -156,7 +161,7 @@ pub fn emit(device: &Device) -> TokenStream {
         impl<L: ::drivebus::Link> #handle<L> {
             /// A drive reached over any link.
             pub fn new(link: L) -> Self {
-                Self { device: ::drivebus::Device::new(link, ::drivebus::VariantId::default()) }
+                Self { device: ::drivebus::Device::new(link, ::drivebus::VariantId::default())#write_lock }
             }
 
             /// The runtime device, for generic code.

@@ -11,7 +11,7 @@ use quote::quote;
 
 use super::{doc_attrs, enums::int_literal, ident};
 use crate::emit::{doc, ident as names};
-use crate::ir::{Device, GrantKey, Lock, LockScope, Parameter, Unlock};
+use crate::ir::{Device, GrantKey, Lock, LockScope, Parameter, Unlock, UnlockEnd};
 
 /// The trait an unlock marker implements for each scope it opens: `OpensControls`.
 fn opens_trait(scope: &str) -> Ident {
@@ -51,6 +51,7 @@ pub fn emit(device: &Device) -> TokenStream {
             #refusal_doc
             pub const LOCKED_EXCEPTION: u8 = #refusal;
         },
+        write_lock_table(device, lock),
         error_type(),
         read_view(),
         guard(&handle, &lock_marker, &lock_bound),
@@ -95,6 +96,79 @@ fn markers(lock: &Lock) -> TokenStream {
             #( #traits )*
             #( #unlocks )*
         }
+    }
+}
+
+/// `WRITE_LOCK`: the lock as the runtime device follows it, so that a write to a locked
+/// parameter through any path (`drive.device().write_raw(..)` too) is refused before sending.
+fn write_lock_table(device: &Device, lock: &Lock) -> TokenStream {
+    let command = &lock.command;
+    let literal = |v: &i64| proc_macro2::Literal::i128_unsuffixed(i128::from(*v));
+    let scopes = lock.scopes.iter().map(|scope| {
+        let name = &scope.name;
+        let parameters = device
+            .parameters
+            .iter()
+            .filter(|p| {
+                device
+                    .lock_scope_of(p)
+                    .is_some_and(|s| s.name == scope.name)
+            })
+            .map(|p| &p.name);
+        let opened_by = lock.unlocks_opening(&scope.name).map(|u| &u.name);
+        quote! {
+            ::drivebus::write_lock::LockScope {
+                name: #name,
+                parameters: &[#( #parameters ),*],
+                opened_by: &[#( #opened_by ),*],
+            }
+        }
+    });
+    let unlocks = lock.unlocks.iter().map(|unlock| {
+        let name = &unlock.name;
+        let grant = &unlock.grant.parameter;
+        let key = match &unlock.grant.key {
+            GrantKey::Value(v) => {
+                let v = literal(v);
+                quote! { Some(#v) }
+            }
+            GrantKey::Password(_) => quote! { None },
+        };
+        let opens = &unlock.allows;
+        let lost_without = match &unlock.requires {
+            Some(r) if unlock.ends.contains(&UnlockEnd::RequirementLost) => {
+                let parameter = &r.parameter;
+                let values = r.values.iter().map(literal);
+                quote! {
+                    Some(::drivebus::write_lock::Requirement {
+                        parameter: #parameter,
+                        values: &[#( #values ),*],
+                    })
+                }
+            }
+            _ => quote! { None },
+        };
+        quote! {
+            ::drivebus::write_lock::UnlockRule {
+                name: #name,
+                grant: #grant,
+                key: #key,
+                opens: &[#( #opens ),*],
+                lost_without: #lost_without,
+            }
+        }
+    });
+    quote! {
+        /// The write lock as the runtime device follows it: the handle starts locked, and a
+        /// write to a parameter of a scope no unlock sent through the handle opens is refused
+        /// before sending (`drivebus::WriteRefusal::Locked`), on the untyped
+        /// `drive.device().write_raw(..)` path too.
+        pub static WRITE_LOCK: ::drivebus::write_lock::WriteLock = ::drivebus::write_lock::WriteLock {
+            command: #command,
+            refusal: LOCKED_EXCEPTION,
+            scopes: &[#( #scopes ),*],
+            unlocks: &[#( #unlocks ),*],
+        };
     }
 }
 
@@ -343,8 +417,10 @@ fn error_type() -> TokenStream {
             /// A request failed (bus, exception, a value outside the description's range, or a
             /// drive whose configuration the description does not cover).
             Drive(::drivebus::Error),
-            /// The drive answered a write with [`LOCKED_EXCEPTION`]: it is locked. The unlock
-            /// ended (lock, power-down, a serial timeout, a changed requirement) or never began.
+            /// The drive answered a write with [`LOCKED_EXCEPTION`], or the handle refused it
+            /// before sending because no unlock sent through it opens the parameter
+            /// (`drivebus::WriteRefusal::Locked`): it is locked. The unlock ended (lock,
+            /// power-down, a serial timeout, a changed requirement) or never began.
             Locked {
                 /// The parameter whose write was refused.
                 parameter: &'static str,
@@ -361,13 +437,18 @@ fn error_type() -> TokenStream {
         }
 
         impl From<::drivebus::Error> for UnlockError {
-            /// A write refused with [`LOCKED_EXCEPTION`] becomes [`UnlockError::Locked`].
+            /// A write refused as locked, by the drive with [`LOCKED_EXCEPTION`] or by the
+            /// handle before sending, becomes [`UnlockError::Locked`].
             fn from(error: ::drivebus::Error) -> Self {
                 match &error {
                     ::drivebus::Error::Bus {
                         parameter,
                         cause: ::drivebus::BusError::ModbusException { code, .. },
                     } if code.code() == LOCKED_EXCEPTION => Self::Locked { parameter },
+                    ::drivebus::Error::WritesRefused {
+                        parameter,
+                        reason: ::drivebus::WriteRefusal::Locked { .. },
+                    } => Self::Locked { parameter },
                     _ => Self::Drive(error),
                 }
             }

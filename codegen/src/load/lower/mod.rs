@@ -13,6 +13,7 @@ mod models;
 mod occupies;
 mod overlay;
 mod pdo;
+mod ramps;
 mod read_blocks;
 mod refine;
 mod srdo;
@@ -175,6 +176,7 @@ impl Lowering<'_> {
             parameters: Vec::new(),
             cia402: None,
             state_machine: None,
+            ramps: Vec::new(),
             pdos: Vec::new(),
             srdos: Vec::new(),
             indexed: Vec::new(),
@@ -210,7 +212,8 @@ impl Lowering<'_> {
         }
     }
 
-    /// Identity citation, capabilities, variants, control and PDO mappings come from the root file only.
+    /// Identity citation, capabilities, variants, control, ramps and PDO mappings come from the root
+    /// file only.
     fn root_items(&mut self, raw: &RawFile, device: &mut ir::Device) {
         device.device.source = raw
             .device
@@ -230,6 +233,7 @@ impl Lowering<'_> {
             .state_machine
             .as_ref()
             .map(|m| self.state_machine(m, &raw.state, &raw.transition));
+        device.ramps = raw.ramp.iter().filter_map(|r| self.ramp(r)).collect();
         if raw.state_machine.is_none() {
             if let Some(stray) = raw
                 .state

@@ -1,0 +1,50 @@
+//! Lowering of `[[ramp]]` (root file only). The form of each slope is checked here (`{ time }`,
+//! `{ rate }` or `{ speed, time }`); whether the names resolve is the rule `ramps_resolve`.
+
+use toml::Spanned;
+
+use super::{Lowering, VALUE_RULE};
+use crate::ir;
+use crate::load::raw_ramp::{RawRamp, RawSlope};
+
+impl Lowering<'_> {
+    /// A ramp, or `None` (reported) when a slope has no valid form.
+    pub(super) fn ramp(&mut self, raw: &RawRamp) -> Option<ir::Ramp> {
+        let up = self.slope(&raw.up);
+        let down = self.slope(&raw.down);
+        Some(ir::Ramp {
+            setpoint: raw.setpoint.get_ref().clone(),
+            up: up?,
+            down: down?,
+            full_scale: raw.full_scale.clone(),
+            enable: raw.enable.clone(),
+            doc: raw.doc.clone(),
+            source: raw.source.as_ref().and_then(|c| self.citation(c)),
+            span: self.span(&raw.setpoint),
+        })
+    }
+
+    fn slope(&mut self, raw: &Spanned<RawSlope>) -> Option<ir::Slope> {
+        let s = raw.get_ref();
+        let slope = match (&s.time, &s.rate, &s.speed) {
+            (Some(time), None, None) => ir::Slope::Time { time: time.clone() },
+            (None, Some(rate), None) => ir::Slope::Rate { rate: rate.clone() },
+            (Some(time), None, Some(speed)) => ir::Slope::Delta {
+                speed: speed.clone(),
+                time: time.clone(),
+            },
+            _ => {
+                let span = self.span(raw);
+                self.error_help(
+                    VALUE_RULE,
+                    span,
+                    "a ramp slope is `{ time }`, `{ rate }` or `{ speed, time }`",
+                    "`time`: from 0 to `full_scale`; `rate`: setpoint units per second; \
+                     `speed` and `time`: that speed change in that time",
+                );
+                return None;
+            }
+        };
+        Some(slope)
+    }
+}

@@ -1,0 +1,206 @@
+//! Ramps resolve: each `[[ramp]]` names an integer setpoint shaped by no other ramp, integer
+//! slope, full-scale and enable parameters, ramp times in `ms` or `s`, and a `full_scale`
+//! exactly when a slope is a time from 0 to it.
+
+use std::collections::BTreeSet;
+
+use crate::diagnostic::Diagnostic;
+use crate::ir::{per_second, Device, Ramp};
+
+const RULE: &str = "ramps_resolve";
+
+/// Reports ramps that name nothing usable.
+pub fn check(device: &Device) -> Vec<Diagnostic> {
+    let mut out = Vec::new();
+    let mut setpoints = BTreeSet::new();
+    for ramp in &device.ramps {
+        let mut report = |message: String| {
+            out.push(Diagnostic::error(RULE, ramp.span.clone(), message));
+        };
+        if !setpoints.insert(ramp.setpoint.as_str()) {
+            report(format!("setpoint `{}` has two ramps", ramp.setpoint));
+        }
+        for (role, name) in named(ramp) {
+            integer(device, role, name, &mut report);
+        }
+        let times: BTreeSet<&str> = ramp.slopes().iter().filter_map(|s| s.time()).collect();
+        for time in times {
+            time_unit(device, time, &mut report);
+        }
+        match (ramp.needs_full_scale(), &ramp.full_scale) {
+            (true, None) => report(format!(
+                "the ramp of `{}` gives a time from 0 to full scale but no `full_scale`",
+                ramp.setpoint
+            )),
+            (false, Some(full_scale)) => report(format!(
+                "`full_scale = \"{full_scale}\"` is used by `{{ time }}` slopes only"
+            )),
+            _ => {}
+        }
+    }
+    out
+}
+
+/// Every parameter a ramp names, with its role.
+fn named(ramp: &Ramp) -> Vec<(&'static str, &str)> {
+    let mut named = vec![("setpoint", ramp.setpoint.as_str())];
+    named.extend(
+        ramp.slopes()
+            .iter()
+            .flat_map(|s| s.parameters())
+            .map(|p| ("slope", p)),
+    );
+    named.extend(ramp.full_scale.as_deref().map(|p| ("full scale", p)));
+    named.extend(ramp.enable.as_deref().map(|p| ("enable", p)));
+    named
+}
+
+fn integer(device: &Device, role: &str, name: &str, report: &mut impl FnMut(String)) {
+    match device.parameter(name) {
+        None => report(format!("the ramp's {role} `{name}` is not a parameter")),
+        Some(p) if !p.data_type.is_integer() => {
+            report(format!("the ramp's {role} `{name}` is not an integer"));
+        }
+        Some(_) => {}
+    }
+}
+
+fn time_unit(device: &Device, name: &str, report: &mut impl FnMut(String)) {
+    let Some(p) = device.parameter(name) else {
+        return;
+    };
+    if p.unit.as_deref().and_then(per_second).is_none() {
+        report(format!(
+            "the ramp time `{name}` has unit {}; a ramp time is in `ms` or `s`",
+            p.unit
+                .as_deref()
+                .map_or("none".to_string(), |u| format!("`{u}`"))
+        ));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::validate::test_support::{device, messages};
+
+    /// A Lafert-style drive: a setpoint, ramp times in ms, a full scale and a ramp enable.
+    const PARAMETERS: &str = r#"
+[[parameter]]
+name = "speed_setpoint"
+type = "i16"
+unit = "rpm"
+modbus = { table = "holding", address = 0x42, access = "rw" }
+source = { doc = "m", line = 1 }
+
+[[parameter]]
+name = "full_scale_velocity"
+type = "u16"
+unit = "rpm"
+modbus = { table = "holding", address = 3, access = "rw" }
+source = { doc = "m", line = 2 }
+
+[[parameter]]
+name = "speed_ramp_up"
+type = "u16"
+unit = "ms"
+modbus = { table = "holding", address = 0x40, access = "rw" }
+source = { doc = "m", line = 3 }
+
+[[parameter]]
+name = "speed_ramp_down"
+type = "u16"
+unit = "ms"
+modbus = { table = "holding", address = 0x41, access = "rw" }
+source = { doc = "m", line = 4 }
+
+[[parameter]]
+name = "ramp_enable"
+type = "u16"
+modbus = { table = "holding", address = 0x3F, access = "rw" }
+source = { doc = "m", line = 5 }
+
+[[parameter]]
+name = "label"
+type = "string"
+length = 4
+modbus = { table = "holding", address = 0x50, words = 2, access = "rw" }
+source = { doc = "m", line = 6 }
+"#;
+
+    const RAMP: &str = r#"
+[[ramp]]
+setpoint = "speed_setpoint"
+up = { time = "speed_ramp_up" }
+down = { time = "speed_ramp_down" }
+full_scale = "full_scale_velocity"
+enable = "ramp_enable"
+source = { doc = "m", line = 7 }
+"#;
+
+    fn body(ramp: &str) -> String {
+        format!("{ramp}\n{PARAMETERS}")
+    }
+
+    #[test]
+    fn a_complete_ramp_resolves() {
+        let device = device(&body(RAMP));
+        assert_eq!(device.ramps.len(), 1);
+        assert!(device.ramps[0].needs_full_scale());
+        assert!(messages("ramps_resolve", &body(RAMP)).is_empty());
+    }
+
+    #[test]
+    fn unknown_and_non_integer_names_are_reported() {
+        let ramp = RAMP
+            .replace(r#"enable = "ramp_enable""#, r#"enable = "ramp_on""#)
+            .replace(
+                r#"full_scale = "full_scale_velocity""#,
+                r#"full_scale = "label""#,
+            );
+        assert_eq!(
+            messages("ramps_resolve", &body(&ramp)),
+            [
+                "the ramp's full scale `label` is not an integer",
+                "the ramp's enable `ramp_on` is not a parameter",
+            ]
+        );
+    }
+
+    #[test]
+    fn ramp_times_are_in_ms_or_s() {
+        let ramp = RAMP.replace(
+            r#"down = { time = "speed_ramp_down" }"#,
+            r#"down = { speed = "speed_ramp_down", time = "full_scale_velocity" }"#,
+        );
+        assert_eq!(
+            messages("ramps_resolve", &body(&ramp)),
+            ["the ramp time `full_scale_velocity` has unit `rpm`; a ramp time is in `ms` or `s`"]
+        );
+    }
+
+    #[test]
+    fn full_scale_goes_with_time_slopes_and_a_setpoint_has_one_ramp() {
+        let without = RAMP.replace("full_scale = \"full_scale_velocity\"\n", "");
+        assert_eq!(
+            messages("ramps_resolve", &body(&without)),
+            ["the ramp of `speed_setpoint` gives a time from 0 to full scale but no `full_scale`"]
+        );
+        let rates = RAMP
+            .replace(
+                r#"{ time = "speed_ramp_up" }"#,
+                r#"{ rate = "speed_ramp_up" }"#,
+            )
+            .replace(
+                r#"{ time = "speed_ramp_down" }"#,
+                r#"{ rate = "speed_ramp_down" }"#,
+            );
+        assert_eq!(
+            messages("ramps_resolve", &body(&rates)),
+            ["`full_scale = \"full_scale_velocity\"` is used by `{ time }` slopes only"]
+        );
+        assert_eq!(
+            messages("ramps_resolve", &body(&format!("{RAMP}{RAMP}"))),
+            ["setpoint `speed_setpoint` has two ramps"]
+        );
+    }
+}
