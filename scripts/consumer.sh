@@ -18,7 +18,9 @@ for crate in drivebus drivegen drivesim lafert-smartris; do
     version=$(cargo pkgid --offline -p "$crate" | sed 's/.*[#@]//')
     archive="target/package/$crate-$version.crate"
     [[ -f $archive ]] || { echo "consumer: no $archive; run scripts/package.sh first" >&2; exit 1; }
-    tar -xzf "$archive" -C "$project/crates"
+    # Unpacked with the time of unpacking: cargo gives archived files fixed times, and a build of
+    # an earlier archive of the same version, kept in target/consumer, would pass for up to date.
+    tar -xzf "$archive" -C "$project/crates" --touch
     patches+="$crate = { path = \"crates/$crate-$version\" }"$'\n'
 done
 
