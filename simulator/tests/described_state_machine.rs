@@ -3,8 +3,9 @@
 
 use drivesim::{Drive, Simulator};
 
-/// A made-up conveyor drive: boots through `init`, runs on 0x10, brakes on 0x20, and shows
-/// `jogging` instead of `running` while its mode register holds 7.
+/// A made-up conveyor drive: boots through `init`, runs on 0x10 following `belt_speed`, brakes on
+/// 0x20, shows `jogging` instead of `running` while its mode register holds 7, and shows the
+/// belt's speed in `measured_speed` (its `velocity_average` is some other value).
 const CONVEYOR: &str = r#"
 format = 1
 [device]
@@ -36,6 +37,21 @@ name = "fault_number"
 type = "u16"
 modbus = { table = "input", address = 3, access = "r" }
 source = { doc = "m", line = 5 }
+[[parameter]]
+name = "belt_speed"
+type = "i16"
+modbus = { table = "holding", address = 4 }
+source = { doc = "m", line = 16 }
+[[parameter]]
+name = "measured_speed"
+type = "i16"
+modbus = { table = "input", address = 5, access = "r" }
+source = { doc = "m", line = 17 }
+[[parameter]]
+name = "velocity_average"
+type = "i16"
+modbus = { table = "input", address = 6, access = "r" }
+source = { doc = "m", line = 18 }
 
 [state_machine]
 name = "belt"
@@ -43,6 +59,8 @@ status = "state"
 command = "order"
 fault = "tripped"
 fault_code = "fault_number"
+setpoint = "belt_speed"
+actual = "measured_speed"
 source = { doc = "m", line = 6 }
 [[state]]
 name = "init"
@@ -110,12 +128,16 @@ fn value(drive: &Drive, name: &str) -> i128 {
     store.int(store.id(name).unwrap()).unwrap()
 }
 
-fn order(drive: &mut Drive, raw: i128) {
-    let id = drive.store().id("order").unwrap();
+fn write(drive: &mut Drive, name: &str, raw: i128) {
+    let id = drive.store().id(name).unwrap();
     let data_type = drive.store().parameter(id).data_type;
     drive
         .write(id, &drivesim::raw::from_int(data_type, raw))
         .unwrap();
+}
+
+fn order(drive: &mut Drive, raw: i128) {
+    write(drive, "order", raw);
 }
 
 #[test]
@@ -160,5 +182,28 @@ fn a_fault_enters_the_fault_state_and_a_reset_boots_again() {
         assert_eq!(value(drive, "state"), 0x80, "no command leaves the fault");
         drive.reboot();
         assert_eq!(value(drive, "state"), 0x02);
+    });
+}
+
+#[test]
+fn the_motor_shows_its_speed_in_the_machines_actual() {
+    let sim = conveyor();
+    sim.with(|drive| {
+        write(drive, "belt_speed", -300);
+        order(drive, 0x10);
+        drive.tick(std::time::Duration::from_millis(10));
+        assert_eq!(
+            value(drive, "measured_speed"),
+            -300,
+            "no ramp: the speed jumps"
+        );
+        assert_eq!(
+            value(drive, "velocity_average"),
+            0,
+            "a parameter's name does not make it the actual speed"
+        );
+        order(drive, 0x20);
+        drive.tick(std::time::Duration::from_millis(10));
+        assert_eq!(value(drive, "measured_speed"), 0, "braking stops at once");
     });
 }

@@ -162,6 +162,10 @@ pub struct StateMachine {
     /// The setpoint the motor follows in states whose motion is `follow`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub setpoint: Option<String>,
+    /// The parameter that shows the speed the motor turns at, in the setpoint's raw units (the
+    /// simulator's motor shows its speed there, besides the CiA 402 actual values).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub actual: Option<String>,
     /// States, in recognition order (the first match wins).
     pub states: Vec<MachineState>,
     /// Transitions.
@@ -642,7 +646,7 @@ pub struct ObjectAddress {
 }
 
 /// How raw values become engineering values.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(untagged)]
 pub enum Scale {
     /// `raw × factor + offset`, exact; serialized as the factor's `numerator` and

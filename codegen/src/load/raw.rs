@@ -432,6 +432,7 @@ pub struct RawStateMachine {
     pub fault: Option<Spanned<String>>,
     pub fault_code: Option<Spanned<String>>,
     pub setpoint: Option<Spanned<String>>,
+    pub actual: Option<Spanned<String>>,
     pub source: Option<Spanned<RawCitation>>,
 }
 

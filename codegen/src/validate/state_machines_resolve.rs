@@ -1,13 +1,14 @@
 //! Drive control tables refer to what exists: the safe torque off bit and a vendor machine's
-//! status and command registers are 16-bit parameters, transitions name declared states, and a
-//! machine fits the runtime planner.
+//! status and command registers are 16-bit parameters, transitions name declared states, a
+//! machine's actual speed is an integer in its setpoint's units, and a machine fits the runtime
+//! planner.
 
 use std::collections::BTreeSet;
 
 use drivebus::control::machine::MAX_STATES;
 
 use crate::diagnostic::{Diagnostic, Span};
-use crate::ir::{DataType, Device};
+use crate::ir::{DataType, Device, StateMachine};
 
 const RULE: &str = "state_machines_resolve";
 
@@ -106,6 +107,7 @@ fn vendor(device: &Device) -> Vec<Diagnostic> {
     let parameters = [
         ("fault_code", m.fault_code.as_ref()),
         ("setpoint", m.setpoint.as_ref()),
+        ("actual", m.actual.as_ref()),
     ]
     .into_iter()
     .filter_map(|(role, name)| Some((role, name?)))
@@ -122,6 +124,7 @@ fn vendor(device: &Device) -> Vec<Diagnostic> {
             );
         }
     }
+    found.extend(actual_speed(device, m));
     for t in &m.transitions {
         for state in t.from.iter().chain(std::iter::once(&t.to)) {
             if !names.contains(state.as_str()) {
@@ -140,6 +143,29 @@ fn vendor(device: &Device) -> Vec<Diagnostic> {
         }
     }
     found
+}
+
+/// The machine's `actual` speed is an integer the motor's speed can be shown in, with the unit and
+/// scale of the `setpoint` it follows (the simulator copies raw values). A name that is not a
+/// parameter is reported with the other names.
+fn actual_speed(device: &Device, m: &StateMachine) -> Option<Diagnostic> {
+    let actual = device.parameter(m.actual.as_deref()?)?;
+    let message = if !actual.data_type.is_integer() {
+        format!("actual `{}` must be an integer parameter", actual.name)
+    } else {
+        let setpoint = device.parameter(m.setpoint.as_deref()?)?;
+        if (&actual.unit, &actual.scale) == (&setpoint.unit, &setpoint.scale) {
+            return None;
+        }
+        format!(
+            "actual `{}` and setpoint `{}` differ in unit or scale",
+            actual.name, setpoint.name
+        )
+    };
+    Some(
+        Diagnostic::error(RULE, m.span.clone(), message)
+            .help("name the parameter that shows the motor's speed in the setpoint's raw units"),
+    )
 }
 
 /// Reports control tables that refer to missing or unsuitable parameters and states.
@@ -202,6 +228,7 @@ initial = "boot"
 fault = "alarm"
 fault_code = "error_code"
 setpoint = "speed"
+actual = "velocity"
 [[state]]
 name = "standby"
 status = {{ mask = 2, value = 2, when = {{ parameter = "mode", value = 1 }} }}
@@ -215,8 +242,65 @@ source = {{ doc = "m", line = 2 }}
                 "`fault` names state `alarm`, which is not declared",
                 "fault_code `error_code` is not a parameter of this description",
                 "setpoint `speed` is not a parameter of this description",
+                "actual `velocity` is not a parameter of this description",
                 "status pattern `when` `mode` is not a parameter of this description",
             ]
+        );
+    }
+
+    /// A machine with a `speed` setpoint in rpm and the given `actual`, plus `extra` parameters.
+    fn machine_showing(actual: &str, extra: &str) -> String {
+        format!(
+            r#"{STATUS}
+[[parameter]]
+name = "speed"
+type = "i16"
+unit = "rpm"
+modbus = {{ table = "holding", address = 0x0042, access = "rw" }}
+source = {{ doc = "m", line = 5 }}
+{extra}
+[state_machine]
+name = "run"
+status = "status"
+command = "status"
+setpoint = "speed"
+actual = "{actual}"
+[[state]]
+name = "standby"
+status = {{ mask = 2, value = 2 }}
+source = {{ doc = "m", line = 2 }}
+"#
+        )
+    }
+
+    #[test]
+    fn actual_speed_is_an_integer_in_the_setpoints_units() {
+        let shown = |name: &str, typ: &str, unit: &str, scale: &str| {
+            let extra = format!(
+                r#"
+[[parameter]]
+name = "{name}"
+type = "{typ}"
+unit = "{unit}"
+{scale}
+modbus = {{ table = "input", address = 0x0068, access = "r" }}
+source = {{ doc = "m", line = 6 }}
+"#
+            );
+            messages("state_machines_resolve", &machine_showing(name, &extra))
+        };
+        assert!(shown("average", "i16", "rpm", "").is_empty());
+        assert_eq!(
+            shown("average", "f32", "rpm", ""),
+            ["actual `average` must be an integer parameter"]
+        );
+        assert_eq!(
+            shown("average", "i16", "Hz", ""),
+            ["actual `average` and setpoint `speed` differ in unit or scale"]
+        );
+        assert_eq!(
+            shown("filtered", "i16", "rpm", "scale = \"1/4\""),
+            ["actual `filtered` and setpoint `speed` differ in unit or scale"]
         );
     }
 

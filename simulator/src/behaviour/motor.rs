@@ -1,9 +1,11 @@
 //! A simple motor: the actual speed follows the setpoint the state machine enables, along the
 //! ramp the description gives that setpoint (`[[ramp]]`, see [`SetpointRamp`]), and stops at once
-//! on a quick stop or when the power stage is off. Without a ramp, the speed jumps.
+//! on a quick stop or when the power stage is off. Without a ramp, the speed jumps. The speed
+//! shows in the vendor machine's `actual` parameter and the CiA 402 actual values.
 //!
-//! Speeds are raw values: the setpoint and the actual speed registers of one drive use the same
-//! scale in every shipped description. A setpoint's bounds are checked by `Bounds`.
+//! Speeds are raw values: `state_machines_resolve` holds a machine's `actual` to its setpoint's
+//! unit and scale; the CiA 402 actual values are in their setpoints' units (606Ch in those of
+//! 60FFh, 6044h in those of 6042h). A setpoint's bounds are checked by `Bounds`.
 
 use std::time::Duration;
 
@@ -20,11 +22,14 @@ pub struct Motor {
 }
 
 impl Motor {
-    /// Present when the description has an actual-speed value to show.
+    /// Present when the description has an actual-speed value to show: the vendor state
+    /// machine's `actual`, the CiA 402 velocity actual value (606Ch) or the vl one (6044h).
     pub fn detect(store: &mut Store) -> Option<Self> {
-        let actuals: Vec<ParamId> = ["velocity_average"]
-            .iter()
-            .filter_map(|name| store.id(name))
+        let vendor = store.device().state_machine.as_ref();
+        let actuals: Vec<ParamId> = vendor
+            .and_then(|m| m.actual.as_deref())
+            .and_then(|name| store.id(name))
+            .into_iter()
             .chain(object(store, 0x606C, 0))
             // The vl velocity actual value (e.g. the ez-Wheel SWD's), in the units of 6042h.
             .chain(object(store, 0x6044, 0))

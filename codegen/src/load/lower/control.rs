@@ -70,6 +70,7 @@ impl Lowering<'_> {
             fault: name(&m.fault),
             fault_code: name(&m.fault_code),
             setpoint: name(&m.setpoint),
+            actual: name(&m.actual),
             states,
             transitions,
             source: m.source.as_ref().and_then(|s| self.citation(s)),
