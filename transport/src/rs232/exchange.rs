@@ -32,9 +32,9 @@ enum Verdict {
 
 /// One request to one station and the state of its answer.
 ///
-/// The request telegram is all the exchange keeps of the request: an answer must repeat its
-/// station byte and its object bytes where they lie, and its command byte says whether a value
-/// or a confirmation is due.
+/// The exchange keeps the request as its telegram: an answer must repeat its station byte and its
+/// object bytes where they lie, and its command byte says whether a value or a confirmation is
+/// due. Beside it, the key of the fast path that takes an upload's expected answer.
 #[derive(Debug, Clone)]
 pub struct Exchange {
     telegram: Telegram,
@@ -188,7 +188,7 @@ impl Exchange {
 /// index and subindex (bytes 2–4).
 const UPLOAD_KEY_BYTES: u64 = 0x0000_00FF_FFFF_00FF;
 
-/// The upload key of a download: bits outside [`UPLOAD_KEY_BYTES`], so no answer matches it.
+/// The disarmed upload key: bits outside [`UPLOAD_KEY_BYTES`], so no answer matches it.
 const NO_UPLOAD: u64 = !UPLOAD_KEY_BYTES;
 
 /// The upload key of `object` at `station`: its bytes where [`UPLOAD_KEY_BYTES`] are. Built from
