@@ -10,6 +10,9 @@ use crate::rng::Rng;
 use crate::tally::Tally;
 use crate::truth::Truth;
 
+/// How often a long run says how far it is (on stderr).
+const PROGRESS_EVERY: u64 = 100_000;
+
 /// Runs `transactions` transactions on `endpoint`, half reads and half writes, from `rng`;
 /// stops early once `deadline` (if any) has passed.
 pub fn soak(
@@ -28,6 +31,13 @@ pub fn soak(
     for done in 0..transactions {
         if done % 1000 == 0 && deadline.is_some_and(|deadline| Instant::now() >= deadline) {
             break;
+        }
+        if done > 0 && done % PROGRESS_EVERY == 0 {
+            eprintln!(
+                "soak: {done} transactions after {:.0} s, {} wrong values",
+                started.elapsed().as_secs_f64(),
+                tally.wrong_values
+            );
         }
         let first = rng.below(REGISTERS as u64) as usize;
         let span = 1 + rng.below(endpoint.max_span().min(REGISTERS - first) as u64) as usize;
