@@ -106,15 +106,7 @@ fn write_lock_table(device: &Device, lock: &Lock) -> TokenStream {
     let literal = |v: &i64| proc_macro2::Literal::i128_unsuffixed(i128::from(*v));
     let scopes = lock.scopes.iter().map(|scope| {
         let name = &scope.name;
-        let parameters = device
-            .parameters
-            .iter()
-            .filter(|p| {
-                device
-                    .lock_scope_of(p)
-                    .is_some_and(|s| s.name == scope.name)
-            })
-            .map(|p| &p.name);
+        let parameters = scope_parameters(device, scope).map(|p| &p.name);
         let opened_by = lock.unlocks_opening(&scope.name).map(|u| &u.name);
         quote! {
             ::drivebus::write_lock::LockScope {
@@ -172,17 +164,22 @@ fn write_lock_table(device: &Device, lock: &Lock) -> TokenStream {
     }
 }
 
+/// The parameters in `scope` of the lock.
+fn scope_parameters<'a>(
+    device: &'a Device,
+    scope: &'a LockScope,
+) -> impl Iterator<Item = &'a Parameter> {
+    device.parameters.iter().filter(move |p| {
+        device
+            .lock_scope_of(p)
+            .is_some_and(|s| s.name == scope.name)
+    })
+}
+
 /// The guard's setters of one scope: one accessor per parameter of the scope.
 fn scope_setters(device: &Device, scope: &LockScope, lock_bound: &TokenStream) -> TokenStream {
     let opens = opens_trait(&scope.name);
-    let setters = device
-        .parameters
-        .iter()
-        .filter(|p| {
-            device
-                .lock_scope_of(p)
-                .is_some_and(|s| s.name == scope.name)
-        })
+    let setters = scope_parameters(device, scope)
         .filter(|p| !super::indexed::is_member(p, device))
         .map(setter);
     quote! {
