@@ -238,12 +238,12 @@ fn parameters_are_read_and_written_by_name_over_a_link() {
     ));
     assert_eq!(
         write(&device, &mut link, "speed_setpoint", "-4501rpm"),
-        Err(InterpretError::OutsideBound {
+        Err(InterpretError::OutsideBound(drivebus::OutsideBound {
             parameter: "speed_setpoint".into(),
             bound: "full_scale_velocity".into(),
             raw: -4501,
             limit: 4500
-        })
+        }))
     );
     assert!(matches!(
         write(&device, &mut link, "bus_dc_link", "48V"),

@@ -26,6 +26,7 @@
 #[cfg(any(feature = "std", test))]
 extern crate std;
 
+pub mod bound;
 pub mod canopen;
 #[doc(hidden)] // the checks generated parameters call before sending
 pub mod check;
@@ -54,6 +55,7 @@ pub mod units;
 pub mod value;
 pub mod write_lock;
 
+pub use bound::{Bound, OutsideBound};
 pub use data_type::DataType;
 pub use device::{Accessor, Device};
 pub use error::{BusError, Error, ValueError, WriteRefusal};

@@ -347,11 +347,13 @@ fn the_speed_setpoint_lies_within_the_full_scale_velocity() {
         (Table::Holding, 0x0003, 0x1194),
         (Table::Holding, 0x0042, 0),
     ]);
-    let beyond = |raw, limit| lafert_smartris::BoundedWriteError::OutsideBound {
-        parameter: "speed_setpoint",
-        bound: "full_scale_velocity",
-        raw,
-        limit,
+    let beyond = |raw, limit| {
+        lafert_smartris::BoundedWriteError::OutsideBound(drivebus::OutsideBound {
+            parameter: "speed_setpoint",
+            bound: "full_scale_velocity",
+            raw,
+            limit,
+        })
     };
     assert_eq!(
         drive.write_speed_setpoint(Rpm(4501.0)),

@@ -37,34 +37,16 @@ pub enum SmdError {
         allowed: &'static [i128],
     },
     /// A value lies beyond a bound set by another parameter's current value (#40 within
-    /// C10...C11, line 501; the description's `bounds`). Nothing was sent.
-    OutsideBound {
-        /// The parameter being written.
-        parameter: &'static str,
-        /// The parameter whose current value is the bound that was broken.
-        bound: &'static str,
-        /// The raw value asked for (0.1 Hz for #40).
-        raw: i128,
-        /// The bound's current raw value.
-        limit: i128,
-    },
+    /// C10...C11, line 501; the description's `bounds`; #40's raw values are 0.1 Hz). Nothing
+    /// was sent.
+    OutsideBound(drivebus::OutsideBound),
 }
 
 impl From<BoundedWriteError> for SmdError {
     fn from(error: BoundedWriteError) -> Self {
         match error {
             BoundedWriteError::Drive(error) => error.into(),
-            BoundedWriteError::OutsideBound {
-                parameter,
-                bound,
-                raw,
-                limit,
-            } => Self::OutsideBound {
-                parameter,
-                bound,
-                raw,
-                limit,
-            },
+            BoundedWriteError::OutsideBound(refusal) => Self::OutsideBound(refusal),
         }
     }
 }
@@ -122,15 +104,7 @@ impl fmt::Display for SmdError {
                 f,
                 "{parameter} is {found}; unlocking needs one of {allowed:?} (C01 = 10 or 11 for serial control): nothing was written"
             ),
-            Self::OutsideBound {
-                parameter,
-                bound,
-                raw,
-                limit,
-            } => write!(
-                f,
-                "{parameter}: raw value {raw} is beyond the current value {limit} of {bound}"
-            ),
+            Self::OutsideBound(refusal) => write!(f, "{refusal}"),
         }
     }
 }

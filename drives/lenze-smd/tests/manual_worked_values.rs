@@ -198,19 +198,19 @@ fn the_pi_setpoint_lies_within_c86_and_c87() {
     let mut unlocked = d.unlock_parameter_writing(0).unwrap();
     assert_eq!(
         unlocked.write_pi_setpoint(50.1).unwrap_err(),
-        lenze_smd::BoundedWriteError::OutsideBound {
+        lenze_smd::BoundedWriteError::OutsideBound(drivebus::OutsideBound {
             parameter: "pi_setpoint",
             bound: "pi_max_feedback",
             raw: 501,
             limit: 500
-        }
+        })
     );
     assert!(matches!(
         unlocked.write_pi_setpoint(9.9).unwrap_err(),
-        lenze_smd::BoundedWriteError::OutsideBound {
+        lenze_smd::BoundedWriteError::OutsideBound(drivebus::OutsideBound {
             bound: "pi_min_feedback",
             ..
-        }
+        })
     ));
     unlocked.write_pi_setpoint(25.0).unwrap();
     drop(unlocked);

@@ -110,10 +110,10 @@ fn pc507_status_version_and_a_control_session() {
         session
             .write_serial_speed_command(Hertz(50.1))
             .map_err(SmdError::from),
-        Err(SmdError::OutsideBound {
+        Err(SmdError::OutsideBound(drivebus::OutsideBound {
             bound: "maximum_output_frequency",
             ..
-        })
+        }))
     ));
     session.command(Command::Start).unwrap();
     session.command(Command::Stop).unwrap();

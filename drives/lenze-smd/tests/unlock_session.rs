@@ -111,20 +111,20 @@ fn the_serial_speed_stays_within_c10_and_c11() {
     let mut session = d.unlock_controls().unwrap();
     assert_eq!(
         SmdError::from(session.write_serial_speed_command(Hertz(9.9)).unwrap_err()),
-        SmdError::OutsideBound {
+        SmdError::OutsideBound(drivebus::OutsideBound {
             parameter: "serial_speed_command",
             bound: "minimum_output_frequency",
             raw: 99,
             limit: 100,
-        }
+        })
     );
     let above = SmdError::from(session.write_serial_speed_command(Hertz(50.1)).unwrap_err());
     assert!(matches!(
         above,
-        SmdError::OutsideBound {
+        SmdError::OutsideBound(drivebus::OutsideBound {
             bound: "maximum_output_frequency",
             ..
-        }
+        })
     ));
     session.write_serial_speed_command(Hertz(50.0)).unwrap();
     drop(session);

@@ -5,41 +5,35 @@
 //! A bounding parameter that still reads 0 while the description gives it no default has not been
 //! set (a Lafert full scale depends on the motor fitted; `--set` gives it): it bounds nothing.
 
+use drivebus::interpret::Described;
+use drivebus::Bound;
+
 use super::Behaviour;
 use crate::refusal::Refusal;
 use crate::store::{ParamId, Store};
 
-/// The bounding parameters of one bounded parameter.
-#[derive(Debug, Clone, Copy)]
-struct BoundIds {
-    min: Option<ParamId>,
-    max: Option<ParamId>,
-    magnitude: Option<ParamId>,
-}
-
-/// Every bounded parameter of the description, with its bounds.
+/// Every bounded parameter of the description, with its bounding parameters and how each bounds.
 #[derive(Debug)]
 pub struct Bounds {
-    bounded: Vec<(ParamId, BoundIds)>,
+    bounded: Vec<(ParamId, Vec<(Bound, ParamId)>)>,
 }
 
 impl Bounds {
     /// Present when the description bounds a parameter by others.
     pub fn detect(store: &Store) -> Option<Self> {
-        let bounded: Vec<(ParamId, BoundIds)> = store
+        let bounded: Vec<(ParamId, Vec<(Bound, ParamId)>)> = store
             .device()
             .parameters
             .iter()
             .enumerate()
-            .filter_map(|(id, p)| {
-                let b = p.bounds.as_ref()?;
-                let find = |name: &Option<String>| name.as_deref().and_then(|n| store.id(n));
-                let ids = BoundIds {
-                    min: find(&b.min),
-                    max: find(&b.max),
-                    magnitude: find(&b.magnitude),
-                };
-                Some((id, ids))
+            .filter(|(_, p)| p.bounds.is_some())
+            .map(|(id, p)| {
+                let ids = p
+                    .bounded_by()
+                    .each()
+                    .filter_map(|(kind, name)| Some((kind, store.id(name)?)))
+                    .collect();
+                (id, ids)
             })
             .collect();
         (!bounded.is_empty()).then_some(Self { bounded })
@@ -55,23 +49,21 @@ fn current(store: &Store, bound: ParamId) -> Option<i128> {
 
 impl Behaviour for Bounds {
     fn accept(&self, store: &Store, id: ParamId, bytes: &[u8]) -> Result<(), Refusal> {
-        let Some((_, ids)) = self.bounded.iter().find(|(bounded, _)| *bounded == id) else {
+        let Some((_, bounds)) = self.bounded.iter().find(|(bounded, _)| *bounded == id) else {
             return Ok(());
         };
         let Some(value) = crate::raw::to_int(store.parameter(id).data_type, bytes) else {
             return Ok(());
         };
-        let limit = |bound: Option<ParamId>| bound.and_then(|b| current(store, b));
-        if limit(ids.min).is_some_and(|min| value < min) {
-            return Err(Refusal::TooLow);
+        for &(kind, bound) in bounds {
+            let breached = current(store, bound).is_some_and(|limit| kind.breached(value, limit));
+            match (breached, kind) {
+                (false, _) => {}
+                (true, Bound::Min) => return Err(Refusal::TooLow),
+                (true, Bound::Magnitude) if value < 0 => return Err(Refusal::TooLow),
+                (true, _) => return Err(Refusal::TooHigh),
+            }
         }
-        if limit(ids.max).is_some_and(|max| value > max) {
-            return Err(Refusal::TooHigh);
-        }
-        match limit(ids.magnitude) {
-            Some(full) if value > full => Err(Refusal::TooHigh),
-            Some(full) if value < -full => Err(Refusal::TooLow),
-            _ => Ok(()),
-        }
+        Ok(())
     }
 }

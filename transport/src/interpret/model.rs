@@ -5,7 +5,7 @@
 use std::vec::Vec;
 
 use super::{Number, Range};
-use crate::{DataType, Scale};
+use crate::{Bound, DataType, Scale};
 
 /// A described parameter, as the interpreter sees it.
 pub trait Described {
@@ -38,6 +38,19 @@ pub struct BoundedBy<'a> {
     pub max: Option<&'a str>,
     /// The parameter whose value `v` bounds it to `-v ..= v`.
     pub magnitude: Option<&'a str>,
+}
+
+impl<'a> BoundedBy<'a> {
+    /// Each bounding parameter with how it bounds.
+    pub fn each(&self) -> impl Iterator<Item = (Bound, &'a str)> {
+        [
+            (Bound::Min, self.min),
+            (Bound::Max, self.max),
+            (Bound::Magnitude, self.magnitude),
+        ]
+        .into_iter()
+        .filter_map(|(bound, name)| Some((bound, name?)))
+    }
 }
 
 /// A device model loaded at run time: parameters by name and the names of their raw values.

@@ -10,7 +10,7 @@ use super::registers;
 use super::{parse, show, Described, InputError, Model, Shown};
 use crate::error::BusError;
 use crate::link::{Link, ReadRequest};
-use crate::Protocol;
+use crate::{OutsideBound, Protocol};
 
 /// What is done to a parameter.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -51,16 +51,7 @@ pub enum InterpretError {
     },
     /// The value lies beyond the current value of a parameter that bounds it; nothing was
     /// written.
-    OutsideBound {
-        /// The parameter being written.
-        parameter: String,
-        /// The parameter whose current value it broke.
-        bound: String,
-        /// The raw value asked for.
-        raw: i128,
-        /// The bound's current raw value.
-        limit: i128,
-    },
+    OutsideBound(OutsideBound<String>),
     /// The bus failed, or the drive refused or answered a value outside the parameter's type.
     Bus {
         /// The parameter.
@@ -89,15 +80,7 @@ impl fmt::Display for InterpretError {
                 )
             }
             InterpretError::Input { parameter, cause } => write!(f, "{parameter}: {cause}"),
-            InterpretError::OutsideBound {
-                parameter,
-                bound,
-                raw,
-                limit,
-            } => write!(
-                f,
-                "{parameter}: raw value {raw} is beyond the current value {limit} of {bound}"
-            ),
+            InterpretError::OutsideBound(refusal) => write!(f, "{refusal}"),
             InterpretError::Bus { parameter, cause } => write!(f, "{parameter}: {cause}"),
         }
     }
@@ -237,27 +220,17 @@ where
     let Some(raw) = super::raw::to_int(parameter.data_type(), bytes) else {
         return Ok(());
     };
-    let bounds = parameter.bounded_by();
-    let beyond = [
-        (
-            bounds.min,
-            (|raw, limit| raw < limit) as fn(i128, i128) -> bool,
-        ),
-        (bounds.max, |raw, limit| raw > limit),
-        (bounds.magnitude, |raw: i128, limit| raw.abs() > limit),
-    ];
-    for (name, broken) in beyond {
-        let Some(name) = name else { continue };
+    for (kind, name) in parameter.bounded_by().each() {
         let bound = find(model, name)?;
         let current = read_raw(link, &[bound])?;
         let limit = super::raw::to_int(bound.data_type(), &current[0]).unwrap_or_default();
-        if broken(raw, limit) {
-            return Err(InterpretError::OutsideBound {
+        if kind.breached(raw, limit) {
+            return Err(InterpretError::OutsideBound(OutsideBound {
                 parameter: parameter.name().into(),
                 bound: name.into(),
                 raw,
                 limit,
-            });
+            }));
         }
     }
     Ok(())

@@ -3,6 +3,8 @@
 //! `write_<name>(value)` that reads the bounds' current raw values, refuses a value beyond them
 //! naming the bound, and only then writes.
 
+use drivebus::interpret::Described;
+use drivebus::Bound;
 use proc_macro2::TokenStream;
 use quote::quote;
 
@@ -31,41 +33,26 @@ fn writable(p: &Parameter) -> bool {
     p.modbus.iter().any(|a| a.access.write) || p.canopen.iter().any(|a| a.access.write)
 }
 
-/// One bound check: `raw` must not lie `beyond` the current value of `bound`.
-fn check(p: &Parameter, bound: &str, beyond: TokenStream, at: &TokenStream) -> TokenStream {
+/// One bound check (`drivebus::Bound::breached`): `raw` must not lie beyond the current value
+/// of `bound`, else the write is refused naming it.
+fn check(p: &Parameter, kind: Bound, bound: &str, at: &TokenStream) -> TokenStream {
     let marker = ident(&names::camel(bound));
-    let refusal = outside(p, bound);
-    quote! {
-        let limit = #at.read_raw::<params::#marker>()?;
-        if raw #beyond limit {
-            #refusal
-        }
-    }
-}
-
-/// The magnitude check: `raw` must lie within ± the current value of `bound`, compared wide
-/// because the bound may be of another integer type (an unsigned full scale).
-fn check_magnitude(p: &Parameter, bound: &str, at: &TokenStream) -> TokenStream {
-    let marker = ident(&names::camel(bound));
-    let refusal = outside(p, bound);
-    quote! {
-        let limit = #at.read_raw::<params::#marker>()?;
-        if (raw as i128).abs() > limit as i128 {
-            #refusal
-        }
-    }
-}
-
-/// Refuses the write: `raw` lies beyond `limit`, the current value of `bound`.
-fn outside(p: &Parameter, bound: &str) -> TokenStream {
+    let kind = match kind {
+        Bound::Min => quote! { Min },
+        Bound::Max => quote! { Max },
+        Bound::Magnitude => quote! { Magnitude },
+    };
     let name = &p.name;
     quote! {
-        return Err(BoundedWriteError::OutsideBound {
-            parameter: #name,
-            bound: #bound,
-            raw: raw as i128,
-            limit: limit as i128,
-        });
+        let limit = #at.read_raw::<params::#marker>()? as i128;
+        if ::drivebus::Bound::#kind.breached(raw as i128, limit) {
+            return Err(BoundedWriteError::OutsideBound(::drivebus::OutsideBound {
+                parameter: #name,
+                bound: #bound,
+                raw: raw as i128,
+                limit,
+            }));
+        }
     }
 }
 
@@ -97,32 +84,14 @@ fn receiver(
 
 fn method(p: &Parameter, handle: &proc_macro2::Ident, device: &Device) -> TokenStream {
     let (header, lock_bound, at) = receiver(p, handle, device);
-    let bounds = p.bounds.as_ref().expect("filtered on bounds");
     let marker = ident(&names::camel(&p.name));
     let method = ident(&format!("write_{}", names::snake(&p.name)));
-    let marker_of = |b: &String| ident(&names::camel(b));
-    let same_raw: Vec<_> = bounds
-        .min
+    let bounding: Vec<(Bound, &str)> = p.bounded_by().each().collect();
+    let readers = bounding.iter().map(|(_, b)| ident(&names::camel(b)));
+    let checks = bounding.iter().map(|(kind, b)| check(p, *kind, b, &at));
+    let described = bounding
         .iter()
-        .chain(&bounds.max)
-        .map(marker_of)
-        .collect();
-    let magnitude_marker: Vec<_> = bounds.magnitude.iter().map(marker_of).collect();
-    let min = bounds
-        .min
-        .as_deref()
-        .map(|b| check(p, b, quote! { < }, &at));
-    let max = bounds
-        .max
-        .as_deref()
-        .map(|b| check(p, b, quote! { > }, &at));
-    let magnitude = bounds
-        .magnitude
-        .as_deref()
-        .map(|b| check_magnitude(p, b, &at));
-    let described = bounds
-        .names()
-        .map(|b| format!("`{b}`"))
+        .map(|(_, b)| format!("`{b}`"))
         .collect::<Vec<_>>()
         .join(" and ");
     let docs = doc_attrs(&format!(
@@ -136,8 +105,7 @@ fn method(p: &Parameter, handle: &proc_macro2::Ident, device: &Device) -> TokenS
         where
             #lock_bound
             params::#marker: ::drivebus::Writable<L::Protocol>,
-            #( params::#same_raw: ::drivebus::Readable<L::Protocol, Raw = <params::#marker as ::drivebus::Parameter>::Raw>, )*
-            #( params::#magnitude_marker: ::drivebus::Readable<L::Protocol>, )*
+            #( params::#readers: ::drivebus::Readable<L::Protocol>, )*
         {
             #docs
             pub fn #method(
@@ -146,9 +114,7 @@ fn method(p: &Parameter, handle: &proc_macro2::Ident, device: &Device) -> TokenS
             ) -> Result<(), BoundedWriteError> {
                 let scale = <params::#marker as ::drivebus::Writable<L::Protocol>>::write_scale(&mut #at)?;
                 let raw = <params::#marker as ::drivebus::Parameter>::encode(value, scale)?;
-                #min
-                #max
-                #magnitude
+                #( #checks )*
                 #at.write_raw::<params::#marker>(raw)?;
                 Ok(())
             }
@@ -171,16 +137,7 @@ impl quote::ToTokens for ErrorType {
                 Drive(::drivebus::Error),
                 /// The value lies beyond the current value of another parameter; nothing was
                 /// written.
-                OutsideBound {
-                    /// The parameter being written.
-                    parameter: &'static str,
-                    /// The parameter whose current value it broke.
-                    bound: &'static str,
-                    /// The raw value asked for.
-                    raw: i128,
-                    /// The bound's current raw value.
-                    limit: i128,
-                },
+                OutsideBound(::drivebus::OutsideBound),
             }
 
             impl From<::drivebus::Error> for BoundedWriteError {
@@ -199,10 +156,7 @@ impl quote::ToTokens for ErrorType {
                 fn fmt(&self, f: &mut ::core::fmt::Formatter<'_>) -> ::core::fmt::Result {
                     match self {
                         Self::Drive(e) => write!(f, "{e}"),
-                        Self::OutsideBound { parameter, bound, raw, limit } => write!(
-                            f,
-                            "{parameter}: raw value {raw} is beyond the current value {limit} of {bound}"
-                        ),
+                        Self::OutsideBound(refusal) => write!(f, "{refusal}"),
                     }
                 }
             }
