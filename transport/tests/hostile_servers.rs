@@ -273,7 +273,9 @@ fn a_server_that_never_stops_sending_ends_in_a_typed_error() {
             "{error:?}"
         );
     }
-    assert!(started.elapsed() < TIMEOUT * 20, "{:?}", started.elapsed());
+    // A hang guard, not a speed claim: before the flush was bounded (at most 64 KiB per
+    // request), a writer faster than the reader could hold the client in it indefinitely.
+    assert!(started.elapsed() < TIMEOUT * 60, "{:?}", started.elapsed());
 }
 
 #[test]

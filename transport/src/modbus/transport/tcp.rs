@@ -119,13 +119,20 @@ impl ByteStream for NetStream {
         }
     }
 
+    /// Drops what is waiting, up to `MAX_DISCARD` bytes: a peer that never stops sending
+    /// cannot hold the client here (what is left is dropped by the framing, whose transaction
+    /// ids it cannot match, within the exchange's timeout).
     fn discard_input(&mut self) -> Result<(), BusError> {
         self.stream.set_nonblocking(true).map_err(io_error)?;
-        let mut scratch = [0u8; 256];
+        let mut scratch = [0u8; 4096];
+        let mut dropped = 0;
         let closed = loop {
+            if dropped >= MAX_DISCARD {
+                break false;
+            }
             match self.stream.read(&mut scratch) {
                 Ok(0) => break true,
-                Ok(_) => {}
+                Ok(n) => dropped += n,
                 Err(e) if e.kind() == ErrorKind::Interrupted => {}
                 Err(e) if e.kind() == ErrorKind::WouldBlock => break false,
                 Err(_) => break true,
@@ -144,6 +151,9 @@ impl ByteStream for NetStream {
         Ok(())
     }
 }
+
+/// Most bytes one flush before a request drops (see `NetStream::discard_input`).
+const MAX_DISCARD: usize = 64 * 1024;
 
 /// Modbus TCP (MBAP framing) over a TCP connection.
 pub type ModbusTcpClient = Client<NetStream, TcpFraming>;
