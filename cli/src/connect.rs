@@ -9,7 +9,7 @@ use drivebus::canopen::backend::candump::CandumpBus;
 use drivebus::canopen::backend::slcan::{Bitrate, SlcanBus};
 use drivebus::canopen::blocking::BlockingSdo;
 use drivebus::canopen::{CanBus, CanFrame, CanOpenLink, NodeId};
-use drivebus::interpret::{self, InterpretError};
+use drivebus::interpret::{self, InterpretError, Variant};
 use drivebus::modbus::rtu::{Parity, StopBits};
 use drivebus::modbus::transport::SerialStream;
 use drivebus::modbus::transport::{ModbusTcpClient, SerialConfig, SerialRtuClient, TcpConfig};
@@ -68,6 +68,10 @@ pub struct BusArgs {
     /// connection request by request.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u8).range(1..=MAX_IN_FLIGHT as i64))]
     pub max_in_flight: u8,
+    /// The description's variant (firmware or configuration) the drive is in, instead of the
+    /// one it reports (the description's `selected_by` parameter, read when the session opens).
+    #[arg(long, value_name = "NAME")]
+    pub variant: Option<String>,
 }
 
 /// A CAN backend behind a box.
@@ -101,11 +105,12 @@ enum Link {
     },
 }
 
-/// A connection to one drive described by `device`.
+/// A connection to one drive described by `device`, in the variant it reports.
 pub struct Session {
     link: Link,
     target: String,
     relay: Option<Child>,
+    variant: Variant,
 }
 
 impl Drop for Session {
@@ -133,8 +138,85 @@ fn connect_error(target: &str, e: BusError) -> CliError {
 }
 
 impl Session {
-    /// Opens the bus the options name.
+    /// Opens the bus the options name and learns the drive's variant: `--variant`, else the
+    /// one the description's `selected_by` parameter reports (as the generated handle's
+    /// `detect_variant` does), else, where the drive reports none, the description's default
+    /// (its first). A drive that reports a variant the description does not cover still opens:
+    /// parameters whose address depends on the variant are then refused, and so is every write
+    /// but a stop.
     pub fn open(args: &BusArgs, device: &Device) -> Result<Self, CliError> {
+        let mut session = Self::connect(args, device)?;
+        session.variant = session.detect_variant(args.variant.as_deref(), device)?;
+        Ok(session)
+    }
+
+    /// The variant named by `--variant`, else the one the drive reports.
+    fn detect_variant(
+        &mut self,
+        named: Option<&str>,
+        device: &Device,
+    ) -> Result<Variant, CliError> {
+        if device.variants.is_empty() {
+            return match named {
+                None => Ok(Variant::Single),
+                Some(name) => Err(CliError::Usage(format!(
+                    "--variant {name}: the description has no variants"
+                ))),
+            };
+        }
+        if let Some(name) = named {
+            return match device.variants.iter().any(|v| v.name == name) {
+                true => Ok(Variant::Selected(name.to_owned())),
+                false => Err(CliError::Usage(format!(
+                    "--variant {name}: the description's variants are {}",
+                    device
+                        .variants
+                        .iter()
+                        .map(|v| v.name.as_str())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ))),
+            };
+        }
+        let Some((selector, values)) = device.variant_selection() else {
+            // The drive does not report its variant: the description's default, as the
+            // generated handle opens in (its first `[[variant]]`).
+            return Ok(Variant::Selected(device.variants[0].name.clone()));
+        };
+        let unknown = |found| Variant::Unknown {
+            selector: selector.name.clone(),
+            found,
+        };
+        if !self.can_read(selector) {
+            return Ok(unknown(None));
+        }
+        // A selector the drive does not answer leaves the variant unknown: a stop still goes out.
+        let Ok(mut read) = self.read_many(&[selector]) else {
+            return Ok(unknown(None));
+        };
+        let bytes = read.pop().unwrap_or_default();
+        let Some(found) = interpret::raw::to_int(selector.data_type, &bytes) else {
+            return Ok(unknown(None));
+        };
+        let selected = values.iter().find(|(_, value)| i128::from(*value) == found);
+        Ok(match selected {
+            Some((i, _)) => Variant::Selected(device.variants[*i].name.clone()),
+            None => unknown(Some(found)),
+        })
+    }
+
+    /// The variant the session reads and writes in, for messages (empty for a description
+    /// without variants).
+    pub fn variant_note(&self) -> String {
+        match &self.variant {
+            Variant::Single => String::new(),
+            Variant::Selected(name) => format!(" (variant {name})"),
+            Variant::Unknown { .. } => " (variant unknown)".into(),
+        }
+    }
+
+    /// Opens the bus the options name.
+    fn connect(args: &BusArgs, device: &Device) -> Result<Self, CliError> {
         let timeout = Duration::from_millis(args.timeout_ms);
         if let Some(addr) = &args.modbus_tcp {
             let config = TcpConfig {
@@ -169,6 +251,7 @@ impl Session {
                 },
                 target: format!("CANopen {backend} node {}", node.0),
                 relay,
+                variant: Variant::Single,
             });
         }
         if let Some(path) = &args.kinco_rs232 {
@@ -202,6 +285,7 @@ impl Session {
             link: Link::Rs232 { bus, station },
             target,
             relay: None,
+            variant: Variant::Single,
         })
     }
 
@@ -214,6 +298,7 @@ impl Session {
             },
             target,
             relay: None,
+            variant: Variant::Single,
         }
     }
 
@@ -236,15 +321,18 @@ impl Session {
     /// the fewest requests the device's limits allow (sent together with `--max-in-flight`),
     /// over CANopen and RS-232 an upload each.
     pub fn read_many(&mut self, parameters: &[&Parameter]) -> Result<Vec<Vec<u8>>, CliError> {
+        let variant = &self.variant;
         let read = match &mut self.link {
-            Link::Modbus { bus, unit, limits } => {
-                return read_modbus(&mut **bus, *unit, *limits, &self.target, parameters);
-            }
+            Link::Modbus { bus, unit, limits } => interpret::read_raw(
+                &mut ModbusLink::new(&mut **bus, *unit, *limits),
+                variant,
+                parameters,
+            ),
             Link::CanOpen { sdo, node } => {
-                interpret::read_raw(&mut CanOpenLink::new(sdo, *node), parameters)
+                interpret::read_raw(&mut CanOpenLink::new(sdo, *node), variant, parameters)
             }
             Link::Rs232 { bus, station } => {
-                interpret::read_raw(&mut Rs232Link::new(bus, *station), parameters)
+                interpret::read_raw(&mut Rs232Link::new(bus, *station), variant, parameters)
             }
         };
         read.map_err(|e| interpret_error(&self.target, e))
@@ -258,37 +346,32 @@ impl Session {
         parameter: &Parameter,
         bytes: &[u8],
     ) -> Result<(), CliError> {
+        let variant = &self.variant;
         let written = match &mut self.link {
-            Link::Modbus { bus, unit, limits } => checked_write(
+            Link::Modbus { bus, unit, limits } => interpret::write_checked(
                 device,
                 &mut ModbusLink::new(&mut **bus, *unit, *limits),
+                variant,
                 parameter,
                 bytes,
             ),
-            Link::CanOpen { sdo, node } => {
-                checked_write(device, &mut CanOpenLink::new(sdo, *node), parameter, bytes)
-            }
-            Link::Rs232 { bus, station } => {
-                checked_write(device, &mut Rs232Link::new(bus, *station), parameter, bytes)
-            }
+            Link::CanOpen { sdo, node } => interpret::write_checked(
+                device,
+                &mut CanOpenLink::new(sdo, *node),
+                variant,
+                parameter,
+                bytes,
+            ),
+            Link::Rs232 { bus, station } => interpret::write_checked(
+                device,
+                &mut Rs232Link::new(bus, *station),
+                variant,
+                parameter,
+                bytes,
+            ),
         };
         written.map_err(|e| interpret_error(&self.target, e))
     }
-}
-
-/// The bound check, then the write, over one link.
-fn checked_write<L>(
-    device: &Device,
-    link: &mut L,
-    parameter: &Parameter,
-    bytes: &[u8],
-) -> Result<(), InterpretError>
-where
-    L: drivebus::Link,
-    Parameter: interpret::Addressed<L::Protocol>,
-{
-    interpret::check_bounds(device, link, parameter, bytes)?;
-    interpret::write_raw(link, parameter, bytes)
 }
 
 /// A failure of the interpreter reaching `target`, as the CLI reports it.
@@ -301,6 +384,9 @@ fn interpret_error(target: &str, error: InterpretError) -> CliError {
         },
         InterpretError::NoAccess { .. } => CliError::NoAccess(error.to_string()),
         InterpretError::OutsideBound { .. } => CliError::OutsideBound(error.to_string()),
+        InterpretError::NotInVariant { .. } | InterpretError::VariantUnknown { .. } => {
+            CliError::Variant(error.to_string())
+        }
         InterpretError::UnknownParameter(_) | InterpretError::Input { .. } => {
             CliError::Usage(error.to_string())
         }
@@ -314,9 +400,10 @@ pub fn read_modbus(
     unit: UnitId,
     limits: ModbusLimits,
     target: &str,
+    variant: &Variant,
     parameters: &[&Parameter],
 ) -> Result<Vec<Vec<u8>>, CliError> {
-    interpret::read_raw(&mut ModbusLink::new(bus, unit, limits), parameters)
+    interpret::read_raw(&mut ModbusLink::new(bus, unit, limits), variant, parameters)
         .map_err(|e| interpret_error(target, e))
 }
 

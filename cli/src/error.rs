@@ -24,6 +24,8 @@ pub enum CliError {
         parameter: String,
         /// Why.
         cause: InputError,
+        /// Where the description's value comes from (`manual.txt line 889`), if cited.
+        cited: Option<String>,
     },
     /// The parameter has no address on the chosen protocol, or not with this access.
     NoAccess(String),
@@ -55,6 +57,9 @@ pub enum CliError {
     /// The value lies beyond the current value of a parameter that bounds it; nothing was
     /// written.
     OutsideBound(String),
+    /// The drive's variant is not known (or the parameter is not in it) and the parameter's
+    /// address depends on it; nothing was sent.
+    Variant(String),
 }
 
 impl fmt::Display for CliError {
@@ -73,9 +78,16 @@ impl fmt::Display for CliError {
                     .collect::<Vec<_>>()
                     .join(", ")
             ),
-            CliError::Value { parameter, cause } => {
-                write!(f, "{parameter}: {cause} (nothing was sent)")
-            }
+            CliError::Value {
+                parameter,
+                cause,
+                cited: None,
+            } => write!(f, "{parameter}: {cause} (nothing was sent)"),
+            CliError::Value {
+                parameter,
+                cause,
+                cited: Some(cited),
+            } => write!(f, "{parameter}: {cause}, as {cited} gives it (nothing was sent)"),
             CliError::NoAccess(why) => write!(f, "{why}"),
             CliError::Bus {
                 target,
@@ -89,6 +101,7 @@ impl fmt::Display for CliError {
             } => write!(f, "{parameter}: {target}: {cause}"),
             CliError::Usage(text) | CliError::Io(text) => write!(f, "{text}"),
             CliError::OutsideBound(why) => write!(f, "{why} (nothing was written)"),
+            CliError::Variant(why) => write!(f, "{why} (nothing was sent)"),
             CliError::IdentityMismatch {
                 parameter,
                 expected,

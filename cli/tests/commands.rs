@@ -479,17 +479,13 @@ fn write_checks_the_identity_first_unless_told_not_to() {
 fn write_checks_the_canopen_vendor_id_first() {
     // The SWD's [identity] covers vendor-ID 0x515 (1018h sub 1, manual line 1129); this
     // simulated node reports 0x1234.
-    let swd = Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/ezwheel-swd");
-    let swd = swd.to_str().unwrap();
-    let can = format!(
-        "candump:exec:{BIN} sim {swd} --can candump:stdio --node-id 4 --set vendor_id=0x1234"
-    );
+    let (swd, can) = foreign_swd();
     let write = |extra: &[&str]| {
         let mut args = vec![
             "write",
-            swd,
+            &swd,
             "controlword",
-            "raw:6",
+            "raw:15",
             "--can",
             &can,
             "--node-id",
@@ -507,4 +503,32 @@ fn write_checks_the_canopen_vendor_id_first() {
     );
     let forced = write(&["--no-identity-check"]);
     assert!(forced.status.success(), "{}", stderr(&forced));
+}
+
+#[test]
+fn write_sends_a_stop_whatever_the_identity_reads() {
+    // Shutdown (6040h = 6: enable operation clear) stops the drive: it goes out although the
+    // simulated node's vendor-ID (0x1234) is not the one the SWD's [identity] covers.
+    let (swd, can) = foreign_swd();
+    let stop = drivegen(&[
+        "write",
+        &swd,
+        "controlword",
+        "raw:6",
+        "--can",
+        &can,
+        "--node-id",
+        "4",
+    ]);
+    assert!(stop.status.success(), "{}", stderr(&stop));
+}
+
+/// The SWD description and a `--can` backend: its simulated node 4, reporting vendor-ID 0x1234.
+fn foreign_swd() -> (String, String) {
+    let swd = Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/ezwheel-swd");
+    let swd = swd.to_str().unwrap().to_owned();
+    let can = format!(
+        "candump:exec:{BIN} sim {swd} --can candump:stdio --node-id 4 --set vendor_id=0x1234"
+    );
+    (swd, can)
 }

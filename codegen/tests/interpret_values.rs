@@ -205,7 +205,7 @@ fn raw_bytes_show_with_units_and_names() {
 /// 0x1356 is 49.5 V), read and written by name over the Modbus link generated code uses.
 #[test]
 fn parameters_are_read_and_written_by_name_over_a_link() {
-    use drivebus::interpret::{read, write, InterpretError};
+    use drivebus::interpret::{read, write, InterpretError, Variant};
     use drivebus::memory::MemoryBus;
     use drivebus::modbus::{ModbusLimits, ModbusLink, Table, UnitId};
 
@@ -218,26 +218,49 @@ fn parameters_are_read_and_written_by_name_over_a_link() {
         .set_register(Table::Holding, 0x0003, 0x1194);
     let mut link = ModbusLink::new(&mut bus, UnitId(1), ModbusLimits::SPEC);
     assert_eq!(
-        read(&device, &mut link, "bus_dc_link").unwrap().text,
+        read(&device, &mut link, &Variant::Single, "bus_dc_link")
+            .unwrap()
+            .text,
         "49.50 V"
     );
     assert_eq!(
-        read(&device, &mut link, "speed_setpoint").unwrap().text,
+        read(&device, &mut link, &Variant::Single, "speed_setpoint")
+            .unwrap()
+            .text,
         "-3000 rpm"
     );
-    write(&device, &mut link, "speed_setpoint", "-3000rpm").unwrap();
+    write(
+        &device,
+        &mut link,
+        &Variant::Single,
+        "speed_setpoint",
+        "-3000rpm",
+    )
+    .unwrap();
     assert_eq!(bus.register(Table::Holding, 0x0042), Some(0xF448));
 
     let mut link = ModbusLink::new(&mut bus, UnitId(1), ModbusLimits::SPEC);
     assert!(matches!(
-        write(&device, &mut link, "speed_setpoint", "40000rpm"),
+        write(
+            &device,
+            &mut link,
+            &Variant::Single,
+            "speed_setpoint",
+            "40000rpm"
+        ),
         Err(InterpretError::Input {
             cause: InputError::OutOfRange(_),
             ..
         })
     ));
     assert_eq!(
-        write(&device, &mut link, "speed_setpoint", "-4501rpm"),
+        write(
+            &device,
+            &mut link,
+            &Variant::Single,
+            "speed_setpoint",
+            "-4501rpm"
+        ),
         Err(InterpretError::OutsideBound(drivebus::OutsideBound {
             parameter: "speed_setpoint".into(),
             bound: "full_scale_velocity".into(),
@@ -246,13 +269,106 @@ fn parameters_are_read_and_written_by_name_over_a_link() {
         }))
     );
     assert!(matches!(
-        write(&device, &mut link, "bus_dc_link", "48V"),
+        write(&device, &mut link, &Variant::Single, "bus_dc_link", "48V"),
         Err(InterpretError::NoAccess { .. })
     ));
     assert_eq!(
-        read(&device, &mut link, "no_such_thing"),
+        read(&device, &mut link, &Variant::Single, "no_such_thing"),
         Err(InterpretError::UnknownParameter("no_such_thing".into()))
     );
     // Nothing refused was sent.
     assert_eq!(bus.register(Table::Holding, 0x0042), Some(0xF448));
+}
+
+/// The Lenze smd moves c25 (`serial_baud_rate`) from #95 in PC400 to #103 in PC507, where #95
+/// is part of C99 (smd manual lines 348, 926, 944): the interpreter reads and writes the
+/// configuration's own register, and with the configuration unknown it guesses neither.
+#[test]
+fn the_variant_decides_the_register_and_an_unknown_one_reaches_none() {
+    use drivebus::interpret::{read, write, InterpretError, Variant};
+    use drivebus::memory::MemoryBus;
+    use drivebus::modbus::{ModbusLimits, ModbusLink, Table, UnitId};
+
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../descriptions/lenze-smd");
+    let device = drivegen::check(std::path::Path::new(path)).device.unwrap();
+    let mut bus = MemoryBus::new();
+    bus.set_register(Table::Holding, 95, 2)
+        .set_register(Table::Holding, 103, 3)
+        .set_register(Table::Holding, 19, 69)
+        .set_register(Table::Holding, 1, 0);
+    let mut link = ModbusLink::new(&mut bus, UnitId(1), ModbusLimits::SPEC);
+    let pc507 = Variant::Selected("pc507".into());
+    let pc400 = Variant::Selected("pc400".into());
+    let c25 = device.parameter("serial_baud_rate").unwrap();
+    let shown = |raw: u16| drivebus::interpret::show(&device, c25, &raw.to_le_bytes()).text;
+    let read_c25 = |link: &mut ModbusLink<&mut MemoryBus>, variant| {
+        read(&device, link, variant, "serial_baud_rate")
+            .unwrap()
+            .text
+    };
+    assert_eq!(read_c25(&mut link, &pc507), shown(3));
+    assert_eq!(read_c25(&mut link, &pc400), shown(2));
+    write(&device, &mut link, &pc507, "serial_baud_rate", "raw:1").unwrap();
+    assert_eq!(bus.register(Table::Holding, 103), Some(1));
+    assert_eq!(
+        bus.register(Table::Holding, 95),
+        Some(2),
+        "#95 untouched under PC507"
+    );
+
+    let unknown = Variant::Unknown {
+        selector: "parameter_configuration".into(),
+        found: Some(401),
+    };
+    let mut link = ModbusLink::new(&mut bus, UnitId(1), ModbusLimits::SPEC);
+    let refused = read(&device, &mut link, &unknown, "serial_baud_rate").unwrap_err();
+    assert!(
+        matches!(
+            &refused,
+            InterpretError::VariantUnknown {
+                found: Some(401),
+                ..
+            }
+        ),
+        "{refused:?}"
+    );
+    assert!(
+        refused
+            .to_string()
+            .contains("parameter_configuration = 401"),
+        "{refused}"
+    );
+    // A register every configuration has is still read; no write but a stop goes out.
+    assert!(read(&device, &mut link, &unknown, "drive_family").is_ok());
+    assert!(matches!(
+        write(
+            &device,
+            &mut link,
+            &unknown,
+            "serial_speed_command",
+            "raw:100"
+        ),
+        Err(InterpretError::VariantUnknown { .. })
+    ));
+    write(&device, &mut link, &unknown, "stop", "raw:4").unwrap();
+    let writes: Vec<_> = bus
+        .log()
+        .iter()
+        .filter(|r| matches!(r, drivebus::memory::Request::Write { .. }))
+        .collect();
+    let expected = [
+        drivebus::memory::Request::Write {
+            start: 103,
+            values: vec![1],
+        },
+        drivebus::memory::Request::Write {
+            start: 1,
+            values: vec![4],
+        },
+    ];
+    assert_eq!(
+        writes,
+        expected.iter().collect::<Vec<_>>(),
+        "c25 under PC507, then the stop"
+    );
 }

@@ -133,6 +133,30 @@ fn changing_c01_ends_the_controls_unlock() {
 }
 
 #[test]
+fn changing_c01_ends_only_the_controls_part_of_the_password_unlock() {
+    // #48 = C94 opens both scopes; line 414 ties the C01 rule to the controls (ERRATA.md E20).
+    let mut d = smd(&[("control_source", 11), ("user_password", 5)]);
+    d.write(UNLOCK_CONTROLS, 5).unwrap();
+    d.write(C01, 8).unwrap();
+    assert!(d.locked(CONTROL, START));
+    assert!(!d.locked(C12, 100), "the parameters stay unlocked");
+    d.write(C01, 11).unwrap();
+    assert!(d.locked(CONTROL, START), "C01 back at 11 does not unlock");
+    d.write(UNLOCK_CONTROLS, 5).unwrap();
+    assert!(!d.locked(CONTROL, START), "a new grant does");
+}
+
+#[test]
+fn a_power_down_ends_the_parameter_unlock_too() {
+    // Line 425 names no power-down, but the drive powers up locked (lines 1055, 1059; E19).
+    let mut d = smd(&[("control_source", 11)]);
+    d.write(UNLOCK_PARAMETERS, 0).unwrap();
+    assert!(!d.locked(C12, 100));
+    d.sim.with(|drive| drive.reboot());
+    assert!(d.locked(C12, 100));
+}
+
+#[test]
 fn a_power_down_ends_the_controls_unlock() {
     let mut d = smd(&[("control_source", 11)]);
     d.write(UNLOCK_CONTROLS, 0).unwrap();

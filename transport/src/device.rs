@@ -116,7 +116,18 @@ impl<L: Link> Device<L> {
     }
 
     /// Reads a parameter's raw value, unscaled.
+    /// While the drive reported a variant the description does not cover, a parameter whose
+    /// address depends on the variant is not read ([`Error::VariantUnknown`]): nothing is guessed.
     pub fn read_raw<P: Readable<L::Protocol>>(&mut self) -> Result<P::Raw, Error> {
+        if let Some(WriteRefusal::UnknownVariant { selector, value }) = self.refusal {
+            if P::READ_AT.depends_on_variant() {
+                return Err(Error::VariantUnknown {
+                    parameter: P::NAME,
+                    selector,
+                    value,
+                });
+            }
+        }
         let address =
             P::read_address(self.variant).ok_or(Error::NotInVariant { parameter: P::NAME })?;
         let mut buf = [0u8; MAX_VALUE_BYTES];
@@ -135,15 +146,18 @@ impl<L: Link> Device<L> {
     }
 
     /// Writes a raw value; still checked against the description's range and allowed values.
-    /// Refused before sending while writes are refused ([`Self::write_refusal_of`]).
+    /// Refused before sending while writes are refused ([`Self::write_refusal_of`]), unless it
+    /// stops the drive ([`crate::stop`]): a stop is always sent and the drive's answer returned.
     pub fn write_raw<P: Writable<L::Protocol>>(&mut self, raw: P::Raw) -> Result<(), Error> {
-        if let Some(reason) = self.write_refusal_of::<P>() {
+        P::check(&raw).map_err(named::<P>)?;
+        let refusal = self.write_refusal_of::<P>();
+        let refusal = if P::stops(&raw) { None } else { refusal };
+        if let Some(reason) = refusal {
             return Err(Error::WritesRefused {
                 parameter: P::NAME,
                 reason,
             });
         }
-        P::check(&raw).map_err(named::<P>)?;
         let address =
             P::write_address(self.variant).ok_or(Error::NotInVariant { parameter: P::NAME })?;
         let len = match self.link.wire_bytes(&address) {

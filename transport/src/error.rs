@@ -184,6 +184,16 @@ pub enum Error {
         /// Parameter name as in the description.
         parameter: &'static str,
     },
+    /// The drive reported a variant (configuration) its description does not cover, and the
+    /// parameter's address depends on the variant: nothing was sent (`set_variant` overrides).
+    VariantUnknown {
+        /// Parameter name as in the description.
+        parameter: &'static str,
+        /// The parameter that selects the variant.
+        selector: &'static str,
+        /// The raw value it holds, which selects no variant.
+        value: i128,
+    },
     /// The device handle refused the write until the reason is resolved; nothing was sent.
     WritesRefused {
         /// The parameter that was to be written.
@@ -314,6 +324,15 @@ impl fmt::Display for Error {
                     "{parameter} does not exist in the drive's selected variant"
                 )
             }
+            Self::VariantUnknown {
+                parameter,
+                selector,
+                value,
+            } => write!(
+                f,
+                "{parameter} not reached: its address depends on the drive's variant, and \
+                 {selector} = {value} selects none the description covers"
+            ),
             Self::WritesRefused { parameter, reason } => {
                 write!(f, "{parameter} not written: {reason}")
             }

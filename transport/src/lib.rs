@@ -50,6 +50,7 @@ pub mod read_set;
 pub mod rs232;
 pub mod scale;
 #[cfg(feature = "std")]
+pub mod stop;
 pub mod stream;
 pub mod units;
 pub mod value;
@@ -63,6 +64,7 @@ pub use error_class::ErrorClass;
 pub use link::Link;
 pub use parameter::{Parameter, Placement, Readable, ValueOf, Writable};
 pub use scale::{Ratio, Scale};
+pub use stop::{StopPattern, Stops};
 
 /// Re-exported so generated crates need no direct `bitflags` dependency.
 pub use bitflags;

@@ -40,6 +40,11 @@ pub trait Parameter: 'static {
     fn check(_raw: &Self::Raw) -> Result<(), ValueError> {
         Ok(())
     }
+    /// Whether writing `raw` stops, disables or quick-stops the drive (`stops` in the
+    /// description): such a write is never refused before sending ([`crate::stop`]).
+    fn stops(_raw: &Self::Raw) -> bool {
+        false
+    }
 }
 
 /// Where a parameter is reached on one protocol, per firmware or configuration variant.
@@ -58,6 +63,20 @@ impl<A: Copy> Placement<A> {
         match self {
             Placement::Everywhere(address) => Some(*address),
             Placement::PerVariant(table) => table.get(usize::from(variant.0)).copied().flatten(),
+        }
+    }
+}
+
+impl<A: Copy + PartialEq> Placement<A> {
+    /// Whether the address depends on the variant: it differs between variants, or the
+    /// parameter is absent from one. Such a parameter cannot be reached while the drive's
+    /// variant is unknown.
+    pub fn depends_on_variant(&self) -> bool {
+        match self {
+            Placement::Everywhere(_) => false,
+            Placement::PerVariant(table) => {
+                table.windows(2).any(|pair| pair[0] != pair[1]) || table.iter().any(Option::is_none)
+            }
         }
     }
 }

@@ -22,7 +22,8 @@
 ///
 /// After the name, raw type, value type and [`codec`](crate::codec) come optional clauses:
 /// `scale = numerator / denominator` (with `, offset = numerator / denominator` after it),
-/// `range(min, max)` and `one_of[values]` (raw values). Then one clause per capability: `read`
+/// `range(min, max)`, `one_of[values]` (raw values) and `stops(always)` or
+/// `stops(mask => value, ...)` (the writes that stop the drive, never refused before sending). Then one clause per capability: `read`
 /// or `write`, the protocol (`modbus`, `canopen` or `rs232`), and the placement — one address,
 /// `(input 0x0064)` / `(holding 0x0010, 2 words, LowFirst)` or `(0x6041 sub 0, 2 bytes)`, or a
 /// list with one slot per variant, `_` where absent. A trailing `runtime` makes the capability
@@ -35,6 +36,7 @@ macro_rules! parameter {
         $(, scale = $num:literal / $den:literal $(, offset = $off_num:literal / $off_den:literal)?)?
         $(, range($min:expr, $max:expr))?
         $(, one_of[$($allowed:expr),*])?
+        $(, stops($($stops:tt)*))?
         $(; $direction:ident $protocol:ident $placement:tt $($runtime:ident)?)*
         $(;)?
     ) => {
@@ -51,12 +53,21 @@ macro_rules! parameter {
                 $($crate::check::one_of(Self::NAME, *raw, &[$($allowed),*])?;)?
                 Ok(())
             }
+            $(fn stops(raw: &$raw) -> bool {
+                const STOPS: $crate::Stops<'static> = $crate::parameter!(@stops $($stops)*);
+                STOPS.stops(i128::from(*raw))
+            })?
         }
 
         #[diagnostic::do_not_recommend]
         impl $crate::ValueOf<$name> for $value {}
 
         $($crate::parameter!(@capability $name $direction $protocol $placement $($runtime)?);)*
+    };
+
+    (@stops always) => { $crate::Stops::Always };
+    (@stops $($mask:literal => $value:literal),+) => {
+        $crate::Stops::Matching(&[$($crate::StopPattern { mask: $mask, value: $value }),+])
     };
 
     (@capability $name:ident read $protocol:ident $placement:tt $($runtime:ident)?) => {

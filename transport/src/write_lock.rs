@@ -73,6 +73,9 @@ pub struct Requirement {
     pub parameter: &'static str,
     /// The raw values that keep the unlock.
     pub values: &'static [i128],
+    /// The scopes its loss closes (Lenze smd: a C01 change ends the controls, line 414; what it
+    /// does to the parameters is not written, so they stay open).
+    pub scopes: &'static [&'static str],
 }
 
 /// The unlocks a handle has sent and not seen end.
@@ -81,12 +84,18 @@ pub(crate) struct LockAccount {
     lock: &'static WriteLock,
     /// Bit `i` set: `lock.unlocks[i]` may be in force.
     in_force: u32,
+    /// Bit `i` set: `lock.unlocks[i]` lost its requirement, which closed its guarded scopes.
+    requirement_lost: u32,
 }
 
 impl LockAccount {
     /// A freshly opened handle's account: locked, as the drive powers up.
     pub(crate) fn locked(lock: &'static WriteLock) -> Self {
-        Self { lock, in_force: 0 }
+        Self {
+            lock,
+            in_force: 0,
+            requirement_lost: 0,
+        }
     }
 
     /// Why a write to `parameter` is refused before sending, if no unlock in force opens it.
@@ -117,8 +126,13 @@ impl LockAccount {
     }
 
     fn opens(&self, scope: &LockScope) -> bool {
-        self.unlocks()
-            .any(|(bit, u)| self.in_force & bit != 0 && u.opens.contains(&scope.name))
+        self.unlocks().any(|(bit, u)| {
+            let closed_by_loss = self.requirement_lost & bit != 0
+                && u.lost_without
+                    .as_ref()
+                    .is_some_and(|r| r.scopes.contains(&scope.name));
+            self.in_force & bit != 0 && u.opens.contains(&scope.name) && !closed_by_loss
+        })
     }
 
     /// Each unlock with its bit in `in_force`.
@@ -144,8 +158,9 @@ impl LockAccount {
             });
             if granted {
                 self.in_force |= bit;
+                self.requirement_lost &= !bit;
             } else if lost {
-                self.in_force &= !bit;
+                self.requirement_lost |= bit;
             }
         }
     }
@@ -209,6 +224,7 @@ mod tests {
                 lost_without: Some(Requirement {
                     parameter: "control_source",
                     values: &[10, 11],
+                    scopes: &["controls"],
                 }),
             },
             UnlockRule {
@@ -219,6 +235,7 @@ mod tests {
                 lost_without: Some(Requirement {
                     parameter: "control_source",
                     values: &[10, 11],
+                    scopes: &["controls"],
                 }),
             },
             UnlockRule {
@@ -280,6 +297,21 @@ mod tests {
             open(&account, "acceleration_time"),
             "#49 does not end on C01"
         );
+    }
+
+    #[test]
+    fn losing_the_requirement_closes_only_the_scopes_it_guards() {
+        // #48 = C94 opens both; a C01 change ends the controls (line 414) and, as the manual
+        // does not say it ends the parameters, they stay open (the account errs to sending).
+        let mut account = LockAccount::locked(&SMD);
+        sent(&mut account, "unlock_commands", 123);
+        sent(&mut account, "control_source", 8);
+        assert!(!open(&account, "start"));
+        assert!(open(&account, "acceleration_time"));
+        sent(&mut account, "control_source", 11);
+        assert!(!open(&account, "start"), "a C01 back at 11 does not unlock");
+        sent(&mut account, "unlock_commands", 123);
+        assert!(open(&account, "start"), "a new grant does");
     }
 
     #[test]

@@ -34,11 +34,19 @@ pub fn run(args: Args) -> Result<(), CliError> {
         CliError::Value {
             parameter: parameter.name.clone(),
             cause,
+            cited: parameter.source.as_ref().and_then(|c| {
+                let line = c.line?;
+                Some(format!("{} line {line}", c.cited.file))
+            }),
         }
     })?;
     let mut session = Session::open(&args.bus, &device)?;
     if !args.no_identity_check {
-        crate::identity_check::verify(&mut session, &device)?;
+        // A stop goes out whatever the identity reads; the drive's answer is reported.
+        let mismatch = crate::identity_check::verify(&mut session, &device).err();
+        if let Some(refusal) = drivebus::interpret::waive_for_stop(parameter, &bytes, mismatch) {
+            return Err(refusal);
+        }
     }
     session.write(&device, parameter, &bytes)?;
     let shown = drivebus::interpret::show(&device, parameter, &bytes);
@@ -46,11 +54,12 @@ pub fn run(args: Args) -> Result<(), CliError> {
         println!("{}", super::read::to_json(parameter, &shown));
     } else {
         println!(
-            "{} = {} (raw {}) written to {}",
+            "{} = {} (raw {}) written to {}{}",
             parameter.name,
             shown.text,
             codec::raw_json(&shown.raw),
-            session.target()
+            session.target(),
+            session.variant_note()
         );
     }
     Ok(())

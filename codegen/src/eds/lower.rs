@@ -356,6 +356,7 @@ impl EdsEntry {
             erratum: None,
             safety: false,
             bounds: None,
+            stops: None,
             spans: ir::ParameterSpans {
                 name: v.span.clone(),
                 data_type: v.span.clone(),

@@ -195,6 +195,7 @@ impl Member<'_> {
             erratum: None,
             safety: false,
             bounds: None,
+            stops: None,
             spans: ir::ParameterSpans {
                 name: self.pdo.span.clone(),
                 data_type: self.pdo.span.clone(),

@@ -98,6 +98,9 @@ pub struct Requirement {
     pub parameter: String,
     /// Its raw values that allow the unlock.
     pub values: Vec<i64>,
+    /// The scopes whose unlock ends when the requirement is lost (`requirement_lost`): those
+    /// the manual ties to it, by default every scope the unlock allows.
+    pub scopes: Vec<String>,
     /// Where it is declared.
     #[serde(skip)]
     pub span: Span,

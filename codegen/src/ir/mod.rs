@@ -20,6 +20,7 @@ mod run_time_model;
 mod safety;
 mod scale_inputs;
 mod srdo;
+mod stop_writes;
 mod value_type;
 mod variant_selector;
 
@@ -42,6 +43,7 @@ pub use readable_registers::{PlannerLimits, RegisterRun};
 pub use refinement::Refinement;
 pub use safety::is_safety_configuration;
 pub use srdo::{SrdoCobId, SrdoMapping};
+pub use stop_writes::StopWrites;
 pub use value_type::ValueType;
 pub use variant_selector::VariantSelector;
 
@@ -743,6 +745,10 @@ pub struct Parameter {
     /// JSON when absent, so descriptions without bounds dump as before.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub bounds: Option<Bounds>,
+    /// The writes that stop the drive (`stops`), never refused client-side. Left out of the
+    /// JSON when absent.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stops: Option<StopWrites>,
     /// Allowed raw values.
     pub allowed: Vec<Number>,
     /// Enumeration of the value.

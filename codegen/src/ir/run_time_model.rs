@@ -3,11 +3,11 @@
 //! as generated code.
 
 use drivebus::canopen::CanOpen;
-use drivebus::interpret::{Access, Addressed, BoundedBy, Described, Model, Symbols};
+use drivebus::interpret::{Access, Addressed, BoundedBy, Described, Model, Symbols, Unreachable};
 use drivebus::modbus::Modbus;
 use drivebus::rs232::Rs232;
 
-use super::{DataType, Device, Number, ObjectAddress, Parameter, Range, Scale};
+use super::{DataType, Device, Number, ObjectAddress, Parameter, Range, Scale, StopWrites};
 
 impl Described for Parameter {
     fn name(&self) -> &str {
@@ -46,6 +46,12 @@ impl Described for Parameter {
                 max: b.max.as_deref(),
                 magnitude: b.magnitude.as_deref(),
             })
+    }
+
+    fn stops(&self) -> drivebus::Stops<'_> {
+        self.stops
+            .as_ref()
+            .map_or(drivebus::Stops::Never, StopWrites::view)
     }
 }
 
@@ -88,40 +94,93 @@ fn allows(access: super::Access, wanted: Access) -> bool {
     }
 }
 
+/// The address of `addresses` (each with the variant it is limited to) that serves `access` in
+/// `variant`. With the variant unknown (`None`), only an address every variant shares; never the
+/// first of several.
+fn pick<'a, A: Copy + PartialEq>(
+    parameter: &Parameter,
+    addresses: impl Iterator<Item = (A, super::Access, Option<&'a str>)>,
+    access: Access,
+    variant: Option<&str>,
+) -> Result<A, Unreachable> {
+    let serving: Vec<(A, Option<&str>)> = addresses
+        .filter(|(_, a, _)| allows(*a, access))
+        .map(|(address, _, only)| (address, only))
+        .collect();
+    let Some(&(first, _)) = serving.first() else {
+        return Err(Unreachable::NoAccess);
+    };
+    let Some(variant) = variant else {
+        let everywhere = parameter.variants.is_empty()
+            && serving
+                .iter()
+                .all(|&(a, only)| a == first && only.is_none());
+        return everywhere
+            .then_some(first)
+            .ok_or(Unreachable::DependsOnVariant);
+    };
+    let exists = parameter.variants.is_empty() || parameter.variants.iter().any(|v| v == variant);
+    serving
+        .iter()
+        .find(|(_, only)| exists && only.is_none_or(|o| o == variant))
+        .map(|&(address, _)| address)
+        .ok_or(Unreachable::NotInVariant)
+}
+
 impl Addressed<Modbus> for Parameter {
-    fn address(&self, access: Access) -> Option<drivebus::modbus::ModbusAddress> {
-        let described = self.modbus.iter().find(|a| allows(a.access, access))?;
-        Some(described.wire)
+    fn address(
+        &self,
+        access: Access,
+        variant: Option<&str>,
+    ) -> Result<drivebus::modbus::ModbusAddress, Unreachable> {
+        let addresses = self
+            .modbus
+            .iter()
+            .map(|a| (a.wire, a.access, a.variant.as_deref()));
+        pick(self, addresses, access, variant)
     }
 }
 
 impl Addressed<CanOpen> for Parameter {
-    fn address(&self, access: Access) -> Option<drivebus::canopen::ObjectAddress> {
-        object_address(self, &self.canopen, access)
+    fn address(
+        &self,
+        access: Access,
+        variant: Option<&str>,
+    ) -> Result<drivebus::canopen::ObjectAddress, Unreachable> {
+        object_address(self, &self.canopen, access, variant)
     }
 }
 
 impl Addressed<Rs232> for Parameter {
-    fn address(&self, access: Access) -> Option<drivebus::canopen::ObjectAddress> {
-        object_address(self, &self.rs232, access)
+    fn address(
+        &self,
+        access: Access,
+        variant: Option<&str>,
+    ) -> Result<drivebus::canopen::ObjectAddress, Unreachable> {
+        object_address(self, &self.rs232, access, variant)
     }
 }
 
-/// The first of `addresses` (CANopen or RS-232 objects) that allows `access`, with the value's
-/// width; 0 (as the object says) for text and octets, which go as long as they are.
+/// The address of `addresses` (CANopen or RS-232 objects) that serves `access` in `variant`,
+/// with the value's width; 0 (as the object says) for text and octets, which go as long as they
+/// are.
 fn object_address(
     parameter: &Parameter,
     addresses: &[ObjectAddress],
     access: Access,
-) -> Option<drivebus::canopen::ObjectAddress> {
-    let object = addresses.iter().find(|a| allows(a.access, access))?;
+    variant: Option<&str>,
+) -> Result<drivebus::canopen::ObjectAddress, Unreachable> {
     let bytes = match parameter.data_type {
         DataType::String(_) | DataType::Octets(_) => 0,
         data_type => data_type.bytes(),
     };
-    Some(drivebus::canopen::ObjectAddress {
-        index: object.index,
-        subindex: object.subindex,
-        bytes,
-    })
+    let addresses = addresses.iter().map(|a| {
+        let address = drivebus::canopen::ObjectAddress {
+            index: a.index,
+            subindex: a.subindex,
+            bytes,
+        };
+        (address, a.access, a.variant.as_deref())
+    });
+    pick(parameter, addresses, access, variant)
 }

@@ -330,6 +330,27 @@ pub struct RawParameter {
     pub erratum: Option<String>,
     /// `safety = true`: a safety-function parameter, read but never written by a plain setter.
     pub safety: Option<bool>,
+    /// `stops = true` or `stops = [{ mask, value }]`: the writes that stop the drive.
+    pub stops: Option<Spanned<RawStops>>,
+}
+
+/// `stops`: every write (`true`), or the values matching one of the patterns.
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub enum RawStops {
+    Every(bool),
+    Matching(Vec<RawStopPattern>),
+}
+
+/// `{ mask, value, doc }`: the values whose bits under `mask` equal `value`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawStopPattern {
+    pub mask: i64,
+    pub value: i64,
+    /// What the matching values do (documentation only).
+    #[allow(dead_code)]
+    pub doc: Option<String>,
 }
 
 /// `bounds = { min, max, magnitude }`: parameters whose current values bound this one.

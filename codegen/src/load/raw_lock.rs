@@ -53,12 +53,14 @@ pub struct RawGrant {
     pub password: Option<String>,
 }
 
-/// `{ parameter, values }`: the unlock is possible only while `parameter` holds one of `values`.
+/// `{ parameter, values, scopes }`: the unlock is possible only while `parameter` holds one of
+/// `values`; losing it ends the unlock of `scopes` (default: all it allows).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawRequirement {
     pub parameter: String,
     pub values: Vec<i64>,
+    pub scopes: Option<Vec<String>>,
 }
 
 /// `[watchdog]`: the drive's serial timeout.

@@ -35,6 +35,7 @@ mod srdo_mappings_pair_and_fit;
 mod srdo_numbers_are_unique;
 mod srdo_timings_are_valid;
 mod state_machines_resolve;
+mod stops_are_always_sendable;
 mod strings_have_length;
 mod units_are_known;
 mod unlocks_resolve;
@@ -125,6 +126,10 @@ pub const PASSES: &[(&str, Pass)] = &[
     ),
     ("unlocks_resolve", unlocks_resolve::check),
     ("ramps_resolve", ramps_resolve::check),
+    (
+        "stops_are_always_sendable",
+        stops_are_always_sendable::check,
+    ),
 ];
 
 /// Runs every pass.

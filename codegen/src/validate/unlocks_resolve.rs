@@ -262,6 +262,16 @@ fn unlock(device: &Device, lock: &Lock, unlock: &Unlock, report: &mut impl FnMut
                     report(&r.span, format!("{value} does not fit `{}`", p.name));
                 }
             }
+            for scope in r.scopes.iter().filter(|s| !unlock.allows.contains(s)) {
+                report(
+                    &r.span,
+                    format!(
+                        "the requirement of `{}` guards scope `{scope}`, which the unlock does \
+                         not allow",
+                        unlock.name
+                    ),
+                );
+            }
         }
         None if unlock.ends.contains(&UnlockEnd::RequirementLost) => report(
             &unlock.span,
@@ -448,6 +458,25 @@ source = { doc = "m", line = 11 }
         assert_eq!(scope("unlock_word"), None, "a grant is exempt");
         assert_eq!(lock.unlocks_opening("parameters").count(), 1);
         assert!(messages("unlocks_resolve", &body(LOCK)).is_empty());
+    }
+
+    #[test]
+    fn a_requirement_guards_only_scopes_its_unlock_allows() {
+        let guarded = LOCK.replace(
+            r#"values = [10, 11] }"#,
+            r#"values = [10, 11], scopes = ["parameters"] }"#,
+        );
+        assert_eq!(
+            messages("unlocks_resolve", &body(&guarded)),
+            ["the requirement of `controls` guards scope `parameters`, which the unlock does not allow"]
+        );
+        let device = device(&body(LOCK));
+        let controls = &device.lock.as_ref().unwrap().unlocks[0];
+        assert_eq!(
+            controls.requires.as_ref().unwrap().scopes,
+            ["controls"],
+            "by default the scopes the unlock allows"
+        );
     }
 
     #[test]

@@ -45,8 +45,9 @@ fn a_foreign_vendor_is_named_and_gets_no_write_until_trusted() {
             reason: mismatch
         })
     );
+    // Enable operation (a stopping word would go out: stops_are_never_held_back.rs).
     assert_eq!(
-        drive.controlword().write_raw(0x06),
+        drive.controlword().write_raw(0x0F),
         Err(Error::WritesRefused {
             parameter: "controlword",
             reason: mismatch
@@ -55,7 +56,7 @@ fn a_foreign_vendor_is_named_and_gets_no_write_until_trusted() {
     assert_eq!(downloads(&mut drive), 0, "nothing was sent");
     assert_eq!(drive.controlword().read_raw(), Ok(0), "reads go on");
     drive.trust_unverified();
-    assert_eq!(drive.controlword().write_raw(0x06), Ok(()));
+    assert_eq!(drive.controlword().write_raw(0x0F), Ok(()));
     assert_eq!(downloads(&mut drive), 1);
 }
 

@@ -54,10 +54,13 @@ impl From<BoundedWriteError> for SmdError {
 impl From<UnlockError> for SmdError {
     fn from(error: UnlockError) -> Self {
         match error {
-            UnlockError::Drive(Error::WritesRefused {
-                reason: WriteRefusal::UnknownVariant { value, .. },
-                ..
-            }) => Self::UnknownConfiguration {
+            UnlockError::Drive(
+                Error::WritesRefused {
+                    reason: WriteRefusal::UnknownVariant { value, .. },
+                    ..
+                }
+                | Error::VariantUnknown { value, .. },
+            ) => Self::UnknownConfiguration {
                 value: u16::try_from(value).unwrap_or(u16::MAX),
             },
             UnlockError::Drive(error) => Self::Bus(error),
@@ -77,8 +80,8 @@ impl From<UnlockError> for SmdError {
 
 impl From<Error> for SmdError {
     /// A write refused as locked (exception 0x01, or before sending) becomes
-    /// [`SmdError::Locked`]; a write refused before sending because #50 named no known
-    /// configuration, [`SmdError::UnknownConfiguration`].
+    /// [`SmdError::Locked`]; a write refused, or a moved register not read, because #50 named
+    /// no known configuration, [`SmdError::UnknownConfiguration`].
     fn from(error: Error) -> Self {
         UnlockError::from(error).into()
     }

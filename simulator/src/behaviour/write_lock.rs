@@ -23,6 +23,8 @@ pub struct WriteLock {
     gated: Vec<(ParamId, String)>,
     /// Indices into `lock.unlocks` of the unlocks in force.
     active: Vec<usize>,
+    /// Those of them whose requirement was lost: the scopes it guards are closed.
+    requirement_lost: Vec<usize>,
     /// Time since the drive last heard a request, while unlocked.
     silent: Duration,
 }
@@ -46,15 +48,22 @@ impl WriteLock {
             command,
             gated,
             active: Vec::new(),
+            requirement_lost: Vec::new(),
             silent: Duration::ZERO,
         })
     }
 
     /// Whether an unlock in force opens `scope`.
     fn open(&self, scope: &str) -> bool {
-        self.active
-            .iter()
-            .any(|&u| self.lock.unlocks[u].allows.iter().any(|a| a == scope))
+        self.active.iter().any(|&u| {
+            let unlock = &self.lock.unlocks[u];
+            let closed = self.requirement_lost.contains(&u)
+                && unlock
+                    .requires
+                    .as_ref()
+                    .is_some_and(|r| r.scopes.iter().any(|s| s == scope));
+            unlock.allows.iter().any(|a| a == scope) && !closed
+        })
     }
 
     fn value_of(store: &Store, name: &str) -> Option<i128> {
@@ -81,12 +90,14 @@ impl WriteLock {
     fn end(&mut self, event: UnlockEnd) {
         let unlocks = &self.lock.unlocks;
         self.active.retain(|&u| !unlocks[u].ends.contains(&event));
+        let active = &self.active;
+        self.requirement_lost.retain(|u| active.contains(u));
     }
 
-    /// Ends the unlocks whose requirement `id` held and no longer holds.
+    /// Closes the scopes guarded by the requirements `id` held and no longer holds.
     fn check_requirements(&mut self, store: &Store, id: ParamId) {
         let unlocks = &self.lock.unlocks;
-        self.active.retain(|&u| {
+        let lost = self.active.iter().copied().filter(|&u| {
             let unlock = &unlocks[u];
             let lost = unlock.requires.as_ref().is_some_and(|r| {
                 store.id(&r.parameter) == Some(id)
@@ -94,8 +105,14 @@ impl WriteLock {
                         .int(id)
                         .is_some_and(|v| r.values.iter().any(|a| i128::from(*a) == v))
             });
-            !(lost && unlock.ends.contains(&UnlockEnd::RequirementLost))
+            lost && unlock.ends.contains(&UnlockEnd::RequirementLost)
         });
+        let lost: Vec<usize> = lost.collect();
+        for u in lost {
+            if !self.requirement_lost.contains(&u) {
+                self.requirement_lost.push(u);
+            }
+        }
     }
 
     /// The watchdog's timeout and what it does now, if it is armed.
@@ -148,7 +165,11 @@ impl Behaviour for WriteLock {
         self.check_requirements(store, id);
         let written = store.int(id);
         for (u, unlock) in self.lock.unlocks.iter().enumerate() {
-            if Self::grants(store, unlock, id, written) && !self.active.contains(&u) {
+            if !Self::grants(store, unlock, id, written) {
+                continue;
+            }
+            self.requirement_lost.retain(|&lost| lost != u);
+            if !self.active.contains(&u) {
                 self.active.push(u);
             }
         }

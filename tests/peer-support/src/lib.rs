@@ -111,3 +111,30 @@ pub fn pty_pair() -> PtyPair {
     }
     pair
 }
+
+/// Starts `python script args...` with its stdin kept open and waits for the `READY` line the
+/// peer scripts print once they serve; panics with [`SETUP_HINT`] when it does not come.
+pub fn ready_peer(script: &Path, args: &[&str]) -> Process {
+    use std::io::{BufRead, BufReader};
+    let python = python();
+    let mut peer = Process::new(
+        Command::new(&python)
+            .arg(script)
+            .args(args)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::inherit())
+            .spawn()
+            .unwrap_or_else(|e| panic!("cannot start {} ({e}); {SETUP_HINT}", python.display())),
+    );
+    let stdout = peer.child_mut().stdout.take().expect("piped stdout");
+    let mut line = String::new();
+    BufReader::new(stdout).read_line(&mut line).unwrap();
+    assert_eq!(
+        line.trim(),
+        "READY",
+        "{} did not start; {SETUP_HINT}",
+        script.display()
+    );
+    peer
+}

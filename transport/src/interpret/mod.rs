@@ -33,7 +33,8 @@ pub use model::{BoundedBy, Described, Model, Symbols};
 pub use number::Number;
 #[cfg(feature = "std")]
 pub use over_link::{
-    check_bounds, read, read_raw, write, write_raw, Access, Addressed, InterpretError,
+    check_bounds, read, read_raw, waive_for_stop, write, write_checked, write_raw, Access,
+    Addressed, InterpretError, Unreachable, Variant,
 };
 pub use range::Range;
 pub use raw_value::RawValue;

@@ -5,7 +5,7 @@
 use std::vec::Vec;
 
 use super::{Number, Range};
-use crate::{Bound, DataType, Scale};
+use crate::{Bound, DataType, Scale, Stops};
 
 /// A described parameter, as the interpreter sees it.
 pub trait Described {
@@ -25,6 +25,10 @@ pub trait Described {
     /// The parameters whose current values bound it (none by default).
     fn bounded_by(&self) -> BoundedBy<'_> {
         BoundedBy::default()
+    }
+    /// The writes of it that stop the drive, never refused before sending (none by default).
+    fn stops(&self) -> Stops<'_> {
+        Stops::Never
     }
 }
 

@@ -20,6 +20,7 @@ use crate::codec;
 use crate::connect::read_modbus;
 use crate::error::CliError;
 use crate::modbus_limits;
+use drivebus::interpret::Variant;
 
 /// One candidate description's identity register.
 pub struct Probe<'a> {
@@ -140,7 +141,23 @@ fn probe_unit(
     let mut readings = Vec::new();
     for probe in probes {
         let parameters = [probe.check.parameter];
-        let reading = match read_modbus(bus, UnitId(unit), probe.limits, &target, &parameters) {
+        // The drive's variant is not known yet: identity parameters have one address in all.
+        let undetected = Variant::Unknown {
+            selector: probe
+                .device
+                .variant_selection()
+                .map_or_else(String::new, |(p, _)| p.name.clone()),
+            found: None,
+        };
+        let read = read_modbus(
+            bus,
+            UnitId(unit),
+            probe.limits,
+            &target,
+            &undetected,
+            &parameters,
+        );
+        let reading = match read {
             Ok(values) => {
                 let bytes = values.into_iter().next().unwrap_or_default();
                 let shown = drivebus::interpret::show(probe.device, probe.check.parameter, &bytes);

@@ -101,7 +101,7 @@ pub fn emit(device: &Device) -> TokenStream {
         .parameters
         .iter()
         .filter(|p| !super::indexed::is_member(p, device))
-        .filter(|p| device.lock_scope_of(p).is_none() || readable(p))
+        .filter(|p| device.lock_scope_of(p).is_none() || readable(p) || p.stops.is_some())
         .map(|p| {
             let method = ident(&names::method(&p.name));
             let marker = ident(&names::camel(&p.name));
@@ -110,7 +110,8 @@ pub fn emit(device: &Device) -> TokenStream {
                 "{summary}\n\nSee [`params::{marker}`] for address, type, unit and source."
             ));
             let aliases = super::parameter_doc::aliases(p);
-            if let Some(scope) = device.lock_scope_of(p) {
+            // A stop is written from the handle too: never held back by the lock's account.
+            if let Some(scope) = device.lock_scope_of(p).filter(|_| p.stops.is_none()) {
                 // Written only through the guard of an unlock opening its scope.
                 let docs = doc_attrs(&format!(
                     "{summary}\n\nRead here; written only while unlocked (scope `{}`, see \

@@ -84,7 +84,27 @@ fn clauses(p: &Parameter) -> TokenStream {
         let allowed = p.allowed.iter().map(|n| number(*n, p));
         quote! { , one_of[#( #allowed ),*] }
     });
-    quote! { #scale #range #allowed }
+    let stops = p.stops.as_ref().map(|stops| {
+        let stops = stops_tokens(stops.view());
+        quote! { , stops(#stops) }
+    });
+    quote! { #scale #range #allowed #stops }
+}
+
+/// `always`, or `mask => value, ...` with the masks and values in hex, as a manual prints them.
+fn stops_tokens(stops: drivebus::Stops<'_>) -> TokenStream {
+    let hex = |v: u64| syn::LitInt::new(&format!("{v:#06x}"), proc_macro2::Span::call_site());
+    match stops {
+        drivebus::Stops::Never => quote! {},
+        drivebus::Stops::Always => quote! { always },
+        drivebus::Stops::Matching(patterns) => {
+            let patterns = patterns.iter().map(|p| {
+                let (mask, value) = (hex(p.mask), hex(p.value));
+                quote! { #mask => #value }
+            });
+            quote! { #( #patterns ),* }
+        }
+    }
 }
 
 fn op_method(op: Op) -> &'static str {

@@ -56,6 +56,22 @@ pub fn text(p: &Parameter, device: &Device) -> String {
     if let Some(note) = p.safety_write_note() {
         row(&mut out, "Safety", note.into());
     }
+    if let Some(stops) = &p.stops {
+        let which = match &stops.patterns {
+            None => "every write".to_owned(),
+            Some(patterns) => {
+                let each: Vec<String> = patterns
+                    .iter()
+                    .map(|s| format!("`raw & {:#06x} == {:#06x}`", s.mask, s.value))
+                    .collect();
+                format!("a write with {}", each.join(" or "))
+            }
+        };
+        let note = format!(
+            "{which}: always sent, whatever the handle believes of locks, identity or variant"
+        );
+        row(&mut out, "Stops the drive", note);
+    }
     for a in &p.canopen {
         row(
             &mut out,

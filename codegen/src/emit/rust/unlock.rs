@@ -131,10 +131,12 @@ fn write_lock_table(device: &Device, lock: &Lock) -> TokenStream {
             Some(r) if unlock.ends.contains(&UnlockEnd::RequirementLost) => {
                 let parameter = &r.parameter;
                 let values = r.values.iter().map(literal);
+                let scopes = &r.scopes;
                 quote! {
                     Some(::drivebus::write_lock::Requirement {
                         parameter: #parameter,
                         values: &[#( #values ),*],
+                        scopes: &[#( #scopes ),*],
                     })
                 }
             }

@@ -27,9 +27,10 @@ pub fn emit(device: &Device) -> TokenStream {
     ));
     let detect_doc = doc_attrs(&format!(
         "Reads `{name}` and selects the variant it names. A value no variant is selected by \
-         comes back as [`VariantSelection::Unknown`]: reads go on in the variant selected before, \
-         and every write is refused with `Error::WritesRefused` (nothing is sent) until a later \
-         detection succeeds or `set_variant` overrides it."
+         comes back as [`VariantSelection::Unknown`]: until a later detection succeeds or \
+         `set_variant` overrides it, a parameter whose address depends on the variant is not \
+         read (`Error::VariantUnknown`) and every write but a stop is refused with \
+         `Error::WritesRefused`; nothing is guessed and nothing is sent."
     ));
     quote! {
         /// What the drive reported about its variant.

@@ -65,6 +65,11 @@ impl Lowering<'_> {
             requires: raw.requires.as_ref().map(|r| ir::Requirement {
                 parameter: r.get_ref().parameter.clone(),
                 values: r.get_ref().values.clone(),
+                scopes: r
+                    .get_ref()
+                    .scopes
+                    .clone()
+                    .unwrap_or_else(|| raw.allows.get_ref().clone()),
                 span: self.span(r),
             }),
             ends,

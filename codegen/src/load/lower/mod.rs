@@ -17,6 +17,7 @@ mod ramps;
 mod read_blocks;
 mod refine;
 mod srdo;
+mod stops;
 mod subindex_range;
 
 use toml::Spanned;
@@ -941,6 +942,10 @@ impl Lowering<'_> {
             None => ir::Effect::Immediate,
         };
         let command = self.commands(raw.command.as_ref(), raw.commands.as_ref())?;
+        let stops = match &raw.stops {
+            Some(s) => self.stop_writes(s)?,
+            None => None,
+        };
         let spans = ir::ParameterSpans {
             name: self.span(&raw.name),
             data_type: raw
@@ -996,6 +1001,7 @@ impl Lowering<'_> {
             source,
             erratum: raw.erratum.clone(),
             safety: raw.safety.unwrap_or(false),
+            stops,
             spans,
         })?;
         Some(match matched {
