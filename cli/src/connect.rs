@@ -243,6 +243,7 @@ impl Session {
                 .or(device.canopen.as_ref().map(|c| c.default_node_id))
                 .and_then(NodeId::new)
                 .ok_or_else(|| CliError::Usage("give a CANopen --node-id (1..=127)".into()))?;
+            warn_node_relative_defaults(device, node.0);
             let (bus, relay) = can_backend(backend)?;
             return Ok(Self {
                 link: Link::CanOpen {
@@ -452,6 +453,31 @@ pub fn can_backend(spec: &str) -> Result<(Box<dyn CanBus + Send>, Option<Child>)
     Err(CliError::Usage(format!(
         "--can {spec}: expected slcan:HOST:PORT or candump:exec:COMMAND"
     )))
+}
+
+/// Warns on stderr, once per parameter, when the description's own limits refuse a node-relative
+/// default (`$NODEID+0x180`) on node `node`: a vendor EDS whose limits allow node IDs 1..=15 only
+/// describes a drive not meant for node 16. Nothing is refused (other tools talk to such a node
+/// too); a write is still checked against the limits before anything is sent.
+pub fn warn_node_relative_defaults(device: &Device, node: u8) {
+    for line in node_relative_default_warnings(device, node) {
+        eprintln!("{line}");
+    }
+}
+
+/// The lines [`warn_node_relative_defaults`] prints.
+fn node_relative_default_warnings(device: &Device, node: u8) -> Vec<String> {
+    device
+        .defaults_refusing_node(node)
+        .into_iter()
+        .map(|(p, ids)| {
+            let value = p.default_on(node).map_or_else(String::new, |v| format!(", {v},"));
+            format!(
+                "warning: on node {node} the default of `{}`{value} is outside what the description allows for it; it allows node IDs {ids} only",
+                p.name
+            )
+        })
+        .collect()
 }
 
 /// The RS-232 station: --node-id, else the description's CANopen node id (the drive's one id,

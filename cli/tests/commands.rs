@@ -532,3 +532,65 @@ fn foreign_swd() -> (String, String) {
     );
     (swd, can)
 }
+
+/// Issue #27 item 7: a vendor EDS whose `$NODEID+0x180` COB-ID default has limits 0x181..=0x18F
+/// (node IDs 1..=15; its `gateway_id`, node IDs 16..=32). At node 5 the session says nothing of
+/// the COB-ID and the simulated node holds 0x185; at node 16 the session and the simulated node
+/// (its stderr is inherited) each warn, naming the parameter, its default there and the node IDs
+/// allowed, and the read still gives 0x190 (what the drive holds); a write of that default is
+/// refused before the bus is even opened, one within the limits goes through.
+#[test]
+fn a_node_id_the_limits_do_not_allow_is_warned_about_and_not_refused() {
+    let eds = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../codegen/tests/eds/node_id_default_narrowed.eds");
+    let eds = eds.to_str().unwrap();
+    let run = |node: &str, command: &[&str]| {
+        let can = format!("candump:exec:{BIN} sim {eds} --can candump:stdio --node-id {node}");
+        let mut args = command.to_vec();
+        args.extend_from_slice(&["--can", &can, "--node-id", node]);
+        drivegen(&args)
+    };
+    let read = ["read", eds, "cob_id_used_by_tpdo1", "--json"];
+    let warning = |node: u8, name: &str, value: u32, allowed: &str| {
+        format!("warning: on node {node} the default of `{name}`, {value}, is outside what the description allows for it; it allows node IDs {allowed} only\n")
+    };
+
+    let allowed = run("5", &read);
+    let text = stderr(&allowed);
+    assert!(allowed.status.success(), "{text}");
+    assert!(
+        !text.contains("default of `cob_id_used_by_tpdo1`, "),
+        "{text}"
+    );
+    let gateway = warning(5, "gateway_id", 261, "16..=32");
+    assert_eq!(text.matches(&gateway).count(), 2, "read and sim: {text}");
+    assert!(
+        stdout(&allowed).contains("389"),
+        "0x185: {}",
+        stdout(&allowed)
+    );
+
+    let cob_id = warning(16, "cob_id_used_by_tpdo1", 400, "1..=15");
+    let outside = run("16", &read);
+    let text = stderr(&outside);
+    assert!(outside.status.success(), "{text}");
+    assert_eq!(text.matches(&cob_id).count(), 2, "read and sim: {text}");
+    assert!(!text.contains("default of `gateway_id`, "), "{text}");
+    assert!(
+        stdout(&outside).contains("400"),
+        "0x190: {}",
+        stdout(&outside)
+    );
+
+    let refused = run("16", &["write", eds, "cob_id_used_by_tpdo1", "raw:400"]);
+    assert!(!refused.status.success(), "{}", stdout(&refused));
+    assert!(
+        stderr(&refused).contains(
+            "400 is outside the range of cob_id_used_by_tpdo1: 385..=399 (nothing was sent)"
+        ),
+        "{}",
+        stderr(&refused)
+    );
+    let within = run("16", &["write", eds, "cob_id_used_by_tpdo1", "raw:385"]);
+    assert!(within.status.success(), "{}", stderr(&within));
+}

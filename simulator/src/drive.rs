@@ -28,6 +28,12 @@ impl Drive {
         }
     }
 
+    /// Makes this the drive at CANopen node `node`: node-relative defaults (`$NODEID+0x180`)
+    /// take their value on that node.
+    pub fn at_node(&mut self, node: u8) {
+        self.store.at_node(node);
+    }
+
     /// The parameter values.
     pub fn store(&self) -> &Store {
         &self.store

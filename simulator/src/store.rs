@@ -22,9 +22,15 @@ pub struct Store {
 }
 
 impl Store {
-    /// A store holding the described defaults (0 where none is described).
+    /// A store holding the described defaults (0 where none is described); node-relative ones on
+    /// the description's default node id.
     pub fn new(device: Device) -> Self {
-        let factory: Vec<Vec<u8>> = device.parameters.iter().map(default_bytes).collect();
+        let node = device.canopen.as_ref().map_or(1, |c| c.default_node_id);
+        let factory: Vec<Vec<u8>> = device
+            .parameters
+            .iter()
+            .map(|p| default_bytes(p, node))
+            .collect();
         let by_name = device
             .parameters
             .iter()
@@ -115,13 +121,40 @@ impl Store {
         self.stored = self.factory.clone();
     }
 
+    /// Gives every node-relative default (`$NODEID+0x180`) its value on node `node`, as the drive
+    /// computes it: the factory value, and the present and stored values still holding the default
+    /// of another node. The value is kept even where the parameter's own limits refuse it (a vendor
+    /// EDS whose limits allow some node IDs only): the drive holds it, a client sees it.
+    pub fn at_node(&mut self, node: u8) {
+        for (id, p) in self.device.parameters.iter().enumerate() {
+            let Some(default) = p.default_on(node).filter(|_| p.default_plus_node_id) else {
+                continue;
+            };
+            let bytes = raw::from_number(p.data_type, default);
+            let old = std::mem::replace(&mut self.factory[id], bytes.clone());
+            for copy in [&mut self.values[id], &mut self.stored[id]] {
+                if *copy == old {
+                    *copy = bytes.clone();
+                }
+            }
+        }
+    }
+
     /// Reloads the present values from the non-volatile copy, as a reboot does.
     pub fn reload(&mut self) {
         self.values = self.stored.clone();
     }
 }
 
-fn default_bytes(parameter: &Parameter) -> Vec<u8> {
+/// The factory value; a node-relative default is taken on node `node` (the description's default
+/// node id, until [`Store::at_node`] says which node the drive is).
+fn default_bytes(parameter: &Parameter, node: u8) -> Vec<u8> {
+    if let Some(d) = parameter
+        .default_on(node)
+        .filter(|_| parameter.default_plus_node_id)
+    {
+        return raw::from_number(parameter.data_type, d);
+    }
     parameter.default.map_or_else(
         || raw::zero(parameter.data_type),
         |d| raw::from_number(parameter.data_type, d),

@@ -274,3 +274,31 @@ fn saved_parameters_survive_an_nmt_reset() {
     reset(&mut sdo);
     assert_eq!(mode(&mut sdo), 3, "saved: kept");
 }
+
+/// A node-relative default (`$NODEID+0x180`, a vendor EDS whose limits 0x181..=0x18F allow node
+/// IDs 1..=15 only) holds its value on the node's own id: 0x185 on node 5, 0x190 on node 16
+/// (what the drive computes, though its limits refuse it), never the bare offset 0x180.
+#[test]
+fn node_relative_defaults_hold_the_node_id() {
+    let eds = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../codegen/tests/eds/node_id_default_narrowed.eds"
+    );
+    let sim = Simulator::load(eds).unwrap();
+    let before = sim.with(|d| {
+        let id = d.store().id("cob_id_used_by_tpdo1").unwrap();
+        d.store().int(id)
+    });
+    assert_eq!(before, Some(0x181), "the description's default node id 1");
+    for (node, cob_id) in [(5u8, 0x185u32), (16, 0x190)] {
+        let (mut sdo, _node) = start(eds, node, None);
+        let read = upload(&mut sdo, node, 0x1800, 1).unwrap();
+        assert_eq!(read, cob_id.to_le_bytes(), "node {node}");
+        let gateway = upload(&mut sdo, node, 0x2010, 0).unwrap();
+        assert_eq!(
+            gateway,
+            (0x100 + u16::from(node)).to_le_bytes(),
+            "node {node}"
+        );
+    }
+}

@@ -108,6 +108,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
                 let node = NodeId::new(d.id).ok_or_else(|| {
                     CliError::Usage(format!("node id {}: expected 1..=127", d.id))
                 })?;
+                crate::connect::warn_node_relative_defaults(&d.device, d.id);
                 let config = NodeConfig {
                     node,
                     heartbeat: (args.heartbeat_ms > 0)

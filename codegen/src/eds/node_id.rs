@@ -7,10 +7,7 @@
 use super::trim::trim;
 use crate::ir::{DataType, Number};
 
-/// The lowest node ID a `$NODEID` term stands for (CiA 301: 1..=127).
-pub const FIRST_NODE_ID: u8 = 1;
-/// The highest node ID a `$NODEID` term stands for.
-pub const LAST_NODE_ID: u8 = 127;
+pub use crate::ir::{FIRST_NODE_ID, LAST_NODE_ID};
 
 /// A value of `DefaultValue`, `LowLimit`, `HighLimit` or `ParameterValue`.
 #[derive(Debug, Clone, Copy, PartialEq)]

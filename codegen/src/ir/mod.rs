@@ -11,6 +11,7 @@ mod identity_checks;
 mod indexed;
 mod lock;
 mod model;
+mod node_ids;
 mod pdo;
 mod ramp;
 mod read_block;
@@ -36,6 +37,7 @@ pub use lock::{
     Watchdog,
 };
 pub use model::{Constant, Model};
+pub use node_ids::{DefaultCheck, NodeIds, FIRST_NODE_ID, LAST_NODE_ID};
 pub use pdo::{pdo_bits, CobId, PdoDirection, PdoMapping};
 pub use ramp::{per_second, Ramp, Slope};
 pub use read_block::ReadBlock;

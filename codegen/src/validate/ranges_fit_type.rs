@@ -1,7 +1,7 @@
 //! A range has `min <= max`, and ranges and allowed values fit the parameter's type.
 
 use crate::diagnostic::{Diagnostic, Span};
-use crate::ir::{DataType, Device, Number, Parameter};
+use crate::ir::{Device, Number, Parameter};
 
 const RULE: &str = "ranges_fit_type";
 
@@ -9,15 +9,7 @@ const RULE: &str = "ranges_fit_type";
 /// width can hold (TOML allows `inf` and `nan`, and a value beyond `f32` would be infinite on the
 /// wire).
 pub fn fits(p: &Parameter, n: Number) -> bool {
-    match (p.data_type.integer_bounds(), n) {
-        (Some((lo, hi)), Number::Int(i)) => (lo..=hi).contains(&(i as i128)),
-        (Some(_), Number::Float(_)) => false,
-        (None, n) => match p.data_type {
-            DataType::F32 => n.as_f64().abs() <= f64::from(f32::MAX),
-            DataType::F64 => n.as_f64().is_finite(),
-            _ => false,
-        },
-    }
+    p.fits_type(n)
 }
 
 fn out_of_type(p: &Parameter, n: Number, span: &Span) -> Diagnostic {

@@ -37,8 +37,10 @@ pub struct Node {
 }
 
 impl Node {
-    /// A node serving `sim`'s drive; it is INITIALISING until [`Node::boot`].
+    /// A node serving `sim`'s drive; it is INITIALISING until [`Node::boot`]. Node-relative
+    /// defaults take their value on `config.node`.
     pub fn new(sim: Simulator, config: NodeConfig, variant: Option<&str>) -> Self {
+        sim.with(|drive| drive.at_node(config.node.0));
         let dictionary =
             sim.with(|drive| Dictionary::new(sim.clone(), drive.store().device(), variant));
         let srdos = sim.with(|drive| Srdos::new(drive.store(), config.node));

@@ -143,7 +143,16 @@ pub fn text(p: &Parameter, device: &Device) -> String {
     }
     match p.default {
         Some(d) if p.default_plus_node_id => {
-            row(&mut out, "Default (raw)", format!("node id + {d}"))
+            row(&mut out, "Default (raw)", format!("node id + {d}"));
+            // Limits that hold on some node IDs only (a vendor EDS, issue #27): said where a user
+            // of the generated crate reads about the default.
+            if let Some(ids) = device.default_node_ids(p).filter(|ids| !ids.is_all()) {
+                row(
+                    &mut out,
+                    "Node IDs",
+                    format!("the default is a value this parameter accepts on node IDs {ids} only"),
+                );
+            }
         }
         Some(d) => row(&mut out, "Default (raw)", d.to_string()),
         None => {}
@@ -230,4 +239,29 @@ pub fn aliases(p: &Parameter) -> TokenStream {
         .collect();
     let attrs = unique.iter().map(|alias| quote! { #[doc(alias = #alias)] });
     quote! { #( #attrs )* }
+}
+
+#[cfg(test)]
+mod tests {
+    /// A node-relative default whose limits hold on some node IDs only says which, where the
+    /// default is documented (the vendor EDS of issue #27 item 7).
+    #[test]
+    fn a_narrowed_node_relative_default_names_its_node_ids() {
+        let checked = crate::check(std::path::Path::new(
+            "tests/eds/node_id_default_narrowed.eds",
+        ));
+        let device = checked.device.expect("the file checks, with warnings");
+        let text = |name: &str| super::text(device.parameter(name).unwrap(), &device);
+        let cob_id = text("cob_id_used_by_tpdo1");
+        assert!(
+            cob_id.contains("| Default (raw) | node id + 384 |"),
+            "{cob_id}"
+        );
+        assert!(
+            cob_id.contains("| Node IDs | the default is a value this parameter accepts on node IDs 1..=15 only |"),
+            "{cob_id}"
+        );
+        assert!(text("gateway_id").contains("on node IDs 16..=32 only"));
+        assert!(!text("transmission_type").contains("Node IDs"));
+    }
 }
