@@ -160,7 +160,10 @@ fn every_described_parameter_has_a_row() {
         .filter(|name| !rows.contains(*name) && !NOT_IN_THE_MANUAL.contains(name))
         .collect();
     assert!(without.is_empty(), "no manual row for {without:?}");
-    assert_eq!(rows.len(), device.parameters.len() - NOT_IN_THE_MANUAL.len());
+    assert_eq!(
+        rows.len(),
+        device.parameters.len() - NOT_IN_THE_MANUAL.len()
+    );
 }
 
 #[test]
