@@ -39,7 +39,9 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
                     .parameters
                     .iter()
                     .any(|p| p.modbus.iter().any(|a| covers(p, a, block, r)));
-                !readable && !(block.zero_fill && !occupied(device, block, r))
+                // A zero-fill block may also cover registers nothing occupies.
+                let unoccupied_and_filled = block.zero_fill && !occupied(device, block, r);
+                !(readable || unoccupied_and_filled)
             })?;
             let message = format!(
                 "the read block at {:#06x} covers register {missing:#06x}, which no parameter readable in every variant occupies",
