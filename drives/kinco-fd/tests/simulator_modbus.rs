@@ -178,3 +178,26 @@ fn the_simulated_motor_ramps_to_the_target_speed_with_the_profile_acceleration()
     tick(1);
     assert_eq!(speed(), 309_600, "decelerates at the profile deceleration");
 }
+
+#[test]
+fn after_a_quick_stop_0x06_then_0x0f_enables_again() {
+    // "After quick stop, the controlword needs to be set to 0x06 before 0x0F for enabling"
+    // (line 1196); 0x0B is the quick stop (line 1935).
+    let sim = simulator();
+    let control = |word: u16| {
+        let [high, low] = word.to_be_bytes();
+        assert_eq!(answer(&sim, &[0x06, 0x31, 0x00, high, low])[0], 0x06);
+        let status = answer(&sim, &[0x03, 0x32, 0x00, 0x00, 0x01]);
+        u16::from_be_bytes([status[2], status[3]])
+    };
+    for word in [0x06, 0x07] {
+        control(word);
+    }
+    let enabled = control(0x0F);
+    assert_eq!(enabled & 0x6F, 0x27, "operation enabled: {enabled:#06x}");
+    let stopped = control(0x0B);
+    assert_ne!(stopped & 0x6F, 0x27, "quick stop: {stopped:#06x}");
+    control(0x06);
+    let again = control(0x0F);
+    assert_eq!(again & 0x6F, 0x27, "enabled again: {again:#06x}");
+}
