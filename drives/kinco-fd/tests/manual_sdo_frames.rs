@@ -133,3 +133,29 @@ fn switching_rs485_to_modbus_writes_6510h_0c_0_then_stores() {
     drive.switch_rs485_to_modbus().unwrap();
     assert_sent(&requests(drive), &["2F 10 65 0C 00", "2F F0 2F 01 01"]);
 }
+
+#[test]
+fn init_save_control_save_motor_is_three_store_commands() {
+    // The remedy of EEPROM data errors: "Init Control Parameters" -> "Save Control Parameters" ->
+    // "Save Motor Parameters" -> "Reboot" (line 1897; line 1117): 2FF0h.01 = 10, 2FF0h.01 = 1,
+    // 2FF0h.03 = 1 (line 2117-2118). The reboot has no object in the manual.
+    let mut drive = drive();
+    drive
+        .device()
+        .link_mut()
+        .bus_mut()
+        .memory
+        .set_object(0x2FF0, 0x01, &[0])
+        .set_object(0x2FF0, 0x03, &[0]);
+    for what in [
+        kinco_fd::Store::InitialiseControlLoop,
+        kinco_fd::Store::ControlLoop,
+        kinco_fd::Store::Motor,
+    ] {
+        drive.store(what).unwrap();
+    }
+    assert_sent(
+        &requests(drive),
+        &["2F F0 2F 01 0A", "2F F0 2F 01 01", "2F F0 2F 03 01"],
+    );
+}

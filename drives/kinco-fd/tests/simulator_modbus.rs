@@ -201,3 +201,54 @@ fn after_a_quick_stop_0x06_then_0x0f_enables_again() {
     let again = control(0x0F);
     assert_eq!(again & 0x6F, 0x27, "enabled again: {again:#06x}");
 }
+
+/// A serial line that delivers `input` once and then fails, recording what the drive sends.
+struct Line {
+    input: std::collections::VecDeque<u8>,
+    sent: Vec<u8>,
+}
+
+impl drivebus::stream::ByteStream for Line {
+    fn send(&mut self, bytes: &[u8]) -> Result<(), BusError> {
+        self.sent.extend_from_slice(bytes);
+        Ok(())
+    }
+
+    fn receive(
+        &mut self,
+        buf: &mut [u8],
+        _deadline: std::time::Instant,
+    ) -> Result<usize, BusError> {
+        if self.input.is_empty() {
+            return Err(BusError::Io(std::io::ErrorKind::UnexpectedEof));
+        }
+        let n = buf.len().min(self.input.len());
+        for (slot, byte) in buf.iter_mut().zip(self.input.drain(..n)) {
+            *slot = byte;
+        }
+        Ok(n)
+    }
+
+    fn discard_input(&mut self) -> Result<(), BusError> {
+        self.input.clear();
+        Ok(())
+    }
+}
+
+#[test]
+fn a_broadcast_to_station_0_is_executed_and_not_answered() {
+    // "if station No. is 00, message belongs to broadcast message. All Modbus slaves will accept
+    // this message" (line 2534): the speed-mode write of 10.5 (line 2485) sent to station 0.
+    let mut frame = vec![0x00, 0x06, 0x35, 0x00, 0x00, 0x03];
+    frame.extend(drivebus::modbus::crc::crc16(&frame).to_le_bytes());
+    let sim = simulator();
+    let mut line = Line {
+        input: frame.into_iter().collect(),
+        sent: Vec::new(),
+    };
+    let ended = drivesim::modbus::rtu::serve(&sim, &mut line, UnitId(1));
+    assert_eq!(ended, Err(BusError::Io(std::io::ErrorKind::UnexpectedEof)));
+    assert!(line.sent.is_empty(), "no answer to a broadcast");
+    let mode = sim.with(|d| d.store().int(d.store().id("modes_of_operation").unwrap()));
+    assert_eq!(mode, Some(3), "executed");
+}
