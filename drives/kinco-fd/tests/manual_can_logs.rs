@@ -5,7 +5,8 @@
 //!
 //! The logs print a few identifiers wrongly (ERRATA.md #45): the SDO answers at lines 3217 and
 //! 3236 are printed with ID 0706 and 0566 where node 6 answers on 0x586, and line 3184 shows a
-//! heartbeat byte under ID 0000. The data bytes are intact and are the vectors here.
+//! heartbeat byte under ID 0000, and the text reads the answer E8 03 as "0x03EB (1000ms)" (line
+//! 3222). The data bytes are intact and are the vectors here.
 
 use std::time::Duration;
 
