@@ -41,10 +41,14 @@ pub enum Slope {
         /// A time parameter (unit `ms` or `s`).
         time: String,
     },
-    /// `{ rate }`: setpoint units per second.
+    /// `{ rate }`: setpoint units per second, or per the time unit `per` names.
     Rate {
         /// The rate parameter.
         rate: String,
+        /// The time unit the rate is given per (`ms` or `s`); `None` is per second. Kinco FD:
+        /// one acceleration DEC is one speed DEC per millisecond (manual lines 1978, 1984).
+        #[serde(skip_serializing_if = "Option::is_none")]
+        per: Option<String>,
     },
     /// `{ speed, time }`: `speed` setpoint units in `time`.
     Delta {
@@ -60,7 +64,7 @@ impl Slope {
     pub fn parameters(&self) -> Vec<&str> {
         match self {
             Slope::Time { time } => vec![time],
-            Slope::Rate { rate } => vec![rate],
+            Slope::Rate { rate, .. } => vec![rate],
             Slope::Delta { speed, time } => vec![speed, time],
         }
     }

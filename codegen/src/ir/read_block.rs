@@ -16,6 +16,11 @@ pub struct ReadBlock {
     pub address: u16,
     /// Registers read.
     pub words: u16,
+    /// Whether registers of the block that no parameter occupies are answered (as 0): the
+    /// manual reads a value with more registers than it has (Kinco FD: the 16-bit statusword
+    /// read as 2 registers, line 2488).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub zero_fill: bool,
     /// Citation.
     pub source: Option<Citation>,
     /// Where it is declared.

@@ -125,13 +125,15 @@ pub struct RawModbusCaps {
     pub source: Option<Spanned<RawCitation>>,
 }
 
-/// `{ table, address, words, source }`: a read the device answers beyond `max_read_registers`.
+/// `{ table, address, words, zero_fill, source }`: a read the device answers beyond
+/// `max_read_registers`, or across registers no parameter occupies.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawReadBlock {
     pub table: String,
     pub address: i64,
     pub words: i64,
+    pub zero_fill: Option<bool>,
     pub source: Option<Spanned<RawCitation>>,
 }
 

@@ -18,11 +18,12 @@ pub struct RawRamp {
     pub source: Option<Spanned<RawCitation>>,
 }
 
-/// `{ time }`, `{ rate }` or `{ speed, time }`: one direction of a ramp.
+/// `{ time }`, `{ rate }` (optionally `per`) or `{ speed, time }`: one direction of a ramp.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawSlope {
     pub time: Option<String>,
     pub rate: Option<String>,
+    pub per: Option<String>,
     pub speed: Option<String>,
 }

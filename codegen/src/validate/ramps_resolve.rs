@@ -203,4 +203,46 @@ source = { doc = "m", line = 7 }
             ["setpoint `speed_setpoint` has two ramps"]
         );
     }
+
+    #[test]
+    fn a_rate_may_be_given_per_millisecond() {
+        let per_ms = RAMP
+            .replace(
+                r#"{ time = "speed_ramp_up" }"#,
+                r#"{ rate = "speed_ramp_up", per = "ms" }"#,
+            )
+            .replace(
+                r#"{ time = "speed_ramp_down" }"#,
+                r#"{ rate = "speed_ramp_down" }"#,
+            )
+            .replace("full_scale = \"full_scale_velocity\"\n", "");
+        let device = device(&body(&per_ms));
+        assert_eq!(
+            device.ramps[0].up,
+            crate::ir::Slope::Rate {
+                rate: "speed_ramp_up".into(),
+                per: Some("ms".into())
+            }
+        );
+        assert_eq!(
+            device.ramps[0].down,
+            crate::ir::Slope::Rate {
+                rate: "speed_ramp_down".into(),
+                per: None
+            }
+        );
+        let per_minute = per_ms.replace(r#"per = "ms""#, r#"per = "min""#);
+        assert_eq!(
+            messages("values_are_well_formed", &body(&per_minute)),
+            ["`per` is the time unit of a `{ rate }`: `ms` or `s`"]
+        );
+        let per_without_rate = RAMP.replace(
+            r#"{ time = "speed_ramp_up" }"#,
+            r#"{ time = "speed_ramp_up", per = "ms" }"#,
+        );
+        assert_eq!(
+            messages("values_are_well_formed", &body(&per_without_rate)),
+            ["`per` is the time unit of a `{ rate }`: `ms` or `s`"]
+        );
+    }
 }

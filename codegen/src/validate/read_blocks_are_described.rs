@@ -1,5 +1,6 @@
 //! A read block (`[modbus] read_blocks`) covers only registers the description lists as readable
-//! in every variant, so every word it returns decodes as a described parameter.
+//! in every variant, so every word it returns decodes as a described parameter; a `zero_fill`
+//! block may also cover registers no parameter occupies (answered as 0).
 
 use crate::diagnostic::Diagnostic;
 use crate::ir::{Device, ModbusAddress, Parameter, ReadBlock};
@@ -16,7 +17,16 @@ fn covers(p: &Parameter, a: &ModbusAddress, block: &ReadBlock, register: u32) ->
         && (start..start + u32::from(a.occupies)).contains(&register)
 }
 
-/// Reports block registers that no readable, variant-independent parameter occupies.
+/// Whether any address of any parameter occupies `register` of the block's table.
+fn occupied(device: &Device, block: &ReadBlock, register: u32) -> bool {
+    device.parameters.iter().flat_map(|p| &p.modbus).any(|a| {
+        let start = u32::from(a.address);
+        a.table == block.table && (start..start + u32::from(a.occupies)).contains(&register)
+    })
+}
+
+/// Reports block registers that no readable, variant-independent parameter occupies (in a
+/// `zero_fill` block: that a parameter occupies without being readable in every variant).
 pub fn check(device: &Device) -> Vec<Diagnostic> {
     let Some(caps) = &device.modbus else {
         return Vec::new();
@@ -25,10 +35,13 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
         .iter()
         .filter_map(|block| {
             let missing = block.registers().find(|&r| {
-                !device
+                let readable = device
                     .parameters
                     .iter()
-                    .any(|p| p.modbus.iter().any(|a| covers(p, a, block, r)))
+                    .any(|p| p.modbus.iter().any(|a| covers(p, a, block, r)));
+                // A zero-fill block may also cover registers nothing occupies.
+                let unoccupied_and_filled = block.zero_fill && !occupied(device, block, r);
+                !(readable || unoccupied_and_filled)
             })?;
             let message = format!(
                 "the read block at {:#06x} covers register {missing:#06x}, which no parameter readable in every variant occupies",
@@ -70,6 +83,22 @@ mod tests {
     fn a_block_past_the_described_registers_is_reported() {
         assert_eq!(
             messages("read_blocks_are_described", &body(4)),
+            ["the read block at 0x0018 covers register 0x001b, which no parameter readable in every variant occupies"]
+        );
+    }
+
+    #[test]
+    fn a_zero_fill_block_may_cover_unoccupied_registers() {
+        let zero_fill = body(4).replace("words = 4 }", "words = 4, zero_fill = true }");
+        assert!(messages("read_blocks_are_described", &zero_fill).is_empty());
+    }
+
+    #[test]
+    fn a_zero_fill_block_still_refuses_an_unreadable_register() {
+        let zero_fill = body(4).replace("words = 4 }", "words = 4, zero_fill = true }")
+            + "[[parameter]]\nname = \"w27\"\ntype = \"u16\"\nmodbus = { table = \"holding\", address = 27, access = \"w\" }\nsource = { doc = \"m\", line = 1 }\n";
+        assert_eq!(
+            messages("read_blocks_are_described", &zero_fill),
             ["the read block at 0x0018 covers register 0x001b, which no parameter readable in every variant occupies"]
         );
     }

@@ -2,7 +2,9 @@
 //! numbers) is in the description, as `drivegen::check` reads it: over CANopen and RS-232 at its
 //! index and subindex (line 1923: the RS-232 address is the CANopen one) and, where the manual
 //! gives a Modbus register, at that register. Objects the description decides against
-//! (ERRATA.md) must stay out.
+//! (ERRATA.md) must stay out. And every property of every described parameter (type, access,
+//! PDO mapping, unit, scale, range, default, allowed and enumerated values, bits) is the one
+//! tests/manual_table.txt types from the manual, compared by the `manual-table` crate.
 
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -57,7 +59,7 @@ fn description() -> Device {
 #[test]
 fn the_list_is_the_manuals() {
     let list = manual_list();
-    assert_eq!(list.iter().filter(|l| l.described).count(), 134);
+    assert_eq!(list.iter().filter(|l| l.described).count(), 136);
     assert_eq!(list.iter().filter(|l| l.modbus.is_some()).count(), 88);
 }
 
@@ -127,4 +129,51 @@ fn every_modbus_register_has_one_object() {
         }
     }
     assert!(seen.contains(&0x6810));
+}
+
+/// Parameters the description includes from the CiA 301 profile whose values the manual does
+/// not give (COVERAGE.md, "CiA 301 mandatory objects"): no manual row to compare.
+const NOT_IN_THE_MANUAL: [&str; 3] = ["device_type", "error_register", "identity_count"];
+
+fn manual_table() -> Vec<manual_table::Row> {
+    manual_table::parse(include_str!("manual_table.txt"))
+}
+
+#[test]
+fn every_property_is_the_manuals() {
+    let differences = manual_table::compare(&description(), &manual_table());
+    assert!(
+        differences.is_empty(),
+        "the description differs from the manual table (tests/manual_table.txt):\n{}",
+        differences.join("\n")
+    );
+}
+
+#[test]
+fn every_described_parameter_has_a_row() {
+    let rows: BTreeSet<String> = manual_table().into_iter().map(|r| r.name).collect();
+    let device = description();
+    let without: Vec<&str> = device
+        .parameters
+        .iter()
+        .map(|p| p.name.as_str())
+        .filter(|name| !rows.contains(*name) && !NOT_IN_THE_MANUAL.contains(name))
+        .collect();
+    assert!(without.is_empty(), "no manual row for {without:?}");
+    assert_eq!(
+        rows.len(),
+        device.parameters.len() - NOT_IN_THE_MANUAL.len()
+    );
+}
+
+#[test]
+fn a_wrong_default_in_the_table_is_caught() {
+    // The comparison can fail: the manual's Max speed default (5000 rpm, line 1965) changed by one.
+    let mut rows = manual_table();
+    let row = rows.iter_mut().find(|r| r.name == "max_speed").unwrap();
+    row.properties.insert("default".into(), "5001".into());
+    assert_eq!(
+        manual_table::compare(&description(), &rows),
+        ["`max_speed` default: the manual (line 1965) gives 5001, the description 5000"]
+    );
 }

@@ -32,8 +32,8 @@ impl Time {
 enum SlopeIds {
     /// From 0 to the full scale in this time.
     Time(Time),
-    /// Speed units per second.
-    Rate(ParamId),
+    /// Speed units per second, times this many (1000 for a rate per millisecond).
+    Rate(ParamId, f64),
     /// `speed` units in `time`.
     Delta { speed: ParamId, time: Time },
 }
@@ -42,7 +42,10 @@ impl SlopeIds {
     fn find(store: &Store, slope: &Slope) -> Option<Self> {
         Some(match slope {
             Slope::Time { time } => SlopeIds::Time(Time::find(store, time)?),
-            Slope::Rate { rate } => SlopeIds::Rate(store.id(rate)?),
+            Slope::Rate { rate, per } => SlopeIds::Rate(
+                store.id(rate)?,
+                per.as_deref().map_or(Some(1.0), per_second)?,
+            ),
             Slope::Delta { speed, time } => SlopeIds::Delta {
                 speed: store.id(speed)?,
                 time: Time::find(store, time)?,
@@ -102,7 +105,7 @@ impl SetpointRamp {
                 let t = value(time.id);
                 (t > 0.0).then(|| span * time.per_second / t)?
             }
-            SlopeIds::Rate(rate) => value(rate),
+            SlopeIds::Rate(rate, per_second) => value(rate) * per_second,
             SlopeIds::Delta { speed, time } => {
                 let t = value(time.id);
                 (t > 0.0).then(|| value(speed) * time.per_second / t)?

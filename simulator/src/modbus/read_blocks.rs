@@ -1,6 +1,7 @@
 //! Reads a device answers beyond its `max_read_registers`, as the description states them: the
 //! `[modbus] read_blocks` (Lenze smd: 6 words at #24), and the words of one value read at its
-//! address (Lenze smd C99: 4 words at one register, `occupies = 1`).
+//! address (Lenze smd C99: 4 words at one register, `occupies = 1`); a `zero_fill` block also
+//! answers registers no parameter occupies, as 0 (Kinco FD: the statusword read as 2 registers).
 
 use drivebus::modbus::Table;
 use drivegen::ir::ModbusCaps;
@@ -14,6 +15,16 @@ pub fn is_block(caps: Option<&ModbusCaps>, wire: Table, start: u16, count: u16) 
         c.read_blocks
             .iter()
             .any(|b| b.table == wire && b.address == start && b.words == count)
+    })
+}
+
+/// Whether `caps` lists the read as a `zero_fill` block: its registers no parameter occupies
+/// answer 0 (Kinco FD: the statusword read as 2 registers, manual line 2488).
+pub fn is_zero_fill(caps: Option<&ModbusCaps>, wire: Table, start: u16, count: u16) -> bool {
+    caps.is_some_and(|c| {
+        c.read_blocks
+            .iter()
+            .any(|b| b.zero_fill && b.table == wire && b.address == start && b.words == count)
     })
 }
 

@@ -138,7 +138,8 @@ impl ModbusServer {
         if count > max && !read_blocks::is_block(self.caps.as_ref(), table, start, count) {
             return Err(ILLEGAL_DATA_VALUE);
         }
-        let gaps = self.caps.as_ref().is_some_and(|c| c.read_gaps);
+        let gaps = self.caps.as_ref().is_some_and(|c| c.read_gaps)
+            || read_blocks::is_zero_fill(self.caps.as_ref(), table, start, count);
         let mut values = Vec::with_capacity(count as usize);
         let mut documented = false;
         for address in (0..count).map(|i| start.wrapping_add(i)) {

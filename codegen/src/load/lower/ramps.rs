@@ -26,9 +26,26 @@ impl Lowering<'_> {
 
     fn slope(&mut self, raw: &Spanned<RawSlope>) -> Option<ir::Slope> {
         let s = raw.get_ref();
+        if s.per
+            .as_deref()
+            .is_some_and(|p| ir::per_second(p).is_none())
+            || (s.per.is_some() && s.rate.is_none())
+        {
+            let span = self.span(raw);
+            self.error_help(
+                VALUE_RULE,
+                span,
+                "`per` is the time unit of a `{ rate }`: `ms` or `s`",
+                "`{ rate = \"acceleration\", per = \"ms\" }`: setpoint units per millisecond",
+            );
+            return None;
+        }
         let slope = match (&s.time, &s.rate, &s.speed) {
             (Some(time), None, None) => ir::Slope::Time { time: time.clone() },
-            (None, Some(rate), None) => ir::Slope::Rate { rate: rate.clone() },
+            (None, Some(rate), None) => ir::Slope::Rate {
+                rate: rate.clone(),
+                per: s.per.clone(),
+            },
             (Some(time), None, Some(speed)) => ir::Slope::Delta {
                 speed: speed.clone(),
                 time: time.clone(),
@@ -39,7 +56,7 @@ impl Lowering<'_> {
                     VALUE_RULE,
                     span,
                     "a ramp slope is `{ time }`, `{ rate }` or `{ speed, time }`",
-                    "`time`: from 0 to `full_scale`; `rate`: setpoint units per second; \
+                    "`time`: from 0 to `full_scale`; `rate`: setpoint units per second (or per `per`); \
                      `speed` and `time`: that speed change in that time",
                 );
                 return None;

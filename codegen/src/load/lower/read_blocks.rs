@@ -43,6 +43,7 @@ impl Lowering<'_> {
             table,
             address,
             words: block.words as u16,
+            zero_fill: block.zero_fill.unwrap_or(false),
             source: block.source.as_ref().and_then(|c| self.citation(c)),
             span,
         })
