@@ -7,7 +7,7 @@ use drivebus::units::{AmperesRms, Celsius, Rpm, Volts};
 use drivebus::{BusError, Error, ValueError};
 use lafert_smartris::types::{
     AnalogOutputConfig, BaudRate, BrakeMode, BrakeType, DigitalInputs, DigitalOutputs, EncoderType,
-    MotorType, StoCheck,
+    MotorType, StoCheck, StoppingMode,
 };
 use lafert_smartris::{params, types::DriveStatus, Smartris};
 
@@ -21,7 +21,7 @@ fn drive_with(registers: &[(Table, u16, u16)]) -> Smartris<ModbusLink<MemoryBus>
 
 #[test]
 fn bus_dc_link_0x1356_is_49_50_volts() {
-    // Manual line 432: "0x0064 = 0x1356 (4950) → Bus Dc Link = 49.5 Vdc".
+    // Manual line 485: "0x0064 = 0x1356 (4950) → Bus Dc Link = 49.5 Vdc".
     let mut drive = drive_with(&[(Table::Input, 0x0064, 0x1356)]);
     assert_eq!(drive.bus_dc_link().read(), Ok(Volts(49.5)));
     assert_eq!(drive.bus_dc_link().read_raw(), Ok(4950));
@@ -254,7 +254,10 @@ fn holding_register_examples_of_sections_3_2_and_4_2() {
     assert_eq!(drive.brake_managed().read(), Ok(1));
     assert_eq!(drive.brake_mode().read(), Ok(BrakeMode::MANUAL));
     assert_eq!(drive.brake_type().read(), Ok(BrakeType::MAGNETIC));
-    assert_eq!(drive.move_to_standby_cw().read(), Ok(1));
+    assert_eq!(
+        drive.move_to_standby_cw().read(),
+        Ok(StoppingMode::DYNAMIC_RAMP)
+    );
     // Lines 928 / 1424: 0x0053 = 1 → general purpose; lines 934 / 1430: 0x0054 = 4095 → 10 V.
     assert_eq!(
         drive.analog_output_config().read(),
