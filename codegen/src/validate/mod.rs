@@ -10,6 +10,7 @@ mod bit_fields_fit;
 mod bounds_resolve;
 pub(crate) mod canopen_has_mandatory_objects;
 mod commands_share_a_register;
+mod communication_loss_resolves;
 mod defaults_within_range;
 mod enum_values_fit_type;
 mod identity_names_a_parameter;
@@ -125,6 +126,10 @@ pub const PASSES: &[(&str, Pass)] = &[
     ),
     ("unlocks_resolve", unlocks_resolve::check),
     ("ramps_resolve", ramps_resolve::check),
+    (
+        "communication_loss_resolves",
+        communication_loss_resolves::check,
+    ),
 ];
 
 /// Runs every pass.
