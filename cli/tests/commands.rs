@@ -194,7 +194,7 @@ fn bad_values_are_refused_before_anything_is_sent() {
         (
             "speed_ramp_up",
             "40000ms",
-            "outside the range of speed_ramp_up: 0 ms..=32767 ms",
+            "outside the range of speed_ramp_up: 0 ms..=32000 ms",
         ),
         (
             "ramp_enable",

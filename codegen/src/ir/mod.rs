@@ -39,7 +39,7 @@ pub use lock::{
 pub use model::{Constant, Model};
 pub use node_ids::{DefaultCheck, NodeIds, FIRST_NODE_ID, LAST_NODE_ID};
 pub use pdo::{pdo_bits, CobId, PdoDirection, PdoMapping};
-pub use ramp::{per_second, Ramp, Slope};
+pub use ramp::{per_second, Polarity, Ramp, Slope};
 pub use read_block::ReadBlock;
 pub use readable_registers::{PlannerLimits, RegisterRun};
 pub use refinement::Refinement;
@@ -170,12 +170,30 @@ pub struct StateMachine {
     /// simulator's motor shows its speed there, besides the CiA 402 actual values).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub actual: Option<String>,
+    /// The drive faults when no request arrives for a while as the motor runs.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub communication_loss: Option<CommunicationLoss>,
     /// States, in recognition order (the first match wins).
     pub states: Vec<MachineState>,
     /// Transitions.
     pub transitions: Vec<Transition>,
     /// Citation.
     pub source: Option<Citation>,
+    /// Where it is declared.
+    #[serde(skip)]
+    pub span: Span,
+}
+
+/// Communication loss supervision of a vendor state machine (Lafert: "if the drive doesn't
+/// receive a valid Modbus message within the communication loss time while the motor runs, it
+/// goes to alarm 0x7521 and the motor coasts", Modbus manual lines 809, 1276-1279, 458).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct CommunicationLoss {
+    /// The integer parameter holding the time allowed without a request (unit `ms` or `s`; 0
+    /// switches the supervision off).
+    pub timeout: String,
+    /// The fault code the drive raises on a loss (entering the machine's `fault` state).
+    pub fault: u16,
     /// Where it is declared.
     #[serde(skip)]
     pub span: Span,

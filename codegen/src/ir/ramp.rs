@@ -23,6 +23,9 @@ pub struct Ramp {
     pub full_scale: Option<String>,
     /// A parameter whose value 0 switches the ramp off (the speed then jumps).
     pub enable: Option<String>,
+    /// The bit that reverses the setpoint while set (Lafert speed polarity, 0x0043).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub polarity: Option<Polarity>,
     /// Documentation.
     pub doc: Option<String>,
     /// Citation.
@@ -30,6 +33,17 @@ pub struct Ramp {
     /// Where it is declared.
     #[serde(skip)]
     pub span: Span,
+}
+
+/// A bit that multiplies the setpoint by -1 while set: the motor turns the other way (Lafert
+/// SPEED POLARITY 0x0043, "bit value = 1: multiply the demand value by -1", Modbus manual line
+/// 1347).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct Polarity {
+    /// The integer parameter holding the bit.
+    pub parameter: String,
+    /// The bit, 0 = least significant.
+    pub bit: u32,
 }
 
 /// One direction of a ramp, as the manual gives it. Speeds are in the setpoint's units.

@@ -456,7 +456,16 @@ pub struct RawStateMachine {
     pub fault_code: Option<Spanned<String>>,
     pub setpoint: Option<Spanned<String>>,
     pub actual: Option<Spanned<String>>,
+    pub communication_loss: Option<Spanned<RawCommunicationLoss>>,
     pub source: Option<Spanned<RawCitation>>,
+}
+
+/// `communication_loss = { timeout, fault }` of a `[state_machine]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawCommunicationLoss {
+    pub timeout: String,
+    pub fault: u16,
 }
 
 #[derive(Debug, Deserialize)]

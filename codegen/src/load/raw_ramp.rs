@@ -14,6 +14,7 @@ pub struct RawRamp {
     pub down: Spanned<RawSlope>,
     pub full_scale: Option<String>,
     pub enable: Option<String>,
+    pub polarity: Option<RawPolarity>,
     pub doc: Option<String>,
     pub source: Option<Spanned<RawCitation>>,
 }
@@ -26,4 +27,12 @@ pub struct RawSlope {
     pub rate: Option<String>,
     pub per: Option<String>,
     pub speed: Option<String>,
+}
+
+/// `{ parameter, bit }`: the bit that multiplies the setpoint by -1 while set.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawPolarity {
+    pub parameter: String,
+    pub bit: u32,
 }

@@ -10,6 +10,7 @@ mod bit_fields_fit;
 mod bounds_resolve;
 pub(crate) mod canopen_has_mandatory_objects;
 mod commands_share_a_register;
+mod communication_loss_resolves;
 mod defaults_within_range;
 mod enum_values_fit_type;
 mod identity_names_a_parameter;
@@ -129,6 +130,10 @@ pub const PASSES: &[(&str, Pass)] = &[
     (
         "stops_are_always_sendable",
         stops_are_always_sendable::check,
+    ),
+    (
+        "communication_loss_resolves",
+        communication_loss_resolves::check,
     ),
 ];
 

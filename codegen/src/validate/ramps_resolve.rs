@@ -1,6 +1,6 @@
 //! Ramps resolve: each `[[ramp]]` names an integer setpoint shaped by no other ramp, integer
-//! slope, full-scale and enable parameters, ramp times in `ms` or `s`, and a `full_scale`
-//! exactly when a slope is a time from 0 to it.
+//! slope, full-scale, enable and polarity parameters, a polarity bit within its parameter, ramp
+//! times in `ms` or `s`, and a `full_scale` exactly when a slope is a time from 0 to it.
 
 use std::collections::BTreeSet;
 
@@ -27,6 +27,17 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
         for time in times {
             time_unit(device, time, &mut report);
         }
+        if let Some(polarity) = &ramp.polarity {
+            let bits = device
+                .parameter(&polarity.parameter)
+                .map(|p| u32::from(p.data_type.bytes()) * 8);
+            if bits.is_some_and(|bits| polarity.bit >= bits) {
+                report(format!(
+                    "polarity bit {} does not fit `{}`",
+                    polarity.bit, polarity.parameter
+                ));
+            }
+        }
         match (ramp.needs_full_scale(), &ramp.full_scale) {
             (true, None) => report(format!(
                 "the ramp of `{}` gives a time from 0 to full scale but no `full_scale`",
@@ -52,6 +63,11 @@ fn named(ramp: &Ramp) -> Vec<(&'static str, &str)> {
     );
     named.extend(ramp.full_scale.as_deref().map(|p| ("full scale", p)));
     named.extend(ramp.enable.as_deref().map(|p| ("enable", p)));
+    named.extend(
+        ramp.polarity
+            .as_ref()
+            .map(|p| ("polarity", p.parameter.as_str())),
+    );
     named
 }
 
@@ -163,6 +179,36 @@ source = { doc = "m", line = 7 }
                 "the ramp's full scale `label` is not an integer",
                 "the ramp's enable `ramp_on` is not a parameter",
             ]
+        );
+    }
+
+    #[test]
+    fn a_polarity_names_an_integer_and_a_bit_within_it() {
+        let with = |polarity: &str| {
+            RAMP.replace("enable = ", &format!("polarity = {polarity}\nenable = "))
+        };
+        let fits = with(r#"{ parameter = "ramp_enable", bit = 0 }"#);
+        assert!(messages("ramps_resolve", &body(&fits)).is_empty());
+        assert_eq!(
+            device(&body(&fits)).ramps[0]
+                .polarity
+                .as_ref()
+                .map(|p| p.bit),
+            Some(0)
+        );
+        assert_eq!(
+            messages(
+                "ramps_resolve",
+                &body(&with(r#"{ parameter = "ramp_enable", bit = 16 }"#))
+            ),
+            ["polarity bit 16 does not fit `ramp_enable`"]
+        );
+        assert_eq!(
+            messages(
+                "ramps_resolve",
+                &body(&with(r#"{ parameter = "label", bit = 0 }"#))
+            ),
+            ["the ramp's polarity `label` is not an integer"]
         );
     }
 

@@ -1,12 +1,15 @@
 //! Every register and object the manuals list (tests/manual_register_list.txt, with manual line
 //! numbers) must be in the description, as `drivegen::check` reads it; objects the description
 //! deliberately leaves out are listed with the reason and must stay out until the list says
-//! otherwise.
+//! otherwise. Every property of every described parameter — addresses with access, type, unit,
+//! scale, range, default, allowed and enum values, bits, bounds, PDO mapping — must equal the row
+//! typed from the manuals in tests/manual_table.txt (`manual_table::compare`).
 
 use std::collections::BTreeSet;
 use std::path::Path;
 
 use drivegen::ir::{Device, Table};
+use manual_table::Row;
 
 /// One entry of the list.
 #[derive(Debug, PartialEq, Eq, PartialOrd, Ord)]
@@ -121,5 +124,115 @@ fn every_described_register_is_in_a_manual_list() {
     assert!(
         unlisted.is_empty(),
         "described but in no list: {unlisted:04X?}"
+    );
+}
+
+/// A raw number as the manuals print it: decimal or `0x` hex, maybe negative.
+fn raw_number(text: &str) -> i128 {
+    let (negative, digits) = match text.strip_prefix('-') {
+        Some(rest) => (true, rest),
+        None => (false, text),
+    };
+    let value = match digits
+        .strip_prefix("0x")
+        .or_else(|| digits.strip_prefix("0X"))
+    {
+        Some(hex) => i128::from_str_radix(hex, 16),
+        None => digits.parse(),
+    }
+    .unwrap_or_else(|e| panic!("bad number {text:?} in manual_table.txt: {e}"));
+    if negative {
+        -value
+    } else {
+        value
+    }
+}
+
+/// A scale `N/D` in lowest terms (the manuals write 10/4095 V, the comparator 2/819).
+fn reduced(scale: &str) -> String {
+    let Some((numerator, denominator)) = scale.split_once('/') else {
+        return scale.to_owned();
+    };
+    let (n, d) = (raw_number(numerator), raw_number(denominator));
+    let (mut a, mut b) = (n.abs(), d.abs());
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    match d / a {
+        1 => (n / a).to_string(),
+        den => format!("{}/{den}", n / a),
+    }
+}
+
+/// The table's rows with the manuals' notation normalised to the comparator's forms: hex numbers
+/// as decimal, fractions in lowest terms, enum values ascending, allowed values in the comparator's order, Modbus addresses
+/// in lower-case hex. Only the notation changes, never a value.
+fn manual_rows() -> Vec<Row> {
+    let mut rows = manual_table::parse(include_str!("manual_table.txt"));
+    for row in &mut rows {
+        for (key, value) in row.properties.iter_mut() {
+            match key.as_str() {
+                "modbus" => *value = value.to_lowercase(),
+                "scale" => *value = reduced(value),
+                "values" => {
+                    let mut numbers: Vec<i128> = value.split(',').map(raw_number).collect();
+                    numbers.sort_unstable();
+                    *value = numbers
+                        .iter()
+                        .map(ToString::to_string)
+                        .collect::<Vec<_>>()
+                        .join(",");
+                }
+                "allowed" => {
+                    let mut numbers: Vec<String> = value
+                        .split(',')
+                        .map(|v| raw_number(v).to_string())
+                        .collect();
+                    numbers.sort();
+                    *value = numbers.join(",");
+                }
+                "range" => {
+                    let (min, max) = value.split_once("..").unwrap_or_else(|| {
+                        panic!("`{}` range {value:?} is not MIN..MAX", row.name)
+                    });
+                    *value = format!("{}..{}", raw_number(min), raw_number(max));
+                }
+                "default" if !value.starts_with('$') => *value = raw_number(value).to_string(),
+                _ => {}
+            }
+        }
+    }
+    rows
+}
+
+#[test]
+fn every_property_of_every_parameter_is_the_manuals() {
+    let differences = manual_table::compare(&description(), &manual_rows());
+    assert!(
+        differences.is_empty(),
+        "the description differs from the manuals (tests/manual_table.txt):\n{}",
+        differences.join("\n")
+    );
+}
+
+#[test]
+fn every_described_parameter_has_a_row_and_no_row_is_repeated() {
+    let rows = manual_rows();
+    let mut named = BTreeSet::new();
+    let repeated: Vec<&str> = rows
+        .iter()
+        .filter(|row| !named.insert(row.name.as_str()))
+        .map(|row| row.name.as_str())
+        .collect();
+    assert!(repeated.is_empty(), "rows given twice: {repeated:?}");
+    let without_row: Vec<String> = description()
+        .parameters
+        .iter()
+        .filter(|p| !named.contains(p.name.as_str()))
+        .map(|p| p.name.clone())
+        .collect();
+    assert!(
+        without_row.is_empty(),
+        "described but not in manual_table.txt: {without_row:?}"
     );
 }

@@ -35,3 +35,17 @@ fn the_emcy_table_gives_the_manuals_meaning() {
     let unknown = ErrorCode::from_emcy(&emcy(0x1234));
     assert_eq!((unknown.is_known(), unknown.raw()), (false, 0x1234));
 }
+
+#[test]
+fn the_emcy_codes_the_guide_sends_outside_table_2_are_known() {
+    // Guide 4533-4534: after initialisation the drive sends 0000h and "the state of CAN (8170h)";
+    // guide 2076-2078: a torque limit not correct at initialisation is EMCY 0x8B23.
+    let can_state = ErrorCode::from_emcy(&Emcy::decode(&emcy(0x8170).encode()).unwrap());
+    assert_eq!(can_state, ErrorCode::CAN_STATE);
+    assert!(emcy(0x8170).meaning(&EmcyCodes).contains("state of CAN"));
+    let torque_limit = ErrorCode::from_emcy(&emcy(0x8B23));
+    assert_eq!(torque_limit, ErrorCode::TORQUE_LIMIT_NOT_CORRECT);
+    // The guide gives them no fault/warning class: none is invented.
+    assert_eq!(torque_limit.class(), None);
+    assert_eq!(ErrorCode::from_emcy(&emcy(0x0000)), ErrorCode::NO_ERROR);
+}

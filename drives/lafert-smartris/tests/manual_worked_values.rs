@@ -7,7 +7,7 @@ use drivebus::units::{AmperesRms, Celsius, Rpm, Volts};
 use drivebus::{BusError, Error, ValueError};
 use lafert_smartris::types::{
     AnalogOutputConfig, BaudRate, BrakeMode, BrakeType, DigitalInputs, DigitalOutputs, EncoderType,
-    MotorType, StoCheck,
+    FeedbackType, MotorTempSensor, MotorType, StoCheck, StoppingMode,
 };
 use lafert_smartris::{params, types::DriveStatus, Smartris};
 
@@ -21,7 +21,7 @@ fn drive_with(registers: &[(Table, u16, u16)]) -> Smartris<ModbusLink<MemoryBus>
 
 #[test]
 fn bus_dc_link_0x1356_is_49_50_volts() {
-    // Manual line 432: "0x0064 = 0x1356 (4950) → Bus Dc Link = 49.5 Vdc".
+    // Manual line 485: "0x0064 = 0x1356 (4950) → Bus Dc Link = 49.5 Vdc".
     let mut drive = drive_with(&[(Table::Input, 0x0064, 0x1356)]);
     assert_eq!(drive.bus_dc_link().read(), Ok(Volts(49.5)));
     assert_eq!(drive.bus_dc_link().read_raw(), Ok(4950));
@@ -254,7 +254,10 @@ fn holding_register_examples_of_sections_3_2_and_4_2() {
     assert_eq!(drive.brake_managed().read(), Ok(1));
     assert_eq!(drive.brake_mode().read(), Ok(BrakeMode::MANUAL));
     assert_eq!(drive.brake_type().read(), Ok(BrakeType::MAGNETIC));
-    assert_eq!(drive.move_to_standby_cw().read(), Ok(1));
+    assert_eq!(
+        drive.move_to_standby_cw().read(),
+        Ok(StoppingMode::DYNAMIC_RAMP)
+    );
     // Lines 928 / 1424: 0x0053 = 1 → general purpose; lines 934 / 1430: 0x0054 = 4095 → 10 V.
     assert_eq!(
         drive.analog_output_config().read(),
@@ -367,4 +370,39 @@ fn the_speed_setpoint_lies_within_the_full_scale_velocity() {
     // Line 1333's example: 0xF448 is -3000 rpm, so -4500 is 0xEE6C.
     let bus = drive.into_link().into_bus();
     assert_eq!(bus.register(Table::Holding, 0x0042), Some(0xEE6C));
+}
+
+#[test]
+fn the_remaining_value_examples_of_sections_2_2_and_3_2() {
+    let mut drive = drive_with(&[
+        (Table::Input, 0x005E, 0x0001),
+        (Table::Input, 0x006A, 0x0096),
+        (Table::Input, 0x010D, 4095),
+        (Table::Holding, 0x004E, 0),
+        (Table::Holding, 0x004F, 0),
+        (Table::Holding, 0x0050, 2),
+        (Table::Holding, 0x0051, 0),
+        (Table::Holding, 0x0204, 2),
+        (Table::Holding, 0x0205, 2),
+        (Table::Holding, 0x0209, 4),
+    ]);
+    // Line 330: 0x005E = 0x0001 → DIG IN 1 only.
+    assert_eq!(drive.digital_inputs().read(), Ok(DigitalInputs::DIGIN1));
+    // Line 528: 0x006A = 0x0096 (150) → 150 % of rated current.
+    assert_eq!(drive.i2t_energy().read().map(|v| v.0), Ok(150.0));
+    // Line 641: 0x010D [0 … 4095] → [0 … 10] V.
+    assert_eq!(drive.analog_output_dac().read(), Ok(Volts(10.0)));
+    // Lines 890-891 (0/1 admitted), 902, 909: brake not managed, automatic, spring brake.
+    assert_eq!(drive.brake_managed().read(), Ok(0));
+    assert_eq!(drive.brake_mode().read(), Ok(BrakeMode::AUTOMATIC));
+    assert_eq!(drive.brake_type().read(), Ok(BrakeType::SPRING));
+    // Line 917 (0x0051 = 0 → no dynamic stop), guide line 2738: the motor stops by inertia.
+    assert_eq!(drive.move_to_standby_cw().read(), Ok(StoppingMode::COAST));
+    // Lines 1052, 1062, 1085: no STO, SinCos encoder, PTC on/off.
+    assert_eq!(drive.sto_check().read(), Ok(StoCheck::NO_STO));
+    assert_eq!(drive.feedback_type().read(), Ok(FeedbackType::SINCOS));
+    assert_eq!(
+        drive.motor_temp_sensor().read(),
+        Ok(MotorTempSensor::PTC_ON_OFF)
+    );
 }

@@ -92,3 +92,28 @@ fn config_writes_the_cia301_mapping_sequence() {
     ];
     assert_eq!(bus.log(), expected);
 }
+
+#[test]
+fn pdo_3_carries_the_velocity_mode_values() {
+    // Guide 4366/4376 and 4403/4414: RPDO3 = controlword + target velocity (400h + node),
+    // TPDO3 = statusword + actual velocity (380h + node); 6 bytes each.
+    use lafert_smartris::pdo::{Rpdo3, Tpdo3};
+    assert_eq!(Rpdo3::cob_id(NodeId(1)), 0x401);
+    assert_eq!(Tpdo3::cob_id(NodeId(1)), 0x381);
+    let rpdo = Rpdo3 {
+        controlword: Controlword::SWITCH_ON
+            | Controlword::ENABLE_VOLTAGE
+            | Controlword::QUICK_STOP
+            | Controlword::ENABLE_OPERATION,
+        // 3000 rpm with the default factor 1/1 and a 16384-increment feedback: 819200 inc/s
+        // (guide 7515, ERRATA C5).
+        target_velocity: 819_200,
+    };
+    assert_eq!(
+        rpdo.encode().unwrap().as_bytes(),
+        [0x0F, 0x00, 0x00, 0x80, 0x0C, 0x00]
+    );
+    let tpdo = Tpdo3::decode(&[0x27, 0x02, 0x00, 0x80, 0x0C, 0x00]).unwrap();
+    assert!(tpdo.statusword.contains(Statusword::OPERATION_ENABLED));
+    assert_eq!(tpdo.velocity_actual_value, 819_200);
+}

@@ -11,6 +11,7 @@ use crate::store::{ParamId, Store};
 pub mod bounds;
 pub mod cia402;
 pub mod commands;
+pub mod communication_loss;
 pub mod motor;
 pub mod ramp;
 pub mod srdo_validity;
@@ -57,7 +58,7 @@ pub trait Behaviour: Debug + Send {
 }
 
 /// The behaviours a description calls for, in the order they run: the write lock, bounds set by
-/// other parameters, commands, state machines, the motor, the SRDO configuration-valid flag.
+/// other parameters, commands, the communication loss supervision, state machines, the motor, the SRDO configuration-valid flag.
 pub fn for_device(store: &mut Store) -> Vec<Box<dyn Behaviour>> {
     let mut behaviours: Vec<Box<dyn Behaviour>> = Vec::new();
     if let Some(b) = write_lock::WriteLock::detect(store) {
@@ -67,6 +68,9 @@ pub fn for_device(store: &mut Store) -> Vec<Box<dyn Behaviour>> {
         behaviours.push(Box::new(b));
     }
     if let Some(b) = commands::Commands::detect(store) {
+        behaviours.push(Box::new(b));
+    }
+    if let Some(b) = communication_loss::CommunicationLoss::detect(store) {
         behaviours.push(Box::new(b));
     }
     if let Some(b) = state_machine::DescribedMachine::detect(store) {

@@ -1,6 +1,7 @@
 //! A simple motor: the actual speed follows the setpoint the state machine enables, along the
 //! ramp the description gives that setpoint (`[[ramp]]`, see [`SetpointRamp`]), and stops at once
-//! on a quick stop or when the power stage is off. Without a ramp, the speed jumps. The speed
+//! on a quick stop or when the power stage is off. Without a ramp, the speed jumps; a ramp's
+//! polarity bit, while set, makes the motor follow the setpoint reversed. The speed
 //! shows in the vendor machine's `actual` parameter and the CiA 402 actual values.
 //!
 //! Speeds are raw values: `state_machines_resolve` holds a machine's `actual` to its setpoint's
@@ -57,7 +58,14 @@ impl Motor {
 impl Behaviour for Motor {
     fn tick(&mut self, store: &mut Store, shared: &mut Shared, dt: Duration) {
         let (setpoint, target) = match shared.motion {
-            Motion::Following(setpoint) => (setpoint, store.int(setpoint).unwrap_or(0) as f64),
+            Motion::Following(setpoint) => {
+                let sign = self
+                    .ramps
+                    .iter()
+                    .find(|r| r.shapes(setpoint))
+                    .map_or(1.0, |r| r.sign(store));
+                (setpoint, sign * store.int(setpoint).unwrap_or(0) as f64)
+            }
             Motion::Disabled | Motion::QuickStop => {
                 self.speed = 0.0;
                 (0, 0.0)

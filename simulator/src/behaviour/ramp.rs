@@ -2,7 +2,8 @@
 //! speed moves towards a setpoint, from the parameters the ramp names, in the form the manual
 //! gives them — a time from 0 to a full scale (Lafert speed ramp up / down in ms, switched by
 //! the ramp enable), a rate (CiA 402 profile acceleration / deceleration, units per second) or a
-//! delta speed over a delta time (CiA 402 vl 6048h / 6049h).
+//! delta speed over a delta time (CiA 402 vl 6048h / 6049h) — and whether a polarity bit
+//! reverses the setpoint (Lafert speed polarity 0x0043).
 
 use drivegen::ir::{per_second, Ramp, Slope};
 
@@ -62,6 +63,8 @@ pub struct SetpointRamp {
     down: SlopeIds,
     full_scale: Option<ParamId>,
     enable: Option<ParamId>,
+    /// The polarity parameter and bit: set, the motor runs at -setpoint.
+    polarity: Option<(ParamId, u32)>,
 }
 
 impl SetpointRamp {
@@ -79,12 +82,24 @@ impl SetpointRamp {
             down: SlopeIds::find(store, &ramp.down)?,
             full_scale: optional(&ramp.full_scale),
             enable: optional(&ramp.enable),
+            polarity: ramp
+                .polarity
+                .as_ref()
+                .and_then(|p| Some((store.id(&p.parameter)?, p.bit))),
         })
     }
 
     /// Whether this is the ramp of `setpoint`.
     pub fn shapes(&self, setpoint: ParamId) -> bool {
         self.setpoint == setpoint
+    }
+
+    /// -1 while the polarity bit is set (the demand is multiplied by -1), else 1.
+    pub fn sign(&self, store: &Store) -> f64 {
+        match self.polarity {
+            Some((id, bit)) if (store.int(id).unwrap_or(0) >> bit) & 1 == 1 => -1.0,
+            _ => 1.0,
+        }
     }
 
     /// Speed units per second towards a setpoint further from zero (`speeding_up`) or nearer to

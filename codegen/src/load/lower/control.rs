@@ -71,6 +71,14 @@ impl Lowering<'_> {
             fault_code: name(&m.fault_code),
             setpoint: name(&m.setpoint),
             actual: name(&m.actual),
+            communication_loss: m
+                .communication_loss
+                .as_ref()
+                .map(|c| ir::CommunicationLoss {
+                    timeout: c.get_ref().timeout.clone(),
+                    fault: c.get_ref().fault,
+                    span: self.span(c),
+                }),
             states,
             transitions,
             source: m.source.as_ref().and_then(|s| self.citation(s)),

@@ -18,6 +18,10 @@ impl Lowering<'_> {
             down: down?,
             full_scale: raw.full_scale.clone(),
             enable: raw.enable.clone(),
+            polarity: raw.polarity.as_ref().map(|p| ir::Polarity {
+                parameter: p.parameter.clone(),
+                bit: p.bit,
+            }),
             doc: raw.doc.clone(),
             source: raw.source.as_ref().and_then(|c| self.citation(c)),
             span: self.span(&raw.setpoint),
