@@ -165,7 +165,7 @@ fn reduced(scale: &str) -> String {
 }
 
 /// The table's rows with the manuals' notation normalised to the comparator's forms: hex numbers
-/// as decimal, fractions in lowest terms, enum values ascending, allowed values in the comparator's order, Modbus addresses
+/// as decimal, fractions in lowest terms, enum and allowed values ascending, Modbus addresses
 /// in lower-case hex. Only the notation changes, never a value.
 fn manual_rows() -> Vec<Row> {
     let mut rows = manual_table::parse(include_str!("manual_table.txt"));
@@ -174,7 +174,7 @@ fn manual_rows() -> Vec<Row> {
             match key.as_str() {
                 "modbus" => *value = value.to_lowercase(),
                 "scale" => *value = reduced(value),
-                "values" => {
+                "values" | "allowed" => {
                     let mut numbers: Vec<i128> = value.split(',').map(raw_number).collect();
                     numbers.sort_unstable();
                     *value = numbers
@@ -182,14 +182,6 @@ fn manual_rows() -> Vec<Row> {
                         .map(ToString::to_string)
                         .collect::<Vec<_>>()
                         .join(",");
-                }
-                "allowed" => {
-                    let mut numbers: Vec<String> = value
-                        .split(',')
-                        .map(|v| raw_number(v).to_string())
-                        .collect();
-                    numbers.sort();
-                    *value = numbers.join(",");
                 }
                 "range" => {
                     let (min, max) = value.split_once("..").unwrap_or_else(|| {

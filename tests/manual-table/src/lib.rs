@@ -23,7 +23,7 @@
 //! | `scale` | `1/100`, `1/10+5` (factor, then offset), `runtime` for a run-time factor |
 //! | `range` | `MIN..MAX`, raw |
 //! | `default` | raw, or `$NODEID+N` |
-//! | `allowed` | raw values, `,`-joined |
+//! | `allowed` | raw values, `,`-joined, ascending |
 //! | `values` | the enumeration's raw values, `,`-joined, ascending |
 //! | `bits` | the bit field's bits, then its fields as `LSB+WIDTH`, `,`-joined |
 //! | `bounds` | `min:NAME`, `max:NAME`, `magnitude:NAME`, `,`-joined |
@@ -116,7 +116,7 @@ pub fn properties(device: &Device, parameter: &Parameter) -> BTreeMap<String, St
             p.range.as_ref().map(|r| format!("{}..{}", r.min, r.max)),
         ),
         ("default", default(p)),
-        ("allowed", joined(p.allowed.iter().map(ToString::to_string))),
+        ("allowed", allowed(p)),
         ("values", enum_values(device, p)),
         ("bits", bits(device, p)),
         ("bounds", bounds(p)),
@@ -181,6 +181,21 @@ fn joined(items: impl Iterator<Item = String>) -> Option<String> {
     let mut items: Vec<String> = items.collect();
     items.sort();
     (!items.is_empty()).then(|| items.join(","))
+}
+
+/// The allowed raw values in ascending numeric order (`2` before `10`).
+fn allowed(p: &Parameter) -> Option<String> {
+    let mut values: Vec<(f64, String)> = p
+        .allowed
+        .iter()
+        .map(|n| {
+            let text = n.to_string();
+            (text.parse().unwrap_or(f64::NAN), text)
+        })
+        .collect();
+    values.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let texts: Vec<String> = values.into_iter().map(|(_, text)| text).collect();
+    (!texts.is_empty()).then(|| texts.join(","))
 }
 
 fn access(access: Access) -> &'static str {
