@@ -85,7 +85,7 @@ fn pc507_status_version_and_a_control_session() {
     let peer = start(507);
     let (mut drive, selection) = open(&peer);
     assert_eq!(selection, VariantSelection::Known(Variant::Pc507));
-    assert_eq!(drive.drive_family().read(), Ok(69));
+    assert_eq!(drive.drive_family().read().map(|f| f.raw()), Ok(69));
     assert_eq!(
         drive.software_version().read().unwrap().as_str(),
         Some("SMD 2.01")
@@ -162,7 +162,7 @@ fn an_unknown_configuration_reads_but_never_writes() {
     let peer = start(600);
     let (mut drive, selection) = open(&peer);
     assert_eq!(selection, VariantSelection::Unknown(600));
-    assert_eq!(drive.drive_family().read(), Ok(69));
+    assert_eq!(drive.drive_family().read().map(|f| f.raw()), Ok(69));
     assert_eq!(
         SmdError::from(drive.unlock_controls().unwrap_err()),
         SmdError::UnknownConfiguration { value: 600 }
