@@ -238,10 +238,13 @@ impl Behaviour for DescribedMachine {
         }
     }
 
-    /// Shows the pattern of the motor's present speed phase.
+    /// Shows the pattern of the motor's present speed phase, in a state whose patterns depend on
+    /// it (other states keep what they showed on entry).
     fn settle(&mut self, store: &mut Store, shared: &mut Shared) {
         self.phase = shared.phase;
-        self.show(store);
+        if self.current().status.iter().any(|p| p.speed.is_some()) {
+            self.show(store);
+        }
     }
 
     /// A reset clears the fault; the drive powers up again.
