@@ -52,7 +52,7 @@ fn main() -> Result<(), Box<dyn Error>> {
 fn run<B: RegisterBus>(bus: B) -> Result<(), Box<dyn Error>> {
     let (mut drive, selection) = LenzeSmd::<ModbusLink<B>>::open(bus, UNIT)?;
     println!("configuration      {selection:?}");
-    println!("drive family       {}", drive.drive_family().read()?);
+    println!("drive family       {:?}", drive.drive_family().read()?);
     println!("control source     {:?}", drive.control_source().read()?);
 
     let mut unlocked = drive.unlock_controls()?; // reads C01 (10 or 11), then #48 = 0
@@ -65,10 +65,9 @@ fn run<B: RegisterBus>(bus: B) -> Result<(), Box<dyn Error>> {
     }
     unlocked.command(Command::Start)?; // #1 = 0x0008
     println!("  command   actual   load  status   fault");
-    for _ in 0..3 {
-        sleep(Duration::from_millis(100));
-        // #24-#29 in one request; the simulator has no smd motor model, so it shows its presets.
-        let status = unlocked.drive().status()?;
+    let show = |drive: &mut LenzeSmd<ModbusLink<B>>| -> Result<(), Box<dyn Error>> {
+        // #24-#29 in one request: the frequency ramps up with C12 (5.0 s from 0 to C11 = 50 Hz).
+        let status = drive.status()?;
         let fault = status.fault_and_commanded_direction.present_fault();
         println!(
             "  {:<9} {:<8} {:<5} {:<8} {}",
@@ -78,8 +77,14 @@ fn run<B: RegisterBus>(bus: B) -> Result<(), Box<dyn Error>> {
             format!("{:?}", status.load_and_status.operational_status()),
             fault.meaning().unwrap_or("unknown code"),
         );
+        Ok(())
+    };
+    for _ in 0..10 {
+        sleep(Duration::from_millis(500));
+        show(unlocked.drive())?;
     }
-    unlocked.command(Command::Stop)?; // #1 = 0x0004
+    unlocked.command(Command::Stop)?; // #1 = 0x0004: coast to stop, the output ends at once
+    show(unlocked.drive())?;
     unlocked.lock()?; // #1 = 0x0002
     println!(
         "locked             serial speed {}",
@@ -103,7 +108,6 @@ fn simulated_drive() -> Result<drivesim::Simulator, drivesim::SimError> {
     let description = concat!(env!("CARGO_MANIFEST_DIR"), "/../descriptions/lenze-smd");
     let sim = drivesim::Simulator::load(description)?;
     sim.preset("parameter_configuration", 507)?
-        .preset("drive_family", 69)?
         .preset("control_source", 11)?;
     Ok(sim)
 }

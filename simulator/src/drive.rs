@@ -48,6 +48,15 @@ impl Drive {
         for b in &mut self.behaviours {
             b.reset(store, shared);
         }
+        self.settle();
+    }
+
+    /// Lets every behaviour show what the others did.
+    fn settle(&mut self) {
+        let (store, shared) = (&mut self.store, &mut self.shared);
+        for b in &mut self.behaviours {
+            b.settle(store, shared);
+        }
     }
 
     /// Writes a value as a client request does: checked against range and allowed values and
@@ -62,6 +71,7 @@ impl Drive {
         for b in &mut self.behaviours {
             b.written(store, shared, id);
         }
+        self.settle();
         if std::mem::take(&mut self.shared.reset_requested) {
             self.reboot();
         }
@@ -74,6 +84,9 @@ impl Drive {
         for b in &mut self.behaviours {
             b.tick(store, shared, dt);
         }
+        // A stop no state machine took stays what the watchdog made of the motion.
+        self.shared.halt = None;
+        self.settle();
     }
 
     /// The drive received a request: behaviours that watch communication (a serial watchdog)
@@ -102,5 +115,6 @@ impl Drive {
         for b in &mut self.behaviours {
             b.reset(store, shared);
         }
+        self.settle();
     }
 }

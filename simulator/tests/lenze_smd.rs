@@ -66,11 +66,18 @@ fn read_words(sim: &Simulator, register: u16, count: usize) -> Result<Vec<u16>, 
 fn the_status_block_and_c99_are_the_only_multi_register_reads() {
     let sim = lenze();
     sim.preset("parameter_configuration", 507).unwrap();
-    sim.preset("command_speed", 513).unwrap();
-    sim.preset("actual_speed", 500).unwrap();
+    // #24 and #25 show the motor: the frequency it is commanded to and the one it turns at. A
+    // started drive with a ramp time of 0 reaches the serial speed at once.
+    sim.preset("control_source", 11).unwrap();
+    sim.preset("acceleration_time", 0).unwrap();
+    sim.preset("serial_speed_command", 400).unwrap();
+    let server = sim.serve_modbus_tcp("127.0.0.1:0", UNIT).unwrap();
+    let mut client = ModbusTcpClient::connect(server.local_addr(), &TcpConfig::default()).unwrap();
+    client.write_register(UNIT, 48, 0).unwrap();
+    client.write_register(UNIT, 1, 0x0008).unwrap();
     // #24 answers 1 or 6 words (manual line 617) ...
-    assert_eq!(read_words(&sim, 24, 6).unwrap()[..2], [513, 500]);
-    assert_eq!(read_words(&sim, 24, 1), Ok(vec![513]));
+    assert_eq!(read_words(&sim, 24, 6).unwrap()[..2], [400, 400]);
+    assert_eq!(read_words(&sim, 24, 1), Ok(vec![400]));
     // ... and nothing else: 2 words at #24, 2 words at #25, 2 parameters at #51.
     for (register, count) in [(24, 2), (25, 2), (51, 2)] {
         assert!(

@@ -134,7 +134,7 @@ fn changing_c01_ends_the_controls_unlock() {
 
 #[test]
 fn changing_c01_ends_only_the_controls_part_of_the_password_unlock() {
-    // #48 = C94 opens both scopes; line 414 ties the C01 rule to the controls (ERRATA.md E20).
+    // #48 = C94 opens both scopes; line 414 ties the C01 rule to the controls (ERRATA.md E26).
     let mut d = smd(&[("control_source", 11), ("user_password", 5)]);
     d.write(UNLOCK_CONTROLS, 5).unwrap();
     d.write(C01, 8).unwrap();

@@ -173,6 +173,19 @@ pub struct StateMachine {
     /// The drive faults when no request arrives for a while as the motor runs.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub communication_loss: Option<CommunicationLoss>,
+
+    /// The parameter that shows the speed the motor heads for (0 while the power stage is off),
+    /// in the setpoint's raw units (Lenze smd #24 Command Speed).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub commanded: Option<String>,
+    /// The state the drive enters when it coasts to a stop on its own (a `[watchdog]` action
+    /// `coast`), if the description names one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub coast: Option<String>,
+    /// The state the drive enters when it quick-stops on its own (a `[watchdog]` action
+    /// `quick_stop`), if the description names one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub quick_stop: Option<String>,
     /// States, in recognition order (the first match wins).
     pub states: Vec<MachineState>,
     /// Transitions.
@@ -228,6 +241,25 @@ pub struct StatusPattern {
     /// torque mode shows bit 5 instead of bit 0).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub when: Option<Condition>,
+    /// The pattern a drive shows only while its speed is in this phase (Lenze smd: ACCEL, DECEL,
+    /// RUN, RUN AT 0Hz of one running state).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub speed: Option<SpeedPhase>,
+}
+
+/// Where the motor's speed is relative to the speed it is heading for, while the power stage
+/// drives it (`follow` and `ramp-stop` states).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SpeedPhase {
+    /// Moving away from zero towards the target.
+    Rising,
+    /// Moving towards zero (a lower target, or a ramp to a stop).
+    Falling,
+    /// At a target other than zero.
+    Steady,
+    /// At zero with a target of zero.
+    Zero,
 }
 
 /// `parameter == value`, on the raw value.
@@ -250,6 +282,8 @@ pub enum Motion {
     Follow,
     /// Stopping at once, holding with maximum torque.
     QuickStop,
+    /// Ramping to zero along the setpoint's deceleration ramp, then holding zero.
+    RampStop,
 }
 
 /// What causes a transition.
@@ -394,8 +428,34 @@ pub struct ModbusCaps {
     /// `request | 0x80` (left out of the JSON when none).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub exception_functions: Vec<ExceptionFunction>,
+    /// Whether FC 04 (read input registers) reads the holding table: the device does not tell 3X
+    /// from 4X references (Lenze smd, line 237). Left out of the JSON when false.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub input_reads_holding: bool,
+    /// What the device does with a write to a command register that sets several commands' bits
+    /// at once (Lenze smd #1, lines 569-571), left out of the JSON when not described.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub combined_commands: Option<CombinedCommands>,
     /// Citation.
     pub source: Option<Citation>,
+}
+
+/// The rule of a command register whose commands are one bit each, for a write that sets several
+/// (`[modbus] combined_commands`): the device obeys `obeys` alone when its bits are among them,
+/// and answers `refusal` otherwise.
+#[derive(Debug, Clone, Serialize)]
+pub struct CombinedCommands {
+    /// The holding register the commands share.
+    pub address: u16,
+    /// The command parameter obeyed alone when its trigger bits are set among others.
+    pub obeys: String,
+    /// The exception code of a write setting several bits without those of `obeys`.
+    pub refusal: u8,
+    /// Citation.
+    pub source: Option<Citation>,
+    /// Where it is declared.
+    #[serde(skip)]
+    pub span: Span,
 }
 
 impl ModbusCaps {

@@ -122,6 +122,18 @@ pub struct RawModbusCaps {
     pub exception_functions: Option<Spanned<Vec<RawExceptionFunction>>>,
     #[serde(default)]
     pub read_blocks: Vec<Spanned<RawReadBlock>>,
+    pub input_reads_holding: Option<bool>,
+    pub combined_commands: Option<Spanned<RawCombinedCommands>>,
+    pub source: Option<Spanned<RawCitation>>,
+}
+
+/// `{ address, obeys, refusal, source }`: several command bits written at once.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawCombinedCommands {
+    pub address: Spanned<i64>,
+    pub obeys: String,
+    pub refusal: Spanned<i64>,
     pub source: Option<Spanned<RawCitation>>,
 }
 
@@ -457,6 +469,10 @@ pub struct RawStateMachine {
     pub setpoint: Option<Spanned<String>>,
     pub actual: Option<Spanned<String>>,
     pub communication_loss: Option<Spanned<RawCommunicationLoss>>,
+
+    pub commanded: Option<Spanned<String>>,
+    pub coast: Option<Spanned<String>>,
+    pub quick_stop: Option<Spanned<String>>,
     pub source: Option<Spanned<RawCitation>>,
 }
 
@@ -484,6 +500,7 @@ pub struct RawStatusPattern {
     pub mask: i64,
     pub value: i64,
     pub when: Option<RawCondition>,
+    pub speed: Option<String>,
 }
 
 /// `{ parameter, value }`: a raw value another parameter must have.

@@ -9,6 +9,7 @@ mod bit_codes_are_enum_values;
 mod bit_fields_fit;
 mod bounds_resolve;
 pub(crate) mod canopen_has_mandatory_objects;
+mod combined_commands_name_a_command;
 mod commands_share_a_register;
 mod communication_loss_resolves;
 mod defaults_within_range;
@@ -16,6 +17,7 @@ mod enum_values_fit_type;
 mod identity_names_a_parameter;
 mod identity_values_fit;
 mod indexed_names_are_unique;
+mod input_reads_alias_holding;
 mod manual_names_are_search_aliases;
 mod models_give_constants;
 mod names_are_unique;
@@ -134,6 +136,14 @@ pub const PASSES: &[(&str, Pass)] = &[
     (
         "communication_loss_resolves",
         communication_loss_resolves::check,
+    ),
+    (
+        "input_reads_alias_holding",
+        input_reads_alias_holding::check,
+    ),
+    (
+        "combined_commands_name_a_command",
+        combined_commands_name_a_command::check,
     ),
 ];
 

@@ -85,7 +85,12 @@ fn vendor(device: &Device) -> Vec<Diagnostic> {
             ));
         }
     }
-    let named_states = [("initial", Some(&m.initial)), ("fault", m.fault.as_ref())];
+    let named_states = [
+        ("initial", Some(&m.initial)),
+        ("fault", m.fault.as_ref()),
+        ("coast", m.coast.as_ref()),
+        ("quick_stop", m.quick_stop.as_ref()),
+    ];
     for (role, state) in named_states {
         match state {
             Some(state) if !names.contains(state.as_str()) => found.push(
@@ -108,6 +113,7 @@ fn vendor(device: &Device) -> Vec<Diagnostic> {
         ("fault_code", m.fault_code.as_ref()),
         ("setpoint", m.setpoint.as_ref()),
         ("actual", m.actual.as_ref()),
+        ("commanded", m.commanded.as_ref()),
     ]
     .into_iter()
     .filter_map(|(role, name)| Some((role, name?)))
@@ -124,7 +130,9 @@ fn vendor(device: &Device) -> Vec<Diagnostic> {
             );
         }
     }
-    found.extend(actual_speed(device, m));
+    found.extend(actual_speed(device, m, m.actual.as_deref(), "actual"));
+    found.extend(actual_speed(device, m, m.commanded.as_deref(), "commanded"));
+    found.extend(shared_register_commands(device, m));
     for t in &m.transitions {
         for state in t.from.iter().chain(std::iter::once(&t.to)) {
             if !names.contains(state.as_str()) {
@@ -148,17 +156,22 @@ fn vendor(device: &Device) -> Vec<Diagnostic> {
 /// The machine's `actual` speed is an integer the motor's speed can be shown in, with the unit and
 /// scale of the `setpoint` it follows (the simulator copies raw values). A name that is not a
 /// parameter is reported with the other names.
-fn actual_speed(device: &Device, m: &StateMachine) -> Option<Diagnostic> {
-    let actual = device.parameter(m.actual.as_deref()?)?;
+fn actual_speed(
+    device: &Device,
+    m: &StateMachine,
+    shown: Option<&str>,
+    role: &str,
+) -> Option<Diagnostic> {
+    let actual = device.parameter(shown?)?;
     let message = if !actual.data_type.is_integer() {
-        format!("actual `{}` must be an integer parameter", actual.name)
+        format!("{role} `{}` must be an integer parameter", actual.name)
     } else {
         let setpoint = device.parameter(m.setpoint.as_deref()?)?;
         if (&actual.unit, &actual.scale) == (&setpoint.unit, &setpoint.scale) {
             return None;
         }
         format!(
-            "actual `{}` and setpoint `{}` differ in unit or scale",
+            "{role} `{}` and setpoint `{}` differ in unit or scale",
             actual.name, setpoint.name
         )
     };
@@ -166,6 +179,53 @@ fn actual_speed(device: &Device, m: &StateMachine) -> Option<Diagnostic> {
         Diagnostic::error(RULE, m.span.clone(), message)
             .help("name the parameter that shows the motor's speed in the setpoint's raw units"),
     )
+}
+
+/// A `command` that is a command parameter sharing its register with others (Lenze smd #1: one
+/// command per bit) takes only the trigger values of those commands: each transition's value
+/// must be one, since the drive does nothing else on that register.
+fn shared_register_commands(device: &Device, m: &StateMachine) -> Vec<Diagnostic> {
+    let Some(command) = device.parameter(&m.command) else {
+        return Vec::new();
+    };
+    if command.command.as_ref().and_then(|c| c.value).is_none() {
+        return Vec::new();
+    }
+    let triggers: BTreeSet<i64> = sharing_commands(device, command)
+        .filter_map(|p| p.command.as_ref()?.value)
+        .collect();
+    m.transitions
+        .iter()
+        .filter_map(|t| Some((t, t.command?)))
+        .filter(|(_, value)| !triggers.contains(&i64::from(*value)))
+        .map(|(t, value)| {
+            Diagnostic::error(
+                RULE,
+                t.span.clone(),
+                format!(
+                    "transition `{}` writes {value:#06x}, which is no command of the register of `{}`",
+                    t.name, m.command
+                ),
+            )
+            .help("write the trigger value of one of the commands sharing the register")
+        })
+        .collect()
+}
+
+/// The command parameters written at `command`'s Modbus registers, `command` included.
+pub(crate) fn sharing_commands<'a>(
+    device: &'a Device,
+    command: &'a crate::ir::Parameter,
+) -> impl Iterator<Item = &'a crate::ir::Parameter> {
+    device.parameters.iter().filter(move |p| {
+        p.command.as_ref().and_then(|c| c.value).is_some()
+            && p.modbus.iter().any(|a| {
+                command
+                    .modbus
+                    .iter()
+                    .any(|b| (a.table, a.address) == (b.table, b.address))
+            })
+    })
 }
 
 /// Reports control tables that refer to missing or unsuitable parameters and states.
@@ -301,6 +361,107 @@ source = {{ doc = "m", line = 6 }}
         assert_eq!(
             shown("filtered", "i16", "rpm", "scale = \"1/4\""),
             ["actual `filtered` and setpoint `speed` differ in unit or scale"]
+        );
+    }
+
+    /// Register #1 of the Lenze smd: `stop` (4) and `start` (8) share it, one bit each.
+    const COMMANDS: &str = r#"
+[[parameter]]
+name = "stop"
+type = "u16"
+command = { kind = "action", value = 4 }
+modbus = { table = "holding", address = 1, access = "w" }
+source = { doc = "m", line = 7 }
+[[parameter]]
+name = "start"
+type = "u16"
+command = { kind = "action", value = 8 }
+modbus = { table = "holding", address = 1, access = "w" }
+source = { doc = "m", line = 8 }
+"#;
+
+    fn register_machine(value: u16, coast: &str) -> String {
+        format!(
+            r#"{STATUS}{COMMANDS}
+[state_machine]
+name = "operation"
+status = "status"
+command = "start"
+coast = "{coast}"
+quick_stop = "stopping"
+source = {{ doc = "m", line = 10 }}
+[[state]]
+name = "stopped"
+status = {{ mask = 0xFF, value = 3 }}
+source = {{ doc = "m", line = 2 }}
+[[state]]
+name = "running"
+status = [ {{ mask = 0xFF, value = 7, speed = "rising" }}, {{ mask = 0xFF, value = 6 }} ]
+motion = "follow"
+source = {{ doc = "m", line = 3 }}
+[[state]]
+name = "stopping"
+status = {{ mask = 0xFF, value = 8 }}
+motion = "ramp-stop"
+source = {{ doc = "m", line = 4 }}
+[[transition]]
+name = "start"
+from = "stopped"
+to = "running"
+command = {value}
+source = {{ doc = "m", line = 9 }}
+"#
+        )
+    }
+
+    #[test]
+    fn a_register_of_commands_takes_its_commands_values_only() {
+        let device = crate::validate::test_support::device(&register_machine(8, "stopped"));
+        let machine = device.state_machine.unwrap();
+        assert_eq!(machine.coast.as_deref(), Some("stopped"));
+        assert_eq!(
+            machine.states[1].status[0].speed,
+            Some(crate::ir::SpeedPhase::Rising)
+        );
+        assert_eq!(machine.states[2].motion, crate::ir::Motion::RampStop);
+        assert_eq!(
+            messages("state_machines_resolve", &register_machine(3, "stopped")),
+            ["transition `start` writes 0x0003, which is no command of the register of `start`"]
+        );
+    }
+
+    #[test]
+    fn coast_and_quick_stop_name_declared_states() {
+        assert_eq!(
+            messages("state_machines_resolve", &register_machine(8, "inhibit")),
+            ["`coast` names state `inhibit`, which is not declared"]
+        );
+    }
+
+    #[test]
+    fn an_unknown_speed_phase_is_malformed() {
+        let body = register_machine(8, "stopped").replace("\"rising\"", "\"upwards\"");
+        assert_eq!(
+            messages("values_are_well_formed", &body),
+            ["unknown speed phase `upwards`"]
+        );
+    }
+
+    #[test]
+    fn commanded_speed_is_in_the_setpoints_units() {
+        let extra = r#"
+[[parameter]]
+name = "command_hz"
+type = "u16"
+unit = "Hz"
+modbus = { table = "input", address = 0x0069, access = "r" }
+source = { doc = "m", line = 6 }
+"#;
+        let body = machine_showing("speed", extra)
+            .replace("actual = \"speed\"", "commanded = \"command_hz\"");
+        assert_eq!(
+            messages("state_machines_resolve", &body),
+            ["commanded `command_hz` and setpoint `speed` differ in unit or scale"]
         );
     }
 

@@ -1,5 +1,5 @@
 //! Every parameter, PDO mapping, SRDO, enum, flags type, record, control table, lock, unlock,
-//! watchdog and ramp cites the manual line it comes from.
+//! watchdog, ramp and `combined_commands` rule cites the manual line it comes from.
 
 use crate::diagnostic::{Diagnostic, Span};
 use crate::ir::{Citation, Device};
@@ -80,9 +80,16 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
         .ramps
         .iter()
         .map(|r| ("ramp of", &r.setpoint, &r.span, &r.source));
+    let combined_name = String::from("combined_commands");
+    let combined = device
+        .modbus
+        .iter()
+        .flat_map(|m| &m.combined_commands)
+        .map(|c| ("table", &combined_name, &c.span, &c.source));
     parameters
         .chain(lock)
         .chain(ramps)
+        .chain(combined)
         .chain(pdos)
         .chain(srdos)
         .chain(enums)

@@ -112,7 +112,11 @@ fn drive_control_register_1_writes() {
 fn drive_family_19_and_drive_size_21() {
     // Lines 477-480: the smd answers 0x45 (69) and always 0 for the size.
     let mut d = drive(&[&[SA, 0x03, 0x02, 0x00, 0x45], &[SA, 0x03, 0x02, 0x00, 0x00]]);
-    assert_eq!(d.drive_family().read().unwrap(), 69);
+    let family = d.drive_family().read().unwrap();
+    assert_eq!(
+        (family, family.raw()),
+        (lenze_smd::types::DriveFamily::SMD, 69)
+    );
     assert_eq!(d.drive_size().read().unwrap(), 0);
     assert_eq!(
         sent(d),

@@ -85,7 +85,7 @@ fn pc507_status_version_and_a_control_session() {
     let peer = start(507);
     let (mut drive, selection) = open(&peer);
     assert_eq!(selection, VariantSelection::Known(Variant::Pc507));
-    assert_eq!(drive.drive_family().read(), Ok(69));
+    assert_eq!(drive.drive_family().read().map(|f| f.raw()), Ok(69));
     assert_eq!(
         drive.software_version().read().unwrap().as_str(),
         Some("SMD 2.01")
@@ -162,7 +162,7 @@ fn an_unknown_configuration_reads_but_never_writes() {
     let peer = start(600);
     let (mut drive, selection) = open(&peer);
     assert_eq!(selection, VariantSelection::Unknown(600));
-    assert_eq!(drive.drive_family().read(), Ok(69));
+    assert_eq!(drive.drive_family().read().map(|f| f.raw()), Ok(69));
     assert_eq!(
         SmdError::from(drive.unlock_controls().unwrap_err()),
         SmdError::UnknownConfiguration { value: 600 }
@@ -185,4 +185,96 @@ fn an_unknown_configuration_reads_but_never_writes() {
         })
     );
     assert_eq!(accepted_writes(&mut drive), 0, "nothing was sent");
+}
+
+/// What a drive answers a raw request: the words read, or the exception code.
+type Outcome = Result<Vec<u16>, u8>;
+
+/// The requests of the manual's rules the description states as data (FC 04 = FC 03, line 237;
+/// several bits in #1, lines 569-571; FC 16 for one register only, lines 235 and 1052), sent
+/// raw to `bus` at `unit`, with the outcome of each.
+fn rule_requests<B: RegisterBus>(bus: &mut B, unit: UnitId) -> Vec<(&'static str, Outcome)> {
+    let code = |e: drivebus::BusError| match e {
+        drivebus::BusError::ModbusException { code, .. } => code.code(),
+        other => panic!("no exception but {other:?}"),
+    };
+    let read = |bus: &mut B, table, address, count: usize| {
+        let mut words = vec![0u16; count];
+        bus.read_registers(unit, table, address, &mut words)
+            .map(|()| words)
+            .map_err(code)
+    };
+    let mut out = vec![
+        ("FC 04 #19", read(bus, Table::Input, 19, 1)),
+        (
+            "FC 04 #24 x6 (length)",
+            read(bus, Table::Input, 24, 6).map(|w| vec![w.len() as u16]),
+        ),
+        ("FC 04 #25 x2", read(bus, Table::Input, 25, 2)),
+        (
+            "#48 = 0",
+            bus.write_register(unit, 48, 0)
+                .map(|()| vec![])
+                .map_err(code),
+        ),
+    ];
+    for (what, word) in [
+        ("#1 = START | UPDATE BUFFERS", 0x0009),
+        ("#1 = REVERSE | FORWARD", 0x00C0),
+        ("#1 = STOP | START", 0x000C),
+    ] {
+        out.push((
+            what,
+            bus.write_register(unit, 1, word)
+                .map(|()| vec![])
+                .map_err(code),
+        ));
+    }
+    let fc16 = |bus: &mut B, values: &[u16]| {
+        bus.write_registers(unit, 40, values)
+            .map(|()| vec![])
+            .map_err(code)
+    };
+    out.push(("FC 16 #40 x1", fc16(bus, &[100])));
+    out.push(("FC 16 #40 x2", fc16(bus, &[100, 100])));
+    out
+}
+
+#[test]
+fn the_simulator_answers_the_manuals_rules_as_the_independent_peer_does() {
+    let peer = start(507);
+    let (mut drive, _) = open(&peer);
+    let link = drive.device().link_mut();
+    let unit = link.unit();
+    let from_peer = rule_requests(link.bus_mut(), unit);
+
+    let sim = drivesim::Simulator::load(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../descriptions/lenze-smd"
+    ))
+    .unwrap();
+    sim.preset("parameter_configuration", 507).unwrap();
+    sim.preset("control_source", 11).unwrap();
+    let server = sim.serve_modbus_tcp("127.0.0.1:0", UNIT).unwrap();
+    let mut client = drivebus::modbus::transport::ModbusTcpClient::connect(
+        server.local_addr(),
+        &drivebus::modbus::transport::TcpConfig::default(),
+    )
+    .unwrap();
+    let from_sim = rule_requests(&mut client, UNIT);
+
+    assert_eq!(from_sim, from_peer);
+    // And they are the manual's answers, not a shared mistake.
+    let expected: Vec<(&str, Outcome)> = vec![
+        ("FC 04 #19", Ok(vec![69])),
+        ("FC 04 #24 x6 (length)", Ok(vec![6])),
+        ("FC 04 #25 x2", Err(0x03)),
+        ("#48 = 0", Ok(vec![])),
+        ("#1 = START | UPDATE BUFFERS", Err(0x04)),
+        ("#1 = REVERSE | FORWARD", Err(0x04)),
+        ("#1 = STOP | START", Ok(vec![])),
+        ("FC 16 #40 x1", Ok(vec![])),
+        ("FC 16 #40 x2", Err(0x03)),
+    ];
+    assert_eq!(from_peer, expected);
 }

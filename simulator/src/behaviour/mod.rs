@@ -5,6 +5,8 @@
 use std::fmt::Debug;
 use std::time::Duration;
 
+use drivegen::ir::SpeedPhase;
+
 use crate::refusal::Refusal;
 use crate::store::{ParamId, Store};
 
@@ -28,6 +30,18 @@ pub enum Motion {
     Following(ParamId),
     /// Stopping at once (quick stop, stop with maximum torque, fault).
     QuickStop,
+    /// Ramping to zero along the deceleration ramp of the setpoint held in this parameter.
+    RampStop(ParamId),
+}
+
+/// A stop the drive makes on its own, not commanded through a state machine (the serial
+/// watchdog's `coast` and `quick_stop` actions).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Halt {
+    /// The power stage turns off; the motor coasts.
+    Coast,
+    /// The drive stops as its quick stop does.
+    QuickStop,
 }
 
 /// State behaviours share.
@@ -39,6 +53,11 @@ pub struct Shared {
     pub fault: Option<u16>,
     /// Set by a reset command: the drive reboots after the current request.
     pub reset_requested: bool,
+    /// A stop the drive made on its own during this tick, for the state machine to show.
+    pub halt: Option<Halt>,
+    /// Where the motor's speed is relative to its target while the power stage drives it (set
+    /// by the motor; `None` while it is off).
+    pub phase: Option<SpeedPhase>,
 }
 
 /// One aspect of the drive's behaviour.
@@ -55,6 +74,9 @@ pub trait Behaviour: Debug + Send {
     fn reset(&mut self, _store: &mut Store, _shared: &mut Shared) {}
     /// The drive received a request (any valid communication feeds a watchdog).
     fn heard(&mut self) {}
+    /// Shows what the other behaviours did, after every behaviour has reacted to a write, a
+    /// tick or a reset (a status that depends on the motor's speed).
+    fn settle(&mut self, _store: &mut Store, _shared: &mut Shared) {}
 }
 
 /// The behaviours a description calls for, in the order they run: the write lock, bounds set by

@@ -1,14 +1,18 @@
 //! A simple motor: the actual speed follows the setpoint the state machine enables, along the
-//! ramp the description gives that setpoint (`[[ramp]]`, see [`SetpointRamp`]), and stops at once
-//! on a quick stop or when the power stage is off. Without a ramp, the speed jumps; a ramp's
-//! polarity bit, while set, makes the motor follow the setpoint reversed. The speed
-//! shows in the vendor machine's `actual` parameter and the CiA 402 actual values.
+//! ramp the description gives that setpoint (`[[ramp]]`, see [`SetpointRamp`]), ramps to zero
+//! along its deceleration in a `ramp-stop` state, and stops at once on a quick stop or when the
+//! power stage is off. Without a ramp, the speed jumps; a ramp's polarity bit, while set, makes
+//! the motor follow the setpoint reversed. The speed shows in the vendor machine's `actual`
+//! parameter and the CiA 402 actual values; whether it is rising, falling, steady or at zero goes
+//! to the state machine's status patterns ([`Shared::phase`]).
 //!
 //! Speeds are raw values: `state_machines_resolve` holds a machine's `actual` to its setpoint's
 //! unit and scale; the CiA 402 actual values are in their setpoints' units (606Ch in those of
 //! 60FFh, 6044h in those of 6042h). A setpoint's bounds are checked by `Bounds`.
 
 use std::time::Duration;
+
+use drivegen::ir::SpeedPhase;
 
 use super::ramp::SetpointRamp;
 use super::{object, Behaviour, Motion, Shared};
@@ -18,11 +22,30 @@ use crate::store::{ParamId, Store};
 #[derive(Debug)]
 pub struct Motor {
     actuals: Vec<ParamId>,
+    /// The vendor machine's `commanded` parameter: shows the speed the motor heads for.
+    commanded: Option<ParamId>,
     ramps: Vec<SetpointRamp>,
     speed: f64,
 }
 
 impl Motor {
+    /// The setpoint the motor follows and the speed it heads for (the setpoint's value, reversed
+    /// while its ramp's polarity bit is set; 0 in a ramp-stop); `None` while it is stopped.
+    fn heading(&self, store: &Store, motion: Motion) -> Option<(ParamId, f64)> {
+        match motion {
+            Motion::Following(setpoint) => {
+                let sign = self
+                    .ramps
+                    .iter()
+                    .find(|r| r.shapes(setpoint))
+                    .map_or(1.0, |r| r.sign(store));
+                Some((setpoint, sign * store.int(setpoint).unwrap_or(0) as f64))
+            }
+            Motion::RampStop(setpoint) => Some((setpoint, 0.0)),
+            Motion::Disabled | Motion::QuickStop => None,
+        }
+    }
+
     /// Present when the description has an actual-speed value to show: the vendor state
     /// machine's `actual`, the CiA 402 velocity actual value (606Ch) or the vl one (6044h).
     pub fn detect(store: &mut Store) -> Option<Self> {
@@ -38,8 +61,12 @@ impl Motor {
         if actuals.is_empty() {
             return None;
         }
+        let commanded = vendor
+            .and_then(|m| m.commanded.as_deref())
+            .and_then(|name| store.id(name));
         Some(Self {
             actuals,
+            commanded,
             ramps: SetpointRamp::detect(store),
             speed: 0.0,
         })
@@ -55,22 +82,36 @@ impl Motor {
     }
 }
 
+/// Where `speed` is relative to `target`, as the raw values shown compare (a speed that shows
+/// as the target is at the target).
+fn phase(speed: f64, target: f64) -> SpeedPhase {
+    let (speed, target) = (speed.round(), target.round());
+    if target.abs() > speed.abs() {
+        SpeedPhase::Rising
+    } else if target.abs() < speed.abs() {
+        SpeedPhase::Falling
+    } else if target == 0.0 {
+        SpeedPhase::Zero
+    } else {
+        SpeedPhase::Steady
+    }
+}
+
 impl Behaviour for Motor {
+    /// A new motion or setpoint changes where the speed heads at once, before it moves.
+    fn written(&mut self, store: &mut Store, shared: &mut Shared, _id: ParamId) {
+        let target = self.heading(store, shared.motion).map(|(_, target)| target);
+        shared.phase = target.map(|target| phase(self.speed, target));
+        if let Some(id) = self.commanded {
+            store.set_int(id, target.unwrap_or(0.0).round() as i128);
+        }
+    }
+
     fn tick(&mut self, store: &mut Store, shared: &mut Shared, dt: Duration) {
-        let (setpoint, target) = match shared.motion {
-            Motion::Following(setpoint) => {
-                let sign = self
-                    .ramps
-                    .iter()
-                    .find(|r| r.shapes(setpoint))
-                    .map_or(1.0, |r| r.sign(store));
-                (setpoint, sign * store.int(setpoint).unwrap_or(0) as f64)
-            }
-            Motion::Disabled | Motion::QuickStop => {
-                self.speed = 0.0;
-                (0, 0.0)
-            }
-        };
+        let (setpoint, target) = self.heading(store, shared.motion).unwrap_or_else(|| {
+            self.speed = 0.0;
+            (0, 0.0)
+        });
         let rate = if target == self.speed {
             None
         } else {
@@ -86,6 +127,12 @@ impl Behaviour for Motor {
         for &id in &self.actuals {
             store.set_int(id, self.speed.round() as i128);
         }
+        if let Some(id) = self.commanded {
+            store.set_int(id, target.round() as i128);
+        }
+        shared.phase = self
+            .heading(store, shared.motion)
+            .map(|(_, target)| phase(self.speed, target));
     }
 
     fn reset(&mut self, store: &mut Store, shared: &mut Shared) {

@@ -5,7 +5,7 @@
 //! delta speed over a delta time (CiA 402 vl 6048h / 6049h) — and whether a polarity bit
 //! reverses the setpoint (Lafert speed polarity 0x0043).
 
-use drivegen::ir::{per_second, Ramp, Slope};
+use drivegen::ir::{per_second, Ramp, Scale, Slope};
 
 use crate::store::{ParamId, Store};
 
@@ -13,7 +13,7 @@ use crate::store::{ParamId, Store};
 /// scale depends on the motor fitted).
 const DEFAULT_FULL_SCALE: f64 = 3000.0;
 
-/// A time parameter and how many of its units make a second.
+/// A time parameter and how many of its raw units make a second.
 #[derive(Debug, Clone, Copy)]
 struct Time {
     id: ParamId,
@@ -21,10 +21,18 @@ struct Time {
 }
 
 impl Time {
+    /// The parameter `name` as a time: its unit (`ms`, `s`) and its fixed scale (Lenze smd C12:
+    /// 0.1 s per raw unit, 10 raw units a second); a time scaled at run time is not one.
     fn find(store: &Store, name: &str) -> Option<Self> {
         let id = store.id(name)?;
-        let per_second = per_second(store.parameter(id).unit.as_deref()?)?;
-        Some(Self { id, per_second })
+        let parameter = store.parameter(id);
+        let factor = match &parameter.scale {
+            None => 1.0,
+            Some(Scale::Fixed(scale)) => scale.factor.to_f64(),
+            Some(Scale::Runtime { .. }) => return None,
+        };
+        let per_second = per_second(parameter.unit.as_deref()?)? / factor;
+        per_second.is_finite().then_some(Self { id, per_second })
     }
 }
 

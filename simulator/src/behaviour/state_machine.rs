@@ -5,14 +5,22 @@
 //! fault enters the `fault` state and shows its code in `fault_code`; a reset powers up again.
 //! The status parameter shows the entered state's pattern (the first whose `when` holds, else
 //! the first without one), and the state's `motion` tells the motor what to do. A `when`
-//! parameter whose writes take effect only after a reset counts with its power-on value.
+//! parameter whose writes take effect only after a reset counts with its power-on value; a
+//! pattern with a `speed` phase shows while the motor's speed is in it (ACCEL, DECEL, RUN).
+//!
+//! A `command` that is one of several commands sharing a register (Lenze smd #1: one bit per
+//! command) stands for the register: writing any of those commands is writing its trigger value.
+//! A stop the drive makes on its own (the watchdog's coast or quick stop) enters the `coast` or
+//! `quick_stop` state when the machine names one.
 
 use std::collections::HashMap;
 use std::time::Duration;
 
-use drivegen::ir::{self, Effect, Motion as StateMotion, StatusPattern, TransitionKind};
+use drivegen::ir::{
+    self, Effect, Motion as StateMotion, SpeedPhase, StatusPattern, Table, TransitionKind,
+};
 
-use super::{Behaviour, Motion, Shared};
+use super::{Behaviour, Halt, Motion, Shared};
 use crate::store::{ParamId, Store};
 
 /// Most automatic transitions followed after one event: a table whose automatic transitions
@@ -27,8 +35,13 @@ pub struct DescribedMachine {
     command: ParamId,
     setpoint: Option<ParamId>,
     fault_code: Option<ParamId>,
+    /// The commands sharing `command`'s register and the value each writes there (empty when
+    /// `command` is a plain register).
+    commands: Vec<(ParamId, i128)>,
     /// Power-on values of the `when` parameters that take effect only after a reset.
     latched: HashMap<ParamId, i128>,
+    /// The motor's speed phase, as last shown.
+    phase: Option<SpeedPhase>,
     state: usize,
 }
 
@@ -43,12 +56,54 @@ impl DescribedMachine {
             command: store.id(&machine.command)?,
             setpoint: id(&machine.setpoint),
             fault_code: id(&machine.fault_code),
+            commands: Vec::new(),
             latched: HashMap::new(),
+            phase: None,
             state: 0,
             machine,
         };
+        described.commands = described.register_commands(store);
         described.power_on(store);
         Some(described)
+    }
+
+    /// The command parameters written at the command parameter's holding registers, with their
+    /// trigger values, when the command parameter is itself such a command.
+    fn register_commands(&self, store: &Store) -> Vec<(ParamId, i128)> {
+        let device = store.device();
+        let command = store.parameter(self.command);
+        let trigger = |p: &ir::Parameter| p.command.as_ref().and_then(|c| c.value);
+        if trigger(command).is_none() {
+            return Vec::new();
+        }
+        let registers: Vec<u16> = command
+            .modbus
+            .iter()
+            .filter(|a| a.table == Table::Holding)
+            .map(|a| a.address)
+            .collect();
+        device
+            .parameters
+            .iter()
+            .enumerate()
+            .filter(|(_, p)| {
+                p.modbus
+                    .iter()
+                    .any(|a| a.table == Table::Holding && registers.contains(&a.address))
+            })
+            .filter_map(|(id, p)| Some((id, i128::from(trigger(p)?))))
+            .collect()
+    }
+
+    /// The value a write of `id` puts in the command register, if it is a command.
+    fn command_value(&self, store: &Store, id: ParamId) -> Option<i128> {
+        if self.commands.is_empty() {
+            return (id == self.command).then(|| store.int(id).unwrap_or(0));
+        }
+        self.commands
+            .iter()
+            .find(|(c, _)| *c == id)
+            .map(|&(_, value)| value)
     }
 
     fn index(&self, name: &str) -> Option<usize> {
@@ -88,8 +143,7 @@ impl DescribedMachine {
                 None => break,
             }
         }
-        let pattern = self.shown_pattern(store);
-        store.set_int(self.status, pattern.map_or(0, |p| i128::from(p.value)));
+        self.show(store);
     }
 
     /// The first transition out of the current state that `wanted` accepts.
@@ -109,19 +163,40 @@ impl DescribedMachine {
                 .and_then(effective)
                 .is_some_and(|raw| raw == i128::from(c.value))
         };
+        let conditional = |p: &&StatusPattern| p.when.is_some() || p.speed.is_some();
+        let shows = |p: &&StatusPattern| {
+            p.when.as_ref().is_none_or(holds)
+                && p.speed.is_none_or(|phase| self.phase == Some(phase))
+        };
         let patterns = &self.current().status;
         patterns
             .iter()
-            .find(|p| p.when.as_ref().is_some_and(holds))
-            .or_else(|| patterns.iter().find(|p| p.when.is_none()))
+            .find(|p| conditional(p) && shows(p))
+            .or_else(|| patterns.iter().find(|p| !conditional(p)))
+    }
+
+    /// Shows the current state's pattern in the status parameter.
+    fn show(&self, store: &mut Store) {
+        let pattern = self.shown_pattern(store);
+        store.set_int(self.status, pattern.map_or(0, |p| i128::from(p.value)));
     }
 
     fn motion(&self) -> Motion {
         match (self.current().motion, self.setpoint) {
             (StateMotion::Follow, Some(setpoint)) => Motion::Following(setpoint),
-            (StateMotion::QuickStop, _) => Motion::QuickStop,
+            (StateMotion::RampStop, Some(setpoint)) => Motion::RampStop(setpoint),
+            (StateMotion::QuickStop | StateMotion::RampStop, _) => Motion::QuickStop,
             _ => Motion::Disabled,
         }
+    }
+
+    /// The state a stop the drive made on its own leads to, if the machine names one.
+    fn halt_state(&self, halt: Halt) -> Option<usize> {
+        let name = match halt {
+            Halt::Coast => self.machine.coast.as_deref(),
+            Halt::QuickStop => self.machine.quick_stop.as_deref(),
+        };
+        name.and_then(|n| self.index(n))
     }
 
     fn fault_state(&self) -> Option<usize> {
@@ -131,10 +206,9 @@ impl DescribedMachine {
 
 impl Behaviour for DescribedMachine {
     fn written(&mut self, store: &mut Store, shared: &mut Shared, id: ParamId) {
-        if id != self.command {
+        let Some(word) = self.command_value(store, id) else {
             return;
-        }
-        let word = store.int(id).unwrap_or(0);
+        };
         let commanded = |t: &ir::Transition| {
             t.kind == TransitionKind::Command && t.command.map(i128::from) == Some(word)
         };
@@ -144,8 +218,14 @@ impl Behaviour for DescribedMachine {
         shared.motion = self.motion();
     }
 
-    /// A fault injected into the drive enters the fault state and shows its code.
+    /// A fault injected into the drive enters the fault state and shows its code; a stop the
+    /// drive made on its own enters the state the machine names for it.
     fn tick(&mut self, store: &mut Store, shared: &mut Shared, _dt: Duration) {
+        if let Some(state) = shared.halt.and_then(|h| self.halt_state(h)) {
+            shared.halt = None;
+            self.enter(store, state);
+            shared.motion = self.motion();
+        }
         let (Some(code), Some(fault)) = (shared.fault, self.fault_state()) else {
             return;
         };
@@ -155,6 +235,15 @@ impl Behaviour for DescribedMachine {
                 store.set_int(id, i128::from(code));
             }
             shared.motion = self.motion();
+        }
+    }
+
+    /// Shows the pattern of the motor's present speed phase, in a state whose patterns depend on
+    /// it (other states keep what they showed on entry).
+    fn settle(&mut self, store: &mut Store, shared: &mut Shared) {
+        self.phase = shared.phase;
+        if self.current().status.iter().any(|p| p.speed.is_some()) {
+            self.show(store);
         }
     }
 

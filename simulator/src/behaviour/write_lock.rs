@@ -10,7 +10,7 @@ use std::time::Duration;
 
 use drivegen::ir::{GrantKey, Lock, TimeoutEffect, Unlock, UnlockEnd};
 
-use super::{Behaviour, Motion, Shared};
+use super::{Behaviour, Halt, Motion, Shared};
 use crate::refusal::Refusal;
 use crate::store::{ParamId, Store};
 
@@ -138,8 +138,14 @@ impl WriteLock {
             return;
         }
         match effect {
-            TimeoutEffect::Coast => shared.motion = Motion::Disabled,
-            TimeoutEffect::QuickStop => shared.motion = Motion::QuickStop,
+            TimeoutEffect::Coast => {
+                shared.motion = Motion::Disabled;
+                shared.halt = Some(Halt::Coast);
+            }
+            TimeoutEffect::QuickStop => {
+                shared.motion = Motion::QuickStop;
+                shared.halt = Some(Halt::QuickStop);
+            }
             TimeoutEffect::Fault(code) => shared.fault = Some(code),
             TimeoutEffect::Disabled => {}
         }

@@ -61,14 +61,14 @@ fn head(buf: &[u8], silent: bool) -> Head {
 }
 
 /// Serves `unit` on `stream` until the stream fails; broadcasts (unit 0) are executed without an
-/// answer.
+/// answer when the description accepts them (`[modbus] broadcast`), else ignored.
 pub fn serve<S: ByteStream>(sim: &Simulator, stream: &mut S, unit: UnitId) -> Result<(), BusError> {
     serve_units(&Units::one(sim.clone(), unit), stream)
 }
 
 /// Serves every drive of `units` on one line until the stream fails, as drives sharing an RS-485
 /// bus: each answers for its own unit id, other ids get no answer, broadcasts (unit 0) are
-/// executed by every drive without an answer.
+/// executed without an answer by every drive that accepts them.
 pub fn serve_units<S: ByteStream>(units: &Units, stream: &mut S) -> Result<(), BusError> {
     let mut buf: Vec<u8> = Vec::with_capacity(2 * MAX_ADU);
     let mut chunk = [0u8; MAX_ADU];

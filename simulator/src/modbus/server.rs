@@ -81,6 +81,10 @@ impl ModbusServer {
             } => {
                 let table = match function {
                     pdu::function::READ_HOLDING_REGISTERS => Table::Holding,
+                    // A device that does not tell 3X from 4X references (Lenze smd, line 237).
+                    pdu::function::READ_INPUT_REGISTERS if self.input_reads_holding() => {
+                        Table::Holding
+                    }
                     pdu::function::READ_INPUT_REGISTERS => Table::Input,
                     _ => return Err(self.exception(Refusal::NoSuchAddress)),
                 };
@@ -112,6 +116,16 @@ impl ModbusServer {
             .map_or(function != 0 && function <= 0x10, |c| {
                 c.functions.contains(&function)
             })
+    }
+
+    /// Whether the drive executes a broadcast (unit id 0): as its description's `[modbus]
+    /// broadcast` says, and always for a description without `[modbus]`.
+    pub fn accepts_broadcast(&self) -> bool {
+        self.caps.as_ref().is_none_or(|c| c.broadcast)
+    }
+
+    fn input_reads_holding(&self) -> bool {
+        self.caps.as_ref().is_some_and(|c| c.input_reads_holding)
     }
 
     fn max_write(&self) -> u16 {
@@ -173,6 +187,8 @@ impl ModbusServer {
                 .map
                 .cell(Table::Holding, address)
                 .ok_or(self.exception(Refusal::NoSuchAddress))?;
+            let value =
+                command_register::combined(drive.store(), self.caps.as_ref(), address, value)?;
             let cell = command_register::matching(drive.store(), cell, address, value);
             if !cell.access.write {
                 return Err(self.exception(Refusal::ReadOnly));

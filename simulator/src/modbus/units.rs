@@ -21,7 +21,8 @@ pub struct Units {
     units: Vec<Unit>,
 }
 
-/// Unit id 0: a broadcast, executed by every unit and answered by none.
+/// Unit id 0: a broadcast, executed by every unit whose description accepts broadcasts
+/// (`[modbus] broadcast`) and answered by none.
 const BROADCAST: u8 = 0;
 
 impl Units {
@@ -50,10 +51,10 @@ impl Units {
 
     /// Handles the request `pdu` sent to unit id `to`: the length of the response PDU written
     /// into `response` by the drive at `to`, or `None` when nobody answers (no drive has that
-    /// id, or a broadcast, which every drive executes).
+    /// id, or a broadcast, which every drive that accepts broadcasts executes).
     pub fn handle(&self, to: u8, pdu: &[u8], response: &mut [u8]) -> Option<usize> {
         if to == BROADCAST {
-            for unit in &self.units {
+            for unit in self.units.iter().filter(|u| u.server.accepts_broadcast()) {
                 unit.sim
                     .with(|drive| unit.server.handle(drive, pdu, response));
             }

@@ -5,6 +5,7 @@ use drivebus::control::Quirk;
 use toml::Spanned;
 
 use super::{Lowering, VALUE_RULE};
+use crate::diagnostic::Span;
 use crate::ir;
 use crate::load::raw::*;
 
@@ -79,6 +80,10 @@ impl Lowering<'_> {
                     fault: c.get_ref().fault,
                     span: self.span(c),
                 }),
+
+            commanded: name(&m.commanded),
+            coast: name(&m.coast),
+            quick_stop: name(&m.quick_stop),
             states,
             transitions,
             source: m.source.as_ref().and_then(|s| self.citation(s)),
@@ -91,6 +96,10 @@ impl Lowering<'_> {
         let span = self.span(raw);
         let mut status = Vec::new();
         for pattern in s.status.iter() {
+            let speed = pattern
+                .speed
+                .as_deref()
+                .and_then(|p| self.speed_phase(p, span.clone()));
             match (u16::try_from(pattern.mask), u16::try_from(pattern.value)) {
                 (Ok(mask), Ok(value)) if value & !mask == 0 => status.push(ir::StatusPattern {
                     mask,
@@ -99,6 +108,7 @@ impl Lowering<'_> {
                         parameter: w.parameter.clone(),
                         value: w.value,
                     }),
+                    speed,
                 }),
                 _ => self.error_help(
                     VALUE_RULE,
@@ -112,13 +122,14 @@ impl Lowering<'_> {
             None | Some(("disabled", _)) => ir::Motion::Disabled,
             Some(("follow", _)) => ir::Motion::Follow,
             Some(("quick-stop", _)) => ir::Motion::QuickStop,
+            Some(("ramp-stop", _)) => ir::Motion::RampStop,
             Some((other, m)) => {
                 let span = self.span(m);
                 self.error_help(
                     VALUE_RULE,
                     span,
                     format!("unknown motion `{other}`"),
-                    "use \"disabled\", \"follow\" or \"quick-stop\"",
+                    "use \"disabled\", \"follow\", \"quick-stop\" or \"ramp-stop\"",
                 );
                 ir::Motion::Disabled
             }
@@ -131,6 +142,25 @@ impl Lowering<'_> {
             source: s.source.as_ref().and_then(|c| self.citation(c)),
             span: self.span(&s.name),
         }
+    }
+
+    /// A status pattern's `speed` condition.
+    fn speed_phase(&mut self, raw: &str, span: Span) -> Option<ir::SpeedPhase> {
+        Some(match raw {
+            "rising" => ir::SpeedPhase::Rising,
+            "falling" => ir::SpeedPhase::Falling,
+            "steady" => ir::SpeedPhase::Steady,
+            "zero" => ir::SpeedPhase::Zero,
+            other => {
+                self.error_help(
+                    VALUE_RULE,
+                    span,
+                    format!("unknown speed phase `{other}`"),
+                    "use \"rising\", \"falling\", \"steady\" or \"zero\"",
+                );
+                return None;
+            }
+        })
     }
 
     fn transition(&mut self, raw: &Spanned<RawTransition>) -> Option<ir::Transition> {

@@ -412,8 +412,29 @@ impl Lowering<'_> {
                 .filter_map(|b| self.read_block(b))
                 .collect(),
             exception_functions: self.exception_functions(raw),
+            input_reads_holding: raw.input_reads_holding.unwrap_or(false),
+            combined_commands: raw
+                .combined_commands
+                .as_ref()
+                .and_then(|c| self.combined_commands(c)),
             source: raw.source.as_ref().and_then(|c| self.citation(c)),
         }
+    }
+
+    fn combined_commands(
+        &mut self,
+        raw: &Spanned<RawCombinedCommands>,
+    ) -> Option<ir::CombinedCommands> {
+        let c = raw.get_ref();
+        let address = self.int_in::<u16>(&c.address, "combined_commands address")?;
+        let refusal = self.int_in::<u8>(&c.refusal, "exception code")?;
+        Some(ir::CombinedCommands {
+            address,
+            obeys: c.obeys.clone(),
+            refusal,
+            source: c.source.as_ref().and_then(|s| self.citation(s)),
+            span: self.span(raw),
+        })
     }
 
     fn canopen_caps(&mut self, raw: &RawCanOpenCaps) -> ir::CanOpenCaps {
