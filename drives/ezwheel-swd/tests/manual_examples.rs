@@ -3,8 +3,7 @@
 //! printed (line 4172), halt (line 4184 and the decision in ERRATA.md), the alternative SRDO 1
 //! frames of step 4 (lines 4119-4120), the CRC table (lines 3516-3551), the error register bits
 //! (lines 1587-1596), the safety function output bits (lines 3220-3232) and the PDO remapping
-//! procedure to its end (lines 1443-1453). The ramp on a reversal (line 2620) is not here: the
-//! simulator's motor decelerates through zero on the acceleration ramp (ERRATA.md, "Issue 27").
+//! procedure to its end (lines 1443-1453), and the ramp on a reversal (line 2620).
 
 mod support;
 
@@ -203,6 +202,37 @@ fn safety_function_output_bits_are_the_printed_layout() {
     assert_eq!(SafetyFunctionOutput2::SBU.bits(), 1 << 2);
     assert_eq!(SafetyFunctionOutput2::SMS.bits(), 1 << 3);
     assert_eq!(SafetyFunctionOutput2::SLSA_8.bits(), 1 << 11);
+}
+
+#[test]
+fn a_reversal_decelerates_to_zero_then_accelerates() {
+    // Line 2620: "When the setpoint direction is reversed, the nominal deceleration ramp is used
+    // to return to zero speed. The acceleration ramp is then used to reach the new setpoint."
+    // Deceleration 1000 rpm/s, acceleration 500 rpm/s (the default, lines 2643-2644), so the
+    // two ramps are told apart.
+    use drivebus::canopen::sdo::server::ObjectDictionary;
+    let sim = drivesim::Simulator::load(support::simulated_swd::DESCRIPTION).unwrap();
+    let device = sim.with(|drive| drive.store().device().clone());
+    let mut od = drivesim::canopen::Dictionary::new(sim.clone(), &device, sim.variant());
+    od.write(0x6049, 1, &1000u32.to_le_bytes()).unwrap();
+    for word in [0x06u16, 0x07, 0x0F, 0x7F] {
+        od.write(0x6040, 0, &word.to_le_bytes()).unwrap();
+    }
+    let speed = |od: &mut drivesim::canopen::Dictionary| {
+        i32::from_le_bytes(od.read(0x606C, 0).unwrap().try_into().unwrap())
+    };
+    od.write(0x6042, 0, &500i16.to_le_bytes()).unwrap();
+    sim.with(|drive| drive.tick(Duration::from_secs(2)));
+    assert_eq!(speed(&mut od), 500);
+    od.write(0x6042, 0, &(-500i16).to_le_bytes()).unwrap();
+    // 0.25 s on the deceleration ramp: 500 - 250 = 250 (the acceleration ramp would give 375).
+    sim.with(|drive| drive.tick(Duration::from_millis(250)));
+    let after_quarter = speed(&mut od);
+    assert!((240..=260).contains(&after_quarter), "{after_quarter}");
+    // Zero after 0.5 s, then -100 after another 0.2 s on the acceleration ramp (500 rpm/s).
+    sim.with(|drive| drive.tick(Duration::from_millis(450)));
+    let after = speed(&mut od);
+    assert!((-110..=-90).contains(&after), "{after}");
 }
 
 #[test]
