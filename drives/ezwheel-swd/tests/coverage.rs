@@ -2,6 +2,13 @@
 //! must be in the description as `drivegen::check` reads it: every sub-index of a full table row,
 //! every object the description takes from a profile; objects listed as only named must stay out
 //! until the list (and COVERAGE.md) says otherwise.
+//!
+//! And every property of every described parameter must be the manual's: tests/manual_table.txt
+//! holds one row per described parameter typed from the manual (address and access, PDO
+//! mapping, type, unit, scale, range, default, allowed values, enumeration values, bits), each
+//! with the manual line it was typed from, and `manual_table::compare` must find no difference.
+//! Where the description decides against a printed value, the row gives the decided value and
+//! its comment the printed one and the erratum (ERRATA.md and the description's `erratum`).
 
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -60,6 +67,46 @@ fn manual_list() -> Vec<(usize, Listed)> {
             (i + 1, entry)
         })
         .collect()
+}
+
+/// Expands the table's sub-index runs: a row named `name_{A..=B}` stands for the rows `name_A` ...
+/// `name_B` (the description's members of a run), with `{sub}` in the row replaced by each
+/// sub-index in two hex digits. The bounds are typed from the manual's "01h to 08h" like every
+/// other value.
+fn expand_runs(text: &str) -> String {
+    let mut out = String::new();
+    for line in text.lines() {
+        let run = line.split_whitespace().next().and_then(|name| {
+            let (_, rest) = name.split_once('{')?;
+            let (first, last) = rest.strip_suffix('}')?.split_once("..=")?;
+            Some((
+                first.parse::<u8>().ok()?,
+                last.parse::<u8>().ok()?,
+                format!("{{{rest}"),
+            ))
+        });
+        match run {
+            None => {
+                out.push_str(line);
+                out.push('\n');
+            }
+            Some((first, last, pattern)) => {
+                for sub in first..=last {
+                    let row = line
+                        .replacen(&pattern, &sub.to_string(), 1)
+                        .replace("{sub}", &format!("{sub:02X}"));
+                    out.push_str(&row);
+                    out.push('\n');
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The manual's property table, runs expanded.
+fn manual_table() -> Vec<manual_table::Row> {
+    manual_table::parse(&expand_runs(include_str!("manual_table.txt")))
 }
 
 fn description() -> Device {
@@ -163,4 +210,55 @@ fn the_list_counts_the_manuals_tables() {
         })
         .collect();
     assert_eq!(rows.len(), 118);
+}
+
+#[test]
+fn every_property_of_every_described_parameter_is_the_manuals() {
+    let differences = manual_table::compare(&description(), &manual_table());
+    assert!(
+        differences.is_empty(),
+        "{} differences between tests/manual_table.txt and the description:\n{}",
+        differences.len(),
+        differences.join("\n")
+    );
+}
+
+#[test]
+fn every_described_parameter_has_a_row_in_the_manual_table() {
+    let rows: BTreeSet<String> = manual_table().into_iter().map(|row| row.name).collect();
+    let device = description();
+    let without: Vec<&str> = device
+        .parameters
+        .iter()
+        .map(|p| p.name.as_str())
+        .filter(|name| !rows.contains(*name))
+        .collect();
+    assert!(
+        without.is_empty(),
+        "described without a row in tests/manual_table.txt: {without:#?}"
+    );
+}
+
+#[test]
+fn a_run_row_expands_to_one_row_per_sub_index() {
+    let rows = manual_table::parse(&expand_runs(
+        "sls_command_{1..=3} canopen=6690.{sub}:r pdo=none type=bool line=3397",
+    ));
+    let names: Vec<&str> = rows.iter().map(|r| r.name.as_str()).collect();
+    assert_eq!(names, ["sls_command_1", "sls_command_2", "sls_command_3"]);
+    assert_eq!(rows[2].properties["canopen"], "6690.03:r");
+    assert_eq!(rows[2].line, 3397);
+}
+
+#[test]
+fn a_wrong_value_in_the_description_fails_the_comparison() {
+    // The comparison can fail: the row of 6502h with another default than the description's.
+    let rows = manual_table::parse(
+        "supported_drive_modes canopen=6502.00:r pdo=none type=u32 range=2..2 default=3 bits=0,1,2,3,5,6,7,8,9,10 line=2453",
+    );
+    let differences = manual_table::compare(&description(), &rows);
+    assert!(
+        differences.iter().any(|d| d.contains("default")),
+        "{differences:#?}"
+    );
 }

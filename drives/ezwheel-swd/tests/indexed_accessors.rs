@@ -10,6 +10,7 @@ use drivebus::memory::MemoryBus;
 use drivebus::units::Rpm;
 use drivebus::{Error, ValueError};
 use ezwheel_swd::indexed::{SafetyControlword2Command, StandardErrorField};
+use ezwheel_swd::types::SafetyCommand;
 use support::simulated_swd::start;
 
 #[test]
@@ -22,11 +23,18 @@ fn an_indexed_accessor_reaches_the_sub_index_it_names() {
     let mut drive = ezwheel_swd::Swd::canopen(memory, NodeId(0x10));
     assert_eq!(
         drive.safety_controlword_2_command(3).read().unwrap(),
-        0x6690_0100
+        SafetyCommand::SLS_1,
+        "6690 0100h is SLS [1] (line 2944)"
     );
     // The neighbours are distinct objects.
-    assert_eq!(drive.safety_controlword_2_command(2).read().unwrap(), 0);
-    assert_eq!(drive.safety_controlword_2_command(4).read().unwrap(), 0);
+    assert_eq!(
+        drive.safety_controlword_2_command(2).read().unwrap(),
+        SafetyCommand::NONE
+    );
+    assert_eq!(
+        drive.safety_controlword_2_command(4).read().unwrap(),
+        SafetyCommand::NONE
+    );
     assert_eq!(drive.safety_controlword_2_command(3).subindex(), 3);
 }
 
@@ -86,7 +94,7 @@ fn an_out_of_range_sub_index_sends_no_request() {
     // In range, the request reaches the object of that sub-index.
     assert_eq!(
         drive.safety_controlword_2_command(8).read().unwrap(),
-        0x6632_0000
+        SafetyCommand::ERROR_ACK
     );
     assert_eq!(drive.device().link_mut().bus_mut().log().len(), 1);
 }

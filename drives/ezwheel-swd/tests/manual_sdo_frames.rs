@@ -45,7 +45,7 @@ fn frame(bytes: [u8; 8]) -> Vec<(u16, Vec<u8>)> {
 
 #[test]
 fn controlword_commands_of_the_quick_start() {
-    // Lines 4166-4169: reset fault 80h, ready to switch on 06h, switched on 07h, enabled 0Fh.
+    // Lines 4180-4183: reset fault 80h, ready to switch on 06h, switched on 07h, enabled 0Fh.
     let mut drive = drive();
     for word in [0x80, 0x06, 0x07, 0x0F] {
         drive.controlword().write_raw(word).unwrap();
@@ -58,7 +58,7 @@ fn controlword_commands_of_the_quick_start() {
 
 #[test]
 fn statusword_read_is_an_upload_request() {
-    // Lines 4155-4156: request 40 41 60 00, response 4B 41 60 00 XX (2 bytes).
+    // Lines 4171-4172: request 40 41 60 00, response 4B 41 60 00 XX (2 bytes).
     let mut drive = drive();
     let status = drive.statusword().read().unwrap();
     assert_eq!(
@@ -70,14 +70,14 @@ fn statusword_read_is_an_upload_request() {
 
 #[test]
 fn velocity_setpoints_are_two_byte_downloads() {
-    // Lines 4176-4179. The command byte 2Bh is a 2-byte expedited download (6042h is INTEGER16):
+    // Lines 4192-4195. The command byte 2Bh is a 2-byte expedited download (6042h is INTEGER16):
     // the printed FF FF after a negative value is padding; the frames agree on bytes 0-5.
     let mut drive = drive();
     for (rpm, printed) in [
         (298.0, [0x2B, 0x42, 0x60, 0x00, 0x2A, 0x01, 0x00, 0x00]),
         (-298.0, [0x2B, 0x42, 0x60, 0x00, 0xD6, 0xFE, 0xFF, 0xFF]),
         (1400.0, [0x2B, 0x42, 0x60, 0x00, 0x78, 0x05, 0x00, 0x00]),
-        // "FA88h = 1400d" (line 4179) is -1400 (ERRATA.md).
+        // "FA88h = 1400d" (line 4195) is -1400 (ERRATA.md).
         (-1400.0, [0x2B, 0x42, 0x60, 0x00, 0x88, 0xFA, 0xFF, 0xFF]),
     ] {
         drive.set_motor_speed(Rpm(rpm)).unwrap();

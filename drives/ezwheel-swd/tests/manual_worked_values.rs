@@ -1,6 +1,6 @@
-//! The manual's worked values: the start-up statuswords (lines 2388-2396 and 4160-4165), the
+//! The manual's worked values: the start-up statuswords (lines 2388-2396 and 4158-4163), the
 //! store / restore signatures (lines 1942-1966), the vl dimension factor (line 2540), the SRDO 1
-//! COB-IDs at the factory node (line 1741 and the quick start, line 4112), the safety command
+//! COB-IDs at the factory node (line 1741 and the quick start, lines 4119-4120), the safety command
 //! codes of the default safety word mappings (lines 2933-2951, 3031-3039) and the default SRDO
 //! signatures of 13FFh (lines 3587-3600).
 
@@ -8,6 +8,7 @@ mod support;
 
 use drivebus::control::State;
 use drivebus::units::Rpm;
+use drivebus::ValueError;
 use drivegen::ir::{Device, Number};
 use support::simulated_swd::{start, DESCRIPTION};
 
@@ -26,7 +27,7 @@ fn default(device: &Device, name: &str) -> i64 {
 
 #[test]
 fn the_start_up_statuswords_are_the_cia402_states() {
-    // Lines 2390-2394: 0000h, 0040h, 0021h, 0023h, 0027h; line 4160: 0028h / 0008h fault;
+    // Lines 2390-2394: 0000h, 0040h, 0021h, 0023h, 0027h; line 4158: 0028h / 0008h fault;
     // line 4165: 0007h quick stop.
     assert_eq!(State::decode(0x0000), Some(State::NotReadyToSwitchOn));
     assert_eq!(State::decode(0x0040), Some(State::SwitchOnDisabled));
@@ -66,9 +67,30 @@ fn the_dimension_factor_scales_every_vl_speed() {
     assert_eq!(drive.vl_target_velocity().read_raw().unwrap(), 298);
     // The limits scale too (line 2546): 1800 raw is 180 rpm now.
     assert_eq!(drive.vl_velocity_max_amount().read().unwrap(), Rpm(180.0));
-    // A zero factor is refused: the drive forbids it (line 2537), the scale cannot divide by it.
-    drive.vl_dimension_factor_denominator().write(0).unwrap();
-    assert!(drive.vl_target_velocity().read().is_err());
+    // A zero factor is refused before it is sent: the drive forbids it ("I32 excepted 0",
+    // lines 2537-2538), the scale cannot divide by it. The description's range is 1..=i32::MAX
+    // (ERRATA.md: a range cannot have a hole), so a negative factor is refused as well.
+    for zero_or_negative in [0, -1] {
+        for result in [
+            drive
+                .vl_dimension_factor_denominator()
+                .write(zero_or_negative),
+            drive
+                .vl_dimension_factor_numerator()
+                .write(zero_or_negative),
+        ] {
+            assert!(
+                matches!(
+                    result,
+                    Err(drivebus::Error::Value(ValueError::OutOfRange { .. }))
+                ),
+                "{zero_or_negative}: {result:?}"
+            );
+        }
+    }
+    assert_eq!(drive.vl_dimension_factor_denominator().read().unwrap(), 10);
+    assert_eq!(drive.vl_dimension_factor_numerator().read().unwrap(), 1);
+    assert_eq!(drive.vl_target_velocity().read().unwrap(), Rpm(29.8));
 }
 
 #[test]

@@ -11,19 +11,21 @@ use drivebus::canopen::pdo::COB_ID_INVALID;
 use drivebus::canopen::sdo::client::SdoClient;
 use drivebus::canopen::sdo::Transfer;
 use drivebus::canopen::{NodeId, SdoBus};
+use drivebus::units::Increments;
 use ezwheel_swd::pdo::{Rpdo1, Rpdo4, Tpdo1, Tpdo2, Tpdo3, Tpdo4, Tpdo8};
 use ezwheel_swd::types::{Controlword, Statusword};
 use support::simulated_swd::{start, NODE};
 
 #[test]
 fn transmit_pdos_decode_the_statusword_and_actual_values() {
-    // Operation enabled, statusword 0027h (quick start, line 4164).
+    // Operation enabled, statusword 0027h (quick start, line 4162).
     let tpdo1 = Tpdo1::decode(&[0x27, 0x00]).unwrap();
     assert!(tpdo1.statusword.contains(Statusword::OPERATION_ENABLED));
     let tpdo3 = Tpdo3::decode(&[0x27, 0x00, 0x1E, 0x00, 0x00, 0x00]).unwrap();
     assert_eq!(
-        tpdo3.position_actual_value, 30,
-        "one motor revolution = 30 increments (line 2504)"
+        tpdo3.position_actual_value,
+        Increments(30.0),
+        "one motor revolution = 30 increments, in the unit the row gives (lines 2504, 2508)"
     );
     let tpdo4 = Tpdo4::decode(&[0x27, 0x00, 0xD6, 0xFE, 0xFF, 0xFF]).unwrap();
     assert_eq!(tpdo4.velocity_actual_value, -298);
@@ -37,7 +39,7 @@ fn rpdo4_carries_the_controlword_and_the_raw_vl_target_velocity() {
         // Run-time scale (vl dimension factor): the field is the raw value.
         vl_target_velocity: 298,
     };
-    // 298 rpm = 012Ah, the quick start's setpoint (line 4176).
+    // 298 rpm = 012Ah, the quick start's setpoint (line 4192).
     assert_eq!(rpdo.encode().unwrap().as_bytes(), [0x7F, 0x00, 0x2A, 0x01]);
     assert_eq!(
         Rpdo4::decode(&[0x7F, 0x00, 0x88, 0xFA])

@@ -53,10 +53,10 @@ fn the_quick_start_runs_the_motor_in_velocity_mode() {
     assert_eq!(
         drive.statusword().read().unwrap().bits() & 0x6F,
         0x27,
-        "line 4164"
+        "line 4162"
     );
 
-    // Step 8a: 298 rpm at the motor shaft (012Ah, line 4176), reached along the ramp.
+    // Step 8a: 298 rpm at the motor shaft (012Ah, line 4192), reached along the ramp.
     drive.set_motor_speed(Rpm(298.0)).unwrap();
     let started = Instant::now();
     assert_eq!(drive.vl_target_velocity().read_raw().unwrap(), 298);

@@ -112,14 +112,32 @@ impl Behaviour for Motor {
             self.speed = 0.0;
             (0, 0.0)
         });
+        let mut seconds = dt.as_secs_f64();
+        let mut spent = false;
+        // A reversal returns to zero on the deceleration ramp, then reaches the new setpoint on
+        // the acceleration ramp (SWD manual line 2620; CiA 402 ramps alike).
+        if self.speed != 0.0 && target != 0.0 && target.signum() != self.speed.signum() {
+            match self.rate(store, setpoint, 0.0) {
+                Some(rate) if self.speed.abs() > rate * seconds => {
+                    self.speed -= self.speed.signum() * rate * seconds;
+                    spent = true;
+                }
+                Some(rate) => {
+                    seconds -= self.speed.abs() / rate;
+                    self.speed = 0.0;
+                }
+                None => self.speed = 0.0,
+            }
+        }
         let rate = if target == self.speed {
             None
         } else {
             self.rate(store, setpoint, target)
         };
         self.speed = match rate {
+            _ if spent => self.speed,
             Some(rate) => {
-                let step = rate * dt.as_secs_f64();
+                let step = rate * seconds;
                 self.speed + (target - self.speed).clamp(-step, step)
             }
             None => target,
