@@ -53,9 +53,10 @@ fn export_then_import_gives_a_valid_overlay_with_every_object() {
         "{}",
         String::from_utf8_lossy(&check.stderr)
     );
-    // 61 objects of the description (57 and the CiA 301 mandatory 1000h, 1001h, 1018h sub 0
-    // and 1), and 25 sub-indices of the communication and mapping objects of its five PDOs.
-    assert!(stdout.contains("86 parameters"), "{stdout}");
+    // Every CANopen object of the description and the communication and mapping sub-indices of
+    // its PDOs: 122 since issue 27 described RPDO1 / TPDO1, the S-ramp objects 60A3h-60C6h, the
+    // error history 1003h and 1017h (86 before).
+    assert!(stdout.contains("122 parameters"), "{stdout}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

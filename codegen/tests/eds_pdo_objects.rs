@@ -1,7 +1,8 @@
 //! The PDO objects derived from the ez-Wheel description (SWD user manual v2.0.3,
-//! `../shared/seeds/002_7f0dd2fb8f792336.txt`, section 9.7): the description tabulates the
-//! objects of its valid default PDOs itself (lines 1338-1439), so only the PDOs the manual ships
-//! mapped but disabled (TPDO 2, 5-8, lines 1322-1331) are derived, with COB-ID bit 31 set.
+//! `../shared/seeds/002_7f0dd2fb8f792336.txt`, section 9.7). The description tabulates the
+//! objects of every PDO itself (lines 1338-1439, and since issue 27 also those of the PDOs the
+//! manual ships mapped but disabled, TPDO 2 and 5-8, lines 1322-1331), so nothing is derived from
+//! it; with the disabled PDOs' objects taken out, those are derived, with COB-ID bit 31 set.
 
 mod support;
 
@@ -10,6 +11,23 @@ use support::{device, workspace_root};
 
 fn ez_wheel() -> Device {
     device(&workspace_root().join("descriptions/ezwheel-swd"))
+}
+
+/// The communication and mapping objects of TPDO 2 and 5-8, disabled by default.
+const DISABLED_PDO_OBJECTS: [u16; 10] = [
+    0x1801, 0x1804, 0x1805, 0x1806, 0x1807, 0x1A01, 0x1A04, 0x1A05, 0x1A06, 0x1A07,
+];
+
+/// The ez-Wheel description without the objects of its disabled PDOs, as it was before it
+/// described them: the PDOs' own data is what the derivation has.
+fn ez_wheel_without_disabled_pdo_objects() -> Device {
+    let mut device = ez_wheel();
+    let disabled = |index: u16| DISABLED_PDO_OBJECTS.contains(&index);
+    device
+        .parameters
+        .retain(|p| p.canopen.first().is_none_or(|a| !disabled(a.index)));
+    device.records.retain(|r| !disabled(r.index));
+    device
 }
 
 /// The derived parameter at `index` / `subindex`.
@@ -30,7 +48,7 @@ fn default(derived: &[Parameter], index: u16, subindex: u8) -> (i64, bool) {
 
 #[test]
 fn mapping_objects_of_disabled_pdos_hold_the_manuals_mapping() {
-    let derived = drivegen::eds::pdo_objects(&ez_wheel()).parameters;
+    let derived = drivegen::eds::pdo_objects(&ez_wheel_without_disabled_pdo_objects()).parameters;
     // Lines 1325, 1328-1331: TPDO 2 and 5-8 map the statusword 6041 0010h.
     for mapping in [0x1A01, 0x1A04, 0x1A05, 0x1A06, 0x1A07] {
         assert_eq!(default(&derived, mapping, 0), (1, false));
@@ -40,7 +58,7 @@ fn mapping_objects_of_disabled_pdos_hold_the_manuals_mapping() {
 
 #[test]
 fn a_pdo_disabled_by_default_has_cob_id_bit_31_set() {
-    let derived = drivegen::eds::pdo_objects(&ez_wheel()).parameters;
+    let derived = drivegen::eds::pdo_objects(&ez_wheel_without_disabled_pdo_objects()).parameters;
     // The manual gives no COB-ID for TPDO 2: not valid, no identifier, not node-relative.
     assert_eq!(default(&derived, 0x1801, 1), (0x8000_0000, false));
     // Only sub 1 is given: the highest sub-index is 1.
@@ -50,7 +68,9 @@ fn a_pdo_disabled_by_default_has_cob_id_bit_31_set() {
 
 #[test]
 fn objects_the_description_defines_itself_are_not_derived_again() {
-    let derived = drivegen::eds::pdo_objects(&ez_wheel());
+    let complete = drivegen::eds::pdo_objects(&ez_wheel());
+    assert!(complete.parameters.is_empty() && complete.records.is_empty());
+    let derived = drivegen::eds::pdo_objects(&ez_wheel_without_disabled_pdo_objects());
     for described in [
         0x1400, 0x1403, 0x1600, 0x1603, 0x1800, 0x1802, 0x1803, 0x1A00, 0x1A02,
     ] {
@@ -69,7 +89,7 @@ fn objects_the_description_defines_itself_are_not_derived_again() {
 
 #[test]
 fn pdos_validation_would_refuse_are_skipped_not_panicked_on() {
-    let mut device = ez_wheel();
+    let mut device = ez_wheel_without_disabled_pdo_objects();
     let disabled: Vec<usize> = (0..device.pdos.len())
         .filter(|&i| !device.pdos[i].enabled)
         .collect();

@@ -4,9 +4,7 @@
 //! serial RTU client, in each parameter configuration. Each test starts its peers and stops them
 //! by PID. A missing peer fails the test; `tests/peers/setup.sh` at the workspace root installs it.
 
-use std::io::{BufRead, BufReader};
 use std::path::Path;
-use std::process::{self, Stdio};
 use std::time::Duration;
 
 use drivebus::modbus::rtu::{Parity, StopBits};
@@ -15,7 +13,7 @@ use drivebus::modbus::{ModbusLink, RegisterBus, Table, UnitId};
 use drivebus::units::Hertz;
 use lenze_smd::types::{OperationalStatus, SerialBaudRate};
 use lenze_smd::{Command, LenzeSmd, SmdError, Variant, VariantSelection};
-use peer_support::{pty_pair, python, Process, PtyPair, SETUP_HINT};
+use peer_support::{pty_pair, ready_peer, Process, PtyPair};
 
 const UNIT: UnitId = UnitId(10);
 /// The peer's count of accepted writes (its instrumentation, not a drive register).
@@ -32,25 +30,9 @@ struct Peer {
 fn start(configuration: u16) -> Peer {
     let pty = pty_pair();
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/peers/smd_server.py");
-    let python = python();
-    let mut server = Process::new(
-        process::Command::new(&python)
-            .arg(&script)
-            .arg(&pty.server)
-            .arg(configuration.to_string())
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::inherit())
-            .spawn()
-            .unwrap_or_else(|e| panic!("cannot start {} ({e}); {SETUP_HINT}", python.display())),
-    );
-    let stdout = server.child_mut().stdout.take().expect("piped stdout");
-    let mut line = String::new();
-    BufReader::new(stdout).read_line(&mut line).unwrap();
-    assert_eq!(
-        line.trim(),
-        "READY",
-        "the pymodbus smd did not start; {SETUP_HINT}"
+    let server = ready_peer(
+        &script,
+        &[pty.server.to_str().unwrap(), &configuration.to_string()],
     );
     Peer {
         _server: server,

@@ -26,7 +26,10 @@ fn a_moved_register_is_not_read_and_only_a_stop_is_written() {
         SmdError::from(d.serial_baud_rate().read().unwrap_err()),
         SmdError::UnknownConfiguration { value: 401 }
     );
-    assert_eq!(d.drive_family().read(), Ok(69));
+    assert_eq!(
+        d.drive_family().read(),
+        Ok(lenze_smd::types::DriveFamily::SMD)
+    );
     assert_eq!(d.stop().write_raw(0x0004), Ok(()));
     let accepted = &d.device().link_mut().bus_mut().accepted;
     assert_eq!(accepted, &[(DRIVE_CONTROL, 0x0004)]);

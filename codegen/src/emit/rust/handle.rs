@@ -93,6 +93,13 @@ fn readable(p: &crate::ir::Parameter) -> bool {
         || p.rs232.iter().any(|a| a.access.read)
 }
 
+/// Every write of it stops the drive (`stops = true`): the handle writes it without an unlock.
+/// A parameter only some of whose values stop (`start`, whose word may carry the stop bit) keeps
+/// its place behind the unlock guard.
+fn is_stop_command(p: &crate::ir::Parameter) -> bool {
+    p.stops.as_ref().is_some_and(|s| s.patterns.is_none())
+}
+
 pub fn emit(device: &Device) -> TokenStream {
     let handle = ident(&names::camel(&device.device.handle));
     let title = doc::escape(&device.device.name);
@@ -101,7 +108,7 @@ pub fn emit(device: &Device) -> TokenStream {
         .parameters
         .iter()
         .filter(|p| !super::indexed::is_member(p, device))
-        .filter(|p| device.lock_scope_of(p).is_none() || readable(p) || p.stops.is_some())
+        .filter(|p| device.lock_scope_of(p).is_none() || readable(p) || is_stop_command(p))
         .map(|p| {
             let method = ident(&names::method(&p.name));
             let marker = ident(&names::camel(&p.name));
@@ -111,7 +118,7 @@ pub fn emit(device: &Device) -> TokenStream {
             ));
             let aliases = super::parameter_doc::aliases(p);
             // A stop is written from the handle too: never held back by the lock's account.
-            if let Some(scope) = device.lock_scope_of(p).filter(|_| p.stops.is_none()) {
+            if let Some(scope) = device.lock_scope_of(p).filter(|_| !is_stop_command(p)) {
                 // Written only through the guard of an unlock opening its scope.
                 let docs = doc_attrs(&format!(
                     "{summary}\n\nRead here; written only while unlocked (scope `{}`, see \
