@@ -55,6 +55,15 @@ pub enum CliError {
     /// The value lies beyond the current value of a parameter that bounds it; nothing was
     /// written.
     OutsideBound(String),
+    /// A CAN interface or adapter could not be opened.
+    CanOpen {
+        /// The `--can` value.
+        spec: String,
+        /// The bit rate of the command, for the `ip link` hint.
+        bitrate: u32,
+        /// Why.
+        error: drivebus::canopen::backend::OpenError,
+    },
 }
 
 impl fmt::Display for CliError {
@@ -89,6 +98,11 @@ impl fmt::Display for CliError {
             } => write!(f, "{parameter}: {target}: {cause}"),
             CliError::Usage(text) | CliError::Io(text) => write!(f, "{text}"),
             CliError::OutsideBound(why) => write!(f, "{why} (nothing was written)"),
+            CliError::CanOpen {
+                spec,
+                bitrate,
+                error,
+            } => f.write_str(&crate::can::describe(spec, *bitrate, error)),
             CliError::IdentityMismatch {
                 parameter,
                 expected,
