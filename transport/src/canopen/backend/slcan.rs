@@ -565,6 +565,80 @@ mod tests {
     }
 
     #[test]
+    fn start_checks_the_answers_to_the_opening_sequence() {
+        let t = Duration::from_millis(20);
+        // C refused (channel was closed), S6 and O accepted; a frame before the answers is kept.
+        let mut ok = bus(b"t1230\r\x07\r\r");
+        ok.start(Bitrate::K500, t).unwrap();
+        assert_eq!(ok.stream_mut().written, b"C\rS6\rO\r");
+        assert_eq!(
+            ok.recv(t).unwrap(),
+            Some(CanFrame::new(0x123, &[]).unwrap())
+        );
+        let mut refused = bus(b"\r\r\x07");
+        assert_eq!(
+            refused.start(Bitrate::M1, t),
+            Err(OpenError::Refused { command: "O" })
+        );
+        let mut silent = bus(b"");
+        assert_eq!(
+            silent.start(Bitrate::K125, t),
+            Err(OpenError::NoAnswer { command: "S4" })
+        );
+    }
+
+    #[test]
+    fn adapter_timestamps_status_noise_and_refusals_are_events() {
+        let input = b"t1232AABB1A2B\rF24\r\x01\x02junk\r\x07r7011EA5F\rt1230XYZ\r";
+        let mut bus = bus(input);
+        let t = Duration::from_millis(50);
+        assert_eq!(
+            bus.recv_event(t).unwrap(),
+            Some(CanEvent::Frame {
+                frame: CanFrame::new(0x123, &[0xAA, 0xBB]).unwrap(),
+                timestamp: Some(Timestamp::AdapterMillis(0x1A2B)),
+            })
+        );
+        let Some(CanEvent::Error { report, .. }) = bus.recv_event(t).unwrap() else {
+            panic!("status not reported");
+        };
+        assert_eq!(report.state, Some(super::super::BusState::ErrorPassive));
+        assert!(matches!(
+            bus.recv_event(t).unwrap(),
+            Some(CanEvent::Garbage { .. })
+        ));
+        assert_eq!(bus.recv_event(t).unwrap(), Some(CanEvent::Refused));
+        assert_eq!(
+            bus.recv_event(t).unwrap(),
+            Some(CanEvent::Frame {
+                frame: CanFrame::remote(0x701, 1).unwrap(),
+                timestamp: Some(Timestamp::AdapterMillis(59_999)),
+            })
+        );
+        assert_eq!(
+            bus.recv_event(t).unwrap(),
+            Some(CanEvent::Garbage {
+                why: "SLCAN: trailing characters after the data"
+            })
+        );
+        assert_eq!(bus.recv_event(t).unwrap(), None);
+    }
+
+    #[test]
+    fn bitrates_convert() {
+        for (code, rate) in Bitrate::ALL.into_iter().enumerate() {
+            assert_eq!(Bitrate::from_code(code as u8), Some(rate));
+            assert_eq!(rate.code(), code as u8);
+            assert_eq!(
+                Bitrate::from_bits_per_second(rate.bits_per_second()),
+                Some(rate)
+            );
+        }
+        assert_eq!(Bitrate::from_code(9), None);
+        assert_eq!(Bitrate::from_bits_per_second(333_000), None);
+    }
+
+    #[test]
     fn malformed_lines_are_typed_errors_and_noise_is_dropped() {
         for line in [&b"t12"[..], b"t1239", b"t1232AA", b"tXYZ0"] {
             assert!(

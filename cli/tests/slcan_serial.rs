@@ -1,0 +1,155 @@
+//! `drivegen read / write / scan --can slcan:/dev/PATH` through a real pty pair, against an
+//! emulated serial SLCAN adapter (Lawicel / CANable command set, `slcan_adapter`) bridged to
+//! `drivegen sim`: the opening sequence with the description's bit rate, frames both ways,
+//! adapter timestamps, line noise, and an adapter that refuses or stays silent.
+
+mod slcan_adapter;
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+use std::time::{Duration, Instant};
+
+use peer_support::{pty_pair, PtyPair};
+use slcan_adapter::{Adapter, Options};
+
+const BIN: &str = env!("CARGO_BIN_EXE_drivegen");
+
+fn swd() -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../descriptions/ezwheel-swd")
+        .to_str()
+        .unwrap()
+        .to_owned()
+}
+
+fn adapter(pty: &PtyPair, options: Options) -> Adapter {
+    slcan_adapter::start(BIN, &pty.server, &[&swd()], options)
+}
+
+fn drivegen(pty: &PtyPair, args: &[&str]) -> Output {
+    Command::new(BIN)
+        .args(args)
+        .args(["--can", &format!("slcan:{}", pty.client.display())])
+        .args(["--timeout-ms", "500"])
+        .output()
+        .unwrap()
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+fn ok(output: &Output) -> String {
+    assert!(
+        output.status.success(),
+        "stdout: {}\nstderr: {}",
+        text(&output.stdout),
+        text(&output.stderr)
+    );
+    text(&output.stdout)
+}
+
+#[test]
+fn read_and_write_by_name_through_a_serial_adapter_at_the_described_bit_rate() {
+    let pty = pty_pair();
+    let adapter = adapter(&pty, Options::default());
+    let swd = swd();
+    let read = ok(&drivegen(&pty, &["read", &swd, "node_id", "--json"]));
+    assert!(read.contains("\"raw\":16"), "{read}");
+    ok(&drivegen(
+        &pty,
+        &["write", &swd, "termination_resistor", "0"],
+    ));
+    let read = ok(&drivegen(
+        &pty,
+        &["read", &swd, "termination_resistor", "--json"],
+    ));
+    assert!(read.contains("\"raw\":0"), "{read}");
+    let state = adapter.state.lock().unwrap();
+    // Each run opens the adapter: close, the SWD's documented 1 Mbit/s (S8), open.
+    assert_eq!(
+        state.commands[..3],
+        ["C", "S8", "O"],
+        "{:?}",
+        state.commands
+    );
+    assert!(state.to_bus >= 3 && state.to_pty >= 3, "{state:?}");
+    // Only the first C (channel already closed) was refused.
+    assert_eq!(state.refused, 1, "{:?}", state.commands);
+}
+
+#[test]
+fn bitrate_option_sets_the_adapter_rate() {
+    let pty = pty_pair();
+    let adapter = adapter(&pty, Options::default());
+    ok(&drivegen(
+        &pty,
+        &["read", &swd(), "node_id", "--bitrate", "250k"],
+    ));
+    let state = adapter.state.lock().unwrap();
+    assert_eq!(
+        state.commands[..3],
+        ["C", "S5", "O"],
+        "{:?}",
+        state.commands
+    );
+}
+
+#[test]
+fn scan_finds_the_drive_through_timestamps_and_line_noise() {
+    let pty = pty_pair();
+    let options = Options {
+        always_timestamp: true,
+        garbage: true,
+        ..Options::default()
+    };
+    let adapter = adapter(&pty, options);
+    let swd = swd();
+    let output = Command::new(BIN)
+        .args(["scan", "--description", &swd])
+        .args(["--can", &format!("slcan:{}", pty.client.display())])
+        .output()
+        .unwrap();
+    let found = ok(&output);
+    assert!(found.contains("node  16:"), "{found}");
+    assert!(found.contains("ez-Wheel SWD"), "{found}");
+    let read = ok(&drivegen(&pty, &["read", &swd, "node_id", "--json"]));
+    assert!(read.contains("\"raw\":16"), "{read}");
+    assert!(adapter.state.lock().unwrap().to_pty > 2);
+}
+
+#[test]
+fn a_refusing_or_silent_adapter_is_a_clear_error_in_bounded_time() {
+    let pty = pty_pair();
+    let _adapter = adapter(
+        &pty,
+        Options {
+            refuse_bitrate: true,
+            ..Options::default()
+        },
+    );
+    let output = drivegen(&pty, &["read", &swd(), "node_id"]);
+    assert!(!output.status.success());
+    assert!(
+        text(&output.stderr).contains("the SLCAN adapter refused its `S8` command (answered BEL)"),
+        "{}",
+        text(&output.stderr)
+    );
+    drop(_adapter);
+    let pty = pty_pair();
+    let _adapter = adapter(
+        &pty,
+        Options {
+            silent: true,
+            ..Options::default()
+        },
+    );
+    let started = Instant::now();
+    let output = drivegen(&pty, &["read", &swd(), "node_id"]);
+    assert!(
+        text(&output.stderr).contains("did not answer its `S8` command"),
+        "{}",
+        text(&output.stderr)
+    );
+    assert!(started.elapsed() < Duration::from_secs(5));
+}
