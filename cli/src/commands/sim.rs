@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use std::time::Duration;
 
 use drivebus::canopen::backend::candump::CandumpBus;
-use drivebus::canopen::NodeId;
+use drivebus::canopen::{CanBus, CanFrame, NodeId};
 use drivebus::modbus::transport::{SerialConfig, SerialStream};
 use drivebus::modbus::UnitId;
 use drivebus::rs232::serial::{open_line, Rs232Config, DEFAULT_BAUD};
@@ -270,9 +270,34 @@ fn run_can(
         ))),
         spec => {
             let (bus, _) = can::open(backend, &spec, settings)?;
-            let mut bus = DynCan(bus);
+            let mut bus = RidesOutBusOff(DynCan(bus));
             announce(&format!("listening on canopen {backend} node {ids}"));
             nodes::run(nodes, &mut bus).map_err(ended)
+        }
+    }
+}
+
+/// A simulated node rides out a bus-off as a drive does (it is reported, the node waits for
+/// the controller's restart) instead of ending the simulation.
+struct RidesOutBusOff(DynCan);
+
+impl CanBus for RidesOutBusOff {
+    fn send(&mut self, frame: &CanFrame) -> Result<(), drivebus::BusError> {
+        match self.0.send(frame) {
+            Err(drivebus::BusError::CanQueueFull) => {
+                eprintln!("sim: transmit queue full, frame dropped");
+                Ok(())
+            }
+            other => other,
+        }
+    }
+    fn recv(&mut self, timeout: Duration) -> Result<Option<CanFrame>, drivebus::BusError> {
+        match self.0.recv(timeout) {
+            Err(drivebus::BusError::CanBusOff) => {
+                eprintln!("sim: the CAN controller reported bus-off");
+                Ok(None)
+            }
+            other => other,
         }
     }
 }

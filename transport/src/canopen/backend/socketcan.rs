@@ -59,7 +59,7 @@ impl Backoff {
         loop {
             match attempt() {
                 Ok(()) => return Ok(waits),
-                Err(e) if e.raw_os_error() == Some(ENOBUFS) => {
+                Err(e) if queue_full(&e) => {
                     if waited >= self.budget {
                         return Err(BusError::CanQueueFull);
                     }
@@ -78,8 +78,35 @@ impl Backoff {
 /// Linux `ENOBUFS`: the interface's transmit queue is full.
 const ENOBUFS: i32 = 105;
 
+/// The interface's queue (`ENOBUFS`) or the socket's send buffer (`EAGAIN` on the
+/// non-blocking socket) is full.
+fn queue_full(e: &io::Error) -> bool {
+    e.raw_os_error() == Some(ENOBUFS) || e.kind() == io::ErrorKind::WouldBlock
+}
+
+/// Waits until `fd` is readable or `timeout` passed (rounded up to whole milliseconds);
+/// `false` on timeout or a signal.
+fn wait_readable(fd: std::os::fd::RawFd, timeout: Duration) -> io::Result<bool> {
+    let millis = timeout.as_micros().div_ceil(1000).min(i32::MAX as u128) as i32;
+    let mut pollfd = libc::pollfd {
+        fd,
+        events: libc::POLLIN,
+        revents: 0,
+    };
+    // SAFETY: one valid pollfd, and its count 1.
+    let ready = unsafe { libc::poll(&mut pollfd, 1, millis) };
+    if ready < 0 {
+        let error = io::Error::last_os_error();
+        return match error.kind() {
+            io::ErrorKind::Interrupted => Ok(false),
+            _ => Err(error),
+        };
+    }
+    Ok(ready > 0)
+}
+
 fn io_error(e: &io::Error) -> BusError {
-    if e.raw_os_error() == Some(ENOBUFS) {
+    if queue_full(e) {
         BusError::CanQueueFull
     } else {
         BusError::Io(e.kind())
@@ -121,6 +148,12 @@ impl SocketCanBus {
             .map_err(|e| open_error(name, &e))?;
         socket
             .set_error_filter_accept_all()
+            .map_err(|e| open_error(name, &e))?;
+        // Reads and writes never block: receive deadlines are kept with poll(2), whose
+        // millisecond resolution is finer than SO_RCVTIMEO's jiffies (a zero timeout would
+        // otherwise wait a whole jiffy); a full send buffer is retried with the back-off.
+        socket
+            .set_nonblocking(true)
             .map_err(|e| open_error(name, &e))?;
         Ok(Self {
             socket,
@@ -247,13 +280,9 @@ impl CanBus for SocketCanBus {
     }
 
     fn recv_event(&mut self, timeout: Duration) -> Result<Option<CanEvent>, BusError> {
+        use std::os::fd::AsRawFd;
         let deadline = Instant::now() + timeout;
         loop {
-            let left = deadline.saturating_duration_since(Instant::now());
-            // SO_RCVTIMEO of zero would block for ever: poll for at least a microsecond.
-            self.socket
-                .set_read_timeout(left.max(Duration::from_micros(1)))
-                .map_err(|e| io_error(&e))?;
             match self.socket.read_frame_with_timestamp() {
                 Ok((frame, time)) => {
                     if let Some(event) = event_from_socketcan(&frame, Some(Timestamp::Kernel(time)))
@@ -281,9 +310,11 @@ impl CanBus for SocketCanBus {
                     ) => {}
                 Err(e) => return Err(io_error(&e)),
             }
-            if Instant::now() >= deadline {
+            let left = deadline.saturating_duration_since(Instant::now());
+            if left.is_zero() {
                 return Ok(None);
             }
+            wait_readable(self.socket.as_raw_fd(), left).map_err(|e| io_error(&e))?;
         }
     }
 }
@@ -468,6 +499,40 @@ mod tests {
             rx.recv_event(Duration::from_secs(1)).unwrap(),
             Some(CanEvent::Error { report, .. }) if report.state == Some(BusState::Restarted)
         ));
+    }
+
+    /// Needs vcan0 up: a bus-off while an SDO upload awaits its answer ends the upload with
+    /// `CanBusOff`, not a timeout.
+    #[cfg(feature = "socketcan-tests")]
+    #[test]
+    fn a_bus_off_during_an_sdo_transfer_is_reported_as_such() {
+        use crate::canopen::blocking::BlockingSdo;
+        use crate::canopen::{NodeId, SdoBus};
+        use socketcan::Frame;
+        let peer = CanSocket::open("vcan0").unwrap();
+        peer.set_read_timeout(Duration::from_secs(5)).unwrap();
+        let watcher = std::thread::spawn(move || loop {
+            let frame = peer.read_frame().unwrap();
+            if frame.raw_id() == 0x605 {
+                let bus_off = socketcan::frame::CanErrorFrame::new_error(0x040, &[0; 8]).unwrap();
+                peer.write_frame(&bus_off).unwrap();
+                return;
+            }
+        });
+        let bus = SocketCanBus::open("vcan0").unwrap();
+        let mut sdo = BlockingSdo::new(bus).with_timeout(Duration::from_secs(3));
+        let started = Instant::now();
+        let mut out = [0u8; 4];
+        assert_eq!(
+            sdo.upload(NodeId(5), 0x1000, 0, &mut out),
+            Err(BusError::CanBusOff)
+        );
+        assert!(
+            started.elapsed() < Duration::from_secs(2),
+            "{:?}",
+            started.elapsed()
+        );
+        watcher.join().unwrap();
     }
 
     /// Needs vcan0 up: a burst far longer than any queue is sent without an error storm.
