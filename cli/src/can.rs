@@ -137,9 +137,14 @@ fn kbit(name: &str) -> Option<u32> {
 /// The bit rate to use: `--bitrate`, else the one the descriptions agree on, else 500 kbit/s.
 pub fn bitrate(given: Option<u32>, devices: &[&Device]) -> u32 {
     given.unwrap_or_else(|| {
-        let mut described = devices.iter().filter_map(|d| described_bitrate(d));
-        match (described.next(), described.next()) {
-            (Some(one), None) => one,
+        let mut described: Vec<u32> = devices
+            .iter()
+            .filter_map(|d| described_bitrate(d))
+            .collect();
+        described.sort_unstable();
+        described.dedup();
+        match described[..] {
+            [one] => one,
             _ => DEFAULT_BITRATE,
         }
     })
@@ -288,6 +293,34 @@ mod tests {
                 "{bad}"
             );
         }
+    }
+
+    #[test]
+    fn the_default_bit_rate_is_the_one_the_descriptions_document() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions");
+        let load = |name: &str| crate::commands::load(&root.join(name)).unwrap();
+        let (swd, kinco, lafert) = (
+            load("ezwheel-swd"),
+            load("kinco-fd"),
+            load("lafert-smartris"),
+        );
+        // SWD 2100h: default 0 = kbit_1000; Kinco 2F81h: default 50 = k500.
+        assert_eq!(described_bitrate(&swd), Some(1_000_000));
+        assert_eq!(described_bitrate(&kinco), Some(500_000));
+        assert_eq!(bitrate(None, &[&swd]), 1_000_000);
+        assert_eq!(
+            bitrate(None, &[&swd, &swd]),
+            1_000_000,
+            "two nodes of one drive"
+        );
+        assert_eq!(
+            bitrate(None, &[&swd, &kinco]),
+            DEFAULT_BITRATE,
+            "they disagree"
+        );
+        assert_eq!(bitrate(Some(250_000), &[&swd]), 250_000);
+        assert_eq!(bitrate(None, &[]), DEFAULT_BITRATE);
+        let _ = bitrate(None, &[&lafert]);
     }
 
     #[test]

@@ -119,6 +119,56 @@ fn scan_finds_the_drive_through_timestamps_and_line_noise() {
 }
 
 #[test]
+fn the_simulator_on_one_serial_adapter_answers_the_cli_on_another() {
+    use std::io::{BufRead, BufReader};
+    use std::process::Stdio;
+    let (sim_pty, cli_pty) = (pty_pair(), pty_pair());
+    let [sim_side, cli_side] =
+        slcan_adapter::pair(&sim_pty.server, &cli_pty.server, Options::default());
+    let swd = swd();
+    let spec = format!("slcan:{}", sim_pty.client.display());
+    let child = Command::new(BIN)
+        .args([
+            "sim",
+            &swd,
+            "--can",
+            &spec,
+            "--node-id",
+            "16",
+            "--node-id",
+            "17",
+        ])
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut sim = peer_support::Process::new(child);
+    let mut line = String::new();
+    BufReader::new(sim.child_mut().stdout.take().unwrap())
+        .read_line(&mut line)
+        .unwrap();
+    assert_eq!(
+        line.trim(),
+        format!("listening on canopen {spec} node 16,17")
+    );
+    let read = ok(&drivegen(&cli_pty, &["read", &swd, "node_id", "--json"]));
+    assert!(read.contains("\"raw\":16"), "{read}");
+    let found = ok(&Command::new(BIN)
+        .args(["scan", "--description", &swd])
+        .args(["--can", &format!("slcan:{}", cli_pty.client.display())])
+        .output()
+        .unwrap());
+    assert!(
+        found.contains("node  16:") && found.contains("node  17:"),
+        "{found}"
+    );
+    // Both opened their adapter at the SWD's 1 Mbit/s.
+    for side in [&sim_side, &cli_side] {
+        let side = side.lock().unwrap();
+        assert_eq!(side.commands[..3], ["C", "S8", "O"], "{:?}", side.commands);
+    }
+}
+
+#[test]
 fn a_refusing_or_silent_adapter_is_a_clear_error_in_bounded_time() {
     let pty = pty_pair();
     let _adapter = adapter(

@@ -1,6 +1,7 @@
 //! A serial SLCAN adapter emulator, written to the Lawicel / CANable command set independently of
 //! drivebus's SLCAN code: it serves the adapter end of a pty and bridges its CAN side to
-//! `drivegen sim --can candump:stdio` (candump lines on the simulator's stdio).
+//! `drivegen sim --can candump:stdio` (candump lines on the simulator's stdio), or to a second
+//! emulated adapter on the same emulated bus ([`pair`]).
 //!
 //! Commands: `C` close, `Sn` bit rate (0-8, channel closed), `O` open (bit rate set, channel
 //! closed), `Z0`/`Z1` timestamps (channel closed), `V`, `N`, `F` (open), frames `tIIIL..`,
@@ -10,7 +11,8 @@
 use std::fs::{File, OpenOptions};
 use std::io::{BufRead, BufReader, Read, Write};
 use std::path::Path;
-use std::process::{ChildStdin, Command, Stdio};
+use std::process::{Command, Stdio};
+use std::sync::mpsc::{channel, Receiver, Sender};
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
@@ -76,22 +78,97 @@ pub fn start(bin: &str, pty: &Path, sim_args: &[&str], options: Options) -> Adap
         line.contains("listening on canopen candump:stdio"),
         "{line}"
     );
+    Adapter {
+        state: bridge(pty, Box::new(sim_in), Box::new(sim_out), options),
+        _sim: Process::new(child),
+    }
+}
+
+/// Two adapters, on `a` and `b`, on one emulated bus: what one passes to the bus the other
+/// receives.
+pub fn pair(a: &Path, b: &Path, options: Options) -> [Arc<Mutex<State>>; 2] {
+    let (a_tx, b_rx) = channel();
+    let (b_tx, a_rx) = channel();
+    [
+        bridge(
+            a,
+            Box::new(Lines(a_tx)),
+            Box::new(Incoming::new(a_rx)),
+            options,
+        ),
+        bridge(
+            b,
+            Box::new(Lines(b_tx)),
+            Box::new(Incoming::new(b_rx)),
+            options,
+        ),
+    ]
+}
+
+/// Candump lines written to a channel.
+struct Lines(Sender<Vec<u8>>);
+
+impl Write for Lines {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        let _ = self.0.send(buf.to_vec());
+        Ok(buf.len())
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+/// Candump lines read from a channel.
+struct Incoming {
+    rx: Receiver<Vec<u8>>,
+    buffer: Vec<u8>,
+}
+
+impl Incoming {
+    fn new(rx: Receiver<Vec<u8>>) -> Self {
+        Self {
+            rx,
+            buffer: Vec::new(),
+        }
+    }
+}
+
+impl Read for Incoming {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        if self.buffer.is_empty() {
+            match self.rx.recv() {
+                Ok(bytes) => self.buffer = bytes,
+                Err(_) => return Ok(0),
+            }
+        }
+        let n = buf.len().min(self.buffer.len());
+        buf[..n].copy_from_slice(&self.buffer[..n]);
+        self.buffer.drain(..n);
+        Ok(n)
+    }
+}
+
+/// Serves the adapter end `pty`; frames go to `to_bus` and come from `from_bus` as candump
+/// lines.
+fn bridge(
+    pty: &Path,
+    to_bus: Box<dyn Write + Send>,
+    from_bus: Box<dyn Read + Send>,
+    options: Options,
+) -> Arc<Mutex<State>> {
     let port = OpenOptions::new().read(true).write(true).open(pty).unwrap();
     let writer = Arc::new(Mutex::new(port.try_clone().unwrap()));
     let state = Arc::new(Mutex::new(State::default()));
     let epoch = Instant::now();
     {
         let (state, writer) = (Arc::clone(&state), Arc::clone(&writer));
-        std::thread::spawn(move || from_pty(port, sim_in, &writer, &state, options));
+        std::thread::spawn(move || from_pty(port, to_bus, &writer, &state, options));
     }
     {
         let state = Arc::clone(&state);
-        std::thread::spawn(move || to_pty(sim_out, &writer, &state, options, epoch));
+        std::thread::spawn(move || to_pty(from_bus, &writer, &state, options, epoch));
     }
-    Adapter {
-        state,
-        _sim: Process::new(child),
-    }
+    state
 }
 
 fn hex(bytes: &[u8]) -> bool {
@@ -116,7 +193,7 @@ fn frame_ok(line: &[u8], id_digits: usize, remote: bool) -> bool {
 }
 
 /// Handles one command line; the answer to write back.
-fn handle(line: &[u8], state: &mut State, sim: &mut ChildStdin) -> Vec<u8> {
+fn handle(line: &[u8], state: &mut State, sim: &mut dyn Write) -> Vec<u8> {
     let ok = b"\r".to_vec();
     let closed = !state.open;
     match line {
@@ -162,7 +239,7 @@ fn handle(line: &[u8], state: &mut State, sim: &mut ChildStdin) -> Vec<u8> {
 
 fn from_pty(
     mut port: File,
-    mut sim: ChildStdin,
+    mut sim: Box<dyn Write + Send>,
     writer: &Mutex<File>,
     state: &Mutex<State>,
     options: Options,
@@ -188,7 +265,7 @@ fn from_pty(
                     state.refused += 1;
                     vec![BEL]
                 } else {
-                    handle(&line, &mut state, &mut sim)
+                    handle(&line, &mut state, &mut *sim)
                 };
                 let mut port = writer.lock().unwrap();
                 let _ = port.write_all(&answer).and_then(|()| port.flush());
