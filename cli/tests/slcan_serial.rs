@@ -168,6 +168,59 @@ fn the_simulator_on_one_serial_adapter_answers_the_cli_on_another() {
     }
 }
 
+/// An adapter that opens properly, then sends nothing but line noise (a wrong serial speed
+/// after a reset, a broken cable): the read ends with a timeout in bounded time, no hang, no
+/// panic.
+#[test]
+fn line_noise_after_opening_ends_in_a_timeout_not_a_hang() {
+    use std::fs::OpenOptions;
+    use std::io::{Read, Write};
+    let pty = pty_pair();
+    let mut port = OpenOptions::new()
+        .read(true)
+        .write(true)
+        .open(&pty.server)
+        .unwrap();
+    let mut writer = port.try_clone().unwrap();
+    std::thread::spawn(move || {
+        // Answer C, Sn and O, then noise: CRs, BELs, bytes of every value, long runs.
+        let mut seen = 0;
+        let mut byte = [0u8; 1];
+        while seen < 3 && port.read(&mut byte).is_ok_and(|n| n == 1) {
+            if byte[0] == b'\r' {
+                seen += 1;
+                let _ = writer.write_all(b"\r");
+            }
+        }
+        let mut state = 0x2545_F491_u32;
+        let started = Instant::now();
+        while started.elapsed() < Duration::from_secs(4) {
+            let chunk: Vec<u8> = (0..97)
+                .map(|_| {
+                    state ^= state << 13;
+                    state ^= state >> 17;
+                    state ^= state << 5;
+                    state as u8
+                })
+                .collect();
+            if writer.write_all(&chunk).is_err() {
+                return;
+            }
+            std::thread::sleep(Duration::from_millis(2));
+        }
+    });
+    let started = Instant::now();
+    let output = drivegen(&pty, &["read", &swd(), "node_id"]);
+    let elapsed = started.elapsed();
+    assert!(!output.status.success());
+    let error = text(&output.stderr);
+    assert!(
+        error.contains("no answer") && error.contains("timeout"),
+        "{error}"
+    );
+    assert!(elapsed < Duration::from_secs(3), "{elapsed:?}");
+}
+
 #[test]
 fn a_refusing_or_silent_adapter_is_a_clear_error_in_bounded_time() {
     let pty = pty_pair();
