@@ -222,6 +222,46 @@ fn line_noise_after_opening_ends_in_a_timeout_not_a_hang() {
 }
 
 #[test]
+fn decode_live_from_a_serial_adapter_with_its_timestamps() {
+    let pty = pty_pair();
+    let options = Options {
+        always_timestamp: true,
+        ..Options::default()
+    };
+    let swd = swd();
+    // The simulator's boot-up and heartbeats are the traffic.
+    let _adapter = slcan_adapter::start(
+        BIN,
+        &pty.server,
+        &[&swd, "--set", "producer_heartbeat_time=20"],
+        options,
+    );
+    let output = Command::new(BIN)
+        .args([
+            "decode",
+            &swd,
+            "--count",
+            "3",
+            "--idle-ms",
+            "2000",
+            "--json",
+        ])
+        .args(["--can", &format!("slcan:{}", pty.client.display())])
+        .output()
+        .unwrap();
+    let lines = ok(&output);
+    let lines: Vec<&str> = lines.lines().collect();
+    assert_eq!(lines.len(), 3, "{lines:?}");
+    for line in lines {
+        assert!(line.contains("\"kind\":\"heartbeat\""), "{line}");
+        assert!(
+            line.contains("ms\",") && line.contains("\"node\":\"16\""),
+            "{line}"
+        );
+    }
+}
+
+#[test]
 fn a_refusing_or_silent_adapter_is_a_clear_error_in_bounded_time() {
     let pty = pty_pair();
     let _adapter = adapter(
