@@ -1,12 +1,10 @@
 //! Reaching a drive from the command line: the bus options every talking subcommand shares,
 //! and a [`Session`] that reads and writes parameters by their IR addresses.
 
-use std::process::{Child, Command, Stdio};
+use std::process::Child;
 use std::time::Duration;
 
 use clap::Args;
-use drivebus::canopen::backend::candump::CandumpBus;
-use drivebus::canopen::backend::slcan::{Bitrate, SlcanBus};
 use drivebus::canopen::blocking::BlockingSdo;
 use drivebus::canopen::{CanBus, CanFrame, CanOpenLink, NodeId};
 use drivebus::interpret::{self, InterpretError, Variant};
@@ -19,6 +17,7 @@ use drivebus::rs232::{LoopMode, Rs232Link, StationId};
 use drivebus::BusError;
 use drivegen::ir::{Device, Parameter};
 
+use crate::can::{self, CanSettings};
 use crate::error::CliError;
 use crate::modbus_limits;
 
@@ -31,10 +30,18 @@ pub struct BusArgs {
     /// Modbus RTU on a serial port (or pty).
     #[arg(long, value_name = "PATH", group = "bus")]
     pub serial: Option<String>,
-    /// CANopen: `slcan:HOST:PORT` (SLCAN over TCP) or `candump:exec:COMMAND` (a process that
-    /// speaks candump lines on its stdio, e.g. a relay or `drivegen sim ... --can candump:stdio`).
+    /// CANopen over CAN: `socketcan:IFACE` (a Linux kernel CAN interface, e.g. can0 or vcan0),
+    /// `slcan:/dev/PATH` (a serial SLCAN adapter such as a CANable, e.g. /dev/ttyACM0; serial
+    /// speed --baud, default 115200), `slcan:HOST:PORT` (SLCAN over TCP) or
+    /// `candump:exec:COMMAND` (a process that speaks candump lines on its stdio, e.g. a relay or
+    /// `drivegen sim ... --can candump:stdio`).
     #[arg(long, value_name = "BACKEND", group = "bus")]
     pub can: Option<String>,
+    /// --can slcan:...: the CAN bit rate the adapter is set to, 10k, 20k, 50k, 100k, 125k, 250k,
+    /// 500k, 800k or 1M (default: the description's documented default, else 500k). A SocketCAN
+    /// interface has its bit rate set by `ip link`.
+    #[arg(long, value_name = "BITS", value_parser = crate::can::parse_bitrate)]
+    pub bitrate: Option<u32>,
     /// The Kinco RS-232 protocol on a serial port (or pty), 8N1; the station id is --node-id.
     /// A Kinco FD's RS-485 port speaks it too, out of the box (6510h sub 0Ch = 1).
     #[arg(long, value_name = "PATH", group = "bus")]
@@ -244,7 +251,11 @@ impl Session {
                 .and_then(NodeId::new)
                 .ok_or_else(|| CliError::Usage("give a CANopen --node-id (1..=127)".into()))?;
             warn_node_relative_defaults(device, node.0);
-            let (bus, relay) = can_backend(backend)?;
+            let settings = CanSettings {
+                bitrate: can::bitrate(args.bitrate, &[device]),
+                baud: args.baud.unwrap_or(can::DEFAULT_SLCAN_BAUD),
+            };
+            let (bus, relay) = can_backend(backend, settings)?;
             return Ok(Self {
                 link: Link::CanOpen {
                     sdo: BlockingSdo::new(DynCan(bus)).with_timeout(timeout),
@@ -427,32 +438,14 @@ pub fn serial_config(
     })
 }
 
-/// Opens a CAN backend; a relay process is returned for the session to stop.
-pub fn can_backend(spec: &str) -> Result<(Box<dyn CanBus + Send>, Option<Child>), CliError> {
-    if let Some(addr) = spec.strip_prefix("slcan:") {
-        let mut bus = SlcanBus::connect(addr).map_err(|e| connect_error(spec, e))?;
-        bus.open(Bitrate::K500)
-            .map_err(|e| connect_error(spec, e))?;
-        return Ok((Box::new(bus), None));
-    }
-    if let Some(command) = spec.strip_prefix("candump:exec:") {
-        let mut words = command.split_whitespace();
-        let program = words
-            .next()
-            .ok_or_else(|| CliError::Usage("candump:exec: needs a command".into()))?;
-        let mut child = Command::new(program)
-            .args(words)
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::inherit())
-            .spawn()
-            .map_err(|e| CliError::Io(format!("cannot start `{command}`: {e}")))?;
-        let bus = CandumpBus::from_child(&mut child).map_err(|e| connect_error(spec, e))?;
-        return Ok((Box::new(bus), Some(child)));
-    }
-    Err(CliError::Usage(format!(
-        "--can {spec}: expected slcan:HOST:PORT or candump:exec:COMMAND"
-    )))
+/// Opens the CAN backend `spec` names (one of [`can::FORMS`]); a relay process is returned for
+/// the session to stop.
+pub fn can_backend(
+    spec: &str,
+    settings: CanSettings,
+) -> Result<(Box<dyn CanBus + Send>, Option<Child>), CliError> {
+    let parsed = can::CanSpec::parse(spec, can::FORMS)?;
+    can::open(spec, &parsed, settings)
 }
 
 /// Warns on stderr, once per parameter, when the description's own limits refuse a node-relative

@@ -60,6 +60,15 @@ pub enum CliError {
     /// The drive's variant is not known (or the parameter is not in it) and the parameter's
     /// address depends on it; nothing was sent.
     Variant(String),
+    /// A CAN interface or adapter could not be opened.
+    CanOpen {
+        /// The `--can` value.
+        spec: String,
+        /// The bit rate of the command, for the `ip link` hint.
+        bitrate: u32,
+        /// Why.
+        error: drivebus::canopen::backend::OpenError,
+    },
 }
 
 impl fmt::Display for CliError {
@@ -102,6 +111,11 @@ impl fmt::Display for CliError {
             CliError::Usage(text) | CliError::Io(text) => write!(f, "{text}"),
             CliError::OutsideBound(why) => write!(f, "{why} (nothing was written)"),
             CliError::Variant(why) => write!(f, "{why} (nothing was sent)"),
+            CliError::CanOpen {
+                spec,
+                bitrate,
+                error,
+            } => f.write_str(&crate::can::describe(spec, *bitrate, error)),
             CliError::IdentityMismatch {
                 parameter,
                 expected,

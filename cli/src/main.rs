@@ -2,6 +2,7 @@
 //! simulate a drive, and read, write, watch or decode a drive's values by parameter name.
 #![deny(missing_docs)]
 
+mod can;
 mod codec;
 mod commands;
 mod connect;

@@ -128,6 +128,10 @@ pub enum BusError {
     Frame(&'static str),
     /// The request needs a feature the device does not support (per its description).
     Unsupported(&'static str),
+    /// The CAN controller went bus-off: whatever transfer was under way was cut.
+    CanBusOff,
+    /// The CAN transmit queue stayed full (`ENOBUFS`) through every bounded retry.
+    CanQueueFull,
     /// The underlying I/O channel failed.
     #[cfg(feature = "std")]
     Io(std::io::ErrorKind),
@@ -160,6 +164,8 @@ impl fmt::Display for BusError {
             } => write!(f, "RS-232 request about {index:#06x}:{subindex}: {error}"),
             Self::Frame(why) => write!(f, "bad frame: {why}"),
             Self::Unsupported(what) => write!(f, "not supported by the device: {what}"),
+            Self::CanBusOff => write!(f, "the CAN controller went bus-off"),
+            Self::CanQueueFull => write!(f, "the CAN transmit queue stayed full (ENOBUFS)"),
             #[cfg(feature = "std")]
             Self::Io(kind) => write!(f, "I/O error: {kind}"),
         }

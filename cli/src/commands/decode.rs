@@ -18,8 +18,25 @@ use crate::table;
 pub struct Args {
     /// Description file, or a folder with a device.toml.
     description: PathBuf,
-    /// candump log (`(1700000000.123456) can0 605#...`) or compact lines (`605#...`).
-    capture: PathBuf,
+    /// candump log (`(1700000000.123456) can0 605#...`) or compact lines (`605#...`); none
+    /// with --can.
+    #[arg(required_unless_present = "can")]
+    capture: Option<PathBuf>,
+    /// Decode live from a CAN interface instead of a capture, printing each frame as it arrives
+    /// with its receive time (the kernel's on `socketcan:IFACE`, the adapter's milliseconds on
+    /// `slcan:` in `Z1` mode): `socketcan:IFACE`, `slcan:/dev/PATH` or `slcan:HOST:PORT`.
+    #[arg(long, value_name = "BACKEND", conflicts_with = "capture")]
+    can: Option<String>,
+    /// --can: stop after this many frames (default: run until interrupted).
+    #[arg(long, requires = "can")]
+    count: Option<usize>,
+    /// --can: stop after this long without a frame, in milliseconds.
+    #[arg(long, requires = "can")]
+    idle_ms: Option<u64>,
+    /// --can slcan:...: the CAN bit rate, 10k to 1M (default: the description's documented
+    /// default, else 500k).
+    #[arg(long, value_name = "BITS", requires = "can", value_parser = crate::can::parse_bitrate)]
+    bitrate: Option<u32>,
     /// Print one JSON object per frame.
     #[arg(long)]
     json: bool,
@@ -34,16 +51,19 @@ struct Line {
     value: String,
 }
 
-/// Decodes every frame of the capture.
+/// Decodes every frame of the capture, or live from --can.
 pub fn run(args: Args) -> Result<(), CliError> {
     let device = super::load(&args.description)?;
-    let file = File::open(&args.capture)
-        .map_err(|e| CliError::Io(format!("cannot open {}: {e}", args.capture.display())))?;
+    if let Some(backend) = &args.can {
+        return live(&args, &device, backend);
+    }
+    let capture = args.capture.clone().unwrap_or_default();
+    let file = File::open(&capture)
+        .map_err(|e| CliError::Io(format!("cannot open {}: {e}", capture.display())))?;
     let mut lines = Vec::new();
     let mut mappings = PdoMappings::default();
     for record in CandumpReader::new(BufReader::new(file)) {
-        let record =
-            record.map_err(|e| CliError::Io(format!("{}: {e}", args.capture.display())))?;
+        let record = record.map_err(|e| CliError::Io(format!("{}: {e}", capture.display())))?;
         let time = record.timestamp_us.map_or(String::new(), |us| {
             format!("{}.{:06}", us / 1_000_000, us % 1_000_000)
         });
@@ -76,6 +96,89 @@ pub fn run(args: Args) -> Result<(), CliError> {
                 .map(|l| vec![l.time, l.node, l.kind.to_string(), l.what, l.value]),
         );
         print!("{}", table::render(&rows));
+    }
+    Ok(())
+}
+
+/// Decodes frames from a live interface as they arrive, one line (or JSON object) each; error
+/// frames and bus states are lines of kind `error`.
+fn live(args: &Args, device: &Device, backend: &str) -> Result<(), CliError> {
+    use drivebus::canopen::backend::{CanEvent, Timestamp};
+    use std::io::Write;
+    use std::time::{Duration, UNIX_EPOCH};
+    let forms = "socketcan:IFACE, slcan:/dev/PATH or slcan:HOST:PORT";
+    let spec = crate::can::CanSpec::parse(backend, forms)?;
+    if matches!(
+        spec,
+        crate::can::CanSpec::CandumpExec(_) | crate::can::CanSpec::CandumpStdio
+    ) {
+        return Err(CliError::Usage(format!(
+            "--can {backend}: expected {forms}"
+        )));
+    }
+    let settings = crate::can::CanSettings {
+        bitrate: crate::can::bitrate(args.bitrate, &[device]),
+        baud: crate::can::DEFAULT_SLCAN_BAUD,
+    };
+    let (mut bus, _) = crate::can::open(backend, &spec, settings)?;
+    let mut mappings = PdoMappings::default();
+    let mut frames = 0;
+    let idle = args
+        .idle_ms
+        .map_or(Duration::from_secs(3600), Duration::from_millis);
+    let mut out = std::io::stdout().lock();
+    while args.count.is_none_or(|count| frames < count) {
+        let event = bus
+            .recv_event(idle)
+            .map_err(|e| CliError::Io(format!("{backend}: {e}")))?;
+        let time = |timestamp: Option<Timestamp>| match timestamp {
+            Some(Timestamp::Kernel(at)) => {
+                at.duration_since(UNIX_EPOCH).map_or(String::new(), |d| {
+                    format!("{}.{:06}", d.as_secs(), d.subsec_micros())
+                })
+            }
+            Some(Timestamp::AdapterMillis(ms)) => format!("{ms}ms"),
+            None => String::new(),
+        };
+        let line = match event {
+            None if args.idle_ms.is_some() => break,
+            None => continue,
+            Some(CanEvent::Frame { frame, timestamp }) => {
+                frames += 1;
+                let message = Message::classify(&frame);
+                if let Message::SdoRequest { node, data } = message {
+                    if let Some((index, subindex, value)) = expedited_download(&data) {
+                        mappings.learn(node.0, index, subindex, value);
+                    }
+                }
+                decode(device, &mappings, message, time(timestamp))
+            }
+            Some(CanEvent::Error { report, timestamp }) => Line {
+                time: time(timestamp),
+                node: String::new(),
+                kind: "error",
+                what: format!("{:?}", report.classes),
+                value: report.state.map_or(String::new(), |s| s.to_string()),
+            },
+            Some(_) => continue,
+        };
+        let printed = if args.json {
+            writeln!(
+                out,
+                "{}",
+                serde_json::json!({"time": line.time, "node": line.node, "kind": line.kind, "object": line.what, "value": line.value})
+            )
+        } else {
+            writeln!(
+                out,
+                "{}  {}  {}  {}  {}",
+                line.time, line.node, line.kind, line.what, line.value
+            )
+        };
+        if printed.and_then(|()| out.flush()).is_err() {
+            // The reader went away (a closed pipe): stop quietly.
+            return Ok(());
+        }
     }
     Ok(())
 }

@@ -6,8 +6,7 @@ use std::path::PathBuf;
 use std::time::Duration;
 
 use drivebus::canopen::backend::candump::CandumpBus;
-use drivebus::canopen::backend::slcan::{Bitrate, SlcanBus};
-use drivebus::canopen::NodeId;
+use drivebus::canopen::{CanBus, CanFrame, NodeId};
 use drivebus::modbus::transport::{SerialConfig, SerialStream};
 use drivebus::modbus::UnitId;
 use drivebus::rs232::serial::{open_line, Rs232Config, DEFAULT_BAUD};
@@ -18,6 +17,8 @@ use drivesim::modbus::tcp::TcpServer;
 use drivesim::modbus::Units;
 use drivesim::Simulator;
 
+use crate::can::{self, CanSettings, CanSpec};
+use crate::connect::DynCan;
 use crate::error::CliError;
 
 /// Arguments of `sim`.
@@ -34,10 +35,16 @@ pub struct Args {
     /// Serve Modbus RTU on a serial port or pty.
     #[arg(long, value_name = "PATH", group = "bus")]
     serial: Option<String>,
-    /// Be a CANopen node: `candump:stdio` (frames as candump lines on stdin/stdout; the
-    /// `listening on` line goes to stderr) or `slcan:HOST:PORT` (connects to an SLCAN gateway).
+    /// Be one or several CANopen nodes: `socketcan:IFACE` (a Linux kernel CAN interface, e.g.
+    /// vcan0), `slcan:/dev/PATH` (a serial SLCAN adapter; serial speed --baud, default
+    /// 115200), `slcan:HOST:PORT` (connects to an SLCAN gateway) or `candump:stdio` (frames as
+    /// candump lines on stdin/stdout; the `listening on` line goes to stderr).
     #[arg(long, value_name = "BACKEND", group = "bus")]
     can: Option<String>,
+    /// --can slcan:...: the CAN bit rate, 10k, 20k, 50k, 100k, 125k, 250k, 500k, 800k or 1M
+    /// (default: the description's documented default, else 500k).
+    #[arg(long, value_name = "BITS", value_parser = crate::can::parse_bitrate)]
+    bitrate: Option<u32>,
     /// Serve the Kinco RS-232 protocol on a serial port or pty (8N1), station --node-id, from
     /// the parameters' `rs232` addresses.
     #[arg(long, value_name = "PATH", group = "bus")]
@@ -46,7 +53,8 @@ pub struct Args {
     /// telegram before answering.
     #[arg(long)]
     rs232_loop: bool,
-    /// Baud rate of --serial (default 19200) or --kinco-rs232 (default 38400).
+    /// Baud rate of --serial (default 19200) or --kinco-rs232 (default 38400), or serial speed
+    /// of --can slcan:/dev/PATH (default 115200).
     #[arg(long)]
     baud: Option<u32>,
     /// Modbus unit id (default 1); repeat it to serve several drives on one port.
@@ -117,7 +125,12 @@ pub fn run(args: Args) -> Result<(), CliError> {
                 Ok(Node::new(d.sim.clone(), config, d.sim.variant()))
             })
             .collect::<Result<Vec<_>, CliError>>()?;
-        return run_can(&mut nodes, backend, &ids(&drives));
+        let devices: Vec<&Device> = drives.iter().map(|d| &d.device).collect();
+        let settings = CanSettings {
+            bitrate: can::bitrate(args.bitrate, &devices),
+            baud: args.baud.unwrap_or(can::DEFAULT_SLCAN_BAUD),
+        };
+        return run_can(&mut nodes, backend, settings, &ids(&drives));
     }
     if let Some(path) = &args.kinco_rs232 {
         let [drive] = drives.as_slice() else {
@@ -232,26 +245,62 @@ fn serve_rs232(sim: &Simulator, args: &Args, station: u8, path: &str) -> Result<
         .map_err(|e| CliError::Io(format!("{path}: {e}")))
 }
 
-fn run_can(nodes: &mut [Node], backend: &str, ids: &str) -> Result<(), CliError> {
+/// The forms `sim --can` takes.
+const SIM_FORMS: &str = "socketcan:IFACE, slcan:/dev/PATH, slcan:HOST:PORT or candump:stdio";
+
+fn run_can(
+    nodes: &mut [Node],
+    backend: &str,
+    settings: CanSettings,
+    ids: &str,
+) -> Result<(), CliError> {
     let ended = |e| CliError::Io(format!("{backend}: {e}"));
-    if backend == "candump:stdio" {
-        // stdout carries the frames: the announcement goes to stderr.
-        eprintln!("listening on canopen candump:stdio node {ids}");
-        let mut bus = CandumpBus::new(std::io::stdin(), std::io::stdout());
-        return match nodes::run(nodes, &mut bus) {
-            Err(drivebus::BusError::Io(std::io::ErrorKind::UnexpectedEof)) => Ok(()),
-            other => other.map_err(ended),
-        };
+    let spec = CanSpec::parse(backend, SIM_FORMS)?;
+    match spec {
+        CanSpec::CandumpStdio => {
+            // stdout carries the frames: the announcement goes to stderr.
+            eprintln!("listening on canopen candump:stdio node {ids}");
+            let mut bus = CandumpBus::new(std::io::stdin(), std::io::stdout());
+            match nodes::run(nodes, &mut bus) {
+                Err(drivebus::BusError::Io(std::io::ErrorKind::UnexpectedEof)) => Ok(()),
+                other => other.map_err(ended),
+            }
+        }
+        CanSpec::CandumpExec(_) => Err(CliError::Usage(format!(
+            "--can {backend}: expected {SIM_FORMS}"
+        ))),
+        spec => {
+            let (bus, _) = can::open(backend, &spec, settings)?;
+            let mut bus = RidesOutBusOff(DynCan(bus));
+            announce(&format!("listening on canopen {backend} node {ids}"));
+            nodes::run(nodes, &mut bus).map_err(ended)
+        }
     }
-    if let Some(addr) = backend.strip_prefix("slcan:") {
-        let mut bus = SlcanBus::connect(addr).map_err(ended)?;
-        bus.open(Bitrate::K500).map_err(ended)?;
-        announce(&format!("listening on canopen {backend} node {ids}"));
-        return nodes::run(nodes, &mut bus).map_err(ended);
+}
+
+/// A simulated node rides out a bus-off as a drive does (it is reported, the node waits for
+/// the controller's restart) instead of ending the simulation.
+struct RidesOutBusOff(DynCan);
+
+impl CanBus for RidesOutBusOff {
+    fn send(&mut self, frame: &CanFrame) -> Result<(), drivebus::BusError> {
+        match self.0.send(frame) {
+            Err(drivebus::BusError::CanQueueFull) => {
+                eprintln!("sim: transmit queue full, frame dropped");
+                Ok(())
+            }
+            other => other,
+        }
     }
-    Err(CliError::Usage(format!(
-        "--can {backend}: expected candump:stdio or slcan:HOST:PORT"
-    )))
+    fn recv(&mut self, timeout: Duration) -> Result<Option<CanFrame>, drivebus::BusError> {
+        match self.0.recv(timeout) {
+            Err(drivebus::BusError::CanBusOff) => {
+                eprintln!("sim: the CAN controller reported bus-off");
+                Ok(None)
+            }
+            other => other,
+        }
+    }
 }
 
 fn parse_raw(text: &str) -> Option<i128> {

@@ -9,12 +9,18 @@ use drivebus::canopen::NodeId;
 use drivegen::ir::Device;
 
 use super::{names, verdict, Answer};
+use crate::can::CanSettings;
 use crate::connect::{can_backend, DynCan};
 use crate::error::CliError;
 
 /// Scans every node id on `backend` and describes each node that answers.
-pub fn scan(backend: &str, devices: &[Device], timeout: Duration) -> Result<Vec<Answer>, CliError> {
-    let (bus, relay) = can_backend(backend)?;
+pub fn scan(
+    backend: &str,
+    settings: CanSettings,
+    devices: &[Device],
+    timeout: Duration,
+) -> Result<Vec<Answer>, CliError> {
+    let (bus, relay) = can_backend(backend, settings)?;
     let mut bus = DynCan(bus);
     let nodes: Vec<NodeId> = (1..=NodeId::MAX).map(NodeId).collect();
     let found = scan_bus(&mut bus, &nodes, timeout);

@@ -18,9 +18,15 @@ use crate::error::CliError;
 #[derive(Debug, clap::Args)]
 #[command(group(clap::ArgGroup::new("bus").required(true)))]
 pub struct Args {
-    /// CANopen backend: `slcan:HOST:PORT` or `candump:exec:COMMAND`; node ids 1-127 are probed.
+    /// CANopen backend: `socketcan:IFACE` (a Linux kernel CAN interface), `slcan:/dev/PATH` (a
+    /// serial SLCAN adapter; serial speed --baud, default 115200), `slcan:HOST:PORT` (SLCAN over
+    /// TCP) or `candump:exec:COMMAND`; node ids 1-127 are probed.
     #[arg(long, value_name = "BACKEND", group = "bus")]
     can: Option<String>,
+    /// --can slcan:...: the CAN bit rate, 10k to 1M (default: the documented default the
+    /// descriptions agree on, else 500k).
+    #[arg(long, value_name = "BITS", value_parser = crate::can::parse_bitrate)]
+    bitrate: Option<u32>,
     /// Modbus TCP server or gateway, HOST:PORT; the --units are probed over several connections
     /// at once (--connections).
     #[arg(long, value_name = "HOST:PORT", group = "bus")]
@@ -28,7 +34,8 @@ pub struct Args {
     /// Modbus RTU on a serial port (or pty); the --units are probed one after the other.
     #[arg(long, value_name = "PATH", group = "bus")]
     serial: Option<String>,
-    /// Baud rate of --serial (default 19200).
+    /// Baud rate of --serial (default 19200), or serial speed of --can slcan:/dev/PATH (default
+    /// 115200).
     #[arg(long)]
     baud: Option<u32>,
     /// Parity of --serial: none, even or odd.
@@ -76,7 +83,11 @@ pub fn run(args: Args) -> Result<(), CliError> {
         .collect::<Result<Vec<_>, _>>()?;
     let timeout = Duration::from_millis(args.timeout_ms);
     let answers = if let Some(backend) = &args.can {
-        canopen::scan(backend, &devices, timeout)?
+        let settings = crate::can::CanSettings {
+            bitrate: crate::can::bitrate(args.bitrate, &devices.iter().collect::<Vec<_>>()),
+            baud: args.baud.unwrap_or(crate::can::DEFAULT_SLCAN_BAUD),
+        };
+        canopen::scan(backend, settings, &devices, timeout)?
     } else {
         let units = unit_range(&args.units)?;
         let probes = modbus::probes(&devices)?;
