@@ -49,8 +49,8 @@ pub mod prelude;
 pub mod read_set;
 pub mod rs232;
 pub mod scale;
-#[cfg(feature = "std")]
 pub mod stop;
+#[cfg(feature = "std")]
 pub mod stream;
 pub mod units;
 pub mod value;
