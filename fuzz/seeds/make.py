@@ -163,13 +163,17 @@ def description_seeds():
     write("eds_overlay", "fixture_overlay", toml + b"\0" + (fixture / "drive.eds").read_bytes())
 
 
+# Seeds this script does not write: inputs fuzzing found (`finding_*`, kept beside their
+# regression tests) and seeds written by hand (`hand_*`).
+KEPT_PREFIXES = ("finding_", "hand_")
+
+
 def clear_generated_seeds():
-    """Removes the seeds this script writes; inputs fuzzing found (`finding_*`, kept as seeds
-    beside their regression tests) stay."""
+    """Removes the seeds this script writes; the others (`KEPT_PREFIXES`) stay."""
     for target in SEEDS.iterdir():
         if target.is_dir():
             for seed in target.iterdir():
-                if not seed.name.startswith("finding_"):
+                if not seed.name.startswith(KEPT_PREFIXES):
                     seed.unlink()
 
 
