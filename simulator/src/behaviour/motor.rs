@@ -72,6 +72,36 @@ impl Motor {
         })
     }
 
+    /// A reversal first returns to zero on the deceleration ramp, then reaches the new setpoint
+    /// on the acceleration ramp (SWD manual line 2620; CiA 402 ramps alike): takes what of
+    /// `seconds` the way to zero needs, and says whether that was all of them.
+    fn through_zero(
+        &mut self,
+        store: &Store,
+        setpoint: ParamId,
+        target: f64,
+        seconds: &mut f64,
+    ) -> bool {
+        if self.speed == 0.0 || target == 0.0 || target.signum() == self.speed.signum() {
+            return false;
+        }
+        match self.rate(store, setpoint, 0.0) {
+            Some(rate) if self.speed.abs() > rate * *seconds => {
+                self.speed -= self.speed.signum() * rate * *seconds;
+                true
+            }
+            Some(rate) => {
+                *seconds -= self.speed.abs() / rate;
+                self.speed = 0.0;
+                false
+            }
+            None => {
+                self.speed = 0.0;
+                false
+            }
+        }
+    }
+
     /// Speed change per second towards `target` set in `setpoint`; `None` = at once.
     fn rate(&self, store: &Store, setpoint: ParamId, target: f64) -> Option<f64> {
         let speeding_up = target.abs() > self.speed.abs();
@@ -113,22 +143,7 @@ impl Behaviour for Motor {
             (0, 0.0)
         });
         let mut seconds = dt.as_secs_f64();
-        let mut spent = false;
-        // A reversal returns to zero on the deceleration ramp, then reaches the new setpoint on
-        // the acceleration ramp (SWD manual line 2620; CiA 402 ramps alike).
-        if self.speed != 0.0 && target != 0.0 && target.signum() != self.speed.signum() {
-            match self.rate(store, setpoint, 0.0) {
-                Some(rate) if self.speed.abs() > rate * seconds => {
-                    self.speed -= self.speed.signum() * rate * seconds;
-                    spent = true;
-                }
-                Some(rate) => {
-                    seconds -= self.speed.abs() / rate;
-                    self.speed = 0.0;
-                }
-                None => self.speed = 0.0,
-            }
-        }
+        let spent = self.through_zero(store, setpoint, target, &mut seconds);
         let rate = if target == self.speed {
             None
         } else {
