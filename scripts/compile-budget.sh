@@ -15,7 +15,7 @@ name = "synthetic-drive"
 version = "0.0.0"
 edition = "2021"
 [dependencies]
-drivebus = { path = "$root/transport", default-features = false }
+drivebus = { path = "$root/drivebus", default-features = false }
 [build-dependencies]
 drivegen = { path = "$root/codegen", default-features = false }
 [workspace]

@@ -2,7 +2,7 @@
 //! (encode the upload telegram, find and decode the answer), drivebus against the hand-written
 //! floor of `benchmarks/src/rs232.rs`, in the same run. Target: drivebus ≤ 1.2× floor.
 //!
-//! `cargo bench -p drivegen-benchmarks --bench rs232` (about 15 s after the build) prints the
+//! `cargo bench -p benchmarks --bench rs232` (about 15 s after the build) prints the
 //! criterion medians and interleaved minima (the fastest of 40 rounds, each round timing both
 //! back to back) with their ratio.
 

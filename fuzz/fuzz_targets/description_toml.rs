@@ -3,10 +3,10 @@
 //!
 //! Input: the bytes of `device.toml` (not necessarily UTF-8). It may include files beside it
 //! (only itself exists there) or elsewhere on the machine. Asserts that checking renders its
-//! diagnostics, and that a valid device satisfies `drivegen_fuzz::generated::check`.
+//! diagnostics, and that a valid device satisfies `fuzz::generated::check`.
 #![no_main]
 
-use drivegen_fuzz::{generated, scratch};
+use fuzz::{generated, scratch};
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|bytes: &[u8]| {

@@ -3,10 +3,10 @@
 //! Input: the overlay's TOML, a NUL byte, then the EDS bytes. The overlay is `overlay.toml`,
 //! the EDS `drive.eds` beside it (seeds name it with `eds = "drive.eds"`). Asserts that
 //! checking renders its diagnostics, and that a valid device satisfies
-//! `drivegen_fuzz::generated::check`.
+//! `fuzz::generated::check`.
 #![no_main]
 
-use drivegen_fuzz::{generated, scratch};
+use fuzz::{generated, scratch};
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|bytes: &[u8]| {

@@ -1,11 +1,11 @@
 //! The EDS / DCF reader fed arbitrary bytes (any encoding).
 //!
 //! Input: the file's bytes. Asserts that a device read without errors satisfies
-//! `drivegen_fuzz::generated::check`: its code parses, its accessors are distinct, and its EDS
+//! `fuzz::generated::check`: its code parses, its accessors are distinct, and its EDS
 //! export reads back with the same objects.
 #![no_main]
 
-use drivegen_fuzz::generated;
+use fuzz::generated;
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|bytes: &[u8]| {

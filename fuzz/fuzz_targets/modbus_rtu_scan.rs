@@ -1,12 +1,12 @@
 //! The Modbus RTU response scanner fed arbitrary received bytes.
 //!
 //! Input: `[unit, split, request (5 bytes, see src/modbus_request.rs), received bytes...]`.
-//! Asserts `drivegen_fuzz::scan_check::check`, with the RTU frame check (address, CRC).
+//! Asserts `fuzz::scan_check::check`, with the RTU frame check (address, CRC).
 #![no_main]
 
 use drivebus::modbus::rtu::{self, RtuFraming};
 use drivebus::modbus::UnitId;
-use drivegen_fuzz::{modbus_request, scan_check, Cursor};
+use fuzz::{modbus_request, scan_check, Cursor};
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {

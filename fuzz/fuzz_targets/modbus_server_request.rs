@@ -12,7 +12,7 @@
 
 use drivebus::modbus::pdu::{decode_request, decode_response, Request, ServerRequest, MAX_PDU};
 use drivebus::BusError;
-use drivegen_fuzz::shipped;
+use fuzz::shipped;
 use drivesim::Simulator;
 use libfuzzer_sys::fuzz_target;
 

@@ -1,14 +1,14 @@
 //! The Modbus TCP (MBAP) response scanner fed arbitrary received bytes.
 //!
 //! Input: `[unit, split, transaction (2 bytes, big-endian), request (5 bytes, see
-//! src/modbus_request.rs), received bytes...]`. Asserts `drivegen_fuzz::scan_check::check`, with
+//! src/modbus_request.rs), received bytes...]`. Asserts `fuzz::scan_check::check`, with
 //! the MBAP frame check (length, transaction id, unit).
 #![no_main]
 
 use drivebus::modbus::framing::Framing;
 use drivebus::modbus::tcp::{self, TcpFraming};
 use drivebus::modbus::UnitId;
-use drivegen_fuzz::{modbus_request, scan_check, Cursor};
+use fuzz::{modbus_request, scan_check, Cursor};
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {

@@ -16,7 +16,7 @@ use drivebus::rs232::data::{Answer, Request};
 use drivebus::rs232::exchange::Exchange;
 use drivebus::rs232::telegram::{self, Data, Telegram};
 use drivebus::rs232::{LoopMode, Rs232Error, StationId};
-use drivegen_fuzz::{shipped, Cursor};
+use fuzz::{shipped, Cursor};
 use drivesim::Simulator;
 use libfuzzer_sys::fuzz_target;
 

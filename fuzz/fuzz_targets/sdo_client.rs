@@ -17,7 +17,7 @@ use std::time::Duration;
 
 use drivebus::canopen::sdo::{Progress, SdoClient, Transfer};
 use drivebus::canopen::NodeId;
-use drivegen_fuzz::{can_input, Cursor};
+use fuzz::{can_input, Cursor};
 use libfuzzer_sys::fuzz_target;
 
 const NODE: u8 = 5;

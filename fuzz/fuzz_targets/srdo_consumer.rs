@@ -15,7 +15,7 @@ use std::time::Duration;
 
 use drivebus::canopen::srdo::{is_complement, SrdoCobIds, SrdoConsumer, SrdoTiming};
 use drivebus::canopen::CanFrame;
-use drivegen_fuzz::{can_input, Cursor};
+use fuzz::{can_input, Cursor};
 use libfuzzer_sys::fuzz_target;
 
 const NORMAL: u16 = 0x101;

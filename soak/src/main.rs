@@ -1,9 +1,9 @@
-//! `drivegen-soak`: many transactions against the simulator through a fault-injecting proxy,
+//! `soak`: many transactions against the simulator through a fault-injecting proxy,
 //! over Modbus TCP, Modbus RTU on a pty and SDO over candump; every value read is checked against
 //! the simulator, and non-idempotent writes must never be repeated.
 //!
 //! ```text
-//! cargo run --release -p drivegen-soak -- [--transactions N] [--seed S] [--fault-rate P]
+//! cargo run --release -p soak -- [--transactions N] [--seed S] [--fault-rate P]
 //!                                         [--transport modbus-tcp|modbus-rtu|sdo-candump]...
 //!                                         [--max-seconds S]
 //! ```
@@ -117,7 +117,7 @@ fn main() -> ExitCode {
     let options = match parse(std::env::args().skip(1)) {
         Ok(options) => options,
         Err(error) => {
-            eprintln!("drivegen-soak: {error}");
+            eprintln!("soak: {error}");
             return ExitCode::from(2);
         }
     };
@@ -130,7 +130,7 @@ fn main() -> ExitCode {
         match soak(transport, &options) {
             Ok(ok) => clean &= ok,
             Err(error) => {
-                eprintln!("drivegen-soak: {error}");
+                eprintln!("soak: {error}");
                 return ExitCode::from(2);
             }
         }

@@ -26,7 +26,7 @@ pub fn build_and_doctest(name: &str, lib_rs: &str) -> Built {
 pub fn build_and_test(name: &str, lib_rs: &str, test_rs: &str) -> Built {
     let simulator = format!(
         "drivesim = {{ path = {:?} }}\n",
-        workspace_root().join("simulator")
+        workspace_root().join("drivesim")
     );
     let dir = scratch_crate(name, lib_rs, &simulator);
     std::fs::create_dir_all(dir.join("tests")).unwrap();
@@ -41,7 +41,7 @@ fn scratch_crate(name: &str, lib_rs: &str, dev_dependencies: &str) -> PathBuf {
     std::fs::create_dir_all(dir.join("src")).unwrap();
     let manifest = format!(
         "[package]\nname = \"{name}\"\nversion = \"0.0.0\"\nedition = \"2021\"\n[dependencies]\ndrivebus = {{ path = {:?}, features = [\"srdo\"] }}\n[dev-dependencies]\n{dev_dependencies}[features]\ndefault = [\"std\"]\nstd = [\"drivebus/std\"]\n[workspace]\n",
-        workspace.join("transport")
+        workspace.join("drivebus")
     );
     std::fs::write(dir.join("Cargo.toml"), manifest).unwrap();
     std::fs::write(dir.join("src/lib.rs"), lib_rs).unwrap();

@@ -1,6 +1,5 @@
 #![doc = include_str!("../README.md")]
 #![no_std]
-#![deny(warnings, missing_docs)]
 
 #[cfg(feature = "std")]
 extern crate std;

@@ -18,7 +18,7 @@ pub struct Args {
     /// Crate name (default: the device name in kebab case).
     #[arg(long)]
     name: Option<String>,
-    /// Also give drivebus this path (e.g. a checkout of the drivegen repository's transport/).
+    /// Also give drivebus this path (e.g. a checkout of the drivegen repository's drivebus/).
     #[arg(long, value_name = "PATH")]
     drivebus_path: Option<PathBuf>,
 }

@@ -78,7 +78,7 @@ fn the_skeleton_crate_has_every_file_and_a_valid_description() {
     let manifest = std::fs::read_to_string(target.join("Cargo.toml")).unwrap();
     assert!(manifest.contains("name = \"acme-fd3\""), "{manifest}");
     // Built from this checkout, the binary points the crate at it.
-    let transport = root().join("transport").canonicalize().unwrap();
+    let transport = root().join("drivebus").canonicalize().unwrap();
     assert!(
         manifest.contains(&format!("path = \"{}\"", transport.display())),
         "{manifest}"

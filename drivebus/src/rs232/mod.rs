@@ -20,7 +20,7 @@
 //!   with a timeout per answer.
 //!
 //! The manual's request telegrams (lines 2330–2365) are test vectors in
-//! `transport/tests/rs232_manual_telegrams.rs`. One of them, line 2359, is printed with 9 bytes
+//! `drivebus/tests/rs232_manual_telegrams.rs`. One of them, line 2359, is printed with 9 bytes
 //! (`01 40 41 60 00 00 00 00 1E`): it is the Statusword read of lines 2333 and 2345 with one
 //! reserved zero lost in print, since every telegram has 10 bytes (line 2185) and `1E` is the
 //! checksum of the 10-byte form.

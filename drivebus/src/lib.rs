@@ -20,7 +20,6 @@
 //!
 //! The core is `#![no_std]`; the `std` feature adds the in-memory bus used by tests and examples.
 #![no_std]
-#![deny(missing_docs)]
 
 // Tests use std (proptest, Vec) even when the crate is built without it.
 #[cfg(any(feature = "std", test))]

@@ -31,7 +31,6 @@
 //! assert_eq!(status[0], 0x0002); // STANDBY after power-on
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
-#![deny(missing_docs)]
 
 pub mod behaviour;
 pub mod canopen;

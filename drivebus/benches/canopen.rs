@@ -156,7 +156,7 @@ fn compare_with_python() {
             }
         });
     let output = Command::new(&python)
-        .arg(root.join("transport/benches/canopen_decode.py"))
+        .arg(root.join("drivebus/benches/canopen_decode.py"))
         .arg(&path)
         .arg(root.join("tests/peers/canopen_peer.eds"))
         .arg(PYTHON_FRAMES.to_string())

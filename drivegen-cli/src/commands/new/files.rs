@@ -9,7 +9,7 @@ use heck::{ToTitleCase, ToUpperCamelCase};
 pub enum Dependencies {
     /// The registry (crates.io), by version.
     Registry,
-    /// A checkout of the drivegen repository (its `transport/` and `codegen/`), by version and path.
+    /// A checkout of the drivegen repository (its `drivebus/` and `codegen/`), by version and path.
     Checkout(PathBuf),
 }
 
@@ -96,7 +96,7 @@ fn manifest(dependencies: &Dependencies) -> String {
             &dependency(
                 "drivebus",
                 super::super::DRIVEBUS_VERSION,
-                "transport",
+                "drivebus",
                 dependencies,
                 ", default-features = false",
             ),
@@ -202,7 +202,7 @@ mod tests {
         let manifest = manifest_of(&Dependencies::Checkout(root.clone()));
         let drivebus = dependency(&manifest, "dependencies", "drivebus");
         assert_eq!(drivebus["version"].as_str(), Some("0.1"));
-        let expected = root.join("transport").display().to_string();
+        let expected = root.join("drivebus").display().to_string();
         assert_eq!(drivebus["path"].as_str(), Some(expected.as_str()));
         let drivegen = dependency(&manifest, "build-dependencies", "drivegen");
         let expected = root.join("codegen").display().to_string();

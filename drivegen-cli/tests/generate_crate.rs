@@ -14,7 +14,7 @@ fn the_generated_lafert_crate_builds_without_warnings() {
         .arg("--out")
         .arg(&out)
         .arg("--drivebus-path")
-        .arg(root.join("transport").canonicalize().unwrap())
+        .arg(root.join("drivebus").canonicalize().unwrap())
         .output()
         .unwrap();
     assert!(
