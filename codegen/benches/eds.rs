@@ -1,6 +1,7 @@
 //! EDS reading speed: a generated EDS of 2,000 objects (814 VARs and 1,186 RECORDs of 5 sub-indices:
 //! 6,744 entries) read into IR parameters, side by side with python canopen 2.4.1's `import_od` on
 //! the same file (codegen/benches/eds_import.py, best of 3). Target: at most 6 ms, 100× python.
+#![allow(missing_docs)] // `criterion_group!` defines an undocumented public function.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

@@ -3,6 +3,7 @@
 //! and safety signature (`canopen/srdo.rs`).
 //!
 //! `cargo bench -p drivebus --features canopen --bench canopen`
+#![allow(missing_docs)] // `criterion_group!` defines an undocumented public function.
 
 use std::hint::black_box;
 use std::io::Write;
