@@ -12,29 +12,7 @@
 use drivebus::rs232::data::Request;
 use drivebus::rs232::telegram::{self, Telegram, TELEGRAM_LEN};
 use drivebus::rs232::StationId;
-
-/// The manual's telegrams, `(line, bytes)`, from the shared list.
-fn printed() -> Vec<(u32, Vec<u8>)> {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../tests/fixtures/kinco-rs232/manual-telegrams.txt"
-    );
-    std::fs::read_to_string(path)
-        .unwrap()
-        .lines()
-        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
-        .map(|l| {
-            let (line, hex) = l.split_once(' ').unwrap();
-            (line.parse().unwrap(), bytes(hex))
-        })
-        .collect()
-}
-
-fn bytes(hex: &str) -> Vec<u8> {
-    hex.split_whitespace()
-        .map(|b| u8::from_str_radix(b, 16).unwrap())
-        .collect()
-}
+use peer_support::kinco_telegrams::{bytes, printed};
 
 fn write(index: u16, subindex: u8, value: &[u8]) -> Request {
     Request::download(index, subindex, value).unwrap()

@@ -10,22 +10,7 @@ use drivebus::modbus::{ModbusLink, Table, UnitId};
 use kinco_fd::types::ModesOfOperation;
 use kinco_fd::KincoFd;
 use manual::{hex, rpm_200_as_printed};
-
-/// CRC-16/MODBUS (poly 0xA001 reflected, init 0xFFFF), bit by bit: shares nothing with drivebus.
-fn crc16_modbus(bytes: &[u8]) -> u16 {
-    let mut crc = 0xFFFFu16;
-    for &byte in bytes {
-        crc ^= u16::from(byte);
-        for _ in 0..8 {
-            crc = if crc & 1 == 1 {
-                (crc >> 1) ^ 0xA001
-            } else {
-                crc >> 1
-            };
-        }
-    }
-    crc
-}
+use peer_support::modbus_crc::crc16_modbus;
 
 /// A manual frame written as hex pairs; its last two bytes must be its CRC, low byte first.
 fn frame(printed: &str) -> Vec<u8> {
@@ -58,11 +43,6 @@ fn frames(drive: KincoFd<ModbusLink<RtuRecorder>>) -> Vec<Vec<u8>> {
 const MODE_3: &str = "01 06 35 00 00 03 C6 07";
 const SPEED_200_RPM: &str = "01 10 6F 00 00 02 04 55 55 00 08 1A 47";
 const ENABLE: &str = "01 06 31 00 00 0F C7 32";
-
-#[test]
-fn the_reference_crc_is_crc16_modbus() {
-    assert_eq!(crc16_modbus(b"123456789"), 0x4B37);
-}
 
 #[test]
 fn write_multiple_example_10_4() {

@@ -12,29 +12,9 @@ use drivebus::units::Rpm;
 use drivebus::Error;
 use kinco_fd::types::{HomingMethod, ModesOfOperation};
 use kinco_fd::KincoFd;
+use peer_support::kinco_telegrams::printed;
 
 type Drive = KincoFd<Rs232Link<MemoryBus>>;
-
-/// The manual's telegrams, `(line, bytes)`.
-fn printed() -> Vec<(u32, Vec<u8>)> {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../tests/fixtures/kinco-rs232/manual-telegrams.txt"
-    );
-    std::fs::read_to_string(path)
-        .unwrap()
-        .lines()
-        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
-        .map(|l| {
-            let (line, hex) = l.split_once(' ').unwrap();
-            let bytes = hex
-                .split_whitespace()
-                .map(|b| u8::from_str_radix(b, 16).unwrap())
-                .collect();
-            (line.parse().unwrap(), bytes)
-        })
-        .collect()
-}
 
 /// What the manual does at `line`, through the typed API.
 fn act(drive: &mut Drive, line: u32) -> Result<(), Error> {

@@ -13,30 +13,7 @@ use drivebus::modbus::{ModbusLink, Table, UnitId};
 use fake_clock::FakeClock;
 use lafert_smartris::types::{BaudRate, ComSettings};
 use lafert_smartris::{params, RebootWait, Smartris};
-
-/// CRC-16/MODBUS (poly 0xA001 reflected, init 0xFFFF), written out bit by bit so it shares nothing
-/// with the table-driven implementation under test.
-fn crc16_modbus(bytes: &[u8]) -> u16 {
-    let mut crc = 0xFFFFu16;
-    for &byte in bytes {
-        crc ^= u16::from(byte);
-        for _ in 0..8 {
-            crc = if crc & 1 == 1 {
-                (crc >> 1) ^ 0xA001
-            } else {
-                crc >> 1
-            };
-        }
-    }
-    crc
-}
-
-/// The manual's frame bytes (without its "16 bit" CRC placeholder) plus the CRC, low byte first.
-fn with_crc(manual_bytes: &[u8]) -> Vec<u8> {
-    let mut frame = manual_bytes.to_vec();
-    frame.extend_from_slice(&crc16_modbus(manual_bytes).to_le_bytes());
-    frame
-}
+use peer_support::modbus_crc::with_crc;
 
 /// A drive on unit 1 over the recorder, with every register the examples touch present.
 fn drive() -> Smartris<ModbusLink<RtuRecorder>> {
@@ -60,16 +37,6 @@ fn frames(drive: Smartris<ModbusLink<RtuRecorder>>) -> Vec<Vec<u8>> {
 const STORE: [u8; 6] = [0x01, 0x06, 0x00, 0x00, 0x00, 0x01];
 const RESET: [u8; 6] = [0x01, 0x06, 0xA5, 0xA5, 0x00, 0x01];
 const READ_STATUS: [u8; 6] = [0x01, 0x04, 0x00, 0x60, 0x00, 0x01];
-
-#[test]
-fn the_reference_crc_is_crc16_modbus() {
-    // The catalogue check value of CRC-16/MODBUS, and the classic "01 03 00 00 00 0A" → C5 CD.
-    assert_eq!(crc16_modbus(b"123456789"), 0x4B37);
-    assert_eq!(
-        with_crc(&[0x01, 0x03, 0x00, 0x00, 0x00, 0x0A])[6..],
-        [0xC5, 0xCD]
-    );
-}
 
 #[test]
 fn change_address_sequence_1_2_1() {

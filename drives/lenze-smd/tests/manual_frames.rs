@@ -19,7 +19,8 @@ use lenze_smd::types::{
     ParameterConfiguration, SpeedCommandSource, SpeedReference,
 };
 use lenze_smd::{Command, LenzeSmd, SmdError, Trigger, UnlockError, Variant, VariantSelection};
-use scripted_line::{client, crc16_modbus, with_crc, with_crc_as_printed, ScriptedLine};
+use peer_support::modbus_crc::{with_crc, with_crc_as_printed};
+use scripted_line::{client, ScriptedLine};
 
 const SA: u8 = 0x0A;
 
@@ -46,15 +47,6 @@ const LOCK: [u8; 6] = [SA, 0x06, 0x00, 0x01, 0x00, 0x02];
 /// The request frames (without CRC) as the manual prints them.
 fn frames(requests: &[&[u8]]) -> Vec<Vec<u8>> {
     requests.iter().map(|r| with_crc(r)).collect()
-}
-
-#[test]
-fn the_reference_crc_is_crc16_modbus() {
-    assert_eq!(crc16_modbus(b"123456789"), 0x4B37);
-    assert_eq!(
-        with_crc(&[0x01, 0x03, 0x00, 0x00, 0x00, 0x0A])[6..],
-        [0xC5, 0xCD]
-    );
 }
 
 #[test]

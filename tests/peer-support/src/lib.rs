@@ -1,5 +1,9 @@
-//! What every peer test needs, in one place: the workspace root, the python that has the pinned
-//! peers, a process guard that kills by PID, and socat pty pairs.
+//! What the workspace's tests share, in one place: the workspace root, the python that has the
+//! pinned peers, a process guard that kills by PID, socat pty pairs, an independent Modbus CRC,
+//! and the Kinco manual's telegram list.
+
+pub mod kinco_telegrams;
+pub mod modbus_crc;
 
 use std::path::{Path, PathBuf};
 use std::process::{Child, ChildStdin, Command, Stdio};

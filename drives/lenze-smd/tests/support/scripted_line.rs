@@ -58,35 +58,3 @@ pub fn client(line: ScriptedLine) -> Client<ScriptedLine, RtuFraming> {
     };
     Client::new(line, RtuFraming, config)
 }
-
-/// CRC-16/MODBUS (poly 0xA001 reflected, init 0xFFFF), bit by bit, sharing nothing with the
-/// table-driven implementation under test.
-pub fn crc16_modbus(bytes: &[u8]) -> u16 {
-    let mut crc = 0xFFFFu16;
-    for &byte in bytes {
-        crc ^= u16::from(byte);
-        for _ in 0..8 {
-            crc = if crc & 1 == 1 {
-                (crc >> 1) ^ 0xA001
-            } else {
-                crc >> 1
-            };
-        }
-    }
-    crc
-}
-
-/// The manual's frame bytes (up to its "CRCH CRCL" placeholder) with the CRC, low byte first
-/// (ERRATA.md E4).
-pub fn with_crc(bytes: &[u8]) -> Vec<u8> {
-    let mut frame = bytes.to_vec();
-    frame.extend_from_slice(&crc16_modbus(bytes).to_le_bytes());
-    frame
-}
-
-/// The same bytes with the CRC in the order the manual prints it, "CRCH CRCL".
-pub fn with_crc_as_printed(bytes: &[u8]) -> Vec<u8> {
-    let mut frame = bytes.to_vec();
-    frame.extend_from_slice(&crc16_modbus(bytes).to_be_bytes());
-    frame
-}

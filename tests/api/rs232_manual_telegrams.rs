@@ -15,6 +15,7 @@ use drivebus::stream::ByteStream;
 use drivebus::units::Rpm;
 use drivebus::{BusError, Error};
 use drivegen_tests::kinco_rs232::KincoRs232;
+use peer_support::kinco_telegrams::printed;
 
 /// A drive on a wire that records every telegram sent and answers it at once: downloads with
 /// "written", uploads of the encoder resolution with 10000, other uploads with 0x0437.
@@ -56,27 +57,6 @@ impl ByteStream for Wire {
 }
 
 type Drive = KincoRs232<Rs232Link<Rs232Client<Wire>>>;
-
-/// The manual's telegrams, `(line, bytes)`.
-fn printed() -> Vec<(u32, Vec<u8>)> {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/fixtures/kinco-rs232/manual-telegrams.txt"
-    );
-    std::fs::read_to_string(path)
-        .unwrap()
-        .lines()
-        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
-        .map(|l| {
-            let (line, hex) = l.split_once(' ').unwrap();
-            let bytes = hex
-                .split_whitespace()
-                .map(|b| u8::from_str_radix(b, 16).unwrap())
-                .collect();
-            (line.parse().unwrap(), bytes)
-        })
-        .collect()
-}
 
 /// What the manual does at `line`, through the generated API.
 fn act(drive: &mut Drive, line: u32) -> Result<(), Error> {
