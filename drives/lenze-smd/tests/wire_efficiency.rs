@@ -11,7 +11,8 @@ use drivebus::modbus::rtu::RtuFraming;
 use drivebus::modbus::transport::Client;
 use drivebus::modbus::{ModbusLink, UnitId};
 use lenze_smd::{params, LenzeSmd};
-use scripted_line::{client, with_crc, ScriptedLine};
+use peer_support::modbus_crc::with_crc;
+use scripted_line::{client, ScriptedLine};
 
 const SA: u8 = 0x0A;
 
