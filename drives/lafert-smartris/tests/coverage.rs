@@ -127,74 +127,9 @@ fn every_described_register_is_in_a_manual_list() {
     );
 }
 
-/// A raw number as the manuals print it: decimal or `0x` hex, maybe negative.
-fn raw_number(text: &str) -> i128 {
-    let (negative, digits) = match text.strip_prefix('-') {
-        Some(rest) => (true, rest),
-        None => (false, text),
-    };
-    let value = match digits
-        .strip_prefix("0x")
-        .or_else(|| digits.strip_prefix("0X"))
-    {
-        Some(hex) => i128::from_str_radix(hex, 16),
-        None => digits.parse(),
-    }
-    .unwrap_or_else(|e| panic!("bad number {text:?} in manual_table.txt: {e}"));
-    if negative {
-        -value
-    } else {
-        value
-    }
-}
-
-/// A scale `N/D` in lowest terms (the manuals write 10/4095 V, the comparator 2/819).
-fn reduced(scale: &str) -> String {
-    let Some((numerator, denominator)) = scale.split_once('/') else {
-        return scale.to_owned();
-    };
-    let (n, d) = (raw_number(numerator), raw_number(denominator));
-    let (mut a, mut b) = (n.abs(), d.abs());
-    while b != 0 {
-        (a, b) = (b, a % b);
-    }
-    match d / a {
-        1 => (n / a).to_string(),
-        den => format!("{}/{den}", n / a),
-    }
-}
-
-/// The table's rows with the manuals' notation normalised to the comparator's forms: hex numbers
-/// as decimal, fractions in lowest terms, enum and allowed values ascending, Modbus addresses
-/// in lower-case hex. Only the notation changes, never a value.
+/// The table typed from the manuals, in their notation (`manual_table::notation`).
 fn manual_rows() -> Vec<Row> {
-    let mut rows = manual_table::parse(include_str!("manual_table.txt"));
-    for row in &mut rows {
-        for (key, value) in row.properties.iter_mut() {
-            match key.as_str() {
-                "modbus" => *value = value.to_lowercase(),
-                "scale" => *value = reduced(value),
-                "values" | "allowed" => {
-                    let mut numbers: Vec<i128> = value.split(',').map(raw_number).collect();
-                    numbers.sort_unstable();
-                    *value = numbers
-                        .iter()
-                        .map(ToString::to_string)
-                        .collect::<Vec<_>>()
-                        .join(",");
-                }
-                "range" => {
-                    let (min, max) = value.split_once("..").unwrap_or_else(|| {
-                        panic!("`{}` range {value:?} is not MIN..MAX", row.name)
-                    });
-                    *value = format!("{}..{}", raw_number(min), raw_number(max));
-                }
-                "default" if !value.starts_with('$') => *value = raw_number(value).to_string(),
-                _ => {}
-            }
-        }
-    }
-    rows
+    manual_table::parse(include_str!("manual_table.txt"))
 }
 
 #[test]

@@ -40,6 +40,8 @@ use std::fmt::Write as _;
 
 use drivegen::ir::{Access, Device, ModbusAddress, ObjectAddress, Parameter, Pdo, Scale};
 
+pub mod notation;
+
 /// One row of a manual table: a parameter's name and the properties the manual gives it.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Row {
@@ -51,8 +53,10 @@ pub struct Row {
     pub properties: BTreeMap<String, String>,
 }
 
-/// Reads a table: one row per line, `#` starts a comment. Panics, naming the line, on a row it
-/// cannot read (a test-support crate: the panic is the test failure).
+/// Reads a table: one row per line, `#` starts a comment. Numbers may be written as the manual
+/// prints them (`0x` hex, fractions not in lowest terms, values in any order): [`notation`]
+/// brings them to the forms [`render`] prints. Panics, naming the line, on a row it cannot read
+/// (a test-support crate: the panic is the test failure).
 pub fn parse(text: &str) -> Vec<Row> {
     text.lines()
         .enumerate()
@@ -79,7 +83,7 @@ fn parse_row(content: &str, table_line: usize) -> Row {
         } else if !KEYS.contains(&key) {
             panic!("table line {table_line}: unknown key `{key}` (known: {KEYS:?})");
         } else if properties
-            .insert(key.to_owned(), value.to_owned())
+            .insert(key.to_owned(), notation::normalised(key, value))
             .is_some()
         {
             panic!("table line {table_line}: `{key}` given twice");
