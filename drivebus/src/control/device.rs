@@ -1,9 +1,52 @@
-//! The device side of CiA 402: a drive double that reacts to controlwords as the standard's
-//! command table says (levels of bits 0-3, rising edge of bit 7) and reports its statusword. It is
-//! the test double of the planner and of independent masters (python `canopen.BaseNode402`), and
-//! a building block for the simulator.
+//! The device side of CiA 402: a drive that takes the transitions of [`TABLE`] the controlwords
+//! it receives command (levels of bits 0-3, rising edge of bit 7) and reports its statusword. It
+//! is the simulator's CiA 402 behaviour (drivesim wraps it) and the test double of the planner and
+//! of independent masters (python `canopen.BaseNode402`).
+//!
+//! # The statusword of each state
+//!
+//! Bits 0-3, 5 and 6 follow the state coding of CiA 402 (the patterns of [`TABLE`]); where the
+//! coding leaves bit 5 free (`x`), it is 0, as the SWD manual prints switch on disabled (0x0040)
+//! and not ready to switch on (0x0000) (`002_7f0dd2fb8f792336.txt` lines 2389-2390). The other
+//! bits are decided as follows:
+//!
+//! * bit 4, voltage enabled: set while the high-level power is on, which CiA 402 switches on with
+//!   transition 3 and off with transitions 6, 8, 9, 10, 12 and 14 (the transition table as the SWD
+//!   manual quotes it, lines 2262-2277; the Lafert guide: output stage off in ready to switch on,
+//!   on in switched on, operation enabled and quick stop active, `000_ac225e0ba9cf582c.txt` lines
+//!   4905-4925). Kinco reports operation enabled as 0x..37 (`003_8cc8f7f4f05b8633.txt` lines
+//!   2357, 2498, 3260, 3274); the SWD (lines 2392-2393) and Lafert (lines 5368, 5374) manuals
+//!   print 0x23 / 0x27 without it (their ERRATA.md);
+//! * bit 9, remote: set whenever the controlword is processed, i.e. in every state but not ready
+//!   to switch on, before transition 1 activates communication (SWD line 2263; bit table line
+//!   2366). The three manuals' examples show it clear (ERRATA.md of each drive); masters that
+//!   honour it declare the `honours-remote` quirk;
+//! * bit 7 (warning), bit 8 and bits 10-15 (target reached, mode-specific, manufacturer): 0; the
+//!   device models no warning, motion or mode.
+//!
+//! | state | statusword |
+//! |---|---|
+//! | not ready to switch on | 0x0000 |
+//! | switch on disabled | 0x0240 |
+//! | ready to switch on | 0x0221 |
+//! | switched on | 0x0233 |
+//! | operation enabled | 0x0237 |
+//! | quick stop active | 0x0217 |
+//! | fault reaction active | 0x021F |
+//! | fault | 0x0208 |
+//!
+//! # Commands
+//!
+//! A controlword is decoded by the CiA 402 command table (SWD lines 2325-2334) and the command
+//! takes the transition of [`TABLE`] it names from the present state. Two rows of that table are
+//! not single transitions of [`TABLE`]: quick stop outside operation enabled is transitions 7 and
+//! 10, which [`TABLE`] lists under disable voltage; enable operation in ready to switch on is
+//! "switch on + enable operation", transition 3 followed at once by 4. Transition 16 and what a
+//! quick stop leads to depend on the [`QuickStopOption`].
 
-use super::cia402::{State, FAULT_RESET_BIT};
+use super::cia402::{command, State, FAULT_RESET_BIT, REMOTE_BIT, TABLE, VOLTAGE_ENABLED_BIT};
+use super::machine::{TransitionDef, TransitionKind};
+use super::quirks::Quirks;
 
 /// A device control command decoded from a controlword (CiA 402 command table).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -15,14 +58,70 @@ enum Command {
     QuickStop,
 }
 
-fn decode(controlword: u16) -> Option<Command> {
-    match controlword {
-        w if w & 0x82 == 0x00 => Some(Command::DisableVoltage),
-        w if w & 0x86 == 0x02 => Some(Command::QuickStop),
-        w if w & 0x87 == 0x06 => Some(Command::Shutdown),
-        w if w & 0x8F == 0x07 => Some(Command::SwitchOn),
-        w if w & 0x8F == 0x0F => Some(Command::EnableOperation),
-        _ => None,
+impl Command {
+    /// The command a controlword encodes (bits 0-3 and 7), `None` for no command of the table.
+    const fn decode(controlword: u16) -> Option<Command> {
+        match controlword {
+            w if w & 0x82 == 0x00 => Some(Command::DisableVoltage),
+            w if w & 0x86 == 0x02 => Some(Command::QuickStop),
+            w if w & 0x87 == 0x06 => Some(Command::Shutdown),
+            w if w & 0x8F == 0x07 => Some(Command::SwitchOn),
+            w if w & 0x8F == 0x0F => Some(Command::EnableOperation),
+            _ => None,
+        }
+    }
+
+    /// The value [`TABLE`] lists for the command's transitions.
+    const fn value(self) -> u16 {
+        match self {
+            Command::Shutdown => command::SHUTDOWN,
+            Command::SwitchOn => command::SWITCH_ON,
+            Command::EnableOperation => command::ENABLE_OPERATION,
+            Command::DisableVoltage => command::DISABLE_VOLTAGE,
+            Command::QuickStop => command::QUICK_STOP,
+        }
+    }
+}
+
+/// What a quick stop leads to: the quick stop option code (605Ah) as CiA 402 groups its values
+/// (SWD manual lines 2274 and 2277; Kinco's values, `003_8cc8f7f4f05b8633.txt` line 2128).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum QuickStopOption {
+    /// Code 0, disable drive function: the drive is switched off at once (transitions 11 and 12
+    /// together; Kinco: "stop without control").
+    SwitchOff,
+    /// Codes 1-4: the drive stops, then goes to switch on disabled by itself (transition 12 when
+    /// the quick stop function is completed, at the next [`Cia402Device::tick`]).
+    StopThenSwitchOff,
+    /// Codes 5-8: the drive stops and stays in quick stop active; enable operation resumes
+    /// (transition 16).
+    StopAndResume,
+    /// The drive stops and stays in quick stop active until disable voltage (transition 12): a
+    /// drive whose code is unknown (no 605Ah, a manufacturer-specific value) and which does not
+    /// declare the `quick-stop-to-operation-enabled` quirk. The planner assumes no more.
+    StopAndHold,
+}
+
+impl QuickStopOption {
+    /// The group of a quick stop option code (605Ah).
+    pub const fn from_code(code: i128) -> Self {
+        match code {
+            0 => QuickStopOption::SwitchOff,
+            1..=4 => QuickStopOption::StopThenSwitchOff,
+            5..=8 => QuickStopOption::StopAndResume,
+            _ => QuickStopOption::StopAndHold,
+        }
+    }
+
+    /// For a drive without a quick stop option code: the quirk
+    /// [`QuickStopToOperationEnabled`](super::quirks::Quirk::QuickStopToOperationEnabled)
+    /// declares transition 16; without it the drive holds.
+    pub const fn from_quirks(quirks: Quirks) -> Self {
+        if quirks.quick_stop_to_operation_enabled {
+            QuickStopOption::StopAndResume
+        } else {
+            QuickStopOption::StopAndHold
+        }
     }
 }
 
@@ -31,6 +130,7 @@ fn decode(controlword: u16) -> Option<Command> {
 pub struct Cia402Device {
     state: State,
     controlword: u16,
+    quick_stop: QuickStopOption,
 }
 
 impl Default for Cia402Device {
@@ -40,11 +140,13 @@ impl Default for Cia402Device {
 }
 
 impl Cia402Device {
-    /// A device in `state` whose last controlword was 0.
+    /// A device in `state` whose last controlword was 0, holding in quick stop active
+    /// ([`QuickStopOption::StopAndHold`]).
     pub const fn in_state(state: State) -> Self {
         Self {
             state,
             controlword: 0,
+            quick_stop: QuickStopOption::StopAndHold,
         }
     }
 
@@ -52,6 +154,17 @@ impl Cia402Device {
     pub const fn with_controlword(mut self, controlword: u16) -> Self {
         self.controlword = controlword;
         self
+    }
+
+    /// The same device with quick stop option `option`.
+    pub const fn with_quick_stop_option(mut self, option: QuickStopOption) -> Self {
+        self.quick_stop = option;
+        self
+    }
+
+    /// Sets what a quick stop leads to from now on (605Ah may be written at run time).
+    pub fn set_quick_stop_option(&mut self, option: QuickStopOption) {
+        self.quick_stop = option;
     }
 
     /// The current state.
@@ -64,93 +177,114 @@ impl Cia402Device {
         self.controlword
     }
 
-    /// The statusword: the state's bits, remote (bit 9) always, voltage enabled (bit 4) while the
-    /// power stage may be on.
-    pub const fn statusword(&self) -> u16 {
-        const REMOTE: u16 = 1 << 9;
-        REMOTE
-            | match self.state {
-                State::NotReadyToSwitchOn => 0x0000,
-                State::SwitchOnDisabled => 0x0040,
-                State::ReadyToSwitchOn => 0x0031,
-                State::SwitchedOn => 0x0033,
-                State::OperationEnabled => 0x0037,
-                State::QuickStopActive => 0x0017,
-                State::FaultReactionActive => 0x001F,
-                State::Fault => 0x0018,
-            }
+    /// What a quick stop leads to.
+    pub const fn quick_stop_option(&self) -> QuickStopOption {
+        self.quick_stop
     }
 
-    /// Receives a controlword and takes the transition it commands, if any.
-    pub fn write_controlword(&mut self, controlword: u16) {
+    /// The statusword of the present state (the table in the module documentation).
+    pub const fn statusword(&self) -> u16 {
+        statusword(self.state)
+    }
+
+    /// Receives a controlword and takes the transition it commands, if any; returns the last
+    /// transition taken (for "switch on + enable operation", transition 4).
+    pub fn write_controlword(&mut self, controlword: u16) -> Option<&'static TransitionDef> {
         let rising_reset =
             controlword & FAULT_RESET_BIT != 0 && self.controlword & FAULT_RESET_BIT == 0;
         self.controlword = controlword;
-        use Command::*;
-        use State::*;
-        self.state = match (self.state, decode(controlword)) {
-            (Fault, _) if rising_reset => SwitchOnDisabled,
-            (SwitchOnDisabled, Some(Shutdown)) => ReadyToSwitchOn,
-            (ReadyToSwitchOn, Some(SwitchOn | EnableOperation)) => SwitchedOn,
-            (ReadyToSwitchOn, Some(DisableVoltage | QuickStop)) => SwitchOnDisabled,
-            (SwitchedOn, Some(EnableOperation)) => OperationEnabled,
-            (SwitchedOn, Some(Shutdown)) => ReadyToSwitchOn,
-            (SwitchedOn, Some(DisableVoltage | QuickStop)) => SwitchOnDisabled,
-            (OperationEnabled, Some(SwitchOn)) => SwitchedOn,
-            (OperationEnabled, Some(Shutdown)) => ReadyToSwitchOn,
-            (OperationEnabled, Some(DisableVoltage)) => SwitchOnDisabled,
-            (OperationEnabled, Some(QuickStop)) => QuickStopActive,
-            (QuickStopActive, Some(DisableVoltage)) => SwitchOnDisabled,
-            (unchanged, _) => unchanged,
-        };
-    }
-
-    /// A fault occurs (transition 13).
-    pub fn raise_fault(&mut self) {
-        self.state = State::FaultReactionActive;
-    }
-
-    /// Time passes: the automatic transitions 1 and 14 happen.
-    pub fn tick(&mut self) {
-        self.state = match self.state {
-            State::NotReadyToSwitchOn => State::SwitchOnDisabled,
-            State::FaultReactionActive => State::Fault,
-            other => other,
-        };
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn standard_controlwords_take_the_standard_transitions() {
-        let mut device = Cia402Device::default();
-        for (controlword, state) in [
-            (0x06, State::ReadyToSwitchOn),
-            (0x07, State::SwitchedOn),
-            (0x0F, State::OperationEnabled),
-            (0x02, State::QuickStopActive),
-            (0x0F, State::QuickStopActive),
-            (0x00, State::SwitchOnDisabled),
-        ] {
-            device.write_controlword(controlword);
-            assert_eq!(device.state(), state, "after {controlword:#04x}");
-            assert_eq!(State::decode(device.statusword()), Some(state));
+        if self.state == State::Fault {
+            return if rising_reset {
+                self.take(command::FAULT_RESET)
+            } else {
+                None
+            };
+        }
+        let command = Command::decode(controlword)?;
+        match (self.state, command) {
+            // Quick stop outside operation enabled: transitions 7 and 10 (disable voltage's).
+            (State::ReadyToSwitchOn | State::SwitchedOn, Command::QuickStop) => {
+                self.take(command::DISABLE_VOLTAGE)
+            }
+            // Switch on + enable operation: transition 3, then 4 at once.
+            (State::ReadyToSwitchOn, Command::EnableOperation) => {
+                self.take(command::SWITCH_ON)?;
+                self.take(command::ENABLE_OPERATION)
+            }
+            (State::QuickStopActive, Command::EnableOperation)
+                if self.quick_stop != QuickStopOption::StopAndResume =>
+            {
+                None
+            }
+            (State::OperationEnabled, Command::QuickStop)
+                if self.quick_stop == QuickStopOption::SwitchOff =>
+            {
+                self.take(command::QUICK_STOP)?;
+                self.take(command::DISABLE_VOLTAGE)
+            }
+            _ => self.take(command.value()),
         }
     }
 
-    #[test]
-    fn fault_reset_needs_a_rising_edge() {
-        let mut device = Cia402Device::default();
-        device.write_controlword(0x80);
-        device.raise_fault();
-        device.tick();
-        device.write_controlword(0x80);
-        assert_eq!(device.state(), State::Fault);
-        device.write_controlword(0x00);
-        device.write_controlword(0x80);
-        assert_eq!(device.state(), State::SwitchOnDisabled);
+    /// A fault occurs (transition 13).
+    pub fn raise_fault(&mut self) -> Option<&'static TransitionDef> {
+        self.take_kind(TransitionKind::External)
+    }
+
+    /// Time passes: the drive takes the transitions it takes by itself (1, 14, and 12 once a quick
+    /// stop with [`QuickStopOption::StopThenSwitchOff`] has stopped the drive).
+    pub fn tick(&mut self) -> Option<&'static TransitionDef> {
+        match (self.state, self.quick_stop) {
+            (State::QuickStopActive, QuickStopOption::StopThenSwitchOff) => {
+                self.take(command::DISABLE_VOLTAGE)
+            }
+            _ => self.take_kind(TransitionKind::Automatic),
+        }
+    }
+
+    /// Takes the transition of [`TABLE`] that the command `value` causes from the present state.
+    fn take(&mut self, value: u16) -> Option<&'static TransitionDef> {
+        self.take_kind(TransitionKind::Command(value))
+    }
+
+    fn take_kind(&mut self, kind: TransitionKind) -> Option<&'static TransitionDef> {
+        let from = self.state.index();
+        let transition = TABLE
+            .transitions
+            .iter()
+            .find(|t| t.from == from && t.kind == kind)?;
+        self.state = *State::ALL.get(usize::from(transition.to))?;
+        Some(transition)
     }
 }
+
+/// The statusword a device in `state` reports (the table in the module documentation).
+pub const fn statusword(state: State) -> u16 {
+    const QUICK_STOP_BIT: u16 = 1 << 5;
+    let coding = match state {
+        State::NotReadyToSwitchOn => 0x0000,
+        State::SwitchOnDisabled => 0x0040,
+        State::ReadyToSwitchOn => 0x0001 | QUICK_STOP_BIT,
+        State::SwitchedOn => 0x0003 | QUICK_STOP_BIT,
+        State::OperationEnabled => 0x0007 | QUICK_STOP_BIT,
+        State::QuickStopActive => 0x0007,
+        State::FaultReactionActive => 0x000F,
+        State::Fault => 0x0008,
+    };
+    let voltage = match state {
+        State::SwitchedOn
+        | State::OperationEnabled
+        | State::QuickStopActive
+        | State::FaultReactionActive => VOLTAGE_ENABLED_BIT,
+        _ => 0,
+    };
+    let remote = match state {
+        State::NotReadyToSwitchOn => 0,
+        _ => REMOTE_BIT,
+    };
+    coding | voltage | remote
+}
+
+#[cfg(test)]
+#[path = "device_tests.rs"]
+mod tests;
