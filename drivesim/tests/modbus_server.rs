@@ -212,21 +212,21 @@ fn the_kinco_quick_stop_mode_decides_where_a_quick_stop_leads() {
         for controlword in [0x06, 0x07, 0x0F] {
             write(0x3100, controlword);
         }
-        assert_eq!(statusword(), 0x0237, "operation enabled");
+        assert_eq!(statusword(), 0x0037, "operation enabled");
         write(0x3100, 0x0B);
         statusword()
     };
     assert_eq!(
         quick_stop_with(0),
-        0x0240,
+        0x0040,
         "0 stop without control: switched off"
     );
     assert_eq!(
         quick_stop_with(2),
-        0x0240,
+        0x0040,
         "2 quick stop ramp, then switched off"
     );
-    assert_eq!(quick_stop_with(6), 0x0217, "6 stays in quick stop active");
+    assert_eq!(quick_stop_with(6), 0x0017, "6 stays in quick stop active");
     write(0x3100, 0x0F);
-    assert_eq!(statusword(), 0x0237, "transition 16 with code 6");
+    assert_eq!(statusword(), 0x0037, "transition 16 with code 6");
 }

@@ -5,9 +5,13 @@ use super::*;
 use crate::control::device::Cia402Device;
 use crate::control::quirks::Quirk;
 
-/// The statusword a CiA 402 device shows in `state` (the device side's decided values).
+/// The statusword a CiA 402 device shows in `state`, remote (bit 9) set where it is processing
+/// the controlword (the device side's values for a drive that honours remote).
 fn statusword(state: State) -> u16 {
-    crate::control::device::statusword(state)
+    let remote = Quirks::STANDARD.with(Quirk::HonoursRemote);
+    Cia402Device::in_state(state)
+        .with_quirks(remote)
+        .statusword()
 }
 
 fn seen(state: State) -> Observation {

@@ -1,43 +1,47 @@
-//! The device side of CiA 402: a drive that takes the transitions of [`TABLE`] the controlwords
-//! it receives command (levels of bits 0-3, rising edge of bit 7) and reports its statusword. It
-//! is the simulator's CiA 402 behaviour (drivesim wraps it) and the test double of the planner and
-//! of independent masters (python `canopen.BaseNode402`).
+//! The device side of CiA 402: a drive that takes the transitions of [`TABLE`] that the
+//! controlwords it receives command (levels of bits 0-3, rising edge of bit 7) and reports its
+//! statusword. It is the simulator's CiA 402 behaviour (drivesim wraps it) and the test double of
+//! the planner and of independent masters (python `canopen.BaseNode402`).
 //!
 //! # The statusword of each state
 //!
 //! Bits 0-3, 5 and 6 follow the state coding of CiA 402 (the patterns of [`TABLE`]); where the
-//! coding leaves bit 5 free (`x`), it is 0, as the SWD manual prints switch on disabled (0x0040)
-//! and not ready to switch on (0x0000) (`002_7f0dd2fb8f792336.txt` lines 2389-2390). The other
-//! bits are decided as follows:
+//! coding leaves bit 5 free (`x`), it is 0, as the SWD manual prints not ready to switch on
+//! (0x0000), switch on disabled (0x0040) and fault (0x0008) (`002_7f0dd2fb8f792336.txt` lines
+//! 2390-2391, 4158). The bit table is the SWD manual's (lines 2355-2375). The other bits:
 //!
 //! * bit 4, voltage enabled: set while the high-level power is on, which CiA 402 switches on with
 //!   transition 3 and off with transitions 6, 8, 9, 10, 12 and 14 (the transition table as the SWD
-//!   manual quotes it, lines 2262-2277; the Lafert guide: output stage off in ready to switch on,
-//!   on in switched on, operation enabled and quick stop active, `000_ac225e0ba9cf582c.txt` lines
-//!   4905-4925). Kinco reports operation enabled as 0x..37 (`003_8cc8f7f4f05b8633.txt` lines
-//!   2357, 2498, 3260, 3274); the SWD (lines 2392-2393) and Lafert (lines 5368, 5374) manuals
-//!   print 0x23 / 0x27 without it (their ERRATA.md);
-//! * bit 9, remote: set whenever the controlword is processed, i.e. in every state but not ready
-//!   to switch on, before transition 1 activates communication (SWD line 2263; bit table line
-//!   2366). The three manuals' examples show it clear (ERRATA.md of each drive); masters that
-//!   honour it declare the `honours-remote` quirk;
+//!   manual quotes it, lines 2258-2275). The Lafert guide has the output stage off in ready to
+//!   switch on and on in switched on, operation enabled and quick stop active
+//!   (`000_ac225e0ba9cf582c.txt` lines 4919-4937); Kinco reports operation enabled as 0x..37
+//!   (`003_8cc8f7f4f05b8633.txt` lines 2359, 2498, 2513, 3260, 3274). The SWD (lines 2393-2394,
+//!   4161-4163) and Lafert (lines 5368, 5374) manuals print 0x23 / 0x27 / 0x07 without it (their
+//!   ERRATA.md);
+//! * bit 9, remote: clear, as every statusword the three manuals print shows it, although the
+//!   drives process the controlword (SWD: the SDO answer `4B 41 60 00 XX 00 00 00` whose high
+//!   byte is 00, lines 4171-4175, and the tables of lines 2390-2394 and 4158-4163; Kinco: 0xC037,
+//!   0xD437 at the lines above). CiA 402 sets it while the controlword is processed (key line
+//!   2368; each drive's ERRATA.md). A drive that declares the `honours-remote` quirk, the one on
+//!   which the planner waits for bit 9, sets it in every state but not ready to switch on, before
+//!   transition 1 activates communication (line 2260): [`Cia402Device::with_quirks`];
 //! * bit 7 (warning), bit 8 and bits 10-15 (target reached, mode-specific, manufacturer): 0; the
 //!   device models no warning, motion or mode.
 //!
-//! | state | statusword |
-//! |---|---|
-//! | not ready to switch on | 0x0000 |
-//! | switch on disabled | 0x0240 |
-//! | ready to switch on | 0x0221 |
-//! | switched on | 0x0233 |
-//! | operation enabled | 0x0237 |
-//! | quick stop active | 0x0217 |
-//! | fault reaction active | 0x021F |
-//! | fault | 0x0208 |
+//! | state | statusword | with `honours-remote` |
+//! |---|---|---|
+//! | not ready to switch on | 0x0000 | 0x0000 |
+//! | switch on disabled | 0x0040 | 0x0240 |
+//! | ready to switch on | 0x0021 | 0x0221 |
+//! | switched on | 0x0033 | 0x0233 |
+//! | operation enabled | 0x0037 | 0x0237 |
+//! | quick stop active | 0x0017 | 0x0217 |
+//! | fault reaction active | 0x001F | 0x021F |
+//! | fault | 0x0008 | 0x0208 |
 //!
 //! # Commands
 //!
-//! A controlword is decoded by the CiA 402 command table (SWD lines 2325-2334) and the command
+//! A controlword is decoded by the CiA 402 command table (SWD lines 2336-2346) and the command
 //! takes the transition of [`TABLE`] it names from the present state. Two rows of that table are
 //! not single transitions of [`TABLE`]: quick stop outside operation enabled is transitions 7 and
 //! 10, which [`TABLE`] lists under disable voltage; enable operation in ready to switch on is
@@ -84,7 +88,7 @@ impl Command {
 }
 
 /// What a quick stop leads to: the quick stop option code (605Ah) as CiA 402 groups its values
-/// (SWD manual lines 2274 and 2277; Kinco's values, `003_8cc8f7f4f05b8633.txt` line 2128).
+/// (SWD manual lines 2271 and 2275; Kinco's values, `003_8cc8f7f4f05b8633.txt` line 2128).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum QuickStopOption {
     /// Code 0, disable drive function: the drive is switched off at once (transitions 11 and 12
@@ -131,6 +135,7 @@ pub struct Cia402Device {
     state: State,
     controlword: u16,
     quick_stop: QuickStopOption,
+    remote: bool,
 }
 
 impl Default for Cia402Device {
@@ -140,14 +145,24 @@ impl Default for Cia402Device {
 }
 
 impl Cia402Device {
-    /// A device in `state` whose last controlword was 0, holding in quick stop active
-    /// ([`QuickStopOption::StopAndHold`]).
+    /// A device in `state` whose last controlword was 0, of a drive without quirks: holding in
+    /// quick stop active ([`QuickStopOption::StopAndHold`]), remote (bit 9) clear.
     pub const fn in_state(state: State) -> Self {
         Self {
             state,
             controlword: 0,
             quick_stop: QuickStopOption::StopAndHold,
+            remote: false,
         }
+    }
+
+    /// The same device for a drive with `quirks`: `honours-remote` sets bit 9 while the
+    /// controlword is processed; `quick-stop-to-operation-enabled` gives transition 16
+    /// ([`QuickStopOption::from_quirks`], until an option code is set).
+    pub const fn with_quirks(mut self, quirks: Quirks) -> Self {
+        self.remote = quirks.honours_remote;
+        self.quick_stop = QuickStopOption::from_quirks(quirks);
+        self
     }
 
     /// The same device, its last controlword set to `controlword` without acting on it.
@@ -184,7 +199,12 @@ impl Cia402Device {
 
     /// The statusword of the present state (the table in the module documentation).
     pub const fn statusword(&self) -> u16 {
-        statusword(self.state)
+        let processed = !matches!(self.state, State::NotReadyToSwitchOn);
+        if self.remote && processed {
+            statusword(self.state) | REMOTE_BIT
+        } else {
+            statusword(self.state)
+        }
     }
 
     /// Receives a controlword and takes the transition it commands, if any; returns the last
@@ -258,7 +278,8 @@ impl Cia402Device {
     }
 }
 
-/// The statusword a device in `state` reports (the table in the module documentation).
+/// The statusword a device in `state` reports, remote (bit 9) clear (the table in the module
+/// documentation).
 pub const fn statusword(state: State) -> u16 {
     const QUICK_STOP_BIT: u16 = 1 << 5;
     let coding = match state {
@@ -278,11 +299,7 @@ pub const fn statusword(state: State) -> u16 {
         | State::FaultReactionActive => VOLTAGE_ENABLED_BIT,
         _ => 0,
     };
-    let remote = match state {
-        State::NotReadyToSwitchOn => 0,
-        _ => REMOTE_BIT,
-    };
-    coding | voltage | remote
+    coding | voltage
 }
 
 #[cfg(test)]

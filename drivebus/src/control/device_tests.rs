@@ -7,13 +7,13 @@ use crate::control::quirks::Quirk;
 /// The decided statuswords (module documentation), written out rather than computed.
 const STATUSWORDS: [(State, u16); 8] = [
     (State::NotReadyToSwitchOn, 0x0000),
-    (State::SwitchOnDisabled, 0x0240),
-    (State::ReadyToSwitchOn, 0x0221),
-    (State::SwitchedOn, 0x0233),
-    (State::OperationEnabled, 0x0237),
-    (State::QuickStopActive, 0x0217),
-    (State::FaultReactionActive, 0x021F),
-    (State::Fault, 0x0208),
+    (State::SwitchOnDisabled, 0x0040),
+    (State::ReadyToSwitchOn, 0x0021),
+    (State::SwitchedOn, 0x0033),
+    (State::OperationEnabled, 0x0037),
+    (State::QuickStopActive, 0x0017),
+    (State::FaultReactionActive, 0x001F),
+    (State::Fault, 0x0008),
 ];
 
 #[test]
@@ -36,9 +36,30 @@ fn voltage_enabled_shows_while_the_high_level_power_is_on() {
                 | State::FaultReactionActive
         );
         assert_eq!(word & VOLTAGE_ENABLED_BIT != 0, powered, "{state}");
-        let remote = state != State::NotReadyToSwitchOn;
-        assert_eq!(word & REMOTE_BIT != 0, remote, "{state}");
     }
+}
+
+#[test]
+fn remote_shows_only_on_a_drive_that_honours_it_while_the_controlword_is_processed() {
+    let honours = Quirks::STANDARD.with(Quirk::HonoursRemote);
+    for (state, word) in STATUSWORDS {
+        assert_eq!(word & REMOTE_BIT, 0, "{state}");
+        let remote = Cia402Device::in_state(state)
+            .with_quirks(honours)
+            .statusword();
+        let processed = state != State::NotReadyToSwitchOn;
+        assert_eq!(remote & REMOTE_BIT != 0, processed, "{state}");
+        assert_eq!(remote & !REMOTE_BIT, word, "{state}");
+    }
+}
+
+#[test]
+fn the_quirk_for_transition_16_gives_it_until_an_option_code_is_set() {
+    let quirks = Quirks::STANDARD.with(Quirk::QuickStopToOperationEnabled);
+    let mut device = Cia402Device::in_state(State::QuickStopActive).with_quirks(quirks);
+    assert_eq!(device.quick_stop_option(), QuickStopOption::StopAndResume);
+    device.set_quick_stop_option(QuickStopOption::from_code(2));
+    assert_eq!(device.write_controlword(0x0F), None);
 }
 
 #[test]
@@ -81,7 +102,7 @@ fn enable_operation_in_ready_to_switch_on_is_transitions_3_and_4() {
     let mut device = Cia402Device::in_state(State::ReadyToSwitchOn);
     let last = device.write_controlword(0x0F);
     assert_eq!(last.map(|t| t.name), Some("4"));
-    assert_eq!(device.statusword(), 0x0237);
+    assert_eq!(device.statusword(), 0x0037);
 }
 
 #[test]
@@ -89,7 +110,7 @@ fn quick_stop_outside_operation_enabled_is_transitions_7_and_10() {
     for (from, name) in [(State::ReadyToSwitchOn, "7"), (State::SwitchedOn, "10")] {
         let mut device = Cia402Device::in_state(from);
         assert_eq!(device.write_controlword(0x02).map(|t| t.name), Some(name));
-        assert_eq!(device.statusword(), 0x0240);
+        assert_eq!(device.statusword(), 0x0040);
     }
 }
 
@@ -103,22 +124,22 @@ fn the_quick_stop_option_decides_where_a_quick_stop_leads() {
         device
     };
     let off = stopped(QuickStopOption::SwitchOff);
-    assert_eq!(off.statusword(), 0x0240, "code 0: switched off at once");
+    assert_eq!(off.statusword(), 0x0040, "code 0: switched off at once");
 
     let mut ramp = stopped(QuickStopOption::StopThenSwitchOff);
-    assert_eq!(ramp.statusword(), 0x0217, "codes 1-4: stopping");
+    assert_eq!(ramp.statusword(), 0x0017, "codes 1-4: stopping");
     assert_eq!(ramp.tick().map(|t| t.name), Some("12"));
     assert_eq!(
         ramp.statusword(),
-        0x0240,
+        0x0040,
         "codes 1-4: then switch on disabled"
     );
 
     let mut resume = stopped(QuickStopOption::StopAndResume);
     resume.tick();
-    assert_eq!(resume.statusword(), 0x0217, "codes 5-8: stays");
+    assert_eq!(resume.statusword(), 0x0017, "codes 5-8: stays");
     assert_eq!(resume.write_controlword(0x0F).map(|t| t.name), Some("16"));
-    assert_eq!(resume.statusword(), 0x0237);
+    assert_eq!(resume.statusword(), 0x0037);
 
     let mut hold = stopped(QuickStopOption::StopAndHold);
     hold.tick();
@@ -154,10 +175,10 @@ fn option_codes_and_quirks_map_to_their_groups() {
 fn a_fault_passes_through_fault_reaction_active() {
     let mut device = Cia402Device::in_state(State::OperationEnabled);
     assert_eq!(device.raise_fault().map(|t| t.name), Some("13"));
-    assert_eq!(device.statusword(), 0x021F);
+    assert_eq!(device.statusword(), 0x001F);
     assert_eq!(device.raise_fault(), None, "already reacting");
     assert_eq!(device.tick().map(|t| t.name), Some("14"));
-    assert_eq!(device.statusword(), 0x0208);
+    assert_eq!(device.statusword(), 0x0008);
     assert_eq!(device.tick(), None);
 }
 
@@ -170,7 +191,7 @@ fn not_ready_to_switch_on_leaves_by_itself() {
         "communication not yet active"
     );
     assert_eq!(device.tick().map(|t| t.name), Some("1"));
-    assert_eq!(device.statusword(), 0x0240);
+    assert_eq!(device.statusword(), 0x0040);
 }
 
 #[test]

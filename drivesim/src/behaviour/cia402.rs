@@ -23,8 +23,8 @@ pub struct Cia402 {
     target_velocity: Option<ParamId>,
     /// The quick stop option code (605Ah), read at each controlword since it may be written.
     quick_stop_option_code: Option<ParamId>,
-    /// What a quick stop leads to on a drive without 605Ah: from the `[cia402]` quirks.
-    quick_stop_without_code: QuickStopOption,
+    /// The `[cia402]` quirks: remote (bit 9) shown, and transition 16 on a drive without 605Ah.
+    quirks: Quirks,
     device: Cia402Device,
 }
 
@@ -32,14 +32,15 @@ impl Cia402 {
     /// Present when the description has 6040h and 6041h; starts in SWITCH ON DISABLED (the
     /// automatic transitions 0 and 1 after power-on).
     pub fn detect(store: &mut Store) -> Option<Self> {
+        let quirks = declared_quirks(store);
         let machine = Self {
             controlword: object(store, 0x6040, 0)?,
             statusword: object(store, 0x6041, 0)?,
             modes: object(store, 0x6060, 0).zip(object(store, 0x6061, 0)),
             target_velocity: object(store, 0x60FF, 0).or_else(|| object(store, 0x6042, 0)),
             quick_stop_option_code: object(store, 0x605A, 0),
-            quick_stop_without_code: QuickStopOption::from_quirks(declared_quirks(store)),
-            device: Cia402Device::default(),
+            quirks,
+            device: Cia402Device::default().with_quirks(quirks),
         };
         machine.show(store);
         Some(machine)
@@ -49,7 +50,10 @@ impl Cia402 {
     fn quick_stop_option(&self, store: &Store) -> QuickStopOption {
         self.quick_stop_option_code
             .and_then(|id| store.int(id))
-            .map_or(self.quick_stop_without_code, QuickStopOption::from_code)
+            .map_or(
+                QuickStopOption::from_quirks(self.quirks),
+                QuickStopOption::from_code,
+            )
     }
 
     fn show(&self, store: &mut Store) {
@@ -111,7 +115,7 @@ impl Behaviour for Cia402 {
     }
 
     fn reset(&mut self, store: &mut Store, shared: &mut Shared) {
-        self.device = Cia402Device::default();
+        self.device = Cia402Device::default().with_quirks(self.quirks);
         self.show(store);
         shared.motion = self.motion();
     }
