@@ -302,3 +302,59 @@ fn node_relative_defaults_hold_the_node_id() {
         );
     }
 }
+
+const SWD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../descriptions/ezwheel-swd");
+
+/// Writes `controlword` to 6040h, then reads 6041h.
+fn command(sdo: &mut BlockingSdo<InProcessEndpoint>, controlword: u16) -> u16 {
+    sdo.download(NodeId(1), 0x6040, 0, &controlword.to_le_bytes())
+        .unwrap();
+    u16::from_le_bytes(upload(sdo, 1, 0x6041, 0).unwrap().try_into().unwrap())
+}
+
+#[test]
+fn cia402_statuswords_are_the_device_sides_in_every_state_a_master_sees() {
+    // drivebus::control::device decides them: CiA 402's state coding, bit 4 while the power is
+    // on, bit 9 clear (the SWD declares no `honours-remote`). The SWD's quick stop option code
+    // is 6 (605Ah default, manual line 2727): quick stop active stays, enable operation resumes
+    // (transition 16, line 2275; the quick start, line 4163).
+    let sim = Simulator::load(SWD).unwrap();
+    let (mut sdo, _node) = start_sim(sim.clone(), 1, None);
+    let statusword =
+        u16::from_le_bytes(upload(&mut sdo, 1, 0x6041, 0).unwrap().try_into().unwrap());
+    assert_eq!(statusword, 0x0040, "switch on disabled");
+    for (controlword, expected, state) in [
+        (0x06, 0x0021, "ready to switch on"),
+        (0x07, 0x0033, "switched on"),
+        (0x0F, 0x0037, "operation enabled"),
+        (0x02, 0x0017, "quick stop active"),
+        (0x0F, 0x0037, "operation enabled (transition 16)"),
+        (0x00, 0x0040, "switch on disabled"),
+    ] {
+        let statusword = command(&mut sdo, controlword);
+        assert_eq!(statusword, expected, "{state} after {controlword:#06x}");
+    }
+    sim.with(|drive| drive.inject_fault(0x3210));
+    let statusword =
+        u16::from_le_bytes(upload(&mut sdo, 1, 0x6041, 0).unwrap().try_into().unwrap());
+    assert_eq!(statusword, 0x0008, "fault");
+    assert_eq!(command(&mut sdo, 0x80), 0x0040, "fault reset");
+}
+
+#[test]
+fn without_an_option_code_or_the_quirk_quick_stop_active_is_left_only_by_disable_voltage() {
+    // Lafert: no 605Ah, no `quick-stop-to-operation-enabled` quirk; the planner goes through
+    // switch on disabled, and so must a master of the simulated drive.
+    let (mut sdo, _node) = start(LAFERT, 1, None);
+    for controlword in [0x06, 0x07, 0x0F] {
+        command(&mut sdo, controlword);
+    }
+    assert_eq!(command(&mut sdo, 0x02), 0x0017, "quick stop active");
+    assert_eq!(command(&mut sdo, 0x0F), 0x0017, "no transition 16");
+    assert_eq!(
+        command(&mut sdo, 0x06),
+        0x0017,
+        "no shutdown from quick stop active"
+    );
+    assert_eq!(command(&mut sdo, 0x00), 0x0040, "transition 12");
+}

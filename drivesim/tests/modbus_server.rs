@@ -177,3 +177,56 @@ fn pipelined_requests_are_answered_in_turn() {
     assert_eq!(reads.map(|read| read.done), [true, false, true]);
     assert_eq!((holding, input), ([100], [0]), "the described defaults");
 }
+
+#[test]
+fn the_kinco_quick_stop_mode_decides_where_a_quick_stop_leads() {
+    // Kinco FD over Modbus: controlword 3100h, statusword 3200h, quick stop mode (605Ah) 3400h
+    // (manual lines 1935, 1936, 2128). The simulator ticks before every request, so a quick
+    // stop's automatic transition 12 (codes 1-4) has happened by the next read.
+    let sim = Simulator::load(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../descriptions/kinco-fd"
+    ))
+    .unwrap();
+    let server = sim.modbus_server();
+    let request = |pdu: &[u8]| {
+        let mut out = [0u8; drivebus::modbus::pdu::MAX_PDU];
+        let len = sim.with(|drive| server.handle(drive, pdu, &mut out));
+        out[..len].to_vec()
+    };
+    let write = |address: u16, value: u16| {
+        let [a, b] = address.to_be_bytes();
+        let [c, d] = value.to_be_bytes();
+        assert_eq!(
+            request(&[0x06, a, b, c, d])[0],
+            0x06,
+            "write {address:#06x}"
+        );
+    };
+    let statusword = || {
+        let read = request(&[0x03, 0x32, 0x00, 0x00, 0x01]);
+        u16::from_be_bytes([read[2], read[3]])
+    };
+    let quick_stop_with = |mode: u16| {
+        write(0x3400, mode);
+        for controlword in [0x06, 0x07, 0x0F] {
+            write(0x3100, controlword);
+        }
+        assert_eq!(statusword(), 0x0037, "operation enabled");
+        write(0x3100, 0x0B);
+        statusword()
+    };
+    assert_eq!(
+        quick_stop_with(0),
+        0x0040,
+        "0 stop without control: switched off"
+    );
+    assert_eq!(
+        quick_stop_with(2),
+        0x0040,
+        "2 quick stop ramp, then switched off"
+    );
+    assert_eq!(quick_stop_with(6), 0x0017, "6 stays in quick stop active");
+    write(0x3100, 0x0F);
+    assert_eq!(statusword(), 0x0037, "transition 16 with code 6");
+}

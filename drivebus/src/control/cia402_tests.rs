@@ -5,18 +5,13 @@ use super::*;
 use crate::control::device::Cia402Device;
 use crate::control::quirks::Quirk;
 
-/// A statusword showing each state (remote and voltage enabled set where CiA 402 allows).
+/// The statusword a CiA 402 device shows in `state`, remote (bit 9) set where it is processing
+/// the controlword (the device side's values for a drive that honours remote).
 fn statusword(state: State) -> u16 {
-    match state {
-        State::NotReadyToSwitchOn => 0x0000,
-        State::SwitchOnDisabled => 0x0240,
-        State::ReadyToSwitchOn => 0x0231,
-        State::SwitchedOn => 0x0233,
-        State::OperationEnabled => 0x0237,
-        State::QuickStopActive => 0x0217,
-        State::FaultReactionActive => 0x021F,
-        State::Fault => 0x0218,
-    }
+    let remote = Quirks::STANDARD.with(Quirk::HonoursRemote);
+    Cia402Device::in_state(state)
+        .with_quirks(remote)
+        .statusword()
 }
 
 fn seen(state: State) -> Observation {
@@ -301,8 +296,11 @@ fn quirk_switch_on_needs_voltage_waits_for_bit_4() {
         !Blocker::VoltageNotEnabled.is_final(),
         "voltage may still come"
     );
-    let with_voltage =
-        outcome(planner.next(&seen(State::ReadyToSwitchOn), Target::OperationEnabled));
+    let voltage = Observation {
+        statusword: 0x0231,
+        ..seen(State::ReadyToSwitchOn)
+    };
+    let with_voltage = outcome(planner.next(&voltage, Target::OperationEnabled));
     assert_eq!(with_voltage, Expect::Send(0x07, "3"));
     let standard =
         outcome(self::planner(Quirks::STANDARD).next(&no_voltage, Target::OperationEnabled));
@@ -372,7 +370,9 @@ fn a_simulated_drive_reaches_every_target_from_every_state() {
                         drive.write_controlword(controlword);
                         planner.sent(controlword, Millis(steps));
                     }
-                    Step::Wait(_) => drive.tick(),
+                    Step::Wait(_) => {
+                        drive.tick();
+                    }
                     Step::Blocked(Blocker::QuickStopOnlyFromOperationEnabled) => {
                         assert_eq!(target, Target::QuickStopActive);
                         break;

@@ -11,7 +11,8 @@
 //!   rules tables cannot express: fault reset on a rising edge, halt, safe torque off, voltage and
 //!   remote bits.
 //! * [`quirks`] — how real drives deviate from CiA 402, declared in descriptions.
-//! * [`device`] — the device side of CiA 402, a drive double for tests and the simulator.
+//! * [`device`] — the device side of CiA 402 (transitions a controlword takes, the statusword of
+//!   each state): the simulator's CiA 402 behaviour and the test double of masters.
 //! * [`mode`] — changing the mode of operation (0x6060) and confirming it (0x6061).
 //! * [`objects`] — the traits generated crates implement to hand their parameters to the driver.
 //! * `driver` (std) — the blocking driver behind `drive.enable_operation(deadline)`.
