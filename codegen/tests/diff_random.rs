@@ -21,7 +21,7 @@ proptest! {
             return Ok(());
         };
         prop_assert_eq!(diff(&device, &device), vec![]);
-        let mapped = |name: &str| device.pdos.iter().any(|m| m.entries.iter().any(|e| e == name));
+        let mapped = |name: &str| device.pdos().any(|(m, _)| m.entries.iter().any(|e| e == name));
         let removable: Vec<usize> = (0..device.parameters.len())
             .filter(|&i| !mapped(&device.parameters[i].name))
             .collect();

@@ -194,13 +194,13 @@ fn an_overlay_saved_elsewhere_names_the_eds_relative_to_it() {
 fn an_overlay_adds_pdo_layouts_over_eds_objects() {
     let d = device(Path::new("tests/fixtures/overlay"));
     let layouts: Vec<_> = d
-        .pdos
-        .iter()
-        .map(|m| {
+        .pdos()
+        .map(|(m, _)| {
+            let cob_id = m.default_cob_id().expect("a PDO has a COB-ID");
             (
                 m.name.as_str(),
-                m.default_cob_id().value,
-                m.default_cob_id().plus_node_id,
+                cob_id.value,
+                cob_id.plus_node_id,
                 m.entries.clone(),
             )
         })
@@ -233,7 +233,7 @@ fn an_overlay_pdo_entry_naming_no_eds_object_points_at_the_overlay() {
     assert!(checked.device.is_none());
     let text = checked.render();
     assert!(
-        text.contains("error[pdo_entries_are_mappable]: PDO `tpdo1` maps `vendor_torq`, which is not a parameter"),
+        text.contains("error[mapping_entries_are_mappable]: PDO `tpdo1` maps `vendor_torq`, which is not a parameter"),
         "{text}"
     );
     assert!(

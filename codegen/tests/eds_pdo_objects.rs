@@ -6,7 +6,7 @@
 
 mod support;
 
-use drivegen::ir::{Device, Number, Parameter};
+use drivegen::ir::{Device, MappingKind, Number, Parameter};
 use support::{device, workspace_root};
 
 fn ez_wheel() -> Device {
@@ -90,13 +90,16 @@ fn objects_the_description_defines_itself_are_not_derived_again() {
 #[test]
 fn pdos_validation_would_refuse_are_skipped_not_panicked_on() {
     let mut device = ez_wheel_without_disabled_pdo_objects();
-    let disabled: Vec<usize> = (0..device.pdos.len())
-        .filter(|&i| !device.pdos[i].enabled)
+    let disabled: Vec<usize> = (0..device.mappings.len())
+        .filter(|&i| device.mappings[i].pdo().is_some() && !device.mappings[i].enabled)
         .collect();
     assert_eq!(disabled.len(), 5);
-    device.pdos[disabled[0]].number = 0;
-    device.pdos[disabled[1]].number = 600;
-    device.pdos[disabled[2]]
+    for (i, number) in [(disabled[0], 0), (disabled[1], 600)] {
+        if let MappingKind::Pdo(pdo) = &mut device.mappings[i].kind {
+            pdo.number = number;
+        }
+    }
+    device.mappings[disabled[2]]
         .entries
         .push("no_such_parameter".into());
     let derived = drivegen::eds::pdo_objects(&device);

@@ -134,7 +134,7 @@ fn round_trip_test(module: &str, path: &Path, device: &Device) -> (String, usize
 fn pdo_test(module: &str, device: &Device) -> Option<(String, usize)> {
     let mut test = format!("#[test]\nfn {module}_pdos() {{\n");
     let mut checked = 0;
-    for pdo in &device.pdos {
+    for (pdo, _) in device.pdos() {
         let Some(fields) = pdo_fields(module, device, &pdo.entries) else {
             continue;
         };

@@ -7,7 +7,7 @@ mod support;
 
 use std::path::Path;
 
-use drivegen::ir::PdoDirection;
+use drivegen::ir::Direction;
 use support::crate_build::{build_and_test, generated, no_std_lib};
 
 const FIXTURE: &str = "tests/fixtures/srdo";
@@ -16,15 +16,16 @@ const FIXTURE: &str = "tests/fixtures/srdo";
 fn the_fixture_lowers_to_three_srdos() {
     let checked = drivegen::check(Path::new(FIXTURE));
     let device = checked.device.expect("the SRDO fixture is valid");
-    let srdo1 = &device.srdos[0];
-    assert_eq!((srdo1.number, srdo1.direction), (1, PdoDirection::Rx));
+    let srdos: Vec<_> = device.srdos().collect();
+    let (srdo1, defaults1) = srdos[0];
+    assert_eq!((defaults1.number, srdo1.direction), (1, Direction::Rx));
     assert_eq!(srdo1.information_direction(), 2);
-    assert_eq!(srdo1.cob_ids[0].resolve(Some(0x10)), Some(0x11F)); // line 4111
-    assert_eq!(srdo1.cob_ids[1].resolve(None), None);
-    let srdo2 = &device.srdos[1];
+    assert_eq!(defaults1.cob_ids[0].resolve(Some(0x10)), Some(0x11F)); // line 4111
+    assert_eq!(defaults1.cob_ids[1].resolve(None), None);
+    let (srdo2, defaults2) = srdos[1];
     assert_eq!(srdo2.entries.len(), 16);
-    assert_eq!(srdo2.cob_ids[0].resolve(None), Some(0x103));
-    let srdo10 = &device.srdos[2];
+    assert_eq!(defaults2.cob_ids[0].resolve(None), Some(0x103));
+    let (srdo10, _) = srdos[2];
     assert_eq!(srdo10.information_direction(), 0);
     let objects = srdo10.mapped_objects(&device).unwrap();
     assert_eq!(drivebus::canopen::pdo::mapping_bits(&objects), 128);

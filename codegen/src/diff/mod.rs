@@ -10,8 +10,6 @@ mod locks;
 mod mappings;
 mod models;
 mod parameters;
-mod pdos;
-mod srdos;
 #[cfg(test)]
 mod tests;
 mod types;
@@ -59,8 +57,7 @@ pub fn diff(old: &Device, new: &Device) -> Vec<Change> {
     types::device(old, new, &mut changes);
     parameters::compare(&old.parameters, &new.parameters, &mut changes);
     locks::compare(old, new, &mut changes);
-    pdos::compare(&old.pdos, &new.pdos, &mut changes);
-    srdos::compare(&old.srdos, &new.srdos, &mut changes);
+    mappings::compare(&old.mappings, &new.mappings, &mut changes);
     models::compare(&old.models, &new.models, &mut changes);
     types::enums(&old.enums, &new.enums, &mut changes);
     types::flags(&old.flags, &new.flags, &mut changes);

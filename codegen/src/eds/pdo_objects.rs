@@ -3,11 +3,11 @@
 //! the drive's default PDO layout.
 //!
 //! A description that defines a PDO's communication or mapping object itself keeps its own
-//! definition; that object is not derived again.
+//! definition; that object is not derived again. SRDOs are not derived: their COB-IDs are
+//! `base + factor × node-ID`, which an EDS value (`$NODEID+x`) holds only for a factor of 1, and
+//! their objects come with the signature objects 13FEh / 13FFh that a description defines itself.
 
-use drivebus::canopen::pdo::MappedObject;
-
-use crate::ir::{self, pdo_bits, DataType, Device, Number, PdoDirection, PdoMapping};
+use crate::ir::{self, DataType, Device, Direction, Mapping, Number, PdoDefaults};
 
 const READ_WRITE: ir::Access = ir::Access::READ_WRITE;
 
@@ -29,14 +29,14 @@ pub fn pdo_objects(device: &Device) -> PdoObjects {
         addresses.any(|a| a.index == index) || device.records.iter().any(|r| r.index == index)
     };
     let mut out = PdoObjects::default();
-    for pdo in &device.pdos {
+    for (pdo, defaults) in device.pdos() {
         let (Some((communication, mapping)), Some(mapped)) =
-            (indices(pdo), mapping_values(device, pdo))
+            (pdo.object_indices(), mapping_values(device, pdo))
         else {
             continue;
         };
         if !taken(communication) {
-            communication_object(pdo, communication, &mut out);
+            communication_object(pdo, defaults, communication, &mut out);
         }
         if !taken(mapping) {
             mapping_object(pdo, mapping, &mapped, &mut out);
@@ -45,43 +45,26 @@ pub fn pdo_objects(device: &Device) -> PdoObjects {
     out
 }
 
-/// The communication and mapping object indices of a PDO numbered 1..=512.
-fn indices(pdo: &PdoMapping) -> Option<(u16, u16)> {
-    let offset = pdo.number.checked_sub(1).filter(|&o| o < 512)?;
-    Some(match pdo.direction {
-        PdoDirection::Rx => (0x1400 + offset, 0x1600 + offset),
-        PdoDirection::Tx => (0x1800 + offset, 0x1A00 + offset),
-    })
-}
-
 /// Each entry as a mapping value: index, sub-index and length in bits (CiA 301 §7.5.2.36).
-fn mapping_values(device: &Device, pdo: &PdoMapping) -> Option<Vec<u32>> {
-    pdo.entries
-        .iter()
-        .map(|name| {
-            let parameter = device.parameter(name)?;
-            let address = parameter.pdo_object()?;
-            let bits = u8::try_from(pdo_bits(parameter.data_type))
-                .ok()
-                .filter(|&b| b <= 64)?;
-            Some(MappedObject::new(address.index, address.subindex, bits).entry())
-        })
-        .collect()
+fn mapping_values(device: &Device, pdo: &Mapping) -> Option<Vec<u32>> {
+    let objects = pdo.mapped_objects(device)?;
+    let fit = objects.iter().all(|o| o.bits <= 64);
+    fit.then(|| objects.iter().map(|o| o.entry()).collect())
 }
 
-fn label(pdo: &PdoMapping) -> String {
+fn label(pdo: &Mapping) -> String {
     let kind = match pdo.direction {
-        PdoDirection::Rx => "RPDO",
-        PdoDirection::Tx => "TPDO",
+        Direction::Rx => "RPDO",
+        Direction::Tx => "TPDO",
     };
-    format!("{kind}{}", pdo.number)
+    format!("{kind}{}", pdo.number())
 }
 
-fn communication_object(pdo: &PdoMapping, index: u16, out: &mut PdoObjects) {
+fn communication_object(pdo: &Mapping, defaults: &PdoDefaults, index: u16, out: &mut PdoObjects) {
     let record = record(pdo, index, "communication", "communication parameter", out);
     let highest = [
-        (5, pdo.event_timer.is_some()),
-        (3, pdo.inhibit_time.is_some()),
+        (5, defaults.event_timer.is_some()),
+        (3, defaults.inhibit_time.is_some()),
         (2, pdo.transmission_type.is_some()),
     ]
     .into_iter()
@@ -94,7 +77,9 @@ fn communication_object(pdo: &PdoMapping, index: u16, out: &mut PdoObjects) {
     };
     let u8_type = DataType::Unsigned(1);
     let highest = member.sub(0, "highest_sub_index", u8_type, ir::Access::READ, highest);
-    let default_cob_id = pdo.default_cob_id();
+    let Some(default_cob_id) = pdo.default_cob_id() else {
+        return;
+    };
     let cob_id = i64::from(default_cob_id.value);
     let mut cob_id = member.sub(1, "cob_id", DataType::Unsigned(4), READ_WRITE, cob_id);
     cob_id.default_plus_node_id = default_cob_id.plus_node_id;
@@ -105,8 +90,8 @@ fn communication_object(pdo: &PdoMapping, index: u16, out: &mut PdoObjects) {
     }
     let u16_type = DataType::Unsigned(2);
     for (sub, name, value) in [
-        (3, "inhibit_time", pdo.inhibit_time),
-        (5, "event_timer", pdo.event_timer),
+        (3, "inhibit_time", defaults.inhibit_time),
+        (5, "event_timer", defaults.event_timer),
     ] {
         if let Some(value) = value {
             out.parameters
@@ -115,7 +100,7 @@ fn communication_object(pdo: &PdoMapping, index: u16, out: &mut PdoObjects) {
     }
 }
 
-fn mapping_object(pdo: &PdoMapping, index: u16, mapped: &[u32], out: &mut PdoObjects) {
+fn mapping_object(pdo: &Mapping, index: u16, mapped: &[u32], out: &mut PdoObjects) {
     let record = record(pdo, index, "mapping", "mapping parameter", out);
     let member = Member {
         pdo,
@@ -134,7 +119,7 @@ fn mapping_object(pdo: &PdoMapping, index: u16, mapped: &[u32], out: &mut PdoObj
 }
 
 /// Adds the record `{pdo}_{suffix}` at `index`; returns its name.
-fn record(pdo: &PdoMapping, index: u16, suffix: &str, what: &str, out: &mut PdoObjects) -> String {
+fn record(pdo: &Mapping, index: u16, suffix: &str, what: &str, out: &mut PdoObjects) -> String {
     let name = format!("{}_{suffix}", pdo.name);
     out.records.push(ir::Record {
         name: name.clone(),
@@ -149,7 +134,7 @@ fn record(pdo: &PdoMapping, index: u16, suffix: &str, what: &str, out: &mut PdoO
 
 /// Builds the sub-indices of one record.
 struct Member<'a> {
-    pdo: &'a PdoMapping,
+    pdo: &'a Mapping,
     record: &'a str,
     index: u16,
 }

@@ -10,9 +10,10 @@ mod expr;
 mod identity_checks;
 mod indexed;
 mod lock;
+mod mapping;
+mod mapping_json;
 mod model;
 mod node_ids;
-mod pdo;
 mod ramp;
 mod read_block;
 mod readable_registers;
@@ -20,7 +21,6 @@ mod refinement;
 mod run_time_model;
 mod safety;
 mod scale_inputs;
-mod srdo;
 mod stop_writes;
 mod value_type;
 mod variant_selector;
@@ -36,15 +36,16 @@ pub use lock::{
     Grant, GrantKey, Lock, LockScope, Requirement, TimeoutAction, TimeoutEffect, Unlock, UnlockEnd,
     Watchdog,
 };
+pub use mapping::{
+    pdo_bits, CobId, Direction, Mapping, MappingKind, PdoDefaults, SrdoCobId, SrdoDefaults,
+};
 pub use model::{Constant, Model};
 pub use node_ids::{DefaultCheck, NodeIds, FIRST_NODE_ID, LAST_NODE_ID};
-pub use pdo::{pdo_bits, CobId, PdoDirection, PdoMapping};
 pub use ramp::{per_second, Polarity, Ramp, Slope};
 pub use read_block::ReadBlock;
 pub use readable_registers::{PlannerLimits, RegisterRun};
 pub use refinement::Refinement;
 pub use safety::is_safety_configuration;
-pub use srdo::{SrdoCobId, SrdoMapping};
 pub use stop_writes::StopWrites;
 pub use value_type::ValueType;
 pub use variant_selector::VariantSelector;
@@ -97,12 +98,10 @@ pub struct Device {
     /// How fast the speed follows each setpoint (`[[ramp]]`), left out of the JSON when none.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub ramps: Vec<Ramp>,
-    /// Declared PDO mappings (left out of the JSON when there are none).
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub pdos: Vec<PdoMapping>,
-    /// Declared SRDOs (left out of the JSON when there are none).
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub srdos: Vec<SrdoMapping>,
+    /// Declared PDOs and SRDOs, PDOs first, each kind in declaration order (in the JSON as
+    /// `pdos` and `srdos`, each left out when there are none).
+    #[serde(flatten, serialize_with = "mapping_json::by_kind")]
+    pub mappings: Vec<Mapping>,
     /// Members described once over a run of sub-indices (left out of the JSON when there are none).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub indexed: Vec<IndexedParameter>,

@@ -5,8 +5,8 @@ mod only;
 mod raw;
 mod raw_identity;
 mod raw_lock;
+mod raw_mapping;
 mod raw_ramp;
-mod raw_srdo;
 mod read_text;
 pub mod subindex_range;
 

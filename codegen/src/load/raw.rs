@@ -44,9 +44,9 @@ pub struct RawFile {
     #[serde(default)]
     pub ramp: Vec<super::raw_ramp::RawRamp>,
     #[serde(default)]
-    pub pdo: Vec<RawPdoMapping>,
+    pub pdo: Vec<super::raw_mapping::RawPdoMapping>,
     #[serde(default)]
-    pub srdo: Vec<super::raw_srdo::RawSrdo>,
+    pub srdo: Vec<super::raw_mapping::RawSrdo>,
     #[serde(default)]
     pub refine: Vec<RawRefine>,
     #[serde(default)]
@@ -521,31 +521,6 @@ pub struct RawTransition {
     pub command: Option<Spanned<i64>>,
     pub kind: Option<Spanned<String>>,
     pub source: Option<Spanned<RawCitation>>,
-}
-
-/// `[[pdo]]`: a PDO mapping.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawPdoMapping {
-    pub name: Spanned<String>,
-    pub doc: Option<String>,
-    pub direction: Spanned<String>,
-    pub number: Spanned<i64>,
-    pub cob_id: Option<Spanned<RawCobId>>,
-    pub enabled: Option<Spanned<bool>>,
-    pub transmission_type: Option<Spanned<i64>>,
-    pub inhibit_time: Option<Spanned<i64>>,
-    pub event_timer: Option<Spanned<i64>>,
-    pub entries: Spanned<Vec<String>>,
-    pub source: Option<Spanned<RawCitation>>,
-}
-
-/// A COB-ID: a number, or a text such as `"$NODEID+0x180"`.
-#[derive(Debug, Deserialize)]
-#[serde(untagged)]
-pub enum RawCobId {
-    Number(i64),
-    Text(String),
 }
 
 /// `only` of an include: a list of names (each with the enums, flags and records it refers to), or

@@ -19,12 +19,12 @@ mod identity_values_fit;
 mod indexed_names_are_unique;
 mod input_reads_alias_holding;
 mod manual_names_are_search_aliases;
+mod mapping_entries_are_mappable;
+mod mapping_numbers_are_unique;
+mod mappings_fit_a_frame;
 mod models_give_constants;
 mod names_are_unique;
 mod parameters_have_addresses;
-mod pdo_entries_are_mappable;
-mod pdo_mappings_fit_eight_bytes;
-mod pdo_numbers_are_unique;
 mod ramps_resolve;
 mod ranges_fit_type;
 mod read_blocks_are_described;
@@ -33,9 +33,6 @@ mod references_resolve;
 mod rs232_values_fit_a_telegram;
 pub(crate) mod scale_inputs_exist;
 mod scale_is_representable;
-mod srdo_entries_are_mappable;
-mod srdo_mappings_pair_and_fit;
-mod srdo_numbers_are_unique;
 mod srdo_timings_are_valid;
 mod state_machines_resolve;
 mod stops_are_always_sendable;
@@ -93,22 +90,16 @@ pub const PASSES: &[(&str, Pass)] = &[
         records_hold_their_members::check,
     ),
     ("state_machines_resolve", state_machines_resolve::check),
-    ("pdo_entries_are_mappable", pdo_entries_are_mappable::check),
     (
-        "pdo_mappings_fit_eight_bytes",
-        pdo_mappings_fit_eight_bytes::check,
+        "mapping_entries_are_mappable",
+        mapping_entries_are_mappable::check,
     ),
-    ("pdo_numbers_are_unique", pdo_numbers_are_unique::check),
-    (
-        "srdo_entries_are_mappable",
-        srdo_entries_are_mappable::check,
-    ),
-    (
-        "srdo_mappings_pair_and_fit",
-        srdo_mappings_pair_and_fit::check,
-    ),
+    ("mappings_fit_a_frame", mappings_fit_a_frame::check),
     ("srdo_timings_are_valid", srdo_timings_are_valid::check),
-    ("srdo_numbers_are_unique", srdo_numbers_are_unique::check),
+    (
+        "mapping_numbers_are_unique",
+        mapping_numbers_are_unique::check,
+    ),
     ("indexed_names_are_unique", indexed_names_are_unique::check),
     (
         "identity_names_a_parameter",

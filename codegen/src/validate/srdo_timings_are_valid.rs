@@ -4,23 +4,23 @@
 use drivebus::canopen::srdo::{SrdoError, SrdoTiming};
 
 use crate::diagnostic::Diagnostic;
-use crate::ir::{Device, SrdoMapping};
+use crate::ir::{Device, Mapping, SrdoDefaults};
 
 const RULE: &str = "srdo_timings_are_valid";
 
 /// Reports times the runtime would refuse or the signature could not hold.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
-    device.srdos.iter().filter_map(problem).collect()
+    device.srdos().filter_map(|(m, s)| problem(m, s)).collect()
 }
 
-fn problem(s: &SrdoMapping) -> Option<Diagnostic> {
+fn problem(m: &Mapping, s: &SrdoDefaults) -> Option<Diagnostic> {
     let why = match SrdoTiming::from_millis(s.sct_ms, s.srvt_ms) {
         Err(SrdoError::BadConfiguration(why)) => why,
         _ if s.srvt_ms > 255 => "SRVT above 255 ms does not fit the signature's byte",
         _ => return None,
     };
     Some(
-        Diagnostic::error(RULE, s.span.clone(), format!("SRDO `{}`: {why}", s.name))
+        Diagnostic::error(RULE, m.span.clone(), format!("SRDO `{}`: {why}", m.name))
             .help("give `sct_ms` and `srvt_ms` as the manual's communication object does"),
     )
 }

@@ -54,14 +54,10 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
         .cia402
         .iter()
         .map(|c| ("table", &cia402_name, &c.span, &c.source));
-    let pdos = device
-        .pdos
+    let mappings = device
+        .mappings
         .iter()
-        .map(|m| ("PDO", &m.name, &m.span, &m.source));
-    let srdos = device
-        .srdos
-        .iter()
-        .map(|s| ("SRDO", &s.name, &s.span, &s.source));
+        .map(|m| (m.label(), &m.name, &m.span, &m.source));
     let watchdog_name = String::from("watchdog");
     let lock = device.lock.iter().flat_map(|l| {
         let unlocks = l
@@ -90,8 +86,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
         .chain(lock)
         .chain(ramps)
         .chain(combined)
-        .chain(pdos)
-        .chain(srdos)
+        .chain(mappings)
         .chain(enums)
         .chain(flags)
         .chain(records)

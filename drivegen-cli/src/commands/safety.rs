@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use drivebus::canopen::pdo::MappedObject;
 use drivebus::canopen::srdo::{signature, SrdoCommunication, SrdoConfig, SrdoDirection};
-use drivegen::ir::{Device, SrdoMapping};
+use drivegen::ir::{Device, Mapping, SrdoDefaults};
 
 use crate::error::CliError;
 
@@ -60,11 +60,11 @@ struct Configuration {
 
 fn print_signature(args: &SignatureArgs) -> Result<(), CliError> {
     let device = super::load(&args.description)?;
-    let srdo = find(&device, args.srdo, &args.description)?;
+    let (srdo, srdo_defaults) = find(&device, args.srdo, &args.description)?;
     let node_id = args
         .node_id
         .or(device.canopen.as_ref().map(|c| c.default_node_id));
-    let mut config = defaults(&device, srdo, node_id)?;
+    let mut config = defaults(&device, srdo, srdo_defaults, node_id)?;
     for assignment in &args.set {
         apply(&device, &mut config, assignment)?;
     }
@@ -82,13 +82,16 @@ fn print_signature(args: &SignatureArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-fn find<'a>(device: &'a Device, number: u8, path: &Path) -> Result<&'a SrdoMapping, CliError> {
+fn find<'a>(
+    device: &'a Device,
+    number: u8,
+    path: &Path,
+) -> Result<(&'a Mapping, &'a SrdoDefaults), CliError> {
     device
-        .srdos
-        .iter()
-        .find(|s| s.number == number)
+        .srdos()
+        .find(|(_, s)| s.number == number)
         .ok_or_else(|| {
-            let declared: Vec<String> = device.srdos.iter().map(|s| s.number.to_string()).collect();
+            let declared: Vec<String> = device.srdos().map(|(_, s)| s.number.to_string()).collect();
             CliError::Usage(format!(
                 "{} declares no SRDO {number} (declared: {})",
                 path.display(),
@@ -103,27 +106,28 @@ fn find<'a>(device: &'a Device, number: u8, path: &Path) -> Result<&'a SrdoMappi
 
 fn defaults(
     device: &Device,
-    srdo: &SrdoMapping,
+    srdo: &Mapping,
+    defaults: &SrdoDefaults,
     node_id: Option<u8>,
 ) -> Result<Configuration, CliError> {
-    let [normal, inverted] = srdo.cob_ids.map(|c| c.resolve(node_id));
+    let [normal, inverted] = defaults.cob_ids.map(|c| c.resolve(node_id));
     let (Some(cob_id_normal), Some(cob_id_inverted)) = (normal, inverted) else {
         return Err(CliError::Usage(format!(
             "SRDO {} has node-relative COB-IDs: give --node-id",
-            srdo.number
+            defaults.number
         )));
     };
-    let mapping = srdo
-        .mapped_objects(device)
-        .ok_or_else(|| CliError::Invalid(format!("SRDO {} maps unknown objects", srdo.number)))?;
+    let mapping = srdo.mapped_objects(device).ok_or_else(|| {
+        CliError::Invalid(format!("SRDO {} maps unknown objects", defaults.number))
+    })?;
     let direction = SrdoDirection::from_u8(srdo.information_direction())
         .expect("information_direction is 0, 1 or 2");
     Ok(Configuration {
-        number: srdo.number,
+        number: defaults.number,
         communication: SrdoCommunication {
             direction,
-            sct_ms: srdo.sct_ms,
-            srvt_ms: srdo.srvt_ms,
+            sct_ms: defaults.sct_ms,
+            srvt_ms: defaults.srvt_ms,
             transmission_type: srdo.transmission_type.unwrap_or(0xFE),
             cob_id_normal,
             cob_id_inverted,
@@ -217,7 +221,7 @@ fn parse_int<T: TryFrom<u64>>(text: &str) -> Result<T, String> {
     T::try_from(value).map_err(|_| format!("`{text}` is out of range"))
 }
 
-fn json(srdo: &SrdoMapping, node_id: Option<u8>, config: &Configuration, value: u16) -> String {
+fn json(srdo: &Mapping, node_id: Option<u8>, config: &Configuration, value: u16) -> String {
     let c = &config.communication;
     let mapping: Vec<String> = config
         .mapping

@@ -19,7 +19,7 @@ use drivebus::canopen::srdo::{
     signature, SrdoCommunication, SrdoConfig, SrdoConsumer, SrdoDirection, SrdoError, SrdoProducer,
 };
 use drivebus::canopen::{CanFrame, NodeId};
-use drivegen::ir::{Device, SrdoMapping};
+use drivegen::ir::{Device, Mapping, SrdoDefaults};
 
 use crate::behaviour::object;
 use crate::drive::Drive;
@@ -31,7 +31,7 @@ struct Fields(Vec<(ParamId, usize)>);
 
 impl Fields {
     /// The normal entries of `srdo`, if all are byte-aligned parameters of the store.
-    fn of(srdo: &SrdoMapping, device: &Device, store: &Store) -> Option<Self> {
+    fn of(srdo: &Mapping, device: &Device, store: &Store) -> Option<Self> {
         let objects = srdo.mapped_objects(device)?;
         let fields = srdo
             .entries
@@ -104,15 +104,15 @@ impl Srdos {
         self.consumed.clear();
         self.skipped.clear();
         let device = store.device();
-        for srdo in &device.srdos {
-            let Some(communication) = communication(store, srdo, node) else {
-                self.skipped.push(srdo.number);
+        for (srdo, defaults) in device.srdos() {
+            let Some(communication) = communication(store, srdo, defaults, node) else {
+                self.skipped.push(defaults.number);
                 continue;
             };
             if communication.direction != SrdoDirection::Invalid
-                && !self.add(srdo, communication, device, store)
+                && !self.add(srdo, defaults.number, communication, device, store)
             {
-                self.skipped.push(srdo.number);
+                self.skipped.push(defaults.number);
             }
         }
     }
@@ -127,19 +127,19 @@ impl Srdos {
             }
         }
         let device = store.device();
-        device.srdos.iter().find_map(|srdo| {
-            let stored = store.int(object(store, 0x13FF, srdo.number)?)?;
+        device.srdos().find_map(|(srdo, defaults)| {
+            let stored = store.int(object(store, 0x13FF, defaults.number)?)?;
             let mapping = srdo.mapped_objects(device)?;
             let config = SrdoConfig {
-                number: srdo.number,
-                communication: communication(store, srdo, node)?,
+                number: defaults.number,
+                communication: communication(store, srdo, defaults, node)?,
                 mapping: &mapping,
             };
             let computed = signature(&config).ok()?;
             (i128::from(computed) != stored).then(|| {
                 format!(
                     "SRDO {} signature: 13FFh holds {stored:#06X}, the configuration gives {computed:#06X}",
-                    srdo.number
+                    defaults.number
                 )
             })
         })
@@ -148,7 +148,8 @@ impl Srdos {
     /// Adds one SRDO; false if the simulator cannot carry it.
     fn add(
         &mut self,
-        srdo: &SrdoMapping,
+        srdo: &Mapping,
+        number: u8,
         communication: SrdoCommunication,
         device: &Device,
         store: &Store,
@@ -169,7 +170,7 @@ impl Srdos {
             },
             SrdoDirection::Receive => match SrdoConsumer::new(ids, timing, bits) {
                 Ok(consumer) => self.consumed.push(Consumed {
-                    number: srdo.number,
+                    number,
                     consumer,
                     fields,
                 }),
@@ -234,21 +235,26 @@ impl Srdos {
 /// SRDO `srdo`'s communication parameters as the drive holds them: each sub-index from its object
 /// when the description has one, else the `[[srdo]]` default. `None` if the COB-IDs depend on
 /// the node-ID beyond 11 bits or a held value does not fit.
-fn communication(store: &Store, srdo: &SrdoMapping, node: NodeId) -> Option<SrdoCommunication> {
-    let index = 0x1300 + u16::from(srdo.number);
+fn communication(
+    store: &Store,
+    srdo: &Mapping,
+    defaults: &SrdoDefaults,
+    node: NodeId,
+) -> Option<SrdoCommunication> {
+    let index = 0x1300 + u16::from(defaults.number);
     let held = |sub: u8, default: i128| -> Option<i128> {
         match object(store, index, sub) {
             Some(id) => store.int(id),
             None => Some(default),
         }
     };
-    let [normal, inverted] = srdo.cob_ids.map(|c| c.resolve(Some(node.0)));
+    let [normal, inverted] = defaults.cob_ids.map(|c| c.resolve(Some(node.0)));
     Some(SrdoCommunication {
         direction: SrdoDirection::from_u8(
             u8::try_from(held(1, srdo.information_direction().into())?).ok()?,
         )?,
-        sct_ms: u16::try_from(held(2, srdo.sct_ms.into())?).ok()?,
-        srvt_ms: u16::try_from(held(3, srdo.srvt_ms.into())?).ok()?,
+        sct_ms: u16::try_from(held(2, defaults.sct_ms.into())?).ok()?,
+        srvt_ms: u16::try_from(held(3, defaults.srvt_ms.into())?).ok()?,
         transmission_type: u8::try_from(held(4, srdo.transmission_type.unwrap_or(0xFE).into())?)
             .ok()?,
         cob_id_normal: u32::try_from(held(5, normal?.into())?).ok()?,

@@ -12,6 +12,7 @@ mod given;
 mod handle;
 mod identity_check;
 mod indexed;
+mod mapping;
 mod parameter;
 mod parameter_doc;
 mod pdo;
@@ -126,8 +127,7 @@ pub fn tokens(device: &Device) -> TokenStream {
         variant_selection::emit(device),
         identity_check::emit(device),
         given::emit(device),
-        pdo::emit(device),
-        srdo::emit(device),
+        mapping::emit(device),
         control.unwrap_or_default(),
     ])
 }

@@ -6,11 +6,11 @@ use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
 use super::{doc_attrs, ident};
-use crate::ir::{Device, PdoDirection, PdoMapping};
+use crate::ir::{Device, Direction, Mapping, PdoDefaults};
 
 /// `0x190` / `0x180 + node id` / `not given`, for the struct's doc table.
-pub(super) fn cob_id_text(m: &PdoMapping) -> String {
-    match m.cob_id {
+pub(super) fn cob_id_text(defaults: &PdoDefaults) -> String {
+    match defaults.cob_id {
         Some(c) if c.plus_node_id => format!("0x{:X} + node id", c.value),
         Some(c) => format!("0x{:X} (fixed: it does not follow the node id)", c.value),
         None => "not given by the description: choose one (`config_with_cob_id`)".to_owned(),
@@ -18,7 +18,7 @@ pub(super) fn cob_id_text(m: &PdoMapping) -> String {
 }
 
 /// The doc table rows of the communication defaults.
-pub(super) fn doc_rows(m: &PdoMapping) -> String {
+pub(super) fn doc_rows(m: &Mapping, defaults: &PdoDefaults) -> String {
     let mut text = format!(
         "\n| Valid by default | {} |",
         if m.enabled {
@@ -29,8 +29,8 @@ pub(super) fn doc_rows(m: &PdoMapping) -> String {
     );
     for (what, value) in [
         ("Transmission type", m.transmission_type.map(u16::from)),
-        ("Inhibit time (raw)", m.inhibit_time),
-        ("Event timer (raw)", m.event_timer),
+        ("Inhibit time (raw)", defaults.inhibit_time),
+        ("Event timer (raw)", defaults.event_timer),
     ] {
         if let Some(v) = value {
             text += &format!("\n| {what} | {v} |");
@@ -53,12 +53,10 @@ fn option_literal<T: Into<u64>>(value: Option<T>, suffix: &str) -> TokenStream {
 
 /// Whether the configuration writes communication sub-index `subindex`: not when the description
 /// describes that object read-only (the SWD's RPDO inhibit times, lines 1341 and 1365).
-fn writable(m: &PdoMapping, device: &Device, subindex: u8) -> bool {
-    let index = match m.direction {
-        PdoDirection::Rx => 0x1400,
-        PdoDirection::Tx => 0x1800,
-    } + m.number
-        - 1;
+fn writable(m: &Mapping, device: &Device, subindex: u8) -> bool {
+    let Some((index, _)) = m.object_indices() else {
+        return false;
+    };
     !device
         .parameters
         .iter()
@@ -68,16 +66,21 @@ fn writable(m: &PdoMapping, device: &Device, subindex: u8) -> bool {
 
 /// The constants, `cob_id(node)` / `config(node)` when the COB-ID is given, and
 /// `config_with_cob_id(cob_id)`.
-pub(super) fn emit(m: &PdoMapping, count: &Literal, device: &Device) -> TokenStream {
+pub(super) fn emit(
+    m: &Mapping,
+    defaults: &PdoDefaults,
+    count: &Literal,
+    device: &Device,
+) -> TokenStream {
     let kind = ident(match m.direction {
-        PdoDirection::Tx => "Transmit",
-        PdoDirection::Rx => "Receive",
+        Direction::Tx => "Transmit",
+        Direction::Rx => "Receive",
     });
-    let number = Literal::u16_unsuffixed(m.number);
+    let number = Literal::u16_unsuffixed(defaults.number);
     let enabled = m.enabled;
     let transmission_type = option_literal(m.transmission_type, "u8");
-    let inhibit_time = option_literal(m.inhibit_time, "u16");
-    let event_timer = option_literal(m.event_timer, "u16");
+    let inhibit_time = option_literal(defaults.inhibit_time, "u16");
+    let event_timer = option_literal(defaults.event_timer, "u16");
     let [written_inhibit_time, written_event_timer] = [(3, "INHIBIT_TIME"), (5, "EVENT_TIMER")]
         .map(|(subindex, constant)| {
             let constant = ident(constant);
@@ -87,7 +90,7 @@ pub(super) fn emit(m: &PdoMapping, count: &Literal, device: &Device) -> TokenStr
                 quote! { None }
             }
         });
-    let by_node = m.cob_id.map(|c| {
+    let by_node = defaults.cob_id.map(|c| {
         let value: Literal = format!("0x{:X}", c.value)
             .parse()
             .expect("a hexadecimal integer is a literal");

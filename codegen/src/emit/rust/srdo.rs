@@ -1,73 +1,37 @@
-//! Declared SRDOs as typed structs: one field per normal-data entry (the inverted entries are
-//! the runtime's business), the mapping and the normal-data layout as constants checked by the
-//! compiler, the COB-IDs as a function of the node-ID, the default configuration (for the safety
-//! signature and the safety write), and a consumer / producer with the declared times.
+//! What an SRDO adds to its mapping struct: one field per normal-data entry (the inverted
+//! entries are the runtime's business), the mapping and the normal-data layout as constants
+//! checked by the compiler, the COB-IDs as a function of the node-ID, the default configuration
+//! (for the safety signature and the safety write), and a consumer / producer with the declared
+//! times.
 
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
-use super::addresses::hex;
-use super::pdo::{decode, encode, field_doc, Field};
-use super::{doc_attrs, ident};
-use crate::emit::{doc, ident as names};
-use crate::ir::{pdo_bits, Device, Parameter, PdoDirection, Scale, SrdoCobId, SrdoMapping};
+use super::ident;
+use super::mapping::{self, Field, KindParts};
+use crate::emit::doc;
+use crate::ir::{Device, Direction, Mapping, SrdoCobId, SrdoDefaults};
 
-/// `pub mod srdo { ... }`, or nothing when the description declares no SRDO.
-pub fn emit(device: &Device) -> TokenStream {
-    if device.srdos.is_empty() {
-        return quote! {};
-    }
-    let srdos = device.srdos.iter().map(|s| srdo(s, device));
-    quote! {
-        /// The SRDOs (CANopen Safety, EN 50325-5) the description declares, as typed safety
-        /// payloads. Needs `drivebus`'s `srdo` feature.
-        pub mod srdo {
-            #( #srdos )*
-        }
-    }
-}
-
-fn field(parameter: &Parameter) -> Field<'_> {
-    Field {
-        parameter,
-        raw: matches!(parameter.scale, Some(Scale::Runtime { .. })),
-    }
-}
-
-fn srdo(s: &SrdoMapping, device: &Device) -> TokenStream {
-    let parameters: Vec<&Parameter> = s
-        .entries
-        .iter()
-        .filter_map(|e| device.parameter(e))
-        .collect();
-    let fields: Vec<Field> = parameters.iter().step_by(2).map(|p| field(p)).collect();
-    let name = ident(&names::camel(&s.name));
-    let docs = doc_attrs(&struct_doc(s, &fields, device));
-    let declarations = fields.iter().map(|f| {
-        let (field, ty) = (f.name(), f.ty());
-        let docs = doc_attrs(&field_doc(f));
-        quote! { #docs pub #field: #ty, }
-    });
-    let mapping = mapping(&parameters);
+/// The struct of SRDO `m`: the normal entries (every other one, from the first) are fields.
+pub(super) fn emit(m: &Mapping, defaults: &SrdoDefaults, device: &Device) -> TokenStream {
+    let parameters = mapping::parameters(m, device);
+    let fields: Vec<Field> = parameters.iter().step_by(2).map(|p| Field::of(p)).collect();
+    let name = ident(&crate::emit::ident::camel(&m.name));
+    let entries = parameters.iter().map(|p| mapping::mapped_object(p));
     let total = Literal::usize_unsuffixed(parameters.len());
     let count = Literal::usize_unsuffixed(fields.len());
-    let (decode, encode) = (decode(&fields, &count), encode(&fields, &count));
-    let configuration = configuration(s);
-    quote! {
-        #docs
-        #[derive(Debug, Clone, Copy, PartialEq)]
-        pub struct #name {
-            #( #declarations )*
-        }
-
-        const _: () = assert!(
-            ::drivebus::canopen::srdo::mapping::mapping_is_valid(&#name::MAPPING),
-            "SRDO mapping does not pair or does not fit 8 bytes"
-        );
-
-        impl #name {
+    let configuration = configuration(m, defaults);
+    let kind = KindParts {
+        doc: struct_doc(m, defaults, &fields, device),
+        after_struct: quote! {
+            const _: () = assert!(
+                ::drivebus::canopen::srdo::mapping::mapping_is_valid(&#name::MAPPING),
+                "SRDO mapping does not pair or does not fit 8 bytes"
+            );
+        },
+        constants: quote! {
             /// The mapping object's entries in sub-index order: normal, inverted, normal, ...
-            pub const MAPPING: [::drivebus::canopen::pdo::MappedObject; #total] = #mapping;
+            pub const MAPPING: [::drivebus::canopen::pdo::MappedObject; #total] = [#( #entries ),*];
 
             /// The normal data, packed from bit 0 as a PDO is.
             pub const LAYOUT: ::drivebus::canopen::pdo::PdoLayout<#count> =
@@ -76,33 +40,11 @@ fn srdo(s: &SrdoMapping, device: &Device) -> TokenStream {
                 );
 
             #configuration
-
-            /// Decodes released normal data (from
-            /// [`SrdoConsumer::handle`](::drivebus::canopen::srdo::SrdoConsumer::handle)).
-            pub fn decode(payload: &[u8]) -> Result<Self, ::drivebus::ValueError> {
-                Ok(Self { #( #decode )* })
-            }
-
-            /// Encodes the values, range-checked, into the normal data (the producer sends it
-            /// with its inverted copy).
-            pub fn encode(&self) -> Result<::drivebus::canopen::pdo::Payload, ::drivebus::ValueError> {
-                let mut payload = [0u8; 8];
-                #( #encode )*
-                Ok(::drivebus::canopen::pdo::Payload::new(payload, Self::LAYOUT.len()))
-            }
-        }
-    }
-}
-
-fn mapping(parameters: &[&Parameter]) -> TokenStream {
-    let entries = parameters.iter().map(|p| {
-        let object = p.pdo_object().expect("validated: mapped objects exist");
-        let index = hex(object.index);
-        let subindex = Literal::u8_unsuffixed(object.subindex);
-        let bits = Literal::u32_unsuffixed(pdo_bits(p.data_type));
-        quote! { ::drivebus::canopen::pdo::MappedObject::new(#index, #subindex, #bits) }
-    });
-    quote! { [#( #entries ),*] }
+        },
+        decode_doc: "Decodes released normal data (from\n[`SrdoConsumer::handle`](::drivebus::canopen::srdo::SrdoConsumer::handle)).",
+        encode_doc: "Encodes the values, range-checked, into the normal data (the producer sends it\nwith its inverted copy).",
+    };
+    mapping::mapping(m, &fields, kind)
 }
 
 fn cob_id_expr(id: &SrdoCobId) -> TokenStream {
@@ -123,9 +65,9 @@ fn cob_id_text(id: &SrdoCobId) -> String {
 }
 
 /// `NUMBER`, `communication(node)`, `config(node)`, `consumer(node)`, `producer(node)`.
-fn configuration(s: &SrdoMapping) -> TokenStream {
+fn configuration(m: &Mapping, s: &SrdoDefaults) -> TokenStream {
     let number = Literal::u8_unsuffixed(s.number);
-    let direction = ident(match s.information_direction() {
+    let direction = ident(match m.information_direction() {
         0 => "Invalid",
         1 => "Transmit",
         _ => "Receive",
@@ -134,7 +76,7 @@ fn configuration(s: &SrdoMapping) -> TokenStream {
         Literal::u16_unsuffixed(s.sct_ms),
         Literal::u16_unsuffixed(s.srvt_ms),
     );
-    let transmission_type = Literal::u8_unsuffixed(s.transmission_type.unwrap_or(0xFE));
+    let transmission_type = Literal::u8_unsuffixed(m.transmission_type.unwrap_or(0xFE));
     let [normal, inverted] = s.cob_ids.each_ref().map(cob_id_expr);
     let uses_node = s.cob_ids.iter().any(|c| c.node_id_factor != 0);
     let ignore_node = (!uses_node).then(|| quote! { let _ = node; });
@@ -188,18 +130,17 @@ fn configuration(s: &SrdoMapping) -> TokenStream {
     }
 }
 
-fn struct_doc(s: &SrdoMapping, fields: &[Field], device: &Device) -> String {
-    let way = match s.direction {
-        PdoDirection::Tx => "transmitted by the drive",
-        PdoDirection::Rx => "received by the drive",
+fn struct_doc(m: &Mapping, s: &SrdoDefaults, fields: &[Field], device: &Device) -> String {
+    let way = match m.direction {
+        Direction::Tx => "transmitted by the drive",
+        Direction::Rx => "received by the drive",
     };
-    let state = if s.enabled {
+    let state = if m.enabled {
         "valid"
     } else {
         "invalid (information direction 0)"
     };
-    let intro = doc::escape(s.doc.as_deref().unwrap_or(&s.name));
-    let bits: u32 = fields.iter().map(|f| pdo_bits(f.parameter.data_type)).sum();
+    let intro = doc::escape(m.doc.as_deref().unwrap_or(&m.name));
     let mut text = format!(
         "{intro}\n\n| | |\n|---|---|\n| SRDO | {}, {way}, {state} by default; objects `0x{:04X}` / `0x{:04X}` |\n| COB-IDs | {} (normal), {} (inverted) |\n| SCT / SRVT | {} ms / {} ms |\n| Normal data | {} bytes, {} entries |",
         s.number,
@@ -209,15 +150,10 @@ fn struct_doc(s: &SrdoMapping, fields: &[Field], device: &Device) -> String {
         cob_id_text(&s.cob_ids[1]),
         s.sct_ms,
         s.srvt_ms,
-        bits.div_ceil(8),
+        mapping::payload_bytes(fields),
         fields.len(),
     );
-    if let Some(c) = &s.source {
-        text += &format!(
-            "\n| Source | {} |",
-            super::parameter_doc::citation(c, device)
-        );
-    }
+    text += &mapping::source_row(m, device);
     if let Some(e) = &s.erratum {
         text += &format!("\n\nErratum: {}", doc::escape(e));
     }

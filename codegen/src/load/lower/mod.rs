@@ -9,14 +9,13 @@ mod commands;
 mod control;
 mod identity;
 mod lock;
+mod mapping;
 mod models;
 mod occupies;
 mod overlay;
-mod pdo;
 mod ramps;
 mod read_blocks;
 mod refine;
-mod srdo;
 mod stops;
 mod subindex_range;
 
@@ -69,8 +68,7 @@ pub fn lower(
         if i == 0 {
             cx.root_items(&file.raw, &mut device);
         } else {
-            cx.refuse_included_pdos(&file.raw);
-            cx.refuse_included_srdos(&file.raw);
+            cx.refuse_included_mappings(&file.raw);
         }
         cx.items(&file.raw, &keep, &mut device);
         cx.models(&file.raw, &mut device);
@@ -178,8 +176,7 @@ impl Lowering<'_> {
             cia402: None,
             state_machine: None,
             ramps: Vec::new(),
-            pdos: Vec::new(),
-            srdos: Vec::new(),
+            mappings: Vec::new(),
             indexed: Vec::new(),
             refinements: Vec::new(),
             constants: Vec::new(),
@@ -228,8 +225,7 @@ impl Lowering<'_> {
         device.lock = self.lock(raw.lock.as_ref(), &raw.unlock, raw.watchdog.as_ref());
         device.variants = raw.variant.iter().map(|v| self.variant(v)).collect();
         device.cia402 = raw.cia402.as_ref().map(|c| self.cia402(c));
-        device.pdos = raw.pdo.iter().filter_map(|p| self.pdo_mapping(p)).collect();
-        device.srdos = raw.srdo.iter().filter_map(|s| self.srdo(s)).collect();
+        device.mappings = self.mappings(raw);
         device.state_machine = raw
             .state_machine
             .as_ref()
