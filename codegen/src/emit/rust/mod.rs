@@ -51,6 +51,11 @@ pub(crate) fn raw_type(data_type: DataType) -> TokenStream {
     }
 }
 
+/// An integer literal without a type suffix (`242`, `-5`), for places where the type is known.
+pub(crate) fn unsuffixed(value: i128) -> TokenStream {
+    enums::int_literal(value, DataType::Signed(16))
+}
+
 /// `#[doc = "..."]` attributes from escaped text, one per line, so the generated source shows
 /// `///` lines as hand-written code would. A lone carriage return (old Mac line ends in an EDS
 /// text) also ends a line: printed inside a `///` comment it would be a bare CR, which Rust

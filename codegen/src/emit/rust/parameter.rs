@@ -121,6 +121,7 @@ fn expr_tokens(expr: &Expr) -> TokenStream {
     match expr {
         Expr::Number(ratio) => {
             let (n, d) = (ratio.numerator(), ratio.denominator());
+            let (n, d) = (super::unsuffixed(n.into()), super::unsuffixed(d.into()));
             quote! { ::drivebus::Ratio::new(#n, #d)? }
         }
         Expr::Parameter(name) => {

@@ -170,7 +170,7 @@ impl<L: ::drivebus::Link> Case<L> {
     }
 }
 /// The values of the identity parameter this description covers.
-pub const IDENTITY_VALUES: &[::core::primitive::i128] = &[242i128];
+pub const IDENTITY_VALUES: &[::core::primitive::i128] = &[242];
 /// The identity checks a protocol can run: the `[identity]` parameters it reads.
 pub trait IdentityChecks: ::drivebus::Protocol {
     /// Reads each identity parameter in turn; the first one holding a value the
@@ -184,7 +184,7 @@ impl IdentityChecks for ::drivebus::canopen::CanOpen {
         device: &mut ::drivebus::Device<L>,
     ) -> Result<Option<(&'static str, ::drivebus::WriteRefusal)>, ::drivebus::Error> {
         {
-            const EXPECTED: &[::core::primitive::i128] = &[242i128];
+            const EXPECTED: &[::core::primitive::i128] = &[242];
             let found = ::core::primitive::i128::from(
                 device.read_raw::<params::FwRelease>()?,
             );
@@ -198,7 +198,7 @@ impl IdentityChecks for ::drivebus::canopen::CanOpen {
             }
         }
         {
-            const EXPECTED: &[::core::primitive::i128] = &[1301i128];
+            const EXPECTED: &[::core::primitive::i128] = &[1301];
             let found = ::core::primitive::i128::from(
                 device.read_raw::<params::VendorId>()?,
             );

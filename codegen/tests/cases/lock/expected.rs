@@ -540,7 +540,7 @@ where
         let found = ::core::primitive::i128::from(
             self.device.read_raw::<params::ControlSource>()?,
         );
-        const ALLOWED: &[::core::primitive::i128] = &[10i128, 11i128];
+        const ALLOWED: &[::core::primitive::i128] = &[10, 11];
         if !ALLOWED.contains(&found) {
             return Err(UnlockError::Requirement {
                 parameter: "control_source",

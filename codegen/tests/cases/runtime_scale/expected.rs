@@ -51,9 +51,9 @@ pub mod params {
                 L::Protocol,
             >>::scale_input(device, <Self as ::drivebus::Parameter>::NAME)?;
             let factor = (|| Some(
-                (::drivebus::Ratio::new(1875i64, 1i64)?)
+                (::drivebus::Ratio::new(1875, 1)?)
                     .checked_div(
-                        (::drivebus::Ratio::new(512i64, 1i64)?)
+                        (::drivebus::Ratio::new(512, 1)?)
                             .checked_mul(input_encoder_resolution)?,
                     )?,
             ))()
@@ -86,7 +86,7 @@ pub mod params {
             };
             let input_peak_current = device.given().get("peak_current").ok_or_else(bad)?;
             let factor = (|| Some(
-                (input_peak_current).checked_div(::drivebus::Ratio::new(2048i64, 1i64)?)?,
+                (input_peak_current).checked_div(::drivebus::Ratio::new(2048, 1)?)?,
             ))()
                 .ok_or_else(bad)?;
             Ok(::drivebus::Scale::factor(factor))

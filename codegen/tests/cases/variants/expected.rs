@@ -12,8 +12,8 @@ impl Variant {
     /// The runtime's number for this variant.
     pub const fn id(self) -> ::drivebus::VariantId {
         match self {
-            Variant::Pc400 => ::drivebus::VariantId(0u16),
-            Variant::Pc507 => ::drivebus::VariantId(1u16),
+            Variant::Pc400 => ::drivebus::VariantId(0),
+            Variant::Pc507 => ::drivebus::VariantId(1),
         }
     }
 }
