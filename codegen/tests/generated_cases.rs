@@ -2,8 +2,9 @@
 //! each `tests/cases/<feature>/description.toml` is checked, its rendered diagnostics (warnings;
 //! empty when none) are compared with `diagnostics.txt` and its generated Rust with `expected.rs`,
 //! and all cases' code is compiled together in one scratch crate, one module per case. An emitter
-//! change is reviewed on these small files. Re-bless with `DRIVEGEN_BLESS=1 cargo test -p drivegen
-//! --test generated_cases` and review the diff.
+//! change is reviewed on these small files. Re-bless these and the whole-drive snapshots with one
+//! command, `DRIVEGEN_BLESS=1 INSTA_UPDATE=always cargo test -p drivegen --test generated_cases
+//! --test generated_snapshots`, and review the diff.
 
 mod support;
 

@@ -1,8 +1,8 @@
 //! One whole-drive snapshot (insta) per drive family, so a change to the emitter or a description
 //! shows up in context. Each format feature has its own small case in `tests/cases`
 //! (`generated_cases.rs`), which is where an emitter change is reviewed; the profiles are covered
-//! there. Accept changes with `cargo insta review` or `INSTA_UPDATE=always cargo test -p drivegen
-//! --test generated_snapshots`.
+//! there. Accept changes with `cargo insta review`, or re-bless both with `DRIVEGEN_BLESS=1
+//! INSTA_UPDATE=always cargo test -p drivegen --test generated_cases --test generated_snapshots`.
 
 use std::path::{Path, PathBuf};
 
