@@ -142,7 +142,11 @@ fn modes(device: &Device, handle: &Ident, control: &Ident) -> Option<TokenStream
 fn machine_data(m: &StateMachine) -> TokenStream {
     let states = m.states.iter().map(|s| {
         let name = s.name.as_str();
-        let (masks, values): (Vec<u16>, Vec<u16>) = s.status.iter().map(|p| (p.mask, p.value)).unzip();
+        let (masks, values): (Vec<TokenStream>, Vec<TokenStream>) = s
+            .status
+            .iter()
+            .map(|p| (super::hex(p.mask.into()), super::hex(p.value.into())))
+            .unzip();
         quote! {
             ::drivebus::control::StateDef {
                 name: #name,

@@ -55,7 +55,7 @@ pub fn emit(f: &Flags, device: &Device) -> TokenStream {
 fn field_accessor(f: &Flags, field: &crate::ir::BitField, device: &Device) -> TokenStream {
     let method = ident(&names::snake(&field.name));
     let (lsb, width) = (field.lsb, field.width);
-    let mask = hex((1u128 << width) - 1);
+    let mask = super::hex((1u128 << width) - 1);
     let d = doc_attrs(&format!(
         "Bits {lsb}..{}: {}",
         lsb + width,
@@ -86,10 +86,4 @@ fn field_accessor(f: &Flags, field: &crate::ir::BitField, device: &Device) -> To
         }
         None => quote! { #d pub const fn #method(&self) -> #raw { #bits } },
     }
-}
-
-/// A mask as a hex literal without a suffix (`0xf`), the way a manual prints it.
-fn hex(mask: u128) -> TokenStream {
-    let literal: Literal = format!("{mask:#x}").parse().expect("a hex literal");
-    quote! { #literal }
 }

@@ -56,6 +56,12 @@ pub(crate) fn unsuffixed(value: i128) -> TokenStream {
     enums::int_literal(value, DataType::Signed(16))
 }
 
+/// A hex literal without a suffix (`0x6f`), for masks and status patterns as manuals print them.
+pub(crate) fn hex(value: u128) -> TokenStream {
+    let literal: Literal = format!("{value:#x}").parse().expect("a hex literal");
+    quote! { #literal }
+}
+
 /// `#[doc = "..."]` attributes from escaped text, one per line, so the generated source shows
 /// `///` lines as hand-written code would. A lone carriage return (old Mac line ends in an EDS
 /// text) also ends a line: printed inside a `///` comment it would be a bare CR, which Rust

@@ -168,8 +168,8 @@ pub mod operation {
                 name: "stopped",
                 patterns: &[
                     ::drivebus::control::StatePattern {
-                        mask: 255u16,
-                        value: 3u16,
+                        mask: 0xff,
+                        value: 0x3,
                     },
                 ],
             },
@@ -177,12 +177,12 @@ pub mod operation {
                 name: "running",
                 patterns: &[
                     ::drivebus::control::StatePattern {
-                        mask: 255u16,
-                        value: 7u16,
+                        mask: 0xff,
+                        value: 0x7,
                     },
                     ::drivebus::control::StatePattern {
-                        mask: 255u16,
-                        value: 6u16,
+                        mask: 0xff,
+                        value: 0x6,
                     },
                 ],
             },
@@ -190,8 +190,8 @@ pub mod operation {
                 name: "stopping",
                 patterns: &[
                     ::drivebus::control::StatePattern {
-                        mask: 255u16,
-                        value: 8u16,
+                        mask: 0xff,
+                        value: 0x8,
                     },
                 ],
             },
