@@ -423,7 +423,7 @@ impl<L: ::drivebus::Link> Case<L> {
 /// The drive's deviations from CiA 402 (its description's `[cia402]` table), read by the
 /// control driver.
 pub const CIA402_QUIRKS: ::drivebus::control::Quirks = ::drivebus::control::Quirks {
-    fault_reset_hold_ms: 50u32,
+    fault_reset_hold_ms: 50,
     ..::drivebus::control::Quirks::STANDARD
 };
 impl<L> ::drivebus::control::Cia402Objects for Case<L> {

@@ -199,9 +199,9 @@ pub mod operation {
         transitions: &[
             ::drivebus::control::TransitionDef {
                 name: "start",
-                from: 0u8,
-                to: 1u8,
-                kind: ::drivebus::control::TransitionKind::Command(8u16),
+                from: 0,
+                to: 1,
+                kind: ::drivebus::control::TransitionKind::Command(8),
                 doc: "",
             },
         ],
