@@ -10,7 +10,7 @@
 use std::cell::RefCell;
 use std::fmt::Write as _;
 
-use proc_macro2::{Delimiter, Literal, Spacing, TokenStream, TokenTree};
+use proc_macro2::{Delimiter, Group, Literal, Punct, Spacing, TokenStream, TokenTree};
 use quote::quote;
 
 /// The widest line the generated source should have.
@@ -248,72 +248,79 @@ enum Last {
 impl Printer {
     fn token(&mut self, token: TokenTree) {
         match token {
-            TokenTree::Group(group) => {
-                let (open, close) = match group.delimiter() {
-                    Delimiter::Parenthesis => ("(", ")"),
-                    Delimiter::Bracket => ("[", "]"),
-                    Delimiter::Brace => (" { ", " }"),
-                    Delimiter::None => ("", ""),
-                };
-                if !matches!(self.last, None | Some(Last::Word) | Some(Last::Sign))
-                    && !matches!(self.last, Some(Last::Punct(':', _)))
-                {
-                    self.text.push(' ');
+            TokenTree::Group(group) => self.group(&group),
+            TokenTree::Punct(p) => self.punct(&p),
+            word => self.word(&word),
+        }
+    }
+
+    /// `(...)` or `[...]` tight against a name before it (`range(0, 10)`), its commas spaced.
+    fn group(&mut self, group: &Group) {
+        let (open, close) = match group.delimiter() {
+            Delimiter::Parenthesis => ("(", ")"),
+            Delimiter::Bracket => ("[", "]"),
+            Delimiter::Brace => ("{", "}"),
+            Delimiter::None => ("", ""),
+        };
+        if !matches!(
+            self.last,
+            None | Some(Last::Word | Last::Sign | Last::Punct(':', _))
+        ) {
+            self.text.push(' ');
+        }
+        self.text.push_str(open);
+        let mut inner = Printer::default();
+        for token in group.stream() {
+            match &token {
+                TokenTree::Punct(p) if p.as_char() == ',' => {
+                    inner.text.push_str(", ");
+                    inner.last = None;
                 }
-                self.text.push_str(open);
-                let mut inner = Printer::default();
-                for token in group.stream() {
-                    if let TokenTree::Punct(p) = &token {
-                        if p.as_char() == ',' {
-                            inner.text.push_str(", ");
-                            inner.last = None;
-                            continue;
-                        }
-                    }
-                    inner.token(token);
-                }
-                self.text.push_str(inner.text.trim_end());
-                self.text.push_str(close);
-                self.last = Some(Last::Group);
-            }
-            TokenTree::Punct(p) => {
-                let c = p.as_char();
-                let joint = p.spacing() == Spacing::Joint;
-                let space = match (self.last, c) {
-                    (None, _) => false,
-                    (Some(Last::Punct(_, true)), _) => false,
-                    (_, ':') if joint => !matches!(self.last, Some(Last::Word)),
-                    (_, ':') => false,
-                    (Some(Last::Word), '<' | '>') => false,
-                    (Some(Last::Group), '<' | '>') => false,
-                    _ => true,
-                };
-                if space {
-                    self.text.push(' ');
-                }
-                self.text.push(c);
-                let sign = c == '-' && !matches!(self.last, Some(Last::Word) | Some(Last::Group));
-                self.last = Some(if sign {
-                    Last::Sign
-                } else {
-                    Last::Punct(c, joint)
-                });
-            }
-            TokenTree::Ident(_) | TokenTree::Literal(_) => {
-                let space = match self.last {
-                    None | Some(Last::Sign) => false,
-                    Some(Last::Punct(':', _)) if self.text.ends_with("::") => false,
-                    Some(Last::Punct('<', _)) => false,
-                    Some(Last::Punct(_, true)) => false,
-                    _ => true,
-                };
-                if space {
-                    self.text.push(' ');
-                }
-                let _ = write!(self.text, "{token}");
-                self.last = Some(Last::Word);
+                _ => inner.token(token),
             }
         }
+        self.text.push_str(inner.text.trim_end());
+        self.text.push_str(close);
+        self.last = Some(Last::Group);
+    }
+
+    /// Operators spaced (`=>`, `/`, `=`), `::`, `:` and generics' `<>` tight, a leading `-` a sign.
+    fn punct(&mut self, p: &Punct) {
+        let c = p.as_char();
+        let joint = p.spacing() == Spacing::Joint;
+        let space = match (self.last, c) {
+            (None, _) | (Some(Last::Punct(_, true)), _) => false,
+            (_, ':') if joint => !matches!(self.last, Some(Last::Word)),
+            (_, ':') => false,
+            (Some(Last::Word | Last::Group), '<' | '>') => false,
+            _ => true,
+        };
+        if space {
+            self.text.push(' ');
+        }
+        self.text.push(c);
+        let sign = c == '-' && !matches!(self.last, Some(Last::Word | Last::Group));
+        self.last = Some(if sign {
+            Last::Sign
+        } else {
+            Last::Punct(c, joint)
+        });
+    }
+
+    /// A name or literal, spaced from what came before unless that was a sign, `::` or `<`.
+    fn word(&mut self, token: &TokenTree) {
+        let space = match self.last {
+            None | Some(Last::Sign) | Some(Last::Punct('<', _)) | Some(Last::Punct(_, true)) => {
+                false
+            }
+            Some(Last::Punct(':', _)) => !self.text.ends_with("::"),
+            _ => true,
+        };
+        if space {
+            self.text.push(' ');
+        }
+        let _ = write!(self.text, "{token}");
+        self.last = Some(Last::Word);
     }
 }
 
