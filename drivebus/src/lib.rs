@@ -35,6 +35,8 @@ pub mod data_type;
 pub mod device;
 pub mod error;
 pub mod error_class;
+#[doc(hidden)] // the `flags!` macro's helpers; generated crates reach them through the macro
+pub mod flags_macro;
 pub mod given;
 pub mod interpret;
 pub mod link;

@@ -33,7 +33,7 @@ fn quirks(device: &Device) -> TokenStream {
         .iter()
         .filter_map(|q| Quirk::from_name(q))
         .map(|q| format_ident!("{}", format!("{q:?}")));
-    let hold = c.fault_reset_hold_ms;
+    let hold = proc_macro2::Literal::u32_unsuffixed(c.fault_reset_hold_ms);
     quote! {
         ::drivebus::control::Quirks {
             fault_reset_hold_ms: #hold,
@@ -142,7 +142,11 @@ fn modes(device: &Device, handle: &Ident, control: &Ident) -> Option<TokenStream
 fn machine_data(m: &StateMachine) -> TokenStream {
     let states = m.states.iter().map(|s| {
         let name = s.name.as_str();
-        let (masks, values): (Vec<u16>, Vec<u16>) = s.status.iter().map(|p| (p.mask, p.value)).unzip();
+        let (masks, values): (Vec<TokenStream>, Vec<TokenStream>) = s
+            .status
+            .iter()
+            .map(|p| (super::hex(p.mask.into()), super::hex(p.value.into())))
+            .unzip();
         quote! {
             ::drivebus::control::StateDef {
                 name: #name,
@@ -156,11 +160,12 @@ fn machine_data(m: &StateMachine) -> TokenStream {
             .iter()
             .position(|s| s.name == name)
             .unwrap_or_default();
-        u8::try_from(i).unwrap_or(u8::MAX)
+        proc_macro2::Literal::u8_unsuffixed(u8::try_from(i).unwrap_or(u8::MAX))
     };
     let transitions = m.transitions.iter().flat_map(|t| {
         let kind = match (t.kind, t.command) {
             (TransitionKind::Command, Some(value)) => {
+                let value = super::unsuffixed(value.into());
                 quote! { ::drivebus::control::TransitionKind::Command(#value) }
             }
             (TransitionKind::Automatic, _) => quote! { ::drivebus::control::TransitionKind::Automatic },
@@ -310,7 +315,7 @@ source = { doc = "m", line = 3 }
             "{OBJECTS}\n[cia402]\nquirks = [\"mode-change-needs-halt-clear\", \"honours-remote\"]\nfault_reset_hold_ms = 50\nsto_bit = {{ parameter = \"sto_status\", bit = 3 }}\nsource = {{ doc = \"m\", line = 4 }}\n"
         ));
         let flat: String = code.split_whitespace().collect();
-        assert!(flat.contains("fault_reset_hold_ms:50u32"), "{code}");
+        assert!(flat.contains("fault_reset_hold_ms:50,"), "{code}");
         assert!(flat.contains(".with(::drivebus::control::Quirk::ModeChangeNeedsHaltClear).with(::drivebus::control::Quirk::HonoursRemote)"), "{code}");
         assert!(
             flat.contains("typeSafeTorqueOffWord=params::StoStatus;"),

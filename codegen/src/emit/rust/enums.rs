@@ -5,7 +5,7 @@
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
-use super::{doc_attrs, ident, raw_type};
+use super::{doc_attrs, ident, layout, raw_type};
 use crate::emit::{doc, ident as names};
 use crate::ir::{DataType, Enum, EnumValue, ValueClass};
 
@@ -29,7 +29,10 @@ pub fn emit(e: &Enum) -> TokenStream {
     let name = ident(&names::camel(&e.name));
     let raw = raw_type(e.data_type);
     let intro = doc::escape(e.doc.as_deref().unwrap_or(&e.name));
-    let docs = doc_attrs(&format!("{intro}\n\nOpen enumeration over `{}`: values the description does not list survive reads.", e.data_type.name()));
+    let docs = doc_attrs(&format!(
+        "{intro}\n\nOpen enumeration over `{}`: values the description does not list survive reads.",
+        e.data_type.name()
+    ));
     let consts: Vec<_> = e
         .values
         .iter()
@@ -42,15 +45,15 @@ pub fn emit(e: &Enum) -> TokenStream {
         .collect();
     let value_names = e.values.iter().map(|v| v.name.as_str());
     let error_attributes = error_attributes(e);
+    // The value itself is in the constant's definition; the doc says what it means.
     let const_docs = e.values.iter().map(|v| {
-        let text = format!(
-            "{} = `{}`{}",
-            doc::escape(v.doc.as_deref().unwrap_or(&v.name)),
-            v.value,
-            error_attribute_doc(v)
-        );
-        doc_attrs(&text)
+        let meaning = match &v.doc {
+            Some(text) => doc::escape(text),
+            None => format!("The value `{}`.", v.value),
+        };
+        doc_attrs(&format!("{meaning}{}", error_attribute_doc(v)))
     });
+    let open_enum = layout::list_call("::drivebus::open_enum", quote! { #name: #raw });
     quote! {
         #docs
         #[derive(Clone, Copy, PartialEq, Eq, Hash)]
@@ -71,7 +74,7 @@ pub fn emit(e: &Enum) -> TokenStream {
             #error_attributes
         }
 
-        ::drivebus::open_enum!(#name: #raw);
+        #open_enum
     }
 }
 
@@ -99,7 +102,15 @@ fn error_attributes(e: &Enum) -> TokenStream {
             /// the manual gives none.
             pub const fn led_code(self) -> Option<(u8, u8)>
         },
-        |v| v.led.map(|[first, second]| quote! { (#first, #second) }),
+        |v| {
+            v.led.map(|[first, second]| {
+                let (first, second) = (
+                    Literal::u8_unsuffixed(first),
+                    Literal::u8_unsuffixed(second),
+                );
+                quote! { (#first, #second) }
+            })
+        },
     );
     let meaning = attribute_fn(
         e,

@@ -105,7 +105,7 @@ fn one_check(check: &IdentityCheck) -> TokenStream {
     let name = &check.parameter.name;
     let (prelude, uncovered, reason) = match &check.covered {
         Covered::Values(values) => {
-            let values = values.iter().map(|v| i128::from(*v));
+            let values = values.iter().map(|v| super::unsuffixed(i128::from(*v)));
             (
                 quote! { const EXPECTED: &[::core::primitive::i128] = &[#( #values ),*]; },
                 quote! { !EXPECTED.contains(&found) },
@@ -159,7 +159,7 @@ fn identity_values(checks: &[IdentityCheck], device: &Device) -> TokenStream {
     else {
         return TokenStream::new();
     };
-    let values = values.iter().map(|v| i128::from(*v));
+    let values = values.iter().map(|v| super::unsuffixed(i128::from(*v)));
     quote! {
         /// The values of the identity parameter this description covers.
         pub const IDENTITY_VALUES: &[::core::primitive::i128] = &[#( #values ),*];

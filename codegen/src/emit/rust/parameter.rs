@@ -9,7 +9,7 @@ use quote::quote;
 
 use super::addresses::{self, Direction};
 use super::enums::int_literal;
-use super::{concat, doc_attrs, ident, parameter_doc, raw_type};
+use super::{concat, doc_attrs, ident, layout, parameter_doc, raw_type};
 use crate::emit::ident as names;
 use crate::ir::{DataType, Device, Expr, Number, Op, Parameter, Scale, ValueType};
 
@@ -23,8 +23,9 @@ fn number(n: Number, p: &Parameter) -> TokenStream {
             let value = i != 0;
             return quote! { #value };
         }
-        n if p.data_type == DataType::F32 => Literal::f32_suffixed(n.as_f64() as f32),
-        n => Literal::f64_suffixed(n.as_f64()),
+        // Unsuffixed: the macro's checks compare with the raw value, which fixes the type.
+        n if p.data_type == DataType::F32 => Literal::f32_unsuffixed(n.as_f64() as f32),
+        n => Literal::f64_unsuffixed(n.as_f64()),
     };
     quote! { #lit }
 }
@@ -120,6 +121,7 @@ fn expr_tokens(expr: &Expr) -> TokenStream {
     match expr {
         Expr::Number(ratio) => {
             let (n, d) = (ratio.numerator(), ratio.denominator());
+            let (n, d) = (super::unsuffixed(n.into()), super::unsuffixed(d.into()));
             quote! { ::drivebus::Ratio::new(#n, #d)? }
         }
         Expr::Parameter(name) => {
@@ -221,11 +223,16 @@ pub fn emit(p: &Parameter, device: &Device) -> TokenStream {
             addresses::canopen(p, device, Direction::SafetyWrite),
         ))
         .collect::<Vec<_>>();
+    // Written out after printing (see `layout`): one line, or one clause per line.
+    let invocation = layout::clauses_call(
+        "::drivebus::parameter",
+        quote! { #name = #param_name: #raw => #value_type, #codec #clauses #( #capabilities )* },
+    );
     let declaration = quote! {
         #aliases
         #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
         pub struct #name;
-        ::drivebus::parameter!(#name = #param_name: #raw => #value_type, #codec #clauses #( #capabilities )*);
+        #invocation
     };
     // Without a capability nothing would call the scale (an unused function warns).
     let scale = match capabilities.is_empty() {

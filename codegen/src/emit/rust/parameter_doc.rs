@@ -22,10 +22,9 @@ fn access(a: Access) -> &'static str {
 
 /// The full doc text of a parameter's marker type.
 pub fn text(p: &Parameter, device: &Device) -> String {
-    let mut out = doc::escape(p.doc.as_deref().unwrap_or(&p.name));
-    out.push_str("\n\n| | |\n|---|---|\n");
-    let row = |out: &mut String, key: &str, value: String| {
-        let _ = writeln!(out, "| {key} | {value} |");
+    let mut rows: Vec<(&str, String)> = Vec::new();
+    let row = |rows: &mut Vec<(&'static str, String)>, key: &'static str, value: String| {
+        rows.push((key, value));
     };
     for a in &p.modbus {
         let variant = a
@@ -44,7 +43,7 @@ pub fn text(p: &Parameter, device: &Device) -> String {
             Table::Holding => "Holding",
         };
         row(
-            &mut out,
+            &mut rows,
             "Modbus",
             format!(
                 "{table} register `0x{:04X}`{words}, {}{variant}",
@@ -54,7 +53,7 @@ pub fn text(p: &Parameter, device: &Device) -> String {
         );
     }
     if let Some(note) = p.safety_write_note() {
-        row(&mut out, "Safety", note.into());
+        row(&mut rows, "Safety", note.into());
     }
     if let Some(stops) = &p.stops {
         let which = match &stops.patterns {
@@ -70,11 +69,11 @@ pub fn text(p: &Parameter, device: &Device) -> String {
         let note = format!(
             "{which}: always sent, whatever the handle believes of locks, identity or variant"
         );
-        row(&mut out, "Stops the drive", note);
+        row(&mut rows, "Stops the drive", note);
     }
     for a in &p.canopen {
         row(
-            &mut out,
+            &mut rows,
             "CANopen",
             format!(
                 "object `{:#06X}:{}`, {}{}",
@@ -88,7 +87,7 @@ pub fn text(p: &Parameter, device: &Device) -> String {
     }
     for a in &p.rs232 {
         row(
-            &mut out,
+            &mut rows,
             "RS-232",
             format!(
                 "object `{:#06X}:{}`, {}",
@@ -126,13 +125,13 @@ pub fn text(p: &Parameter, device: &Device) -> String {
         }
         None => {}
     }
-    row(&mut out, "Type", ty);
+    row(&mut rows, "Type", ty);
     if let Some(r) = &p.range {
-        row(&mut out, "Range (raw)", format!("{}..={}", r.min, r.max));
+        row(&mut rows, "Range (raw)", format!("{}..={}", r.min, r.max));
     }
     if !p.allowed.is_empty() {
         row(
-            &mut out,
+            &mut rows,
             "Allowed (raw)",
             p.allowed
                 .iter()
@@ -143,55 +142,78 @@ pub fn text(p: &Parameter, device: &Device) -> String {
     }
     match p.default {
         Some(d) if p.default_plus_node_id => {
-            row(&mut out, "Default (raw)", format!("node id + {d}"));
+            row(&mut rows, "Default (raw)", format!("node id + {d}"));
             // Limits that hold on some node IDs only (a vendor EDS, issue #27): said where a user
             // of the generated crate reads about the default.
             if let Some(ids) = device.default_node_ids(p).filter(|ids| !ids.is_all()) {
                 row(
-                    &mut out,
+                    &mut rows,
                     "Node IDs",
                     format!("the default is a value this parameter accepts on node IDs {ids} only"),
                 );
             }
         }
-        Some(d) => row(&mut out, "Default (raw)", d.to_string()),
+        Some(d) => row(&mut rows, "Default (raw)", d.to_string()),
         None => {}
     }
     match p.effect {
         Effect::Immediate => {}
-        Effect::AfterReset => row(&mut out, "Takes effect", "after a reset".into()),
-        Effect::AfterStoreReset => row(&mut out, "Takes effect", "after store + reset".into()),
+        Effect::AfterReset => row(&mut rows, "Takes effect", "after a reset".into()),
+        Effect::AfterStoreReset => row(&mut rows, "Takes effect", "after store + reset".into()),
     }
     if let Some(c) = &p.command {
         row(
-            &mut out,
+            &mut rows,
             "Command",
             format!("{}; never retried", command_text(c)),
         );
     }
     if !p.variants.is_empty() {
-        row(&mut out, "Variants", p.variants.join(", "));
+        row(&mut rows, "Variants", p.variants.join(", "));
     }
     if let Some(c) = &p.source {
-        row(&mut out, "Source", citation(c, device));
+        row(&mut rows, "Source", citation(c, device));
         if let Some(example) = &c.example {
-            row(&mut out, "Manual example", doc::escape(example));
+            row(&mut rows, "Manual example", doc::escape(example));
         }
     }
     if let Some(e) = &p.erratum {
-        row(&mut out, "Erratum", doc::escape(e).replace('\n', " "));
+        row(&mut rows, "Erratum", doc::escape(e).replace('\n', " "));
     }
+    let mut out = doc::escape(p.doc.as_deref().unwrap_or(&p.name));
+    table(&rows, &mut out);
     out
 }
 
-/// A citation as doc text (escaped): the manual's title and file, section and line.
-pub fn citation(c: &Citation, device: &Device) -> String {
-    let title = device
-        .sources
+/// The longest table row kept in the table: a row is one line, and a line of the generated source
+/// stays within 100 columns (after `    /// `).
+const ROW_WIDTH: usize = 92;
+
+/// The short rows as a two-column table, then each long one as a paragraph (`**Erratum:** ...`),
+/// which the emitter can wrap.
+fn table(rows: &[(&str, String)], out: &mut String) {
+    let line = |(key, value): &(&str, String)| format!("| {key} | {value} |");
+    let (short, long): (Vec<_>, Vec<_>) = rows
         .iter()
-        .find(|s| s.id == c.doc())
-        .map_or(c.file(), |s| s.title.as_str());
-    let mut cite = format!("{} (`{}`)", doc::escape(title), doc::escape(c.file()));
+        .partition(|r| line(r).chars().count() <= ROW_WIDTH);
+    if !short.is_empty() {
+        out.push_str("\n\n| | |\n|---|---|");
+        for r in short {
+            let _ = write!(out, "\n{}", line(r));
+        }
+    }
+    for (key, value) in long {
+        let _ = write!(out, "\n\n**{key}:** {value}");
+    }
+}
+
+/// A citation as doc text (escaped): the manual's title (its file when the description gives no
+/// title), section and line. The file behind a title is in the description's `[device] source`.
+pub fn citation(c: &Citation, device: &Device) -> String {
+    let mut cite = match device.sources.iter().find(|s| s.id == c.doc()) {
+        Some(source) => doc::escape(&source.title),
+        None => format!("`{}`", doc::escape(c.file())),
+    };
     if let Some(section) = &c.section {
         let _ = write!(cite, " §{}", doc::escape(section));
     }

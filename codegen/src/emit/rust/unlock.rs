@@ -247,7 +247,7 @@ fn unlock_method(
         Some(r) => {
             let marker = ident(&names::camel(&r.parameter));
             let name = &r.parameter;
-            let values = r.values.iter().map(|v| i128::from(*v));
+            let values = r.values.iter().map(|v| super::unsuffixed(i128::from(*v)));
             let listed: Vec<String> = r.values.iter().map(i64::to_string).collect();
             (
                 quote! {

@@ -26,7 +26,7 @@ pub fn emit(device: &Device) -> TokenStream {
             let default = (i == 0).then(|| quote! { #[default] });
             quote! { #docs #default #name }
         });
-    let ids = 0..device.variants.len() as u16;
+    let ids = (0..device.variants.len()).map(proc_macro2::Literal::usize_unsuffixed);
     quote! {
         /// Firmware or parameter-configuration variants of the drive; the first is the default.
         #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
