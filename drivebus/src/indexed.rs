@@ -147,7 +147,7 @@ impl<R: Run, const N: u8> At<R, N> {
 }
 
 impl<R: Run, const N: u8> Parameter for At<R, N> {
-    const NAME: &'static str = (&MemberName::new(R::NAME, Self::SUBINDEX)).as_str();
+    const NAME: &'static str = MemberName::new(R::NAME, Self::SUBINDEX).as_str();
     const SCALE: Scale = R::SCALE;
     type Raw = R::Raw;
     type Value = R::Value;

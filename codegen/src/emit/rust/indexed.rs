@@ -52,7 +52,7 @@ pub(super) fn emit(device: &Device, handle: &Ident) -> TokenStream {
     if device.indexed.is_empty() {
         return quote! {};
     }
-    let types = concat(device.indexed.iter().map(|run| accessor_type(run)));
+    let types = concat(device.indexed.iter().map(accessor_type));
     let methods = device.indexed.iter().map(handle_method);
     quote! {
         /// Accessors of members described once over a run of sub-indices: `drive.<name>(n)`.
