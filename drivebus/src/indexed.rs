@@ -5,7 +5,7 @@
 //! The run's marker is an ordinary [`Parameter`] placed at the run's first sub-index; [`Run`]
 //! adds the run's bounds. [`Indexed`] reaches sub-index `n` at run time (`drive.<name>(n)`), and
 //! [`At<R, N>`] names one member as a type of its own where a type is needed
-//! (`SafetyValue::of::<At<SlsVelocityLimit, 3>, _>`, `read_many`), named `<run>_<N>` as the
+//! (`SafetyValue::of::<At<SlsVelocityLimitRun, 3>, _>`, `read_many`), named `<run>_<N>` as the
 //! description's member is.
 
 use core::marker::PhantomData;
@@ -163,6 +163,8 @@ impl<R: Run, const N: u8> Parameter for At<R, N> {
     }
 }
 
+// A member is never what a missing capability should be fixed with (as `parameter!`'s impls).
+#[diagnostic::do_not_recommend]
 impl<P, R, const N: u8> Readable<P> for At<R, N>
 where
     P: Protocol,
@@ -180,6 +182,7 @@ where
     }
 }
 
+#[diagnostic::do_not_recommend]
 impl<P, R, const N: u8> Writable<P> for At<R, N>
 where
     P: Protocol,
@@ -199,9 +202,11 @@ where
 
 // The value type of a member is its run's (a blanket impl: a member has no value type of its own
 // for a wrong unit's error to name instead).
+#[diagnostic::do_not_recommend]
 impl<V: ValueOf<R>, R: Run, const N: u8> ValueOf<At<R, N>> for V {}
 
 #[cfg(feature = "srdo")]
+#[diagnostic::do_not_recommend]
 impl<R, const N: u8> crate::canopen::srdo::SafetyFunctionParameter for At<R, N>
 where
     R: Run + crate::canopen::srdo::SafetyFunctionParameter,

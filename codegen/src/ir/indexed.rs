@@ -39,4 +39,12 @@ impl IndexedParameter {
     pub fn member_name(name: &str, subindex: u8) -> String {
         format!("{name}_{subindex}")
     }
+
+    /// The name, in snake case, of the run's marker type in the generated `params`
+    /// (`sls_velocity_limit_run`, `params::SlsVelocityLimitRun`): the run's own name is its
+    /// accessor type's in `indexed`, and one name for both would make every compiler message
+    /// about either spell out its path.
+    pub fn marker_name(&self) -> String {
+        format!("{}_run", self.name)
+    }
 }

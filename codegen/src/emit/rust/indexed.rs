@@ -20,20 +20,11 @@ pub(super) fn is_member(p: &Parameter, device: &Device) -> bool {
         .any(|run| run.members.contains(&p.name))
 }
 
-/// The run's marker for `params`: the run's one parameter, its CANopen row naming the whole run,
-/// and its bounds.
-pub(super) fn marker(run: &IndexedParameter, device: &Device) -> TokenStream {
-    let declaration = parameter::emit(&run.parameter, device);
-    // The doc table gives the parameter's own placement, the first sub-index; the marker stands
-    // for the whole run.
-    let first = format!("`{:#06X}:{}`", run.index, run.first).replace("0X", "0x");
-    let whole = format!("`{:#06X}:{}..={}`", run.index, run.first, run.last).replace("0X", "0x");
-    let declaration: TokenStream = declaration
-        .to_string()
-        .replacen(&first, &whole, 1)
-        .parse()
-        .unwrap_or(declaration);
-    let ty = ident(&names::camel(&run.name));
+/// The run's marker for `params`: the run's one parameter (its doc table gives the whole run's
+/// sub-indices) and its bounds.
+pub(super) fn marker_type(run: &IndexedParameter, device: &Device) -> TokenStream {
+    let ty = marker(run);
+    let declaration = parameter::emit_as(&run.parameter, &ty, device);
     let (first, last) = (
         Literal::u8_unsuffixed(run.first),
         Literal::u8_unsuffixed(run.last),
@@ -45,6 +36,11 @@ pub(super) fn marker(run: &IndexedParameter, device: &Device) -> TokenStream {
             const LAST: u8 = #last;
         }
     }
+}
+
+/// The ident of the run's marker type in `params`.
+fn marker(run: &IndexedParameter) -> Ident {
+    ident(&names::camel(&run.marker_name()))
 }
 
 /// The `indexed` module with one accessor type per run, and the handle methods.
@@ -101,10 +97,10 @@ fn access(run: &IndexedParameter) -> (bool, bool) {
 }
 
 fn accessor_type(run: &IndexedParameter) -> TokenStream {
-    let ty = ident(&names::camel(&run.name));
+    let (ty, marker) = (ident(&names::camel(&run.name)), marker(run));
     let docs = doc_attrs(&format!(
-        "{}\n\nSub-indices {}..={} of object 0x{:04X} (marker [`params::{ty}`]; one member as a \
-         type: `drivebus::indexed::At<params::{ty}, N>`).",
+        "{}\n\nSub-indices {}..={} of object 0x{:04X} (marker [`params::{marker}`]; one member as \
+         a type: `drivebus::indexed::At<params::{marker}, N>`).",
         summary(run),
         run.first,
         run.last,
@@ -147,7 +143,7 @@ fn accessor_type(run: &IndexedParameter) -> TokenStream {
     quote! {
         #docs
         #[must_use = "an accessor does nothing until read or written"]
-        pub struct #ty<'d, L>(::drivebus::indexed::Indexed<'d, L, params::#ty>);
+        pub struct #ty<'d, L>(::drivebus::indexed::Indexed<'d, L, params::#marker>);
 
         impl<'d, L> #ty<'d, L> {
             /// First sub-index of the run.
@@ -169,5 +165,33 @@ fn accessor_type(run: &IndexedParameter) -> TokenStream {
             #read
             #write
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::test_support::device;
+
+    const RUN: &str = r#"
+[[parameter]]
+name = "sls_limit"
+doc = "SLS limit."
+type = "u32"
+canopen = { index = 0x6693, subindex = "1..=200", access = "rw" }
+source = { doc = "m", line = 1 }
+"#;
+
+    #[test]
+    fn a_run_is_one_marker_and_one_accessor_without_a_type_or_arm_per_sub_index() {
+        let code = crate::emit::rust::generate(&device(RUN), "t");
+        assert_eq!(code.matches("pub struct SlsLimitRun;").count(), 1, "{code}");
+        assert!(!code.contains("SlsLimit1"), "{code}");
+        assert!(code.contains("impl ::drivebus::indexed::Run for SlsLimitRun"));
+        assert!(code.contains("const LAST: u8 = 200;"));
+        assert!(code.contains("object `0x6693:1..=200`"));
+        assert!(code.contains("pub fn sls_limit(&mut self, subindex: u8)"));
+        // Readable and writable: both directions, and nothing per sub-index.
+        assert!(code.contains("pub fn write(self, value: u32)"));
+        assert!(!code.contains("=> self"), "{code}");
     }
 }

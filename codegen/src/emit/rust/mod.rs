@@ -103,7 +103,7 @@ pub fn tokens(device: &Device) -> TokenStream {
             device
                 .indexed
                 .iter()
-                .map(|run| indexed::marker(run, device)),
+                .map(|run| indexed::marker_type(run, device)),
         )
         .chain(std::iter::once(given::scale_inputs(device))),
     );
