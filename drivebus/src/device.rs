@@ -25,6 +25,9 @@ pub struct Device<L> {
     given: Given,
 }
 
+/// The address type of `L`'s protocol.
+type ProtocolAddress<L> = <<L as Link>::Protocol as crate::Protocol>::Address;
+
 pub(crate) fn bus_error(parameter: &'static str) -> impl Fn(BusError) -> Error {
     move |cause| Error::Bus { parameter, cause }
 }
@@ -119,23 +122,34 @@ impl<L: Link> Device<L> {
     /// While the drive reported a variant the description does not cover, a parameter whose
     /// address depends on the variant is not read ([`Error::VariantUnknown`]): nothing is guessed.
     pub fn read_raw<P: Readable<L::Protocol>>(&mut self) -> Result<P::Raw, Error> {
+        self.read_raw_at::<P>(P::NAME, |address| address)
+    }
+
+    /// [`Self::read_raw`] of `P` at the address `at` makes of `P`'s, errors naming `name`: one
+    /// member of a sub-index run ([`crate::indexed`]).
+    pub(crate) fn read_raw_at<P: Readable<L::Protocol>>(
+        &mut self,
+        name: &'static str,
+        at: impl FnOnce(ProtocolAddress<L>) -> ProtocolAddress<L>,
+    ) -> Result<P::Raw, Error> {
         if let Some(WriteRefusal::UnknownVariant { selector, value }) = self.refusal {
             if P::READ_AT.depends_on_variant() {
                 return Err(Error::VariantUnknown {
-                    parameter: P::NAME,
+                    parameter: name,
                     selector,
                     value,
                 });
             }
         }
-        let address =
-            P::read_address(self.variant).ok_or(Error::NotInVariant { parameter: P::NAME })?;
+        let address = P::read_address(self.variant)
+            .map(at)
+            .ok_or(Error::NotInVariant { parameter: name })?;
         let mut buf = [0u8; MAX_VALUE_BYTES];
         let len = self
             .link
             .read(&address, &mut buf)
-            .map_err(bus_error(P::NAME))?;
-        P::Raw::decode_le(&buf[..len]).map_err(named::<P>)
+            .map_err(bus_error(name))?;
+        P::Raw::decode_le(&buf[..len]).map_err(|e| Error::Value(e.named(name)))
     }
 
     /// Writes a parameter in engineering units; range-checked before anything is sent.
@@ -149,17 +163,30 @@ impl<L: Link> Device<L> {
     /// Refused before sending while writes are refused ([`Self::write_refusal_of`]), unless it
     /// stops the drive ([`crate::stop`]): a stop is always sent and the drive's answer returned.
     pub fn write_raw<P: Writable<L::Protocol>>(&mut self, raw: P::Raw) -> Result<(), Error> {
-        P::check(&raw).map_err(named::<P>)?;
-        let refusal = self.write_refusal_of::<P>();
+        self.write_raw_at::<P>(P::NAME, raw, |address| address)
+    }
+
+    /// [`Self::write_raw`] of `P` at the address `at` makes of `P`'s, errors and the write lock
+    /// naming `name`: one member of a sub-index run ([`crate::indexed`]).
+    pub(crate) fn write_raw_at<P: Writable<L::Protocol>>(
+        &mut self,
+        name: &'static str,
+        raw: P::Raw,
+        at: impl FnOnce(ProtocolAddress<L>) -> ProtocolAddress<L>,
+    ) -> Result<(), Error> {
+        let named = |e: ValueError| Error::Value(e.named(name));
+        P::check(&raw).map_err(named)?;
+        let refusal = self.refusal.or_else(|| self.lock.as_ref()?.refusal(name));
         let refusal = if P::stops(&raw) { None } else { refusal };
         if let Some(reason) = refusal {
             return Err(Error::WritesRefused {
-                parameter: P::NAME,
+                parameter: name,
                 reason,
             });
         }
-        let address =
-            P::write_address(self.variant).ok_or(Error::NotInVariant { parameter: P::NAME })?;
+        let address = P::write_address(self.variant)
+            .map(at)
+            .ok_or(Error::NotInVariant { parameter: name })?;
         let len = match self.link.wire_bytes(&address) {
             0 => P::Raw::WIRE_BYTES,
             n => n,
@@ -171,12 +198,12 @@ impl<L: Link> Device<L> {
                 expected: MAX_VALUE_BYTES,
                 actual: len,
             }))?;
-        raw.encode_le(bytes).map_err(named::<P>)?;
+        raw.encode_le(bytes).map_err(named)?;
         let outcome = self.link.write(&address, bytes);
         if let Some(lock) = &mut self.lock {
-            lock.follow(P::NAME, bytes, &outcome);
+            lock.follow(name, bytes, &outcome);
         }
-        outcome.map_err(bus_error(P::NAME))
+        outcome.map_err(bus_error(name))
     }
 
     /// Reads several parameters at once, in as few requests as the link can manage.

@@ -8,6 +8,8 @@
 //! * [`value`] — raw wire types and their little-endian codecs.
 //! * [`scale`] / [`units`] — exact rational scaling and the unit newtypes values are returned in.
 //! * [`link`] — the one trait a protocol binding implements; [`device`] drives it.
+//! * [`indexed`] — members described once over a run of sub-indices: one marker, one indexed
+//!   accessor with a range-checked sub-index.
 //! * [`write_lock`] — a drive's write lock as a device handle tracks it: writes to a locked
 //!   parameter are refused before sending.
 //! * [`modbus`] / [`canopen`] / [`rs232`] — protocol addresses and the bus traits transports
@@ -38,6 +40,7 @@ pub mod error_class;
 #[doc(hidden)] // the `flags!` macro's helpers; generated crates reach them through the macro
 pub mod flags_macro;
 pub mod given;
+pub mod indexed;
 pub mod interpret;
 pub mod link;
 #[cfg(feature = "std")]

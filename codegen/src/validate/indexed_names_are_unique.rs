@@ -1,5 +1,6 @@
-//! The name of a member described over a sub-index run becomes a handle method (`drive.<name>(n)`)
-//! and a type in `indexed`: it must not be the name of a parameter or of another run.
+//! The name of a member described over a sub-index run becomes a handle method (`drive.<name>(n)`),
+//! a type in `indexed` and, with `_run`, the marker in `params`: none may be a parameter's or
+//! another run's.
 
 use std::collections::HashMap;
 
@@ -17,11 +18,17 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
         .map(|p| (method(&p.name), p.name.as_str()))
         .collect();
     let mut types: HashMap<String, &str> = HashMap::new();
+    let mut markers: HashMap<String, &str> = device
+        .parameters
+        .iter()
+        .map(|p| (camel(&p.name), p.name.as_str()))
+        .collect();
     let mut out = Vec::new();
     for run in &device.indexed {
         let clash = taken
             .insert(method(&run.name), &run.name)
-            .or_else(|| types.insert(camel(&run.name), &run.name));
+            .or_else(|| types.insert(camel(&run.name), &run.name))
+            .or_else(|| markers.insert(camel(&run.marker_name()), &run.name));
         if let Some(first) = clash {
             out.push(
                 Diagnostic::error(
@@ -68,5 +75,23 @@ source = { doc = "m", line = 2 }
             )
         )
         .is_empty());
+    }
+
+    #[test]
+    fn a_run_whose_marker_is_named_like_a_parameter_is_refused() {
+        let body = r#"
+[[parameter]]
+name = "limit_run"
+type = "u8"
+canopen = { index = 0x2000, access = "rw" }
+source = { doc = "m", line = 1 }
+
+[[parameter]]
+name = "limit"
+type = "u32"
+canopen = { index = 0x6693, subindex = "1..=2", access = "rw" }
+source = { doc = "m", line = 2 }
+"#;
+        assert_eq!(messages("indexed_names_are_unique", body).len(), 1);
     }
 }

@@ -233,9 +233,10 @@ impl<B: SdoBus> Swd<CanOpenLink<B>> {
     /// # use drivebus::canopen::{nmt::NmtState, srdo::SafetyValue};
     /// # use drivebus::units::Rpm;
     /// # fn f<B: drivebus::canopen::SdoBus>(drive: &mut ezwheel_swd::Swd<drivebus::canopen::CanOpenLink<B>>) -> Result<(), Box<dyn std::error::Error>> {
-    /// use ezwheel_swd::params::SlsaPositiveVelocityLimit3;
+    /// use drivebus::indexed::At;
+    /// use ezwheel_swd::params::SlsaPositiveVelocityLimitRun;
     /// use ezwheel_swd::safety_functions::SLSA;
-    /// let limit = SafetyValue::of::<SlsaPositiveVelocityLimit3, _>(drive.device(), Rpm(500.0))?;
+    /// let limit = SafetyValue::of::<At<SlsaPositiveVelocityLimitRun, 3>, _>(drive.device(), Rpm(500.0))?;
     /// let signature = drive.write_safety_function(NmtState::PreOperational, &SLSA, 3, &[limit])?;
     /// # Ok(()) }
     /// ```

@@ -12,12 +12,17 @@ mod support;
 use drivebus::canopen::nmt::NmtState;
 use drivebus::canopen::srdo::{write_safety_function, SafetyValue, SafetyWriteError};
 use drivebus::canopen::{NodeId, SdoBus};
+use drivebus::indexed::At;
 use drivebus::memory::SdoRecorder;
 use drivebus::units::{Milliseconds, Rpm};
 use drivebus::{BusError, WriteRefusal};
-use ezwheel_swd::params::{SlsaPositiveVelocityLimit3, SlsaTimeToPositiveVelocityMonitoring3};
+use ezwheel_swd::params::{SlsaPositiveVelocityLimitRun, SlsaTimeToPositiveVelocityMonitoringRun};
 use ezwheel_swd::safety_functions::{SLS, SLSA};
 use ezwheel_swd::Swd;
+
+/// SLSa 3's members of the two runs (3052h and 3051h sub 3).
+type SlsaPositiveVelocityLimit3 = At<SlsaPositiveVelocityLimitRun, 3>;
+type SlsaTimeToPositiveVelocityMonitoring3 = At<SlsaTimeToPositiveVelocityMonitoringRun, 3>;
 
 /// The objects the SLSa signature covers that the manual only names: read as zeros.
 fn only_named(index: u16) -> bool {

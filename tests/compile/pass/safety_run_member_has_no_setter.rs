@@ -10,7 +10,7 @@ fn main() {
     let _ = drive.sls_velocity_limit(3).read();
     // The deliberate write: Pre-Operational, then SLS 3's signature.
     if let Ok(limit) =
-        SafetyValue::of::<ezwheel_swd::params::SlsVelocityLimit3, _>(drive.device(), Rpm(100.0))
+        SafetyValue::of::<drivebus::indexed::At<ezwheel_swd::params::SlsVelocityLimitRun, 3>, _>(drive.device(), Rpm(100.0))
     {
         let _ = drive.write_safety_function(NmtState::PreOperational, &SLS, 3, &[limit]);
     }

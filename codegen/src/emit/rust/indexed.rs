@@ -1,17 +1,18 @@
-//! Indexed accessors of members described over a run of sub-indices (`subindex = "1..=8"`): one
-//! handle method `drive.<name>(subindex)` returning an accessor that dispatches to the marker of
-//! that sub-index, and refuses a sub-index outside the run with `ValueError::OutOfRange` before
-//! anything is sent. The per-sub-index markers stay in `params` (for PDOs and `read_many`); the
-//! handle has no method per member.
+//! Members described once over a run of sub-indices (`subindex = "1..=8"`), as device-driver emits
+//! a repeated register: ONE marker in `params` (an ordinary parameter placed at the run's first
+//! sub-index, plus `drivebus::indexed::Run` with the run's bounds), one accessor type in `indexed`
+//! wrapping `drivebus::indexed::Indexed`, and one handle method `drive.<name>(subindex)`. A
+//! sub-index outside the run is refused with `ValueError::OutOfRange` before anything is sent.
+//! One member is a type where a type is needed: `drivebus::indexed::At<params::<Run>, N>`.
 
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::quote;
 
-use super::{concat, doc_attrs, ident};
+use super::{concat, doc_attrs, ident, parameter, raw_type};
 use crate::emit::{doc, ident as names};
 use crate::ir::{Device, IndexedParameter, Parameter};
 
-/// Whether `p` is a member of a run, reached through its run's indexed accessor.
+/// Whether `p` is a member of a run, reached through its run's marker and indexed accessor.
 pub(super) fn is_member(p: &Parameter, device: &Device) -> bool {
     device
         .indexed
@@ -19,12 +20,35 @@ pub(super) fn is_member(p: &Parameter, device: &Device) -> bool {
         .any(|run| run.members.contains(&p.name))
 }
 
+/// The run's marker for `params`: the run's one parameter (its doc table gives the whole run's
+/// sub-indices) and its bounds.
+pub(super) fn marker_type(run: &IndexedParameter, device: &Device) -> TokenStream {
+    let ty = marker(run);
+    let declaration = parameter::emit_as(&run.parameter, &ty, device);
+    let (first, last) = (
+        Literal::u8_unsuffixed(run.first),
+        Literal::u8_unsuffixed(run.last),
+    );
+    quote! {
+        #declaration
+        impl ::drivebus::indexed::Run for #ty {
+            const FIRST: u8 = #first;
+            const LAST: u8 = #last;
+        }
+    }
+}
+
+/// The ident of the run's marker type in `params`.
+fn marker(run: &IndexedParameter) -> Ident {
+    ident(&names::camel(&run.marker_name()))
+}
+
 /// The `indexed` module with one accessor type per run, and the handle methods.
 pub(super) fn emit(device: &Device, handle: &Ident) -> TokenStream {
     if device.indexed.is_empty() {
         return quote! {};
     }
-    let types = concat(device.indexed.iter().map(|run| accessor_type(run, device)));
+    let types = concat(device.indexed.iter().map(accessor_type));
     let methods = device.indexed.iter().map(handle_method);
     quote! {
         /// Accessors of members described once over a run of sub-indices: `drive.<name>(n)`.
@@ -43,12 +67,12 @@ pub(super) fn emit(device: &Device, handle: &Ident) -> TokenStream {
 fn handle_method(run: &IndexedParameter) -> TokenStream {
     let method = ident(&names::method(&run.name));
     let ty = ident(&names::camel(&run.name));
-    let summary = summary(run);
     let docs = doc_attrs(&format!(
-        "{summary}\n\nSub-indices {first}..={last} of object 0x{index:04X}; see [`indexed::{ty}`].",
-        first = run.first,
-        last = run.last,
-        index = run.index,
+        "{}\n\nSub-indices {}..={} of object 0x{:04X}; see [`indexed::{ty}`].",
+        summary(run),
+        run.first,
+        run.last,
+        run.index,
     ));
     quote! {
         #docs
@@ -63,130 +87,111 @@ fn summary(run: &IndexedParameter) -> String {
     doc::summary(run.doc.as_deref(), &run.name)
 }
 
-/// Readable and writable over some protocol, judged from the members' CANopen access (a run has
-/// exactly one address, a CANopen one).
-fn access(run: &IndexedParameter, device: &Device) -> (bool, bool) {
-    let first = run.members.first().and_then(|m| device.parameter(m));
-    let address = first.and_then(|p| p.canopen.first());
-    let safety = first.is_some_and(Parameter::is_safety);
-    address.map_or((false, false), |a| {
-        (a.access.read, a.access.write && !safety)
+/// Readable and writable, judged from the run's CANopen access (a run has exactly one address, a
+/// CANopen one); a safety parameter has no setter.
+fn access(run: &IndexedParameter) -> (bool, bool) {
+    let p = &run.parameter;
+    p.canopen.first().map_or((false, false), |a| {
+        (a.access.read, a.access.write && !p.is_safety())
     })
 }
 
-fn accessor_type(run: &IndexedParameter, device: &Device) -> TokenStream {
-    let ty = ident(&names::camel(&run.name));
-    let markers: Vec<Ident> = run
-        .members
-        .iter()
-        .map(|m| ident(&names::camel(m)))
-        .collect();
-    let subs: Vec<Literal> = (run.first..=run.last).map(Literal::u8_unsuffixed).collect();
-    let Some(first) = markers.first() else {
-        return quote! {};
-    };
-    let name = run.name.as_str();
-    let (lo, hi) = (
-        Literal::u8_unsuffixed(run.first),
-        Literal::u8_unsuffixed(run.last),
-    );
-    let (min, max) = (f64::from(run.first), f64::from(run.last));
+fn accessor_type(run: &IndexedParameter) -> TokenStream {
+    let (ty, marker) = (ident(&names::camel(&run.name)), marker(run));
     let docs = doc_attrs(&format!(
-        "{}\n\nSub-indices {}..={} of object 0x{:04X}, one marker each (`params::{}` ...).",
+        "{}\n\nSub-indices {}..={} of object 0x{:04X} (marker [`params::{marker}`]; one member as \
+         a type: `drivebus::indexed::At<params::{marker}, N>`).",
         summary(run),
         run.first,
         run.last,
         run.index,
-        names::camel(&run.members[0]),
     ));
-    let (readable, writable) = access(run, device);
-    let value = quote! { <params::#first as ::drivebus::Parameter>::Value };
-    let raw = quote! { <params::#first as ::drivebus::Parameter>::Raw };
+    let (readable, writable) = access(run);
+    let (first, last) = (
+        Literal::u8_unsuffixed(run.first),
+        Literal::u8_unsuffixed(run.last),
+    );
+    // The marker's types spelled out: a projection through the marker would wrap every signature.
+    let value = parameter::value_type(&run.parameter, &quote! { super::types });
+    let raw = raw_type(run.parameter.data_type);
     let read = readable.then(|| {
         quote! {
             /// Reads the value at this sub-index in engineering units.
-            pub fn read(self) -> Result<#value, ::drivebus::Error>
-            where #( params::#markers: ::drivebus::Readable<L::Protocol>, )*
-            {
-                match self.subindex {
-                    #( #subs => self.device.read::<params::#markers>(), )*
-                    _ => Err(self.out_of_range()),
-                }
+            pub fn read(self) -> Result<#value, ::drivebus::Error> {
+                self.0.read()
             }
 
             /// Reads the raw value at this sub-index.
-            pub fn read_raw(self) -> Result<#raw, ::drivebus::Error>
-            where #( params::#markers: ::drivebus::Readable<L::Protocol>, )*
-            {
-                match self.subindex {
-                    #( #subs => self.device.read_raw::<params::#markers>(), )*
-                    _ => Err(self.out_of_range()),
-                }
+            pub fn read_raw(self) -> Result<#raw, ::drivebus::Error> {
+                self.0.read_raw()
             }
         }
     });
     let write = writable.then(|| {
         quote! {
             /// Writes a value in engineering units at this sub-index.
-            pub fn write(self, value: #value) -> Result<(), ::drivebus::Error>
-            where #( params::#markers: ::drivebus::Writable<L::Protocol>, )*
-            {
-                match self.subindex {
-                    #( #subs => self.device.write::<params::#markers>(value), )*
-                    _ => Err(self.out_of_range()),
-                }
+            pub fn write(self, value: #value) -> Result<(), ::drivebus::Error> {
+                self.0.write(value)
             }
 
             /// Writes a raw value at this sub-index.
-            pub fn write_raw(self, raw: #raw) -> Result<(), ::drivebus::Error>
-            where #( params::#markers: ::drivebus::Writable<L::Protocol>, )*
-            {
-                match self.subindex {
-                    #( #subs => self.device.write_raw::<params::#markers>(raw), )*
-                    _ => Err(self.out_of_range()),
-                }
+            pub fn write_raw(self, raw: #raw) -> Result<(), ::drivebus::Error> {
+                self.0.write_raw(raw)
             }
         }
     });
     quote! {
         #docs
         #[must_use = "an accessor does nothing until read or written"]
-        pub struct #ty<'d, L> {
-            device: &'d mut ::drivebus::Device<L>,
-            subindex: u8,
-        }
+        pub struct #ty<'d, L>(::drivebus::indexed::Indexed<'d, L, params::#marker>);
 
         impl<'d, L> #ty<'d, L> {
             /// First sub-index of the run.
-            pub const FIRST: u8 = #lo;
+            pub const FIRST: u8 = #first;
             /// Last sub-index of the run.
-            pub const LAST: u8 = #hi;
+            pub const LAST: u8 = #last;
 
             pub(super) fn new(device: &'d mut ::drivebus::Device<L>, subindex: u8) -> Self {
-                Self { device, subindex }
+                Self(::drivebus::indexed::Indexed::new(device, subindex))
             }
 
             /// The sub-index this accessor reaches.
             pub fn subindex(&self) -> u8 {
-                self.subindex
+                self.0.subindex()
             }
         }
 
-        impl<L: ::drivebus::Link> #ty<'_, L> {
-
-            /// The error for a sub-index outside the run; nothing is sent.
-            #[allow(dead_code)]
-            fn out_of_range(&self) -> ::drivebus::Error {
-                ::drivebus::Error::Value(::drivebus::ValueError::OutOfRange {
-                    parameter: #name,
-                    raw: f64::from(self.subindex),
-                    min: #min,
-                    max: #max,
-                })
-            }
-
+        impl<L: ::drivebus::Link<Protocol = ::drivebus::canopen::CanOpen>> #ty<'_, L> {
             #read
             #write
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::test_support::device;
+
+    const RUN: &str = r#"
+[[parameter]]
+name = "sls_limit"
+doc = "SLS limit."
+type = "u32"
+canopen = { index = 0x6693, subindex = "1..=200", access = "rw" }
+source = { doc = "m", line = 1 }
+"#;
+
+    #[test]
+    fn a_run_is_one_marker_and_one_accessor_without_a_type_or_arm_per_sub_index() {
+        let code = crate::emit::rust::generate(&device(RUN), "t");
+        assert_eq!(code.matches("pub struct SlsLimitRun;").count(), 1, "{code}");
+        assert!(!code.contains("SlsLimit1"), "{code}");
+        assert!(code.contains("impl ::drivebus::indexed::Run for SlsLimitRun"));
+        assert!(code.contains("const LAST: u8 = 200;"));
+        assert!(code.contains("object `0x6693:1..=200`"));
+        assert!(code.contains("pub fn sls_limit(&mut self, subindex: u8)"));
+        // Readable and writable: both directions, and nothing per sub-index.
+        assert!(code.contains("pub fn write(self, value: u32)"));
+        assert!(!code.contains("=> self"), "{code}");
     }
 }

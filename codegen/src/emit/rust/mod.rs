@@ -107,7 +107,19 @@ pub fn tokens(device: &Device) -> TokenStream {
             #[allow(unused_imports)]
             use super::types;
         })
-        .chain(device.parameters.iter().map(|p| parameter::emit(p, device)))
+        .chain(
+            device
+                .parameters
+                .iter()
+                .filter(|p| !indexed::is_member(p, device))
+                .map(|p| parameter::emit(p, device)),
+        )
+        .chain(
+            device
+                .indexed
+                .iter()
+                .map(|run| indexed::marker_type(run, device)),
+        )
         .chain(std::iter::once(given::scale_inputs(device))),
     );
     let control = (!device.device.is_profile).then(|| {

@@ -144,7 +144,7 @@ fn expr_tokens(expr: &Expr) -> TokenStream {
 /// An inherent `runtime_scale` that obtains the factor's inputs — parameters through
 /// `ScaleInput` (read, or given where the protocol cannot read them), constants from the model the
 /// handle was opened with — and evaluates the run-time scale expression.
-fn runtime_scale(p: &Parameter, device: &Device) -> TokenStream {
+fn runtime_scale(p: &Parameter, name: &Ident, device: &Device) -> TokenStream {
     let Some(Scale::Runtime { inputs, ast, .. }) = &p.scale else {
         return quote! {};
     };
@@ -158,7 +158,6 @@ fn runtime_scale(p: &Parameter, device: &Device) -> TokenStream {
     );
     let constant_names = constants.iter().map(|c| c.as_str());
     let expr = expr_tokens(ast);
-    let name = ident(&names::camel(&p.name));
     quote! {
         impl #name {
             /// Obtains the factor's inputs and evaluates the run-time scale expression.
@@ -199,7 +198,12 @@ fn capability(
 }
 
 pub fn emit(p: &Parameter, device: &Device) -> TokenStream {
-    let name = ident(&names::camel(&p.name));
+    emit_as(p, &ident(&names::camel(&p.name)), device)
+}
+
+/// [`emit`] with the marker type named `name` (a sub-index run's marker is not named as the
+/// parameter: the run's accessor type in `indexed` is).
+pub fn emit_as(p: &Parameter, name: &Ident, device: &Device) -> TokenStream {
     let docs = doc_attrs(&parameter_doc::text(p, device));
     let aliases = parameter_doc::aliases(p);
     let param_name = p.name.as_str();
@@ -237,7 +241,7 @@ pub fn emit(p: &Parameter, device: &Device) -> TokenStream {
     // Without a capability nothing would call the scale (an unused function warns).
     let scale = match capabilities.is_empty() {
         true => quote! {},
-        false => runtime_scale(p, device),
+        false => runtime_scale(p, name, device),
     };
     concat([docs, declaration, scale])
 }

@@ -6,7 +6,7 @@ use std::fmt::Write as _;
 use proc_macro2::TokenStream;
 use quote::quote;
 
-use crate::emit::doc;
+use crate::emit::{doc, ident as names};
 use crate::ir::{
     Access, Citation, Command, CommandKind, Device, Effect, Parameter, Scale, Table, WordOrder,
 };
@@ -71,19 +71,38 @@ pub fn text(p: &Parameter, device: &Device) -> String {
         );
         row(&mut rows, "Stops the drive", note);
     }
+    // A run's marker describes every sub-index of the run, not only its own first one.
+    let run_end = device
+        .indexed
+        .iter()
+        .find(|run| run.name == p.name)
+        .map(|run| format!("..={}", run.last));
     for a in &p.canopen {
         row(
             &mut rows,
             "CANopen",
             format!(
-                "object `{:#06X}:{}`, {}{}",
+                "object `{:#06X}:{}{}`, {}{}",
                 a.index,
                 a.subindex,
+                run_end.as_deref().unwrap_or(""),
                 access(a.access),
                 if a.constant { " (const)" } else { "" }
             )
             .replace("0X", "0x"),
         );
+    }
+    if let Some(run) = device.indexed.iter().find(|run| run.name == p.name) {
+        let marker = names::camel(&run.marker_name());
+        let note = format!(
+            "sub-indices {}..={}: `drive.{}(n)`; one of them as a type is \
+             `drivebus::indexed::At<params::{marker}, N>`. This marker on its own is sub-index {}",
+            run.first,
+            run.last,
+            names::method(&run.name),
+            run.first
+        );
+        row(&mut out, "Run", note);
     }
     for a in &p.rs232 {
         row(

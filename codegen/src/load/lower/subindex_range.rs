@@ -1,6 +1,7 @@
-//! Lowering of a member described once over a run of sub-indices (`subindex = "1..=8"`): the
-//! parameter is expanded into one parameter per sub-index, named `<name>_<sub-index>`, and the
-//! run is kept as an [`ir::IndexedParameter`] for the indexed accessor.
+//! Lowering of a member described once over a run of sub-indices (`subindex = "1..=8"`): the run
+//! stays one parameter, an [`ir::IndexedParameter`] (one marker and one indexed accessor in the
+//! generated crate), and each sub-index is also listed as a member parameter named
+//! `<name>_<sub-index>` for what addresses single objects (object dictionaries, EDS, overlap).
 
 use super::{Lowering, VALUE_RULE};
 use crate::diagnostic::Span;
@@ -51,6 +52,7 @@ impl Lowering<'_> {
             last,
             members,
             span: lowered.spans.name.clone(),
+            parameter: lowered.clone(),
         });
         for subindex in first..=last {
             device.parameters.push(member(&lowered, subindex));
@@ -130,6 +132,8 @@ source = { doc = "m", line = 1 }
             ("sls_limit", 0x6693, 1, 3)
         );
         assert_eq!(run.members, names);
+        assert_eq!(run.parameter.name, "sls_limit");
+        assert_eq!(run.parameter.canopen[0].subindex, 1);
         assert_eq!(
             device.parameters[1].doc.as_deref(),
             Some("SLS limit. Sub-index 2.")
