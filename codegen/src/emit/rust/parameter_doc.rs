@@ -102,7 +102,7 @@ pub fn text(p: &Parameter, device: &Device) -> String {
             names::method(&run.name),
             run.first
         );
-        row(&mut out, "Run", note);
+        row(&mut rows, "Run", note);
     }
     for a in &p.rs232 {
         row(
