@@ -66,78 +66,32 @@ pub mod params {
         VendorId = "vendor_id": u32 => u32, Plain;
         read canopen(0x1018 sub 1, 4 bytes);
     );
-    /// n_SLS of SLS n. Sub-index 1.
+    /// n_SLS of SLS n.
     ///
     /// | | |
     /// |---|---|
-    /// | CANopen | object `0x6693:1`, read/write |
+    /// | CANopen | object `0x6693:1..=4`, read/write |
     /// | Type | `u32`, unit rpm |
     /// | Default (raw) | 0 |
     /// | Source | Manual §11.7, line 3399 |
+    ///
+    /// **Run:** sub-indices 1..=4: `drive.sls_velocity_limit(n)`; one of them as a type is
+    /// `drivebus::indexed::At<params::SlsVelocityLimitRun, N>`. This marker on its own is sub-index
+    /// 1
     #[doc(alias = "0x6693")]
     #[doc(alias = "6693h")]
     #[doc(alias = "6693h:01")]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
-    pub struct SlsVelocityLimit1;
+    pub struct SlsVelocityLimitRun;
     ::drivebus::parameter!(
-        SlsVelocityLimit1 = "sls_velocity_limit_1": u32 => ::drivebus::units::Rpm, InUnit;
+        SlsVelocityLimitRun = "sls_velocity_limit": u32 => ::drivebus::units::Rpm, InUnit;
         read canopen(0x6693 sub 1, 4 bytes);
         write canopen(0x6693 sub 1, 4 bytes);
     );
-    /// n_SLS of SLS n. Sub-index 2.
-    ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x6693:2`, read/write |
-    /// | Type | `u32`, unit rpm |
-    /// | Default (raw) | 0 |
-    /// | Source | Manual §11.7, line 3399 |
-    #[doc(alias = "0x6693")]
-    #[doc(alias = "6693h")]
-    #[doc(alias = "6693h:02")]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
-    pub struct SlsVelocityLimit2;
-    ::drivebus::parameter!(
-        SlsVelocityLimit2 = "sls_velocity_limit_2": u32 => ::drivebus::units::Rpm, InUnit;
-        read canopen(0x6693 sub 2, 4 bytes);
-        write canopen(0x6693 sub 2, 4 bytes);
-    );
-    /// n_SLS of SLS n. Sub-index 3.
-    ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x6693:3`, read/write |
-    /// | Type | `u32`, unit rpm |
-    /// | Default (raw) | 0 |
-    /// | Source | Manual §11.7, line 3399 |
-    #[doc(alias = "0x6693")]
-    #[doc(alias = "6693h")]
-    #[doc(alias = "6693h:03")]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
-    pub struct SlsVelocityLimit3;
-    ::drivebus::parameter!(
-        SlsVelocityLimit3 = "sls_velocity_limit_3": u32 => ::drivebus::units::Rpm, InUnit;
-        read canopen(0x6693 sub 3, 4 bytes);
-        write canopen(0x6693 sub 3, 4 bytes);
-    );
-    /// n_SLS of SLS n. Sub-index 4.
-    ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x6693:4`, read/write |
-    /// | Type | `u32`, unit rpm |
-    /// | Default (raw) | 0 |
-    /// | Source | Manual §11.7, line 3399 |
-    #[doc(alias = "0x6693")]
-    #[doc(alias = "6693h")]
-    #[doc(alias = "6693h:04")]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
-    pub struct SlsVelocityLimit4;
-    ::drivebus::parameter!(
-        SlsVelocityLimit4 = "sls_velocity_limit_4": u32 => ::drivebus::units::Rpm, InUnit;
-        read canopen(0x6693 sub 4, 4 bytes);
-        write canopen(0x6693 sub 4, 4 bytes);
-    );
+    impl ::drivebus::indexed::Run for SlsVelocityLimitRun {
+        const FIRST: u8 = 1;
+        const LAST: u8 = 4;
+    }
 }
 /// A Case drive, reached over the link `L`.
 ///
@@ -223,115 +177,46 @@ pub mod indexed {
     use super::params;
     /// n_SLS of SLS n.
     ///
-    /// Sub-indices 1..=4 of object 0x6693, one marker each (`params::SlsVelocityLimit1` ...).
+    /// Sub-indices 1..=4 of object 0x6693 (marker [`params::SlsVelocityLimitRun`]; one member as a
+    /// type: `drivebus::indexed::At<params::SlsVelocityLimitRun, N>`).
     #[must_use = "an accessor does nothing until read or written"]
-    pub struct SlsVelocityLimit<'d, L> {
-        device: &'d mut ::drivebus::Device<L>,
-        subindex: u8,
-    }
+    pub struct SlsVelocityLimit<'d, L>(
+        ::drivebus::indexed::Indexed<'d, L, params::SlsVelocityLimitRun>,
+    );
     impl<'d, L> SlsVelocityLimit<'d, L> {
         /// First sub-index of the run.
         pub const FIRST: u8 = 1;
         /// Last sub-index of the run.
         pub const LAST: u8 = 4;
         pub(super) fn new(device: &'d mut ::drivebus::Device<L>, subindex: u8) -> Self {
-            Self { device, subindex }
+            Self(::drivebus::indexed::Indexed::new(device, subindex))
         }
         /// The sub-index this accessor reaches.
         pub fn subindex(&self) -> u8 {
-            self.subindex
+            self.0.subindex()
         }
     }
-    impl<L: ::drivebus::Link> SlsVelocityLimit<'_, L> {
-        /// The error for a sub-index outside the run; nothing is sent.
-        #[allow(dead_code)]
-        fn out_of_range(&self) -> ::drivebus::Error {
-            ::drivebus::Error::Value(::drivebus::ValueError::OutOfRange {
-                parameter: "sls_velocity_limit",
-                raw: f64::from(self.subindex),
-                min: 1f64,
-                max: 4f64,
-            })
-        }
+    impl<
+        L: ::drivebus::Link<Protocol = ::drivebus::canopen::CanOpen>,
+    > SlsVelocityLimit<'_, L> {
         /// Reads the value at this sub-index in engineering units.
-        pub fn read(
-            self,
-        ) -> Result<
-            <params::SlsVelocityLimit1 as ::drivebus::Parameter>::Value,
-            ::drivebus::Error,
-        >
-        where
-            params::SlsVelocityLimit1: ::drivebus::Readable<L::Protocol>,
-            params::SlsVelocityLimit2: ::drivebus::Readable<L::Protocol>,
-            params::SlsVelocityLimit3: ::drivebus::Readable<L::Protocol>,
-            params::SlsVelocityLimit4: ::drivebus::Readable<L::Protocol>,
-        {
-            match self.subindex {
-                1 => self.device.read::<params::SlsVelocityLimit1>(),
-                2 => self.device.read::<params::SlsVelocityLimit2>(),
-                3 => self.device.read::<params::SlsVelocityLimit3>(),
-                4 => self.device.read::<params::SlsVelocityLimit4>(),
-                _ => Err(self.out_of_range()),
-            }
+        pub fn read(self) -> Result<::drivebus::units::Rpm, ::drivebus::Error> {
+            self.0.read()
         }
         /// Reads the raw value at this sub-index.
-        pub fn read_raw(
-            self,
-        ) -> Result<
-            <params::SlsVelocityLimit1 as ::drivebus::Parameter>::Raw,
-            ::drivebus::Error,
-        >
-        where
-            params::SlsVelocityLimit1: ::drivebus::Readable<L::Protocol>,
-            params::SlsVelocityLimit2: ::drivebus::Readable<L::Protocol>,
-            params::SlsVelocityLimit3: ::drivebus::Readable<L::Protocol>,
-            params::SlsVelocityLimit4: ::drivebus::Readable<L::Protocol>,
-        {
-            match self.subindex {
-                1 => self.device.read_raw::<params::SlsVelocityLimit1>(),
-                2 => self.device.read_raw::<params::SlsVelocityLimit2>(),
-                3 => self.device.read_raw::<params::SlsVelocityLimit3>(),
-                4 => self.device.read_raw::<params::SlsVelocityLimit4>(),
-                _ => Err(self.out_of_range()),
-            }
+        pub fn read_raw(self) -> Result<u32, ::drivebus::Error> {
+            self.0.read_raw()
         }
         /// Writes a value in engineering units at this sub-index.
         pub fn write(
             self,
-            value: <params::SlsVelocityLimit1 as ::drivebus::Parameter>::Value,
-        ) -> Result<(), ::drivebus::Error>
-        where
-            params::SlsVelocityLimit1: ::drivebus::Writable<L::Protocol>,
-            params::SlsVelocityLimit2: ::drivebus::Writable<L::Protocol>,
-            params::SlsVelocityLimit3: ::drivebus::Writable<L::Protocol>,
-            params::SlsVelocityLimit4: ::drivebus::Writable<L::Protocol>,
-        {
-            match self.subindex {
-                1 => self.device.write::<params::SlsVelocityLimit1>(value),
-                2 => self.device.write::<params::SlsVelocityLimit2>(value),
-                3 => self.device.write::<params::SlsVelocityLimit3>(value),
-                4 => self.device.write::<params::SlsVelocityLimit4>(value),
-                _ => Err(self.out_of_range()),
-            }
+            value: ::drivebus::units::Rpm,
+        ) -> Result<(), ::drivebus::Error> {
+            self.0.write(value)
         }
         /// Writes a raw value at this sub-index.
-        pub fn write_raw(
-            self,
-            raw: <params::SlsVelocityLimit1 as ::drivebus::Parameter>::Raw,
-        ) -> Result<(), ::drivebus::Error>
-        where
-            params::SlsVelocityLimit1: ::drivebus::Writable<L::Protocol>,
-            params::SlsVelocityLimit2: ::drivebus::Writable<L::Protocol>,
-            params::SlsVelocityLimit3: ::drivebus::Writable<L::Protocol>,
-            params::SlsVelocityLimit4: ::drivebus::Writable<L::Protocol>,
-        {
-            match self.subindex {
-                1 => self.device.write_raw::<params::SlsVelocityLimit1>(raw),
-                2 => self.device.write_raw::<params::SlsVelocityLimit2>(raw),
-                3 => self.device.write_raw::<params::SlsVelocityLimit3>(raw),
-                4 => self.device.write_raw::<params::SlsVelocityLimit4>(raw),
-                _ => Err(self.out_of_range()),
-            }
+        pub fn write_raw(self, raw: u32) -> Result<(), ::drivebus::Error> {
+            self.0.write_raw(raw)
         }
     }
 }
