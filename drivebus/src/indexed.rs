@@ -79,6 +79,13 @@ impl<'d, L, R> Indexed<'d, L, R> {
     }
 }
 
+impl<L, R: Run> Indexed<'_, L, R> {
+    /// First sub-index of the run.
+    pub const FIRST: u8 = R::FIRST;
+    /// Last sub-index of the run.
+    pub const LAST: u8 = R::LAST;
+}
+
 impl<L: Link, R: Run> Indexed<'_, L, R>
 where
     <L::Protocol as Protocol>::Address: SubIndexed,

@@ -1,14 +1,14 @@
 //! Members described once over a run of sub-indices (`subindex = "1..=8"`), as device-driver emits
 //! a repeated register: ONE marker in `params` (an ordinary parameter placed at the run's first
-//! sub-index, plus `drivebus::indexed::Run` with the run's bounds), one accessor type in `indexed`
-//! wrapping `drivebus::indexed::Indexed`, and one handle method `drive.<name>(subindex)`. A
+//! sub-index, plus `drivebus::indexed::Run` with the run's bounds), one alias in `indexed` of
+//! `drivebus::indexed::Indexed` over it, and one handle method `drive.<name>(subindex)`. A
 //! sub-index outside the run is refused with `ValueError::OutOfRange` before anything is sent.
 //! One member is a type where a type is needed: `drivebus::indexed::At<params::<Run>, N>`.
 
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::quote;
 
-use super::{concat, doc_attrs, ident, parameter, raw_type};
+use super::{concat, doc_attrs, ident, parameter};
 use crate::emit::{doc, ident as names};
 use crate::ir::{Device, IndexedParameter, Parameter};
 
@@ -78,22 +78,13 @@ fn handle_method(run: &IndexedParameter) -> TokenStream {
         #docs
         #[inline]
         pub fn #method(&mut self, subindex: u8) -> indexed::#ty<'_, L> {
-            indexed::#ty::new(&mut self.device, subindex)
+            ::drivebus::indexed::Indexed::new(&mut self.device, subindex)
         }
     }
 }
 
 fn summary(run: &IndexedParameter) -> String {
     doc::summary(run.doc.as_deref(), &run.name)
-}
-
-/// Readable and writable, judged from the run's CANopen access (a run has exactly one address, a
-/// CANopen one); a safety parameter has no setter.
-fn access(run: &IndexedParameter) -> (bool, bool) {
-    let p = &run.parameter;
-    p.canopen.first().map_or((false, false), |a| {
-        (a.access.read, a.access.write && !p.is_safety())
-    })
 }
 
 fn accessor_type(run: &IndexedParameter) -> TokenStream {
@@ -106,65 +97,11 @@ fn accessor_type(run: &IndexedParameter) -> TokenStream {
         run.last,
         run.index,
     ));
-    let (readable, writable) = access(run);
-    let (first, last) = (
-        Literal::u8_unsuffixed(run.first),
-        Literal::u8_unsuffixed(run.last),
-    );
-    // The marker's types spelled out: a projection through the marker would wrap every signature.
-    let value = parameter::value_type(&run.parameter, &quote! { super::types });
-    let raw = raw_type(run.parameter.data_type);
-    let read = readable.then(|| {
-        quote! {
-            /// Reads the value at this sub-index in engineering units.
-            pub fn read(self) -> Result<#value, ::drivebus::Error> {
-                self.0.read()
-            }
-
-            /// Reads the raw value at this sub-index.
-            pub fn read_raw(self) -> Result<#raw, ::drivebus::Error> {
-                self.0.read_raw()
-            }
-        }
-    });
-    let write = writable.then(|| {
-        quote! {
-            /// Writes a value in engineering units at this sub-index.
-            pub fn write(self, value: #value) -> Result<(), ::drivebus::Error> {
-                self.0.write(value)
-            }
-
-            /// Writes a raw value at this sub-index.
-            pub fn write_raw(self, raw: #raw) -> Result<(), ::drivebus::Error> {
-                self.0.write_raw(raw)
-            }
-        }
-    });
+    // An alias, not a wrapper: `Indexed` reads and writes what the marker's traits allow (a safety
+    // run's marker is not `Writable`, so its accessor has no setter).
     quote! {
         #docs
-        #[must_use = "an accessor does nothing until read or written"]
-        pub struct #ty<'d, L>(::drivebus::indexed::Indexed<'d, L, params::#marker>);
-
-        impl<'d, L> #ty<'d, L> {
-            /// First sub-index of the run.
-            pub const FIRST: u8 = #first;
-            /// Last sub-index of the run.
-            pub const LAST: u8 = #last;
-
-            pub(super) fn new(device: &'d mut ::drivebus::Device<L>, subindex: u8) -> Self {
-                Self(::drivebus::indexed::Indexed::new(device, subindex))
-            }
-
-            /// The sub-index this accessor reaches.
-            pub fn subindex(&self) -> u8 {
-                self.0.subindex()
-            }
-        }
-
-        impl<L: ::drivebus::Link<Protocol = ::drivebus::canopen::CanOpen>> #ty<'_, L> {
-            #read
-            #write
-        }
+        pub type #ty<'d, L> = ::drivebus::indexed::Indexed<'d, L, params::#marker>;
     }
 }
 
@@ -190,8 +127,10 @@ source = { doc = "m", line = 1 }
         assert!(code.contains("const LAST: u8 = 200;"));
         assert!(code.contains("object `0x6693:1..=200`"));
         assert!(code.contains("pub fn sls_limit(&mut self, subindex: u8)"));
-        // Readable and writable: both directions, and nothing per sub-index.
-        assert!(code.contains("pub fn write(self, value: u32)"));
+        // One alias over the runtime's accessor, and nothing per sub-index.
+        assert!(code.contains(
+            "pub type SlsLimit<'d, L> = ::drivebus::indexed::Indexed<'d, L, params::SlsLimitRun>;"
+        ));
         assert!(!code.contains("=> self"), "{code}");
     }
 }

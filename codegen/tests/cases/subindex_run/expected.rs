@@ -179,46 +179,11 @@ pub mod indexed {
     ///
     /// Sub-indices 1..=4 of object 0x6693 (marker [`params::SlsVelocityLimitRun`]; one member as a
     /// type: `drivebus::indexed::At<params::SlsVelocityLimitRun, N>`).
-    #[must_use = "an accessor does nothing until read or written"]
-    pub struct SlsVelocityLimit<'d, L>(
-        ::drivebus::indexed::Indexed<'d, L, params::SlsVelocityLimitRun>,
-    );
-    impl<'d, L> SlsVelocityLimit<'d, L> {
-        /// First sub-index of the run.
-        pub const FIRST: u8 = 1;
-        /// Last sub-index of the run.
-        pub const LAST: u8 = 4;
-        pub(super) fn new(device: &'d mut ::drivebus::Device<L>, subindex: u8) -> Self {
-            Self(::drivebus::indexed::Indexed::new(device, subindex))
-        }
-        /// The sub-index this accessor reaches.
-        pub fn subindex(&self) -> u8 {
-            self.0.subindex()
-        }
-    }
-    impl<
-        L: ::drivebus::Link<Protocol = ::drivebus::canopen::CanOpen>,
-    > SlsVelocityLimit<'_, L> {
-        /// Reads the value at this sub-index in engineering units.
-        pub fn read(self) -> Result<::drivebus::units::Rpm, ::drivebus::Error> {
-            self.0.read()
-        }
-        /// Reads the raw value at this sub-index.
-        pub fn read_raw(self) -> Result<u32, ::drivebus::Error> {
-            self.0.read_raw()
-        }
-        /// Writes a value in engineering units at this sub-index.
-        pub fn write(
-            self,
-            value: ::drivebus::units::Rpm,
-        ) -> Result<(), ::drivebus::Error> {
-            self.0.write(value)
-        }
-        /// Writes a raw value at this sub-index.
-        pub fn write_raw(self, raw: u32) -> Result<(), ::drivebus::Error> {
-            self.0.write_raw(raw)
-        }
-    }
+    pub type SlsVelocityLimit<'d, L> = ::drivebus::indexed::Indexed<
+        'd,
+        L,
+        params::SlsVelocityLimitRun,
+    >;
 }
 impl<L: ::drivebus::Link> Case<L> {
     /// n_SLS of SLS n.
@@ -229,6 +194,6 @@ impl<L: ::drivebus::Link> Case<L> {
         &mut self,
         subindex: u8,
     ) -> indexed::SlsVelocityLimit<'_, L> {
-        indexed::SlsVelocityLimit::new(&mut self.device, subindex)
+        ::drivebus::indexed::Indexed::new(&mut self.device, subindex)
     }
 }
