@@ -11,7 +11,7 @@ use std::process::Command;
 use std::time::{Duration, Instant};
 
 use criterion::{criterion_group, Criterion, Throughput};
-use drivebus::canopen::backend::candump::parse_line;
+use drivebus::canopen::can::candump::parse_line;
 use drivebus::canopen::emcy::Emcy;
 use drivebus::canopen::message::Message;
 use drivebus::canopen::pdo::{MappedObject, PdoLayout};

@@ -38,8 +38,6 @@ pub mod error_class;
 pub mod given;
 pub mod interpret;
 pub mod link;
-#[cfg(feature = "std")]
-pub mod memory;
 pub mod modbus;
 mod open_enum_macro;
 pub mod parameter;
@@ -51,6 +49,8 @@ pub mod scale;
 pub mod stop;
 #[cfg(feature = "std")]
 pub mod stream;
+#[cfg(feature = "std")]
+pub mod testing;
 pub mod units;
 pub mod value;
 pub mod write_lock;

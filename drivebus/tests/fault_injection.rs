@@ -6,6 +6,7 @@
 use std::collections::VecDeque;
 use std::time::{Duration, Instant};
 
+use drivebus::modbus::client::{ByteStream, Client, ClientConfig};
 use drivebus::modbus::pdu::{
     decode_request, encode_exception, encode_registers_response, encode_write_response,
     ServerRequest, MAX_PDU,
@@ -13,7 +14,6 @@ use drivebus::modbus::pdu::{
 use drivebus::modbus::retry::{Idempotency, RetryPolicy};
 use drivebus::modbus::rtu::{self, RtuFraming};
 use drivebus::modbus::tcp::{self as mbap, Header, TcpFraming};
-use drivebus::modbus::transport::{ByteStream, Client, ClientConfig};
 use drivebus::modbus::{RegisterBus, RegisterRead, Table, UnitId};
 use drivebus::BusError;
 use proptest::prelude::*;

@@ -9,9 +9,9 @@ use std::net::TcpListener;
 use std::sync::mpsc;
 use std::time::Duration;
 
+use drivebus::modbus::client::{ModbusTcpClient, SerialConfig, SerialRtuClient, TcpConfig};
 use drivebus::modbus::crc::crc16;
 use drivebus::modbus::retry::RetryPolicy;
-use drivebus::modbus::transport::{ModbusTcpClient, SerialConfig, SerialRtuClient, TcpConfig};
 use drivebus::modbus::{RegisterBus, Table, UnitId};
 use drivebus::BusError;
 use peer_support::pty_pair;

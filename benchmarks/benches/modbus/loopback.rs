@@ -7,9 +7,9 @@ use std::io::{Read, Write};
 use std::net::{TcpListener, TcpStream};
 use std::time::{Duration, Instant};
 
+use drivebus::modbus::client::{ModbusTcpClient, TcpConfig, MAX_IN_FLIGHT};
 use drivebus::modbus::pdu::{decode_request, encode_registers_response, Request, ServerRequest};
 use drivebus::modbus::tcp::{self as mbap, Header};
-use drivebus::modbus::transport::{ModbusTcpClient, TcpConfig, MAX_IN_FLIGHT};
 use drivebus::modbus::{RegisterBus, RegisterRead, Table};
 
 use super::{runtime, values, START, UNIT};

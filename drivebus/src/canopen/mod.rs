@@ -32,8 +32,8 @@
 //! # fn main() -> Result<(), Box<dyn std::error::Error>> {
 //! use std::process::{Command, Stdio};
 //! use std::time::Duration;
-//! use drivebus::canopen::backend::candump::CandumpBus;
-//! use drivebus::canopen::blocking::BlockingSdo;
+//! use drivebus::canopen::can::candump::CandumpBus;
+//! use drivebus::canopen::client::BlockingSdo;
 //! use drivebus::canopen::{NodeId, SdoBus};
 //!
 //! // Any process that speaks candump compact lines on stdio, e.g. tests/peers/canopen_relay.py.
@@ -53,9 +53,9 @@
 //! ```
 
 mod address;
-pub mod backend;
+pub mod can;
 #[cfg(feature = "canopen")]
-pub mod blocking;
+pub mod client;
 pub mod emcy;
 pub mod frame;
 pub mod heartbeat;
@@ -63,14 +63,12 @@ mod link;
 pub mod message;
 pub mod nmt;
 pub mod pdo;
-#[cfg(feature = "canopen")]
-pub mod scan;
 pub mod sdo;
 #[cfg(feature = "srdo")]
 pub mod srdo;
 pub mod sync;
 
 pub use address::{CanOpen, NodeId, ObjectAddress};
-pub use backend::CanBus;
+pub use can::CanBus;
 pub use frame::CanFrame;
 pub use link::{CanOpenLink, SdoBus};

@@ -17,6 +17,8 @@
 //! planner.
 
 mod address;
+#[cfg(feature = "modbus")]
+pub mod client;
 #[cfg(feature = "modbus-core")]
 pub mod crc;
 #[cfg(test)]
@@ -32,8 +34,6 @@ pub mod rtu;
 #[cfg(feature = "std")]
 mod shared_bus;
 pub mod tcp;
-#[cfg(feature = "modbus")]
-pub mod transport;
 
 pub use address::{
     le_to_registers, registers_to_le, ModbusAddress, ModbusLimits, RegisterSpan, Table, UnitId,

@@ -40,12 +40,12 @@
 //! # Ok::<(), drivebus::rs232::Rs232Error>(())
 //! ```
 
+#[cfg(feature = "rs232")]
+pub mod client;
 pub mod data;
 mod error;
 pub mod exchange;
 mod link;
-#[cfg(feature = "rs232")]
-pub mod serial;
 pub mod telegram;
 
 pub use crate::canopen::ObjectAddress;

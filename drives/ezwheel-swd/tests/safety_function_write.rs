@@ -12,7 +12,7 @@ mod support;
 use drivebus::canopen::nmt::NmtState;
 use drivebus::canopen::srdo::{write_safety_function, SafetyValue, SafetyWriteError};
 use drivebus::canopen::{NodeId, SdoBus};
-use drivebus::memory::SdoRecorder;
+use drivebus::testing::SdoRecorder;
 use drivebus::units::{Milliseconds, Rpm};
 use drivebus::{BusError, WriteRefusal};
 use ezwheel_swd::params::{SlsaPositiveVelocityLimit3, SlsaTimeToPositiveVelocityMonitoring3};

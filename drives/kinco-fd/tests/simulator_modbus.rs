@@ -4,7 +4,7 @@
 //! simulated drive's Modbus server directly: the manual's 2-register statusword read (line 2488),
 //! the FC 0x10 exception (0x90, line 2460) and the speed ramp of the profile acceleration.
 
-use drivebus::modbus::transport::{ModbusTcpClient, TcpConfig};
+use drivebus::modbus::client::{ModbusTcpClient, TcpConfig};
 use drivebus::modbus::{RegisterBus, Table, UnitId};
 use drivebus::units::Rpm;
 use drivebus::{BusError, Error};

@@ -17,7 +17,7 @@
 //! use std::time::Duration;
 //! use drivebus::modbus::retry::{Idempotency, RetryPolicy};
 //! use drivebus::modbus::rtu::Parity;
-//! use drivebus::modbus::transport::{
+//! use drivebus::modbus::client::{
 //!     ModbusTcpClient, RtuOverTcpClient, SerialConfig, SerialRtuClient, TcpConfig,
 //! };
 //! use drivebus::modbus::{ModbusLimits, ModbusLink, RegisterBus, Table, UnitId};
