@@ -49,7 +49,7 @@ pub mod scale;
 pub mod stop;
 #[cfg(feature = "std")]
 pub mod stream;
-#[cfg(feature = "std")]
+#[cfg(feature = "testing")]
 pub mod testing;
 pub mod units;
 pub mod value;

@@ -9,11 +9,13 @@
 use crate::error::BusError;
 
 mod client;
+#[cfg(feature = "server")]
 mod server;
 #[cfg(test)]
 mod tests;
 
 pub use client::{decode_registers, decode_response, Bits, Registers, Request, Response};
+#[cfg(feature = "server")]
 pub use server::{
     decode_request, encode_bits_response, encode_exception, encode_registers_response,
     encode_write_response, ServerRequest,
@@ -96,6 +98,7 @@ pub(crate) fn pack_bits(values: &[bool], out: &mut [u8]) {
     }
 }
 
+#[cfg(feature = "server")]
 #[inline]
 pub(crate) fn be16(bytes: &[u8], at: usize) -> u16 {
     u16::from_be_bytes([bytes[at], bytes[at + 1]])
