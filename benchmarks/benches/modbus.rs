@@ -13,6 +13,7 @@ use std::pin::Pin;
 use std::task::{Context as TaskContext, Poll};
 use std::time::{Duration, Instant};
 
+use benchmarks as floor;
 use criterion::{BenchmarkId, Criterion};
 use drivebus::modbus::client::{ByteStream, Client, ClientConfig};
 use drivebus::modbus::framing::{scan_registers, Framing, Scan};
@@ -23,7 +24,6 @@ use drivebus::modbus::rtu::{self, RtuFraming};
 use drivebus::modbus::tcp::{self as mbap, Header, TcpFraming};
 use drivebus::modbus::{ModbusAddress, ModbusLimits, RegisterBus, Table, UnitId, WordOrder};
 use drivebus::BusError;
-use drivegen_benchmarks as floor;
 
 #[path = "modbus/loopback.rs"]
 mod loopback;

@@ -10,11 +10,11 @@ use std::hint::black_box;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
+use benchmarks::rs232 as floor;
 use criterion::Criterion;
 use drivebus::rs232::data::{Answer, Request};
 use drivebus::rs232::exchange::Exchange;
 use drivebus::rs232::{LoopMode, StationId};
-use drivegen_benchmarks::rs232 as floor;
 
 const STATION: u8 = 1;
 const INDEX: u16 = 0x607A;
