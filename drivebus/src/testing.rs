@@ -326,7 +326,7 @@ impl RegisterBus for RtuRecorder {
         start: u16,
         values: &[u16],
     ) -> Result<(), BusError> {
-        let request = crate::modbus::pdu::Request::WriteMultipleRegisters { start, values };
+        let request = crate::modbus::pdu::Request::write_registers(start, values);
         self.record(unit, &request)?;
         self.memory.write_registers(unit, start, values)
     }
