@@ -5,7 +5,7 @@
 //! ```
 //!
 //! Values and errors are always here; each protocol's addressing, links and (with `std`)
-//! blocking transports come with the feature that enables them.
+//! blocking clients come with the feature that enables them.
 
 pub use crate::error::{BusError, Error, ValueError};
 pub use crate::link::Link;

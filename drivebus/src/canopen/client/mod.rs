@@ -20,7 +20,7 @@ pub const BACKLOG: usize = 1024;
 pub const DEFAULT_TIMEOUT: Duration = Duration::from_millis(500);
 
 /// Runs SDO transfers over a [`CanBus`]; implements [`SdoBus`], so a
-/// [`CanOpenLink`](crate::canopen::CanOpenLink) works over every backend.
+/// [`CanOpenLink`](crate::canopen::CanOpenLink) works over every CAN interface.
 ///
 /// Frames that arrive during a transfer but are not SDO responses for it (PDOs, heartbeats,
 /// EMCY, other nodes' SDOs) are kept, up to [`BACKLOG`] of them, and handed out first by this
