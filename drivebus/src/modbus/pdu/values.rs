@@ -8,6 +8,32 @@ use crate::error::BusError;
 
 use super::{bit_bytes, frame_error, pack_bits};
 
+/// What both runs share: built from the caller's slice, compared by value (whatever their form),
+/// printed as their values.
+macro_rules! value_run {
+    ($run:ident, $value:ty) => {
+        impl<'a> From<&'a [$value]> for $run<'a> {
+            fn from(values: &'a [$value]) -> Self {
+                Self::from_values(values)
+            }
+        }
+
+        impl PartialEq for $run<'_> {
+            fn eq(&self, other: &Self) -> bool {
+                self.len() == other.len() && self.iter().eq(other.iter())
+            }
+        }
+
+        impl Eq for $run<'_> {}
+
+        impl fmt::Debug for $run<'_> {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.debug_list().entries(self.iter()).finish()
+            }
+        }
+    };
+}
+
 /// A run of register values: borrowed from a frame in wire (big-endian) form (a read answer, a
 /// decoded write request) or from the caller's `&[u16]` (a write a client sends).
 ///
@@ -107,25 +133,7 @@ impl<'a> Registers<'a> {
     }
 }
 
-impl<'a> From<&'a [u16]> for Registers<'a> {
-    fn from(values: &'a [u16]) -> Self {
-        Self::from_values(values)
-    }
-}
-
-impl PartialEq for Registers<'_> {
-    fn eq(&self, other: &Self) -> bool {
-        self.len() == other.len() && self.iter().eq(other.iter())
-    }
-}
-
-impl Eq for Registers<'_> {}
-
-impl fmt::Debug for Registers<'_> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_list().entries(self.iter()).finish()
-    }
-}
+value_run!(Registers, u16);
 
 /// A run of bits (coils or discrete inputs): borrowed from a frame, packed LSB first (a read
 /// answer, a decoded write request), or from the caller's `&[bool]` (a write a client sends).
@@ -219,22 +227,4 @@ impl<'a> Bits<'a> {
     }
 }
 
-impl<'a> From<&'a [bool]> for Bits<'a> {
-    fn from(values: &'a [bool]) -> Self {
-        Self::from_values(values)
-    }
-}
-
-impl PartialEq for Bits<'_> {
-    fn eq(&self, other: &Self) -> bool {
-        self.len() == other.len() && self.iter().eq(other.iter())
-    }
-}
-
-impl Eq for Bits<'_> {}
-
-impl fmt::Debug for Bits<'_> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_list().entries(self.iter()).finish()
-    }
-}
+value_run!(Bits, bool);
