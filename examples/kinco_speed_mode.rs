@@ -14,10 +14,10 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use drivebus::canopen::backend::in_process::InProcessBus;
-use drivebus::canopen::blocking::BlockingSdo;
+use drivebus::canopen::can::in_process::InProcessBus;
+use drivebus::canopen::client::BlockingSdo;
 use drivebus::canopen::NodeId;
-use drivebus::modbus::transport::{ModbusTcpClient, TcpConfig};
+use drivebus::modbus::client::{ModbusTcpClient, TcpConfig};
 use drivebus::modbus::UnitId;
 use drivebus::rs232::data::{Answer, Request};
 use drivebus::rs232::exchange::Exchange;

@@ -14,8 +14,8 @@ use std::error::Error;
 use std::thread::sleep;
 use std::time::Duration;
 
+use drivebus::modbus::client::{ModbusTcpClient, SerialConfig, SerialRtuClient, TcpConfig};
 use drivebus::modbus::rtu::{Parity, StopBits};
-use drivebus::modbus::transport::{ModbusTcpClient, SerialConfig, SerialRtuClient, TcpConfig};
 use drivebus::modbus::{ModbusLink, RegisterBus, UnitId};
 use drivebus::units::Hertz;
 use lenze_smd::{Command, LenzeSmd, SmdError};

@@ -7,7 +7,7 @@
 //! cargo run --example swd_quickstart
 //! ```
 //!
-//! Against a real SWD, open a `drivebus::canopen::backend::socketcan::SocketCanBus` (feature
+//! Against a real SWD, open a `drivebus::canopen::can::socketcan::SocketCanBus` (feature
 //! `socketcan`) instead of the in-process bus; the rest is the same.
 
 use std::error::Error;
@@ -16,8 +16,8 @@ use std::sync::Arc;
 use std::thread;
 use std::time::{Duration, Instant};
 
-use drivebus::canopen::backend::in_process::{InProcessBus, InProcessEndpoint};
-use drivebus::canopen::blocking::BlockingSdo;
+use drivebus::canopen::can::in_process::{InProcessBus, InProcessEndpoint};
+use drivebus::canopen::client::BlockingSdo;
 use drivebus::canopen::nmt::{decode_heartbeat, NmtCommand, NmtState};
 use drivebus::canopen::{CanBus, CanOpenLink, NodeId, SdoBus};
 use drivebus::units::{Milliseconds, Rpm};

@@ -15,13 +15,13 @@ use std::time::{Duration, Instant};
 
 use benchmarks as floor;
 use criterion::{BenchmarkId, Criterion};
+use drivebus::modbus::client::{ByteStream, Client, ClientConfig};
 use drivebus::modbus::framing::{scan_registers, Framing, Scan};
 use drivebus::modbus::pdu::{encode_registers_response, Request};
 use drivebus::modbus::planner::plan;
 use drivebus::modbus::retry::RetryPolicy;
 use drivebus::modbus::rtu::{self, RtuFraming};
 use drivebus::modbus::tcp::{self as mbap, Header, TcpFraming};
-use drivebus::modbus::transport::{ByteStream, Client, ClientConfig};
 use drivebus::modbus::{ModbusAddress, ModbusLimits, RegisterBus, Table, UnitId, WordOrder};
 use drivebus::BusError;
 

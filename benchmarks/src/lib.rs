@@ -138,7 +138,7 @@ mod tests {
         for len in 0..data.len() {
             assert_eq!(
                 super::crc16(&data[..len]),
-                drivebus::modbus::crc::crc16(&data[..len])
+                drivebus::modbus::crc::crc16_modbus(&data[..len])
             );
         }
     }

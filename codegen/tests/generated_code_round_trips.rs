@@ -182,7 +182,7 @@ fn pdo_fields(
 
 const TEST_PRELUDE: &str = "//! Generated round trips.\n\
 #![allow(unused_variables)] // A description may have no parameter to test.\n\
-use drivebus::modbus::transport::{ModbusTcpClient, TcpConfig};\n\
+use drivebus::modbus::client::{ModbusTcpClient, TcpConfig};\n\
 use drivebus::modbus::UnitId;\n\n\
 /// The raw integer the simulator holds for `name`.\n\
 fn held(sim: &drivesim::Simulator, name: &str) -> i128 {\n    \

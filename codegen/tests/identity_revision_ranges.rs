@@ -46,7 +46,7 @@ fn a_wide_revision_range_is_checked_as_a_range() {
 /// Nodes reporting revisions inside, at the edges of and outside the covered range.
 const NODE_TEST: &str = r#"
 use drivebus::canopen::{CanOpenLink, NodeId};
-use drivebus::memory::MemoryBus;
+use drivebus::testing::MemoryBus;
 use drivebus::{Error, WriteRefusal};
 use identity_revision_ranges::revisions::Revisions;
 

@@ -206,8 +206,8 @@ fn raw_bytes_show_with_units_and_names() {
 #[test]
 fn parameters_are_read_and_written_by_name_over_a_link() {
     use drivebus::interpret::{read, write, InterpretError, Variant};
-    use drivebus::memory::MemoryBus;
     use drivebus::modbus::{ModbusLimits, ModbusLink, Table, UnitId};
+    use drivebus::testing::MemoryBus;
 
     let device = lafert();
     let mut bus = MemoryBus::new();
@@ -286,8 +286,8 @@ fn parameters_are_read_and_written_by_name_over_a_link() {
 #[test]
 fn the_variant_decides_the_register_and_an_unknown_one_reaches_none() {
     use drivebus::interpret::{read, write, InterpretError, Variant};
-    use drivebus::memory::MemoryBus;
     use drivebus::modbus::{ModbusLimits, ModbusLink, Table, UnitId};
+    use drivebus::testing::MemoryBus;
 
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../descriptions/lenze-smd");
     let device = drivegen::check(std::path::Path::new(path)).device.unwrap();
@@ -354,14 +354,14 @@ fn the_variant_decides_the_register_and_an_unknown_one_reaches_none() {
     let writes: Vec<_> = bus
         .log()
         .iter()
-        .filter(|r| matches!(r, drivebus::memory::Request::Write { .. }))
+        .filter(|r| matches!(r, drivebus::testing::Request::Write { .. }))
         .collect();
     let expected = [
-        drivebus::memory::Request::Write {
+        drivebus::testing::Request::Write {
             start: 103,
             values: vec![1],
         },
-        drivebus::memory::Request::Write {
+        drivebus::testing::Request::Write {
             start: 1,
             values: vec![4],
         },

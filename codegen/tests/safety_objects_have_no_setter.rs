@@ -14,7 +14,7 @@ const FIXTURE: &str = "tests/fixtures/srdo";
 
 fn uses(body: &str) -> String {
     format!(
-        "use drivebus::canopen::NodeId;\nuse drivebus::memory::MemoryBus;\nuse safety_no_setter::SwdSrdo;\n\n#[test]\nfn uses_the_api() {{\n    let mut drive = SwdSrdo::canopen(MemoryBus::new(), NodeId(0x10));\n{body}\n}}\n"
+        "use drivebus::canopen::NodeId;\nuse drivebus::testing::MemoryBus;\nuse safety_no_setter::SwdSrdo;\n\n#[test]\nfn uses_the_api() {{\n    let mut drive = SwdSrdo::canopen(MemoryBus::new(), NodeId(0x10));\n{body}\n}}\n"
     )
 }
 

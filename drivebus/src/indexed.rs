@@ -274,7 +274,7 @@ impl MemberName {
 mod tests {
     use super::*;
     use crate::canopen::{CanOpenLink, NodeId};
-    use crate::memory::MemoryBus;
+    use crate::testing::MemoryBus;
 
     /// Sub-indices 2..=4 of 2000h, `u16`, read-write.
     struct Limit;

@@ -12,15 +12,20 @@
 //!   accessor with a range-checked sub-index.
 //! * [`write_lock`] — a drive's write lock as a device handle tracks it: writes to a locked
 //!   parameter are refused before sending.
-//! * [`modbus`] / [`canopen`] / [`rs232`] — protocol addresses and the bus traits transports
-//!   implement.
+//! * [`modbus`] / [`canopen`] / [`rs232`] — per protocol: addresses, the sans-I/O cores, the bus
+//!   traits the blocking clients implement and, in each, the blocking client itself
+//!   (`modbus::client`, `canopen::client`, `rs232::client`; each with its protocol's feature).
 //! * `stream` (feature `std`) — the byte streams (serial port, TCP, test doubles) under the
 //!   Modbus clients and the RS-232 host.
 //! * [`interpret`] — raw values, and (feature `std`) byte and register codecs, for tools that read
 //!   a description at run time (the CLI, the simulator).
 //! * [`prelude`] — the names an application uses most, in one `use drivebus::prelude::*;`.
 //!
-//! The core is `#![no_std]`; the `std` feature adds the in-memory bus used by tests and examples.
+//! The crate is the client side. The device side (Modbus PDU server codec, SDO server, CiA 402
+//! device model), which simulators and test peers use, is behind feature `server`; the test doubles
+//! (`testing`: `MemoryBus`, `SdoRecorder`, `RtuRecorder`) behind feature `testing`.
+//!
+//! The core is `#![no_std]`; the `std` feature adds the blocking clients and `std::error::Error`.
 #![no_std]
 
 // Tests use std (proptest, Vec) even when the crate is built without it.
@@ -43,8 +48,6 @@ pub mod given;
 pub mod indexed;
 pub mod interpret;
 pub mod link;
-#[cfg(feature = "std")]
-pub mod memory;
 pub mod modbus;
 mod open_enum_macro;
 pub mod parameter;
@@ -56,6 +59,8 @@ pub mod scale;
 pub mod stop;
 #[cfg(feature = "std")]
 pub mod stream;
+#[cfg(feature = "testing")]
+pub mod testing;
 pub mod units;
 pub mod value;
 pub mod write_lock;

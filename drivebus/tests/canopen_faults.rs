@@ -9,8 +9,8 @@ use std::sync::Arc;
 use std::thread::JoinHandle;
 use std::time::Duration;
 
-use drivebus::canopen::backend::in_process::{InProcessBus, InProcessEndpoint};
-use drivebus::canopen::blocking::BlockingSdo;
+use drivebus::canopen::can::in_process::{InProcessBus, InProcessEndpoint};
+use drivebus::canopen::client::BlockingSdo;
 use drivebus::canopen::pdo::{MappedObject, PdoConfig, PdoKind};
 use drivebus::canopen::sdo::server::SdoServer;
 use drivebus::canopen::sdo::AbortCode;

@@ -6,8 +6,8 @@ mod support;
 use std::process::{Child, ChildStdin};
 use std::time::{Duration, Instant};
 
-use drivebus::canopen::backend::candump::CandumpBus;
-use drivebus::canopen::blocking::BlockingSdo;
+use drivebus::canopen::can::candump::CandumpBus;
+use drivebus::canopen::client::BlockingSdo;
 use drivebus::canopen::emcy::{Emcy, ErrorRegister};
 use drivebus::canopen::heartbeat::{HeartbeatConsumer, HeartbeatEvent};
 use drivebus::canopen::nmt::{NmtCommand, NmtState, NodeEvent};

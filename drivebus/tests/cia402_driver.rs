@@ -8,7 +8,7 @@ use drivebus::canopen::{CanOpenLink, NodeId};
 use drivebus::control::device::Cia402Device;
 use drivebus::control::driver::{self, ControlError, StuckReason};
 use drivebus::control::{State, Target};
-use drivebus::memory::MemoryBus;
+use drivebus::testing::MemoryBus;
 use drivebus::{Device, VariantId};
 
 #[path = "support/cia402_objects.rs"]

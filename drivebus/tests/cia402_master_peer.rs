@@ -8,7 +8,7 @@ use std::collections::BTreeMap;
 use std::time::{Duration, Instant};
 use std::vec::Vec;
 
-use drivebus::canopen::backend::candump::CandumpBus;
+use drivebus::canopen::can::candump::CandumpBus;
 use drivebus::canopen::sdo::server::{ObjectDictionary, SdoServer};
 use drivebus::canopen::sdo::AbortCode;
 use drivebus::canopen::{CanBus, NodeId};

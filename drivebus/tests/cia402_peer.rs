@@ -7,8 +7,8 @@ mod support;
 use std::process::{Child, ChildStdin};
 use std::time::{Duration, Instant};
 
-use drivebus::canopen::backend::candump::CandumpBus;
-use drivebus::canopen::blocking::BlockingSdo;
+use drivebus::canopen::can::candump::CandumpBus;
+use drivebus::canopen::client::BlockingSdo;
 use drivebus::canopen::{CanOpenLink, NodeId, ObjectAddress};
 use drivebus::control::driver::{self, ControlError, StuckReason};
 use drivebus::control::{Blocker, State, Target};

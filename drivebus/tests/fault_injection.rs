@@ -6,14 +6,14 @@
 use std::collections::VecDeque;
 use std::time::{Duration, Instant};
 
+use drivebus::modbus::client::{ByteStream, Client, ClientConfig};
 use drivebus::modbus::pdu::{
-    decode_request, encode_exception, encode_registers_response, encode_write_response,
-    ServerRequest, MAX_PDU,
+    decode_request, encode_exception, encode_registers_response, encode_write_response, Request,
+    MAX_PDU,
 };
 use drivebus::modbus::retry::{Idempotency, RetryPolicy};
 use drivebus::modbus::rtu::{self, RtuFraming};
 use drivebus::modbus::tcp::{self as mbap, Header, TcpFraming};
-use drivebus::modbus::transport::{ByteStream, Client, ClientConfig};
 use drivebus::modbus::{RegisterBus, RegisterRead, Table, UnitId};
 use drivebus::BusError;
 use proptest::prelude::*;
@@ -96,18 +96,18 @@ impl FaultyDevice {
         let mut out = [0u8; MAX_PDU];
         let function = pdu.first().copied().unwrap_or(0);
         let len = match decode_request(pdu) {
-            Ok(ServerRequest::Read {
-                function: f @ (3 | 4),
-                start,
-                count,
-            }) => {
+            Ok(
+                request @ (Request::ReadHoldingRegisters { start, count }
+                | Request::ReadInputRegisters { start, count }),
+            ) => {
+                let f = request.function();
                 let table = if f == 3 { &self.holding } else { &self.input };
                 match table.get(start as usize..start as usize + count as usize) {
                     Some(values) => encode_registers_response(f, values, &mut out),
                     None => encode_exception(f, 2, &mut out),
                 }
             }
-            Ok(ServerRequest::WriteSingleRegister { address, value }) => {
+            Ok(Request::WriteSingleRegister { address, value }) => {
                 match self.holding.get_mut(address as usize) {
                     Some(slot) => {
                         *slot = value;

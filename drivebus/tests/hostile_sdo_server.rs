@@ -7,8 +7,8 @@ use std::io::{BufRead, BufReader, Write};
 use std::os::unix::net::UnixStream;
 use std::time::Duration;
 
-use drivebus::canopen::backend::candump::{parse_line, CandumpBus};
-use drivebus::canopen::blocking::BlockingSdo;
+use drivebus::canopen::can::candump::{parse_line, CandumpBus};
+use drivebus::canopen::client::BlockingSdo;
 use drivebus::canopen::{NodeId, SdoBus};
 use drivebus::BusError;
 

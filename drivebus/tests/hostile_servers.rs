@@ -9,9 +9,9 @@ use std::net::TcpListener;
 use std::sync::mpsc;
 use std::time::Duration;
 
-use drivebus::modbus::crc::crc16;
+use drivebus::modbus::client::{ModbusTcpClient, SerialConfig, SerialRtuClient, TcpConfig};
+use drivebus::modbus::crc::crc16_modbus;
 use drivebus::modbus::retry::RetryPolicy;
-use drivebus::modbus::transport::{ModbusTcpClient, SerialConfig, SerialRtuClient, TcpConfig};
 use drivebus::modbus::{RegisterBus, Table, UnitId};
 use drivebus::BusError;
 use peer_support::pty_pair;
@@ -173,7 +173,7 @@ fn the_tcp_client_survives_each_misbehaving_answer() {
 
 /// A frame's bytes followed by their CRC.
 fn with_crc(mut frame: Vec<u8>) -> Vec<u8> {
-    let crc = crc16(&frame);
+    let crc = crc16_modbus(&frame);
     frame.extend(crc.to_le_bytes());
     frame
 }

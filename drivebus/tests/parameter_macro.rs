@@ -2,8 +2,8 @@
 //! allowed values, over the in-memory Modbus bus.
 #![cfg(feature = "modbus")]
 
-use drivebus::memory::MemoryBus;
 use drivebus::modbus::{ModbusLimits, ModbusLink, Table, UnitId};
+use drivebus::testing::MemoryBus;
 use drivebus::units::{Celsius, Hertz};
 use drivebus::{Device, Error, ValueError, VariantId};
 

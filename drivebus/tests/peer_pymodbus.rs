@@ -11,10 +11,10 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use drivebus::link::ReadRequest;
-use drivebus::modbus::retry::RetryPolicy;
-use drivebus::modbus::transport::{
+use drivebus::modbus::client::{
     ModbusTcpClient, RtuOverTcpClient, SerialConfig, SerialRtuClient, TcpConfig,
 };
+use drivebus::modbus::retry::RetryPolicy;
 use drivebus::modbus::{
     BitBus, ExceptionCode, ModbusAddress, ModbusLimits, ModbusLink, RegisterBus, RegisterRead,
     Table, UnitId, WordOrder,

@@ -8,8 +8,8 @@ use std::net::{TcpListener, TcpStream};
 use std::process::Child;
 use std::time::{Duration, Instant};
 
-use drivebus::canopen::backend::slcan::{Bitrate, SlcanBus};
-use drivebus::canopen::blocking::BlockingSdo;
+use drivebus::canopen::can::slcan::{Bitrate, SlcanBus};
+use drivebus::canopen::client::BlockingSdo;
 use drivebus::canopen::sdo::AbortCode;
 use drivebus::canopen::{NodeId, SdoBus};
 use drivebus::BusError;

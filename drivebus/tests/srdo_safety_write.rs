@@ -10,8 +10,8 @@ use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 use std::time::Duration;
 
-use drivebus::canopen::backend::in_process::{InProcessBus, InProcessEndpoint};
-use drivebus::canopen::blocking::BlockingSdo;
+use drivebus::canopen::can::in_process::{InProcessBus, InProcessEndpoint};
+use drivebus::canopen::client::BlockingSdo;
 use drivebus::canopen::nmt::NmtState;
 use drivebus::canopen::pdo::MappedObject;
 use drivebus::canopen::sdo::server::SdoServer;

@@ -4,9 +4,9 @@
 
 use std::process::{Child, Command, Stdio};
 
-use drivebus::canopen::backend::candump::CandumpBus;
-use drivebus::canopen::backend::slcan::{Bitrate, SlcanBus, ANSWER_TIMEOUT};
-use drivebus::canopen::backend::OpenError;
+use drivebus::canopen::can::candump::CandumpBus;
+use drivebus::canopen::can::slcan::{Bitrate, SlcanBus, ANSWER_TIMEOUT};
+use drivebus::canopen::can::OpenError;
 use drivebus::canopen::CanBus;
 use drivegen::ir::Device;
 
@@ -223,7 +223,7 @@ fn open_socketcan(
     iface: &str,
     settings: CanSettings,
 ) -> Result<(Box<dyn CanBus + Send>, Option<Child>), CliError> {
-    let bus = drivebus::canopen::backend::socketcan::SocketCanBus::open(iface)
+    let bus = drivebus::canopen::can::socketcan::SocketCanBus::open(iface)
         .map_err(|e| open_error(text, settings, e))?;
     Ok((Box::new(bus), None))
 }
@@ -242,7 +242,7 @@ fn open_socketcan(
 /// The message of a failure to open `spec`: the library's, with the bit rate of the command
 /// in the `ip link` hint.
 pub fn describe(spec: &str, bitrate: u32, error: &OpenError) -> String {
-    use drivebus::canopen::backend::bring_up;
+    use drivebus::canopen::can::bring_up;
     match error {
         OpenError::NoInterface { name } => format!(
             "no CAN interface {name}; bring it up with `{}`",

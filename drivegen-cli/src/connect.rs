@@ -5,14 +5,14 @@ use std::process::Child;
 use std::time::Duration;
 
 use clap::Args;
-use drivebus::canopen::blocking::BlockingSdo;
+use drivebus::canopen::client::BlockingSdo;
 use drivebus::canopen::{CanBus, CanFrame, CanOpenLink, NodeId};
 use drivebus::interpret::{self, InterpretError, Variant};
+use drivebus::modbus::client::SerialStream;
+use drivebus::modbus::client::{ModbusTcpClient, SerialConfig, SerialRtuClient, TcpConfig};
 use drivebus::modbus::rtu::{Parity, StopBits};
-use drivebus::modbus::transport::SerialStream;
-use drivebus::modbus::transport::{ModbusTcpClient, SerialConfig, SerialRtuClient, TcpConfig};
 use drivebus::modbus::{ModbusLimits, ModbusLink, RegisterBus, UnitId, MAX_IN_FLIGHT};
-use drivebus::rs232::serial::{Rs232Client, Rs232Config, DEFAULT_BAUD};
+use drivebus::rs232::client::{Rs232Client, Rs232Config, DEFAULT_BAUD};
 use drivebus::rs232::{LoopMode, Rs232Link, StationId};
 use drivebus::BusError;
 use drivegen::ir::{Device, Parameter};

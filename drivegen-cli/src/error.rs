@@ -67,7 +67,7 @@ pub enum CliError {
         /// The bit rate of the command, for the `ip link` hint.
         bitrate: u32,
         /// Why.
-        error: drivebus::canopen::backend::OpenError,
+        error: drivebus::canopen::can::OpenError,
     },
 }
 

@@ -362,8 +362,8 @@ fn decode_names_sdo_values_heartbeats_and_emcy() {
 
 #[test]
 fn sim_is_a_canopen_node_on_slcan_over_tcp() {
-    use drivebus::canopen::backend::slcan::SlcanBus;
-    use drivebus::canopen::blocking::BlockingSdo;
+    use drivebus::canopen::can::slcan::SlcanBus;
+    use drivebus::canopen::client::BlockingSdo;
     use drivebus::canopen::{NodeId, SdoBus};
 
     // The simulator connects to an SLCAN gateway; the test is the gateway and the master.

@@ -20,7 +20,7 @@
 //!   ([`rs232::serve`]) on a serial port or pty.
 //!
 //! ```
-//! use drivebus::modbus::transport::{ModbusTcpClient, TcpConfig};
+//! use drivebus::modbus::client::{ModbusTcpClient, TcpConfig};
 //! use drivebus::modbus::{RegisterBus, Table, UnitId};
 //!
 //! let sim = drivesim::Simulator::load(concat!(env!("CARGO_MANIFEST_DIR"), "/../descriptions/lafert-smartris"))?;

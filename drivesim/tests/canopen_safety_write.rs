@@ -7,7 +7,7 @@
 use std::collections::VecDeque;
 use std::time::Duration;
 
-use drivebus::canopen::blocking::BlockingSdo;
+use drivebus::canopen::client::BlockingSdo;
 use drivebus::canopen::nmt::{NmtCommand, NmtState};
 use drivebus::canopen::pdo::MappedObject;
 use drivebus::canopen::srdo::{

@@ -1,4 +1,4 @@
-//! `drivebus::canopen::scan` against several simulated nodes on one in-process bus: the nodes
+//! `drivebus::canopen::client::scan` against several simulated nodes on one in-process bus: the nodes
 //! that answer are found with their device type and identity, silent node ids are skipped, and
 //! the scan of all 127 ids takes a few timeouts, not 127.
 
@@ -7,8 +7,8 @@ use std::sync::Arc;
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
-use drivebus::canopen::backend::in_process::InProcessBus;
-use drivebus::canopen::scan::scan;
+use drivebus::canopen::can::in_process::InProcessBus;
+use drivebus::canopen::client::scan::scan;
 use drivebus::canopen::NodeId;
 use drivesim::canopen::{Node, NodeConfig};
 use drivesim::Simulator;

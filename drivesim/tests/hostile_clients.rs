@@ -10,11 +10,11 @@ use std::sync::Arc;
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
-use drivebus::canopen::backend::in_process::InProcessBus;
-use drivebus::canopen::blocking::BlockingSdo;
+use drivebus::canopen::can::in_process::InProcessBus;
+use drivebus::canopen::client::BlockingSdo;
 use drivebus::canopen::{CanBus, CanFrame, NodeId, SdoBus};
+use drivebus::modbus::client::{ByteStream, ModbusTcpClient, TcpConfig};
 use drivebus::modbus::rtu::seal;
-use drivebus::modbus::transport::{ByteStream, ModbusTcpClient, TcpConfig};
 use drivebus::modbus::{RegisterBus, Table, UnitId};
 use drivebus::BusError;
 use drivesim::canopen::{Node, NodeConfig};

@@ -2,7 +2,7 @@
 //! (`selected_by`: PC507 when #50 is preset to 507, the default PC400 otherwise), the read
 //! blocks beyond one register per read, and the commands sharing register #1.
 
-use drivebus::modbus::transport::{ModbusTcpClient, TcpConfig};
+use drivebus::modbus::client::{ModbusTcpClient, TcpConfig};
 use drivebus::modbus::{RegisterBus, Table, UnitId};
 use drivebus::BusError;
 use drivesim::Simulator;

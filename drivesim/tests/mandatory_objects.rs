@@ -5,8 +5,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
 
-use drivebus::canopen::backend::in_process::InProcessBus;
-use drivebus::canopen::blocking::BlockingSdo;
+use drivebus::canopen::can::in_process::InProcessBus;
+use drivebus::canopen::client::BlockingSdo;
 use drivebus::canopen::{NodeId, SdoBus};
 use drivesim::canopen::{Node, NodeConfig};
 use drivesim::Simulator;

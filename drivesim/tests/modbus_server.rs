@@ -1,7 +1,7 @@
 //! The Modbus server over TCP against drivebus's client: access, ranges, allowed values, unknown
 //! addresses, function codes and limits answered with the described exception codes.
 
-use drivebus::modbus::transport::{ModbusTcpClient, TcpConfig};
+use drivebus::modbus::client::{ModbusTcpClient, TcpConfig};
 use drivebus::modbus::{RegisterBus, RegisterRead, Table, UnitId};
 use drivebus::BusError;
 use drivesim::Simulator;

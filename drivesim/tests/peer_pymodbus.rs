@@ -4,7 +4,7 @@
 
 use std::process::{Command, Stdio};
 
-use drivebus::modbus::transport::{SerialConfig, SerialStream};
+use drivebus::modbus::client::{SerialConfig, SerialStream};
 use drivebus::modbus::UnitId;
 use drivesim::Simulator;
 use peer_support::{pty_pair, python, workspace_root, SETUP_HINT};

@@ -9,8 +9,8 @@ mod random_description;
 
 use std::time::Duration;
 
-use drivebus::canopen::backend::in_process::InProcessBus;
-use drivebus::canopen::blocking::BlockingSdo;
+use drivebus::canopen::can::in_process::InProcessBus;
+use drivebus::canopen::client::BlockingSdo;
 use drivebus::canopen::{NodeId, SdoBus};
 use drivegen::ir::{DataType, Number, Parameter};
 use drivesim::canopen::{Node, NodeConfig};

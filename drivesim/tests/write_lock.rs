@@ -7,7 +7,7 @@
 use std::thread::sleep;
 use std::time::Duration;
 
-use drivebus::modbus::transport::{ModbusTcpClient, TcpConfig};
+use drivebus::modbus::client::{ModbusTcpClient, TcpConfig};
 use drivebus::modbus::{ExceptionCode, RegisterBus, UnitId};
 use drivebus::BusError;
 use drivesim::Simulator;

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-use drivebus::modbus::transport::{SerialConfig, SerialStream};
+use drivebus::modbus::client::{SerialConfig, SerialStream};
 use drivebus::modbus::UnitId;
 
 /// The example binary `cargo test` builds next to the test binaries.

@@ -7,7 +7,7 @@
 //! frame says they are valid.
 #![no_main]
 
-use drivebus::canopen::backend::{BusState, CanErrorReport, ErrorClasses};
+use drivebus::canopen::can::{BusState, CanErrorReport, ErrorClasses};
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|input: &[u8]| {

@@ -4,7 +4,7 @@
 //! frame, and that a parsed timestamp survives the fields around it.
 #![no_main]
 
-use drivebus::canopen::backend::candump::{format_frame, parse_frame, parse_line};
+use drivebus::canopen::can::candump::{format_frame, parse_frame, parse_line};
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|line: &[u8]| {

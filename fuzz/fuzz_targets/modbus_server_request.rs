@@ -10,7 +10,7 @@
 //!   to a request it decoded.
 #![no_main]
 
-use drivebus::modbus::pdu::{decode_request, decode_response, Request, ServerRequest, MAX_PDU};
+use drivebus::modbus::pdu::{decode_request, decode_response, Request, MAX_PDU};
 use drivebus::BusError;
 use fuzz::shipped;
 use drivesim::Simulator;
@@ -23,12 +23,7 @@ fuzz_target!(|data: &[u8]| {
     let Some((&device, pdu)) = data.split_first() else {
         return;
     };
-    let decoded = decode_request(pdu);
-    let mut coils = Vec::new();
-    let mut registers = Vec::new();
-    let request = decoded
-        .ok()
-        .map(|decoded| as_client_request(decoded, &mut coils, &mut registers));
+    let request = decode_request(pdu).ok();
     if let Some(request) = &request {
         check_re_encodes(request, pdu);
     }
@@ -53,54 +48,6 @@ fuzz_target!(|data: &[u8]| {
     }
 });
 
-/// The client request a decoded server request stands for; payloads land in `coils` /
-/// `registers`.
-fn as_client_request<'a>(
-    decoded: ServerRequest<'_>,
-    coils: &'a mut Vec<bool>,
-    registers: &'a mut Vec<u16>,
-) -> Request<'a> {
-    match decoded {
-        ServerRequest::Read {
-            function,
-            start,
-            count,
-        } => match function {
-            0x01 => Request::ReadCoils { start, count },
-            0x02 => Request::ReadDiscreteInputs { start, count },
-            0x03 => Request::ReadHoldingRegisters { start, count },
-            0x04 => Request::ReadInputRegisters { start, count },
-            other => panic!("decoded a read with function {other:#04X}"),
-        },
-        ServerRequest::WriteSingleCoil { address, value } => {
-            Request::WriteSingleCoil { address, value }
-        }
-        ServerRequest::WriteSingleRegister { address, value } => {
-            Request::WriteSingleRegister { address, value }
-        }
-        ServerRequest::WriteMultipleCoils { start, values } => {
-            coils.resize(values.len(), false);
-            values
-                .copy_to(coils)
-                .expect("bits copy to a buffer of their length");
-            Request::WriteMultipleCoils {
-                start,
-                values: coils,
-            }
-        }
-        ServerRequest::WriteMultipleRegisters { start, values } => {
-            registers.resize(values.len(), 0);
-            values
-                .copy_to(registers)
-                .expect("registers copy to a buffer of their length");
-            Request::WriteMultipleRegisters {
-                start,
-                values: registers,
-            }
-        }
-    }
-}
-
 /// The client's encoding of `request` is `pdu`, but for the unused bits of a coil write.
 fn check_re_encodes(request: &Request<'_>, pdu: &[u8]) {
     request
@@ -116,4 +63,24 @@ fn check_re_encodes(request: &Request<'_>, pdu: &[u8]) {
         }
     }
     assert_eq!(&out[..len], &expected[..], "decoded {request:?}");
+    check_values_encode_alike(request, &out[..len]);
+}
+
+/// A write built from the decoded values (as a client builds it, from its own slice) equals the
+/// decoded request and encodes to the same PDU `encoded`.
+fn check_values_encode_alike(request: &Request<'_>, encoded: &[u8]) {
+    let (coils, registers): (Vec<bool>, Vec<u16>) = match request {
+        Request::WriteMultipleCoils { values, .. } => (values.iter().collect(), Vec::new()),
+        Request::WriteMultipleRegisters { values, .. } => (Vec::new(), values.iter().collect()),
+        _ => return,
+    };
+    let (start, _) = request.span();
+    let rebuilt = match request {
+        Request::WriteMultipleCoils { .. } => Request::write_coils(start, &coils),
+        _ => Request::write_registers(start, &registers),
+    };
+    assert_eq!(&rebuilt, request);
+    let mut out = [0u8; MAX_PDU];
+    let len = rebuilt.encode(&mut out).expect("a rebuilt request encodes");
+    assert_eq!(&out[..len], encoded, "rebuilt {rebuilt:?}");
 }

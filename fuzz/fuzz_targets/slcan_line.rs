@@ -6,7 +6,7 @@
 //! digits, and that what follows it is exactly the 4-digit timestamp the parser reported.
 #![no_main]
 
-use drivebus::canopen::backend::slcan::{decode_line, encode_frame, parse_line, SlcanLine};
+use drivebus::canopen::can::slcan::{decode_line, encode_frame, parse_line, SlcanLine};
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|line: &[u8]| {

@@ -30,14 +30,11 @@ pub fn read(input: &mut Cursor<'_>) -> Option<Request<'static>> {
             address: start,
             value: count,
         },
-        6 => Request::WriteMultipleCoils {
+        6 => Request::write_coils(start, &COILS[..usize::from(count).min(COILS.len())]),
+        _ => Request::write_registers(
             start,
-            values: &COILS[..usize::from(count).min(COILS.len())],
-        },
-        _ => Request::WriteMultipleRegisters {
-            start,
-            values: &REGISTERS[..usize::from(count).min(REGISTERS.len())],
-        },
+            &REGISTERS[..usize::from(count).min(REGISTERS.len())],
+        ),
     };
     request.validate().ok().map(|()| request)
 }

@@ -5,11 +5,11 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use drivebus::canopen::blocking::BlockingSdo;
+use drivebus::canopen::client::BlockingSdo;
 use drivebus::canopen::{CanBus, CanFrame, NodeId, SdoBus};
+use drivebus::modbus::client::{ByteStream, Client};
 use drivebus::modbus::framing::Framing;
 use drivebus::modbus::retry::Idempotency;
-use drivebus::modbus::transport::{ByteStream, Client};
 use drivebus::modbus::{RegisterBus, Table, UnitId};
 use drivebus::BusError;
 

@@ -7,12 +7,12 @@ use std::sync::atomic::AtomicU64;
 use std::sync::Arc;
 use std::time::Duration;
 
-use drivebus::canopen::backend::candump::CandumpBus;
-use drivebus::canopen::blocking::BlockingSdo;
+use drivebus::canopen::can::candump::CandumpBus;
+use drivebus::canopen::client::BlockingSdo;
 use drivebus::canopen::NodeId;
+use drivebus::modbus::client::{Client, NetStream, SerialConfig, SerialStream, TcpConfig};
 use drivebus::modbus::rtu::RtuFraming;
 use drivebus::modbus::tcp::TcpFraming;
-use drivebus::modbus::transport::{Client, NetStream, SerialConfig, SerialStream, TcpConfig};
 use drivesim::canopen::{Node, NodeConfig};
 use drivesim::Simulator;
 

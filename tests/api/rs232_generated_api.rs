@@ -2,8 +2,8 @@
 //! protocol carries them, run-time scales are read over RS-232, failures name the parameter and
 //! the object, and values outside the description are refused before anything is sent.
 
-use drivebus::memory::{MemoryBus, Request};
 use drivebus::rs232::{Rs232Error, StationId};
+use drivebus::testing::{MemoryBus, Request};
 use drivebus::units::Rpm;
 use drivebus::{BusError, Error, ValueError};
 use drivegen_tests::kinco_rs232::KincoRs232;

@@ -7,8 +7,8 @@
 use std::collections::VecDeque;
 use std::time::Instant;
 
+use drivebus::rs232::client::{Rs232Client, Rs232Config};
 use drivebus::rs232::data::{Answer, Request, Value};
-use drivebus::rs232::serial::{Rs232Client, Rs232Config};
 use drivebus::rs232::telegram::{self, Telegram};
 use drivebus::rs232::{Rs232Link, StationId};
 use drivebus::stream::ByteStream;

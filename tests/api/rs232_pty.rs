@@ -6,7 +6,7 @@
 use std::io::{Read, Write};
 use std::time::Duration;
 
-use drivebus::rs232::serial::{open_line, Rs232Client, Rs232Config};
+use drivebus::rs232::client::{open_line, Rs232Client, Rs232Config};
 use drivebus::rs232::{LoopMode, Rs232Error, Rs232Link, StationId};
 use drivebus::stream::ByteStream;
 use drivebus::units::Rpm;

@@ -7,9 +7,9 @@ use std::io::{Read, Write};
 use std::net::{TcpListener, TcpStream};
 use std::time::{Duration, Instant};
 
-use drivebus::modbus::pdu::{decode_request, encode_registers_response, Request, ServerRequest};
+use drivebus::modbus::client::{ModbusTcpClient, TcpConfig, MAX_IN_FLIGHT};
+use drivebus::modbus::pdu::{decode_request, encode_registers_response, Request};
 use drivebus::modbus::tcp::{self as mbap, Header};
-use drivebus::modbus::transport::{ModbusTcpClient, TcpConfig, MAX_IN_FLIGHT};
 use drivebus::modbus::{RegisterBus, RegisterRead, Table};
 
 use super::{runtime, values, START, UNIT};
@@ -107,7 +107,13 @@ fn serve(stream: &mut TcpStream) {
         let header = Header::parse(&rx).unwrap();
         let pdu = &mut rx[mbap::HEADER_LEN..][..header.pdu_len];
         stream.read_exact(pdu).unwrap();
-        let Ok(ServerRequest::Read { count, .. }) = decode_request(pdu) else {
+        let Ok(
+            Request::ReadCoils { count, .. }
+            | Request::ReadDiscreteInputs { count, .. }
+            | Request::ReadHoldingRegisters { count, .. }
+            | Request::ReadInputRegisters { count, .. },
+        ) = decode_request(pdu)
+        else {
             break;
         };
         let len =

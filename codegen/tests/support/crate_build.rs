@@ -22,13 +22,14 @@ pub fn build_and_doctest(name: &str, lib_rs: &str) -> Built {
 }
 
 /// Like [`build_and_doctest`], with `test_rs` as an integration test that may use the simulator
-/// (`drivesim`), and runs every test.
+/// (`drivesim`) and the test doubles (`drivebus::testing`), and runs every test.
 pub fn build_and_test(name: &str, lib_rs: &str, test_rs: &str) -> Built {
-    let simulator = format!(
-        "drivesim = {{ path = {:?} }}\n",
-        workspace_root().join("drivesim")
+    let dev_dependencies = format!(
+        "drivesim = {{ path = {:?} }}\ndrivebus = {{ path = {:?}, features = [\"testing\"] }}\n",
+        workspace_root().join("drivesim"),
+        workspace_root().join("drivebus")
     );
-    let dir = scratch_crate(name, lib_rs, &simulator);
+    let dir = scratch_crate(name, lib_rs, &dev_dependencies);
     std::fs::create_dir_all(dir.join("tests")).unwrap();
     std::fs::write(dir.join("tests/generated.rs"), test_rs).unwrap();
     cargo_test(&dir, &[])

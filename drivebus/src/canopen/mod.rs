@@ -1,24 +1,27 @@
-//! CANopen (CiA 301 / CiA 402 master side).
+//! CANopen (CiA 301, CiA 402): the side that configures and commands drives (SDO client, NMT
+//! master, SYNC producer, heartbeat and EMCY consumer, PDOs both ways) and, with feature
+//! `server`, an SDO server for simulators and test peers.
 //!
 //! The protocol cores are sans-I/O and `no_std`: each is a pure function of received frames and
 //! the time the caller passes in ([`core::time::Duration`] since any fixed origin), returning the
 //! frames to send and the events to act on. They never read a clock or touch a bus.
 //!
 //! * [`frame`] — the [`CanFrame`] type and the predefined connection set (COB-IDs).
-//! * [`sdo`] — SDO client transfers (expedited, segmented, block) and the abort codes.
+//! * [`sdo`] — SDO client transfers (expedited, segmented, block), the abort codes and (feature
+//!   `server`, with `canopen`) the SDO server.
 //! * [`nmt`], [`heartbeat`], [`emcy`], [`sync`], [`pdo`] — the other CiA 301 services.
 //! * `srdo` — (`srdo`, in `canopen`) CANopen Safety SRDOs: consumer, producer, signature, safety writes.
 //! * [`message`] — classifies any frame of the predefined connection set into typed values.
-//! * [`backend`] — the [`CanBus`] trait; with `canopen`: SocketCAN, SLCAN, candump streams and an
-//!   in-process bus.
-//! * `blocking` — (`canopen`) an [`SdoBus`] over any [`CanBus`], so [`CanOpenLink`] runs on every
-//!   backend.
+//! * [`can`] — the [`CanBus`] trait; with `canopen`: the CAN interfaces SocketCAN, SLCAN, candump
+//!   streams and an in-process bus.
+//! * `client` — (`canopen`) the blocking layer: `BlockingSdo`, an [`SdoBus`] over any
+//!   [`CanBus`], so [`CanOpenLink`] runs on every interface; `client::scan`, the bus scan.
 //!
-//! # Opening a backend
+//! # Opening a CAN interface
 //!
-//! | backend | how |
+//! | interface | how |
 //! | --- | --- |
-//! | SocketCAN (feature `socketcan`) | `backend::socketcan::SocketCanBus::open("can0")` |
+//! | SocketCAN (feature `socketcan`) | `can::socketcan::SocketCanBus::open("can0")` |
 //! | SLCAN over TCP | `SlcanBus::connect("127.0.0.1:3333")?` then `.open(Bitrate::K500)` |
 //! | SLCAN over a serial port | `SlcanBus::new(port)` with any `Read + Write` port that has a read timeout, then `.open(..)` |
 //! | candump stdio / pipes | `CandumpBus::from_child(&mut child)` or `CandumpBus::new(reader, writer)` |
@@ -32,8 +35,8 @@
 //! # fn main() -> Result<(), Box<dyn std::error::Error>> {
 //! use std::process::{Command, Stdio};
 //! use std::time::Duration;
-//! use drivebus::canopen::backend::candump::CandumpBus;
-//! use drivebus::canopen::blocking::BlockingSdo;
+//! use drivebus::canopen::can::candump::CandumpBus;
+//! use drivebus::canopen::client::BlockingSdo;
 //! use drivebus::canopen::{NodeId, SdoBus};
 //!
 //! // Any process that speaks candump compact lines on stdio, e.g. tests/peers/canopen_relay.py.
@@ -53,9 +56,9 @@
 //! ```
 
 mod address;
-pub mod backend;
+pub mod can;
 #[cfg(feature = "canopen")]
-pub mod blocking;
+pub mod client;
 pub mod emcy;
 pub mod frame;
 pub mod heartbeat;
@@ -63,14 +66,12 @@ mod link;
 pub mod message;
 pub mod nmt;
 pub mod pdo;
-#[cfg(feature = "canopen")]
-pub mod scan;
 pub mod sdo;
 #[cfg(feature = "srdo")]
 pub mod srdo;
 pub mod sync;
 
 pub use address::{CanOpen, NodeId, ObjectAddress};
-pub use backend::CanBus;
+pub use can::CanBus;
 pub use frame::CanFrame;
 pub use link::{CanOpenLink, SdoBus};

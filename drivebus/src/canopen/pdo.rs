@@ -668,7 +668,7 @@ mod tests {
 
     #[test]
     fn apply_writes_through_any_sdo_bus_and_stops_on_refusal() {
-        use crate::memory::{MemoryBus, Request};
+        use crate::testing::{MemoryBus, Request};
         let entries = [MappedObject::new(0x6041, 0, 16)];
         let config = PdoConfig {
             kind: PdoKind::Receive,

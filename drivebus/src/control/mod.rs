@@ -11,13 +11,14 @@
 //!   rules tables cannot express: fault reset on a rising edge, halt, safe torque off, voltage and
 //!   remote bits.
 //! * [`quirks`] — how real drives deviate from CiA 402, declared in descriptions.
-//! * [`device`] — the device side of CiA 402 (transitions a controlword takes, the statusword of
-//!   each state): the simulator's CiA 402 behaviour and the test double of masters.
+//! * `device` (feature `server`) — the device side of CiA 402 (transitions a controlword takes,
+//!   the statusword of each state): the simulator's CiA 402 behaviour and the test double of masters.
 //! * [`mode`] — changing the mode of operation (0x6060) and confirming it (0x6061).
 //! * [`objects`] — the traits generated crates implement to hand their parameters to the driver.
 //! * `driver` (std) — the blocking driver behind `drive.enable_operation(deadline)`.
 
 pub mod cia402;
+#[cfg(feature = "server")]
 pub mod device;
 #[cfg(feature = "std")]
 pub mod driver;

@@ -33,9 +33,9 @@ const fn tables() -> [[u16; 256]; 16] {
     tables
 }
 
-/// The CRC of `data`.
+/// The CRC-16/MODBUS of `data` (polynomial 0xA001 reflected, from 0xFFFF), sent low byte first.
 #[inline]
-pub fn crc16(data: &[u8]) -> u16 {
+pub fn crc16_modbus(data: &[u8]) -> u16 {
     let t = &TABLES;
     let mut crc: u16 = 0xFFFF;
     let mut blocks = data.chunks_exact(16);
@@ -91,7 +91,7 @@ fn fold_short(crc: u16, bytes: &[u8]) -> u16 {
 pub fn check(frame: &[u8]) -> bool {
     match frame.len().checked_sub(2) {
         Some(body) if body > 0 => {
-            crc16(&frame[..body]).to_le_bytes() == [frame[body], frame[body + 1]]
+            crc16_modbus(&frame[..body]).to_le_bytes() == [frame[body], frame[body + 1]]
         }
         _ => false,
     }
@@ -104,9 +104,12 @@ mod tests {
 
     #[test]
     fn matches_the_catalogue_check_value_and_a_known_frame() {
-        assert_eq!(crc16(b"123456789"), 0x4B37);
+        assert_eq!(crc16_modbus(b"123456789"), 0x4B37);
         // Read 1 holding register at 0 from unit 1: the textbook frame 01 03 00 00 00 01 84 0A.
-        assert_eq!(crc16(&[1, 3, 0, 0, 0, 1]).to_le_bytes(), [0x84, 0x0A]);
+        assert_eq!(
+            crc16_modbus(&[1, 3, 0, 0, 0, 1]).to_le_bytes(),
+            [0x84, 0x0A]
+        );
         assert!(check(&[1, 3, 0, 0, 0, 1, 0x84, 0x0A]));
         assert!(!check(&[1, 3, 0, 0, 0, 1, 0x0A, 0x84]));
         assert!(!check(&[0x84, 0x0A]));
@@ -117,7 +120,7 @@ mod tests {
         let data: std::vec::Vec<u8> = (0..300u32).map(|i| (i * 37 + 11) as u8).collect();
         for len in 0..=data.len() {
             assert_eq!(
-                crc16(&data[..len]),
+                crc16_modbus(&data[..len]),
                 REFERENCE.checksum(&data[..len]),
                 "{len}"
             );
@@ -127,7 +130,7 @@ mod tests {
     proptest! {
         #[test]
         fn agrees_with_the_crc_crate(data in proptest::collection::vec(any::<u8>(), 0..600)) {
-            prop_assert_eq!(crc16(&data), REFERENCE.checksum(&data));
+            prop_assert_eq!(crc16_modbus(&data), REFERENCE.checksum(&data));
         }
     }
 }

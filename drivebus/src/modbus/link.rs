@@ -218,8 +218,8 @@ fn deliver(
 #[cfg(all(test, feature = "std"))]
 mod tests {
     use super::*;
-    use crate::memory::{MemoryBus, Request};
     use crate::modbus::WordOrder;
+    use crate::testing::{MemoryBus, Request};
 
     fn input(address: u16, words: u16) -> ModbusAddress {
         ModbusAddress::input(address, words, WordOrder::LowFirst)

@@ -1,4 +1,5 @@
-//! Modbus: addressing, a sans-I/O client core and blocking transports.
+//! Modbus: addressing, a sans-I/O client core, blocking clients and (feature `server`) the
+//! server's PDU codec.
 //!
 //! Layers, from the wire up:
 //!
@@ -8,7 +9,7 @@
 //!   resynchronises after garbage, and t1.5/t3.5 timing from the baud rate. [`tcp`] — MBAP framing.
 //! * [`planner`] — the fewest read requests covering a set of values within [`ModbusLimits`].
 //! * [`retry`] — which requests may be repeated after a failure, and how often.
-//! * `transport` (feature `modbus`) — blocking clients over a serial port, Modbus TCP and
+//! * `client` (feature `modbus`) — blocking clients over a serial port, Modbus TCP and
 //!   RTU-over-TCP, all implementing [`RegisterBus`] and [`BitBus`].
 //!
 //! [`ModbusLink`] binds a [`RegisterBus`] and a unit id into a [`Link`](crate::Link): it reads and
@@ -17,6 +18,8 @@
 //! planner.
 
 mod address;
+#[cfg(feature = "modbus")]
+pub mod client;
 #[cfg(feature = "modbus-core")]
 pub mod crc;
 #[cfg(test)]
@@ -32,8 +35,6 @@ pub mod rtu;
 #[cfg(feature = "std")]
 mod shared_bus;
 pub mod tcp;
-#[cfg(feature = "modbus")]
-pub mod transport;
 
 pub use address::{
     le_to_registers, registers_to_le, ModbusAddress, ModbusLimits, RegisterSpan, Table, UnitId,

@@ -132,10 +132,7 @@ mod tests {
             address: 0,
             value: 1,
         };
-        let reset = Request::WriteMultipleRegisters {
-            start: 0xA5A0,
-            values: &[0; 8],
-        };
+        let reset = Request::write_registers(0xA5A0, &[0; 8]);
         let setpoint = Request::WriteSingleRegister {
             address: 0x42,
             value: 1500,

@@ -12,7 +12,7 @@ use core::time::Duration;
 use crate::error::BusError;
 
 use super::address::UnitId;
-use super::crc::{check, crc16};
+use super::crc::{check, crc16_modbus};
 use super::framing::{answers, Framing, Scan};
 use super::pdu::{function, Request, MAX_PDU};
 
@@ -40,7 +40,7 @@ pub fn seal(out: &mut [u8], len: usize) -> Result<usize, BusError> {
     if out.len() < len.saturating_add(2) {
         return Err(BusError::Unsupported("output buffer too small for the CRC"));
     }
-    let crc = crc16(&out[..len]).to_le_bytes();
+    let crc = crc16_modbus(&out[..len]).to_le_bytes();
     out[len..len + 2].copy_from_slice(&crc);
     Ok(len + 2)
 }

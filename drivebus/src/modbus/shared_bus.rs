@@ -74,7 +74,7 @@ impl<B: RegisterBus> RegisterBus for SharedBus<B> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::memory::{MemoryBus, Request};
+    use crate::testing::{MemoryBus, Request};
 
     #[test]
     fn clones_talk_over_one_bus_request_by_request() {

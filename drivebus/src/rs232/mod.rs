@@ -14,9 +14,9 @@
 //! * [`exchange`] — one request and its answer as a pure function of received bytes, in
 //!   point-to-point or multi-point loop mode, where the host's own telegram comes back before
 //!   the answer (lines 2194–2222); every way it can fail is an [`Rs232Error`].
-//! * [`TelegramBus`] / [`Rs232Link`] — the bus trait transports implement and the
+//! * [`TelegramBus`] / [`Rs232Link`] — the bus trait the client implements and the
 //!   [`Link`](crate::Link) generated drive handles use.
-//! * `serial` (feature `rs232`) — a blocking client over a serial port ([`serialport`](https://docs.rs/serialport)),
+//! * `client` (feature `rs232`) — a blocking client over a serial port ([`serialport`](https://docs.rs/serialport)),
 //!   with a timeout per answer.
 //!
 //! The manual's request telegrams (lines 2330–2365) are test vectors in
@@ -40,12 +40,12 @@
 //! # Ok::<(), drivebus::rs232::Rs232Error>(())
 //! ```
 
+#[cfg(feature = "rs232")]
+pub mod client;
 pub mod data;
 mod error;
 pub mod exchange;
 mod link;
-#[cfg(feature = "rs232")]
-pub mod serial;
 pub mod telegram;
 
 pub use crate::canopen::ObjectAddress;

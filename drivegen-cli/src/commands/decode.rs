@@ -4,7 +4,7 @@ use std::fs::File;
 use std::io::BufReader;
 use std::path::PathBuf;
 
-use drivebus::canopen::backend::candump::CandumpReader;
+use drivebus::canopen::can::candump::CandumpReader;
 use drivebus::canopen::message::Message;
 use drivebus::canopen::sdo::AbortCode;
 use drivegen::ir::Device;
@@ -103,7 +103,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
 /// Decodes frames from a live interface as they arrive, one line (or JSON object) each; error
 /// frames and bus states are lines of kind `error`.
 fn live(args: &Args, device: &Device, backend: &str) -> Result<(), CliError> {
-    use drivebus::canopen::backend::{CanEvent, Timestamp};
+    use drivebus::canopen::can::{CanEvent, Timestamp};
     use std::io::Write;
     use std::time::{Duration, UNIX_EPOCH};
     let forms = "socketcan:IFACE, slcan:/dev/PATH or slcan:HOST:PORT";

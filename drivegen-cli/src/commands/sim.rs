@@ -5,11 +5,11 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::time::Duration;
 
-use drivebus::canopen::backend::candump::CandumpBus;
+use drivebus::canopen::can::candump::CandumpBus;
 use drivebus::canopen::{CanBus, CanFrame, NodeId};
-use drivebus::modbus::transport::{SerialConfig, SerialStream};
+use drivebus::modbus::client::{SerialConfig, SerialStream};
 use drivebus::modbus::UnitId;
-use drivebus::rs232::serial::{open_line, Rs232Config, DEFAULT_BAUD};
+use drivebus::rs232::client::{open_line, Rs232Config, DEFAULT_BAUD};
 use drivebus::rs232::{LoopMode, StationId};
 use drivegen::ir::Device;
 use drivesim::canopen::{nodes, Node, NodeConfig};

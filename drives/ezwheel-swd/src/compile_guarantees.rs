@@ -4,14 +4,14 @@
 //!
 //! ```compile_fail
 //! # use drivebus::canopen::{CanOpenLink, NodeId};
-//! # use drivebus::memory::MemoryBus;
+//! # use drivebus::testing::MemoryBus;
 //! let mut drive = ezwheel_swd::Swd::canopen(MemoryBus::new(), NodeId(0x10));
 //! let _ = drive.sls_command(3).write(true);
 //! ```
 //!
 //! ```
 //! # use drivebus::canopen::{CanOpenLink, NodeId};
-//! # use drivebus::memory::MemoryBus;
+//! # use drivebus::testing::MemoryBus;
 //! let mut drive = ezwheel_swd::Swd::canopen(MemoryBus::new(), NodeId(0x10));
 //! let _ = drive.sls_command(3).read();
 //! ```
@@ -20,14 +20,14 @@
 //!
 //! ```compile_fail
 //! # use drivebus::canopen::NodeId;
-//! # use drivebus::memory::MemoryBus;
+//! # use drivebus::testing::MemoryBus;
 //! let mut drive = ezwheel_swd::Swd::canopen(MemoryBus::new(), NodeId(0x10));
 //! let _ = drive.sls_velocity_limit_3().read();
 //! ```
 //!
 //! ```
 //! # use drivebus::canopen::NodeId;
-//! # use drivebus::memory::MemoryBus;
+//! # use drivebus::testing::MemoryBus;
 //! let mut drive = ezwheel_swd::Swd::canopen(MemoryBus::new(), NodeId(0x10));
 //! let _ = drive.sls_velocity_limit(3).read();
 //! ```

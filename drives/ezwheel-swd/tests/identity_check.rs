@@ -3,7 +3,7 @@
 //! and found values, and nothing is written to it until the code explicitly trusts it.
 
 use drivebus::canopen::{CanOpenLink, NodeId};
-use drivebus::memory::{MemoryBus, Request};
+use drivebus::testing::{MemoryBus, Request};
 use drivebus::{Error, WriteRefusal};
 use ezwheel_swd::Swd;
 

@@ -6,7 +6,7 @@
 mod support;
 
 use drivebus::canopen::NodeId;
-use drivebus::memory::MemoryBus;
+use drivebus::testing::MemoryBus;
 use drivebus::units::Rpm;
 use drivebus::{Error, ValueError};
 use ezwheel_swd::indexed::{SafetyControlword2Command, StandardErrorField};

@@ -8,7 +8,7 @@ use drivebus::canopen::srdo::{
     self, write_safety_configuration, MappingWrite, SrdoCommunication, SrdoConfig,
 };
 use drivebus::canopen::{CanOpenLink, NodeId};
-use drivebus::memory::SdoRecorder;
+use drivebus::testing::SdoRecorder;
 use drivebus::units::Rpm;
 use ezwheel_swd::Swd;
 

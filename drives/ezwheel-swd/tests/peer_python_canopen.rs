@@ -11,7 +11,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use drivebus::canopen::backend::candump::CandumpBus;
+use drivebus::canopen::can::candump::CandumpBus;
 use drivebus::canopen::NodeId;
 use drivesim::canopen::{Node, NodeConfig};
 use drivesim::Simulator;

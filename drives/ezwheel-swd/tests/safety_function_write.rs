@@ -13,7 +13,7 @@ use drivebus::canopen::nmt::NmtState;
 use drivebus::canopen::srdo::{write_safety_function, SafetyValue, SafetyWriteError};
 use drivebus::canopen::{NodeId, SdoBus};
 use drivebus::indexed::At;
-use drivebus::memory::SdoRecorder;
+use drivebus::testing::SdoRecorder;
 use drivebus::units::{Milliseconds, Rpm};
 use drivebus::{BusError, WriteRefusal};
 use ezwheel_swd::params::{SlsaPositiveVelocityLimitRun, SlsaTimeToPositiveVelocityMonitoringRun};

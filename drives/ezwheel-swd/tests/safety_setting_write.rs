@@ -10,7 +10,7 @@ mod support;
 use drivebus::canopen::nmt::NmtState;
 use drivebus::canopen::srdo::{SafetyValue, SafetyWriteError};
 use drivebus::canopen::NodeId;
-use drivebus::memory::SdoRecorder;
+use drivebus::testing::SdoRecorder;
 use drivebus::{Error, ValueError, WriteRefusal};
 use ezwheel_swd::params::{
     SafetyConfigurationValid, StoActivateSbc, StoRestartAcknowledgeBehaviour,

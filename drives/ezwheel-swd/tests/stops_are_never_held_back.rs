@@ -3,7 +3,7 @@
 //! node whose vendor-ID the description does not cover; enable operation does not.
 
 use drivebus::canopen::{CanOpenLink, NodeId};
-use drivebus::memory::{MemoryBus, Request};
+use drivebus::testing::{MemoryBus, Request};
 use drivebus::{Error, WriteRefusal};
 use ezwheel_swd::Swd;
 

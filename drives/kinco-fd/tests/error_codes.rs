@@ -1,8 +1,8 @@
 //! Error_State (2601h) and Error_State2 (2602h) bits as data: each set bit gives its error code
 //! (table 4, lines 1277-1315) and the code its reason and remedy (tables 7-1 and 7-2).
 
-use drivebus::memory::MemoryBus;
 use drivebus::modbus::{Table, UnitId};
+use drivebus::testing::MemoryBus;
 use kinco_fd::types::{ErrorCode, ErrorState, ErrorState2};
 use kinco_fd::KincoFd;
 

@@ -4,8 +4,8 @@
 //! the analog deadband in 0.01 V and the DIN speed mode default.
 
 use drivebus::canopen::{CanOpenLink, NodeId};
-use drivebus::memory::{MemoryBus, SdoRecorder};
 use drivebus::modbus::{Table, UnitId};
+use drivebus::testing::{MemoryBus, SdoRecorder};
 use drivebus::units::{Hertz, Percent, Rpm, Volts};
 use drivebus::{Error, ValueError};
 use kinco_fd::types::{NotchSwitch, Statusword};

@@ -5,8 +5,8 @@
 
 mod manual;
 
-use drivebus::memory::RtuRecorder;
 use drivebus::modbus::{ModbusLink, Table, UnitId};
+use drivebus::testing::RtuRecorder;
 use kinco_fd::types::ModesOfOperation;
 use kinco_fd::KincoFd;
 use manual::{hex, rpm_200_as_printed};

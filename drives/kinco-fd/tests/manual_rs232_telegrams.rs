@@ -5,9 +5,9 @@
 //! compared byte for byte with the manual's. The same list is already checked against the codec
 //! and a test fixture; this is the description the users get.
 
-use drivebus::memory::{MemoryBus, Request as Logged};
 use drivebus::rs232::data::Request;
 use drivebus::rs232::{telegram, Rs232Link, StationId};
+use drivebus::testing::{MemoryBus, Request as Logged};
 use drivebus::units::Rpm;
 use drivebus::Error;
 use kinco_fd::types::{HomingMethod, ModesOfOperation};

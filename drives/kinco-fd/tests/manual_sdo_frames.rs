@@ -8,7 +8,7 @@
 mod manual;
 
 use drivebus::canopen::{CanOpenLink, NodeId};
-use drivebus::memory::SdoRecorder;
+use drivebus::testing::SdoRecorder;
 use drivebus::units::Rpm;
 use kinco_fd::KincoFd;
 

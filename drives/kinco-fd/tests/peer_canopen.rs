@@ -6,7 +6,7 @@
 
 use std::process::{Command, Stdio};
 
-use drivebus::canopen::backend::candump::CandumpBus;
+use drivebus::canopen::can::candump::CandumpBus;
 use drivebus::canopen::NodeId;
 use drivesim::canopen::{Node, NodeConfig};
 use peer_support::{python, workspace_root, SETUP_HINT};

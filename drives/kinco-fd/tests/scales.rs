@@ -2,8 +2,8 @@
 //! given over Modbus), currents from the model's peak current (appendix 2, lines 3401-3403).
 
 use drivebus::canopen::{CanOpenLink, NodeId};
-use drivebus::memory::MemoryBus;
 use drivebus::modbus::{Table, UnitId};
+use drivebus::testing::MemoryBus;
 use drivebus::units::Rpm;
 use drivebus::{Error, ValueError};
 use kinco_fd::{KincoFd, Model};

@@ -4,7 +4,7 @@
 //! simulated drive's Modbus server directly: the manual's 2-register statusword read (line 2488),
 //! the FC 0x10 exception (0x90, line 2460) and the speed ramp of the profile acceleration.
 
-use drivebus::modbus::transport::{ModbusTcpClient, TcpConfig};
+use drivebus::modbus::client::{ModbusTcpClient, TcpConfig};
 use drivebus::modbus::{RegisterBus, Table, UnitId};
 use drivebus::units::Rpm;
 use drivebus::{BusError, Error};
@@ -96,7 +96,7 @@ fn the_simulated_drive_answers_the_manuals_two_register_statusword_read() {
     // 01 03 32 00 00 02 CA B3 (lines 2488, 2498, 2513): the CRC is the printed one ...
     let printed = [0x01, 0x03, 0x32, 0x00, 0x00, 0x02];
     assert_eq!(
-        drivebus::modbus::crc::crc16(&printed).to_le_bytes(),
+        drivebus::modbus::crc::crc16_modbus(&printed).to_le_bytes(),
         [0xCA, 0xB3]
     );
     // ... and the drive answers 4 bytes: the statusword, then 0x3201 (not described: 0).
@@ -240,7 +240,7 @@ fn a_broadcast_to_station_0_is_executed_and_not_answered() {
     // "if station No. is 00, message belongs to broadcast message. All Modbus slaves will accept
     // this message" (line 2534): the speed-mode write of 10.5 (line 2485) sent to station 0.
     let mut frame = vec![0x00, 0x06, 0x35, 0x00, 0x00, 0x03];
-    frame.extend(drivebus::modbus::crc::crc16(&frame).to_le_bytes());
+    frame.extend(drivebus::modbus::crc::crc16_modbus(&frame).to_le_bytes());
     let sim = simulator();
     let mut line = Line {
         input: frame.into_iter().collect(),

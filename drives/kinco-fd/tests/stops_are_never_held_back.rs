@@ -3,8 +3,8 @@
 //! operation does not. Kinco's own words (line 1935): 0x06 power off, 0x0B quick stop, 0x0F
 //! power on.
 
-use drivebus::memory::{MemoryBus, Request};
 use drivebus::modbus::{Table, UnitId};
+use drivebus::testing::{MemoryBus, Request};
 use drivebus::{Error, WriteRefusal};
 use kinco_fd::KincoFd;
 

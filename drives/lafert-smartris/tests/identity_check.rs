@@ -1,8 +1,8 @@
 //! The identity check on connect: `[identity]` covers FW RELEASE CUSTOMER (0x01FF) = 242, the
 //! guide's FW 2.4.2 (guide line 180; digits packed in decimal, Modbus manual line 1022).
 
-use drivebus::memory::MemoryBus;
 use drivebus::modbus::{ModbusLink, Table, UnitId};
+use drivebus::testing::MemoryBus;
 use drivebus::units::Rpm;
 use drivebus::{Error, WriteRefusal};
 use lafert_smartris::Smartris;

@@ -6,10 +6,10 @@
 #[path = "support/fake_clock.rs"]
 mod fake_clock;
 
-use drivebus::memory::RtuRecorder;
 use drivebus::modbus::pdu::Request;
 use drivebus::modbus::rtu::{encode_request, MAX_ADU};
 use drivebus::modbus::{ModbusLink, Table, UnitId};
+use drivebus::testing::RtuRecorder;
 use fake_clock::FakeClock;
 use lafert_smartris::types::{BaudRate, ComSettings};
 use lafert_smartris::{params, RebootWait, Smartris};

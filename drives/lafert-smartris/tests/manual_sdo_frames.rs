@@ -3,7 +3,7 @@
 //! the printed bytes (node 1: request COB-ID 0x601).
 
 use drivebus::canopen::{CanOpenLink, NodeId};
-use drivebus::memory::SdoRecorder;
+use drivebus::testing::SdoRecorder;
 use lafert_smartris::Smartris;
 
 fn drive() -> Smartris<CanOpenLink<SdoRecorder>> {

@@ -1,8 +1,8 @@
 //! The Modbus manual's own worked values (001_ad8624675505a5b5.txt, every "i.e." example of §2-4),
 //! decoded or encoded through the generated API over an in-memory register map.
 
-use drivebus::memory::{MemoryBus, Request};
 use drivebus::modbus::{ModbusLink, Table, UnitId};
+use drivebus::testing::{MemoryBus, Request};
 use drivebus::units::{AmperesRms, Celsius, Rpm, Volts};
 use drivebus::{BusError, Error, ValueError};
 use lafert_smartris::types::{

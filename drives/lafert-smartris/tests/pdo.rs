@@ -4,7 +4,7 @@
 
 use drivebus::canopen::pdo::COB_ID_INVALID;
 use drivebus::canopen::NodeId;
-use drivebus::memory::{MemoryBus, Request};
+use drivebus::testing::{MemoryBus, Request};
 use drivebus::units::PerMille;
 use drivebus::ValueError;
 use lafert_smartris::pdo::{Rpdo4, Tpdo2, Tpdo4};

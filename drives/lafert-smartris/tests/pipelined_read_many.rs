@@ -1,7 +1,7 @@
 //! The generated `read_many` over a pipelining Modbus TCP client: values from both register
 //! tables reach the bus as one batch and come back typed, against the simulated drive.
 
-use drivebus::modbus::transport::{ModbusTcpClient, TcpConfig};
+use drivebus::modbus::client::{ModbusTcpClient, TcpConfig};
 use drivebus::modbus::{RegisterBus, RegisterRead, Table, UnitId};
 use drivebus::units::Volts;
 use drivebus::BusError;

@@ -6,8 +6,8 @@ use std::time::{Duration, Instant};
 
 use drivebus::control::driver::{ControlError, StuckReason};
 use drivebus::control::{Plan, State};
-use drivebus::memory::MemoryBus;
 use drivebus::modbus::{ModbusLink, RegisterBus, Table, UnitId};
+use drivebus::testing::MemoryBus;
 use drivebus::BusError;
 use lafert_smartris::modbus_run::{self, MACHINE};
 use lafert_smartris::Smartris;

@@ -2,8 +2,8 @@
 //! handle refuses writes to a drive whose firmware its description does not cover; run (0x0003)
 //! is not (`stops` on `control_word`, drivebus::stop).
 
-use drivebus::memory::{MemoryBus, Request};
 use drivebus::modbus::{ModbusLink, Table, UnitId};
+use drivebus::testing::{MemoryBus, Request};
 use drivebus::{Error, WriteRefusal};
 use lafert_smartris::Smartris;
 

@@ -79,7 +79,7 @@ fn a_refused_value_is_not_stored() {
 #[test]
 fn a_failed_store_does_not_reset() {
     let mut sim = SimulatedDrive::in_standby(2);
-    sim.memory = drivebus::memory::MemoryBus::new(); // no register 0x0000: exception 0x02
+    sim.memory = drivebus::testing::MemoryBus::new(); // no register 0x0000: exception 0x02
     let mut drive = drive(sim);
     let error = drive
         .store_and_reset(WAIT, &mut FakeClock::default())

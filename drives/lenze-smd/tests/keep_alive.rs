@@ -7,8 +7,8 @@ use std::sync::{Arc, Mutex};
 use std::thread::sleep;
 use std::time::Duration;
 
-use drivebus::memory::MemoryBus;
 use drivebus::modbus::{ModbusLink, RegisterBus, SharedBus, Table, UnitId};
+use drivebus::testing::MemoryBus;
 use drivebus::BusError;
 use lenze_smd::{KeepAlive, LenzeSmd};
 

@@ -9,8 +9,8 @@
 #[path = "support/scripted_line.rs"]
 mod scripted_line;
 
+use drivebus::modbus::client::Client;
 use drivebus::modbus::rtu::{open_frame, RtuFraming};
-use drivebus::modbus::transport::Client;
 use drivebus::modbus::{ModbusLink, UnitId};
 use drivebus::units::{Hertz, Percent};
 use drivebus::BusError;

@@ -6,8 +6,8 @@
 //! locked, as the drive powers up (line 1055), so each drive first gets the grant #49 = 0, the
 //! factory password (lines 423-424), through the raw device too.
 
-use drivebus::memory::{MemoryBus, Request};
 use drivebus::modbus::{ModbusLink, Table, UnitId};
+use drivebus::testing::{MemoryBus, Request};
 use drivebus::units::{Hertz, Milliseconds, Seconds};
 use drivebus::{Error, ValueError};
 use lenze_smd::types::{FaultAndCommandedDirection, FaultCode, SerialBaudRate};

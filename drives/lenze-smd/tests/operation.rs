@@ -6,7 +6,7 @@
 
 use std::time::{Duration, Instant};
 
-use drivebus::modbus::transport::{ModbusTcpClient, TcpConfig};
+use drivebus::modbus::client::{ModbusTcpClient, TcpConfig};
 use drivebus::modbus::{ModbusLink, UnitId};
 use drivebus::units::Hertz;
 use drivesim::modbus::tcp::TcpServer;

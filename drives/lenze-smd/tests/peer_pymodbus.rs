@@ -7,8 +7,8 @@
 use std::path::Path;
 use std::time::Duration;
 
+use drivebus::modbus::client::{SerialConfig, SerialRtuClient};
 use drivebus::modbus::rtu::{Parity, StopBits};
-use drivebus::modbus::transport::{SerialConfig, SerialRtuClient};
 use drivebus::modbus::{ModbusLink, RegisterBus, Table, UnitId};
 use drivebus::units::Hertz;
 use lenze_smd::types::{OperationalStatus, SerialBaudRate};
@@ -238,9 +238,9 @@ fn the_simulator_answers_the_manuals_rules_as_the_independent_peer_does() {
     sim.preset("parameter_configuration", 507).unwrap();
     sim.preset("control_source", 11).unwrap();
     let server = sim.serve_modbus_tcp("127.0.0.1:0", UNIT).unwrap();
-    let mut client = drivebus::modbus::transport::ModbusTcpClient::connect(
+    let mut client = drivebus::modbus::client::ModbusTcpClient::connect(
         server.local_addr(),
-        &drivebus::modbus::transport::TcpConfig::default(),
+        &drivebus::modbus::client::TcpConfig::default(),
     )
     .unwrap();
     let from_sim = rule_requests(&mut client, UNIT);

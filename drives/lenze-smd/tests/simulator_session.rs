@@ -8,7 +8,7 @@ use std::sync::{Arc, Mutex};
 use std::thread::sleep;
 use std::time::Duration;
 
-use drivebus::modbus::transport::{ModbusTcpClient, TcpConfig};
+use drivebus::modbus::client::{ModbusTcpClient, TcpConfig};
 use drivebus::modbus::{ModbusLink, RegisterBus, Table, UnitId};
 use drivebus::units::Seconds;
 use drivebus::{BusError, Error, WriteRefusal};

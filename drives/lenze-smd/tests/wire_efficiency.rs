@@ -7,8 +7,8 @@
 #[path = "support/scripted_line.rs"]
 mod scripted_line;
 
+use drivebus::modbus::client::Client;
 use drivebus::modbus::rtu::RtuFraming;
-use drivebus::modbus::transport::Client;
 use drivebus::modbus::{ModbusLink, UnitId};
 use lenze_smd::{params, LenzeSmd};
 use peer_support::modbus_crc::with_crc;

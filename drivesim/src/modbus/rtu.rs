@@ -6,10 +6,10 @@
 
 use std::time::{Duration, Instant};
 
+use drivebus::modbus::client::ByteStream;
 use drivebus::modbus::crc::check;
 use drivebus::modbus::pdu::function;
 use drivebus::modbus::rtu::{seal, MAX_ADU};
-use drivebus::modbus::transport::ByteStream;
 use drivebus::modbus::UnitId;
 use drivebus::BusError;
 

@@ -1,6 +1,6 @@
 //! The sans-I/O Modbus server: a request PDU in, a response PDU out.
 
-use drivebus::modbus::pdu::{self, ServerRequest};
+use drivebus::modbus::pdu::{self, Request};
 use drivebus::modbus::Table;
 use drivegen::ir::{Device, ModbusCaps};
 
@@ -74,29 +74,23 @@ impl ModbusServer {
             }
         })?;
         match decoded {
-            ServerRequest::Read {
-                function,
-                start,
-                count,
-            } => {
-                let table = match function {
-                    pdu::function::READ_HOLDING_REGISTERS => Table::Holding,
+            Request::ReadHoldingRegisters { start, count }
+            | Request::ReadInputRegisters { start, count } => {
+                let table = match decoded {
+                    Request::ReadHoldingRegisters { .. } => Table::Holding,
                     // A device that does not tell 3X from 4X references (Lenze smd, line 237).
-                    pdu::function::READ_INPUT_REGISTERS if self.input_reads_holding() => {
-                        Table::Holding
-                    }
-                    pdu::function::READ_INPUT_REGISTERS => Table::Input,
-                    _ => return Err(self.exception(Refusal::NoSuchAddress)),
+                    _ if self.input_reads_holding() => Table::Holding,
+                    _ => Table::Input,
                 };
                 let values = self.read(drive, table, start, count)?;
                 pdu::encode_registers_response(function, &values, out)
                     .map_err(|_| ILLEGAL_DATA_VALUE)
             }
-            ServerRequest::WriteSingleRegister { address, value } => {
+            Request::WriteSingleRegister { address, value } => {
                 self.write(drive, address, &[value])?;
                 pdu::encode_write_response(request, out).map_err(|_| ILLEGAL_DATA_VALUE)
             }
-            ServerRequest::WriteMultipleRegisters { start, values } => {
+            Request::WriteMultipleRegisters { start, values } => {
                 let values: Vec<u16> = values.iter().collect();
                 if values.len() > usize::from(self.max_write()) {
                     return Err(ILLEGAL_DATA_VALUE);
@@ -104,9 +98,10 @@ impl ModbusServer {
                 self.write(drive, start, &values)?;
                 pdu::encode_write_response(request, out).map_err(|_| ILLEGAL_DATA_VALUE)
             }
-            ServerRequest::WriteSingleCoil { .. } | ServerRequest::WriteMultipleCoils { .. } => {
-                Err(self.exception(Refusal::NoSuchAddress))
-            }
+            Request::ReadCoils { .. }
+            | Request::ReadDiscreteInputs { .. }
+            | Request::WriteSingleCoil { .. }
+            | Request::WriteMultipleCoils { .. } => Err(self.exception(Refusal::NoSuchAddress)),
         }
     }
 

@@ -1,5 +1,5 @@
 //! SDO over candump text through the proxy: one line per CAN frame on a pipe-like stream
-//! between the client's [`CandumpBus`](drivebus::canopen::backend::candump::CandumpBus) and the
+//! between the client's [`CandumpBus`](drivebus::canopen::can::candump::CandumpBus) and the
 //! simulated node's.
 
 use std::io::{self, BufRead, BufReader, Read};
@@ -75,7 +75,7 @@ pub fn start(
 
 #[cfg(test)]
 mod tests {
-    use drivebus::canopen::backend::candump::parse_line;
+    use drivebus::canopen::can::candump::parse_line;
 
     use super::*;
 

@@ -1,5 +1,5 @@
 use drivebus::canopen::NodeId;
-use drivebus::memory::MemoryBus;
+use drivebus::testing::MemoryBus;
 
 fn main() {
     let mut drive = ezwheel_swd::Swd::canopen(MemoryBus::new(), NodeId(0x10));

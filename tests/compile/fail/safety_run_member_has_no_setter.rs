@@ -1,5 +1,5 @@
 use drivebus::canopen::NodeId;
-use drivebus::memory::MemoryBus;
+use drivebus::testing::MemoryBus;
 use drivebus::units::Rpm;
 
 fn main() {

@@ -1,6 +1,6 @@
 use drivebus::canopen::srdo::SafetyValue;
 use drivebus::canopen::NodeId;
-use drivebus::memory::MemoryBus;
+use drivebus::testing::MemoryBus;
 use drivebus::units::Rpm;
 
 fn main() {

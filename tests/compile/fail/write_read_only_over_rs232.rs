@@ -1,4 +1,4 @@
-use drivebus::memory::MemoryBus;
+use drivebus::testing::MemoryBus;
 use drivebus::rs232::StationId;
 use drivegen_tests::kinco_rs232::KincoRs232;
 

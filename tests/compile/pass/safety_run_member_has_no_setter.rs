@@ -1,7 +1,7 @@
 use drivebus::canopen::nmt::NmtState;
 use drivebus::canopen::srdo::SafetyValue;
 use drivebus::canopen::NodeId;
-use drivebus::memory::MemoryBus;
+use drivebus::testing::MemoryBus;
 use drivebus::units::Rpm;
 use ezwheel_swd::safety_functions::SLS;
 

@@ -1,4 +1,4 @@
-use drivebus::memory::MemoryBus;
+use drivebus::testing::MemoryBus;
 use drivebus::modbus::UnitId;
 use drivebus::units::Volts;
 use lafert_smartris::Smartris;

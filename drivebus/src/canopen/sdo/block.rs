@@ -14,7 +14,7 @@ pub const MAX_BLOCK_SIZE: u8 = 127;
 const CRC16: crc::Crc<u16> = crc::Crc::<u16>::new(&crc::CRC_16_XMODEM);
 
 /// The block-transfer CRC (CRC-16/XMODEM, the CCITT polynomial 0x1021 from 0) of a value.
-pub fn crc16(data: &[u8]) -> u16 {
+pub fn crc16_xmodem(data: &[u8]) -> u16 {
     CRC16.checksum(data)
 }
 
@@ -240,7 +240,7 @@ impl Upload<'_> {
                 if size.is_some_and(|size| size != len) {
                     return self.ch.abort(AbortCode::LengthMismatch);
                 }
-                if crc && crc16(&self.buf[..len]) != u16::from_le_bytes([data[1], data[2]]) {
+                if crc && crc16_xmodem(&self.buf[..len]) != u16::from_le_bytes([data[1], data[2]]) {
                     return self.ch.abort(AbortCode::CrcError);
                 }
                 self.ch
@@ -314,7 +314,7 @@ impl Download<'_> {
                 }
                 let last_start = (base + (sent as usize - 1) * SEGMENT_BYTES).min(len);
                 let unused = (SEGMENT_BYTES - (len - last_start)) as u8;
-                let [lo, hi] = crc16(self.data).to_le_bytes();
+                let [lo, hi] = crc16_xmodem(self.data).to_le_bytes();
                 let end = (ccs::BLOCK_DOWNLOAD << 5) | (unused << 2) | CS_END;
                 self.ch.send([end, lo, hi, 0, 0, 0, 0, 0], now);
                 self.state = DownloadState::Block(DownloadBlock::End);

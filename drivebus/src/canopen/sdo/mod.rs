@@ -11,7 +11,7 @@ pub mod abort;
 #[cfg(feature = "sdo-block")]
 pub mod block;
 pub mod client;
-#[cfg(feature = "canopen")]
+#[cfg(all(feature = "canopen", feature = "server"))]
 pub mod server;
 #[cfg(all(test, feature = "canopen"))]
 mod tests;

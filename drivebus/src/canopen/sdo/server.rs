@@ -1,12 +1,14 @@
-//! A small SDO server over an object dictionary: expedited, segmented and block transfers.
+//! A small SDO server over an object dictionary: expedited, segmented and block transfers
+//! (feature `server`).
 //!
-//! It is the test double the client is checked against (unit, property and fault-injection
-//! tests) and a starting point for the simulator; it is not a complete CiA 301 device.
+//! The simulator's CANopen nodes answer SDOs through it (`drivesim::canopen::node`), and it is
+//! the double the client is checked against (unit, property and fault-injection tests); it is
+//! not a complete CiA 301 device.
 
 use std::collections::BTreeMap;
 use std::vec::Vec;
 
-use super::block::{crc16, MAX_BLOCK_SIZE};
+use super::block::{crc16_xmodem, MAX_BLOCK_SIZE};
 use super::client::SEGMENT_BYTES;
 use super::{ccs, command_only, scs, AbortCode, TOGGLE};
 use crate::canopen::address::NodeId;
@@ -324,7 +326,7 @@ impl<D: ObjectDictionary> SdoServer<D> {
                     let last_start = base + (sent as usize - 1) * SEGMENT_BYTES;
                     let unused =
                         (SEGMENT_BYTES - (value.len() - last_start.min(value.len()))) as u8;
-                    let [lo, hi] = crc16(&value).to_le_bytes();
+                    let [lo, hi] = crc16_xmodem(&value).to_le_bytes();
                     out.push(self.response([
                         (scs::BLOCK_UPLOAD << 5) | (unused << 2) | 1,
                         lo,
@@ -405,7 +407,7 @@ impl<D: ObjectDictionary> SdoServer<D> {
             (1, State::BlockDownloadEnd { mut buf }) => {
                 let unused = ((data[0] >> 2) & 0b111) as usize;
                 buf.truncate(buf.len().saturating_sub(unused));
-                if crc16(&buf) != u16::from_le_bytes([data[1], data[2]]) {
+                if crc16_xmodem(&buf) != u16::from_le_bytes([data[1], data[2]]) {
                     return Err(AbortCode::CrcError);
                 }
                 self.dictionary.write(self.mux.0, self.mux.1, &buf)?;

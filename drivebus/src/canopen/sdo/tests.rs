@@ -394,8 +394,8 @@ fn duplicated_initiate_responses_after_the_end_are_ignored() {
 
 #[test]
 fn block_crc_is_crc16_xmodem() {
-    assert_eq!(block::crc16(b"123456789"), 0x31C3);
-    assert_eq!(block::crc16(&[]), 0);
+    assert_eq!(block::crc16_xmodem(b"123456789"), 0x31C3);
+    assert_eq!(block::crc16_xmodem(&[]), 0);
 }
 
 #[test]
@@ -687,7 +687,7 @@ fn block_download_end_answered_with_the_wrong_command_aborts() {
     );
     assert_eq!(
         u16::from_le_bytes([end.data()[1], end.data()[2]]),
-        block::crc16(&[1, 2])
+        block::crc16_xmodem(&[1, 2])
     );
     let progress = transfer.handle(&response([0xA2, 1, 4, 0, 0, 0, 0, 0]), Duration::ZERO);
     assert_eq!(

@@ -51,7 +51,7 @@
 use super::config::SrdoConfig;
 use super::error::SrdoError;
 
-/// CRC-16/XMODEM from the `crc` catalogue, as the SDO block CRC (`sdo::block::crc16`), with the
+/// CRC-16/XMODEM from the `crc` catalogue, as the SDO block CRC (`sdo::block::crc16_xmodem`), with the
 /// slice-by-16 table: a signature is a hundred bytes or so, where byte-wise tables dominate.
 pub(super) const SIGNATURE_CRC: crc::Crc<u16, crc::Table<16>> =
     crc::Crc::<u16, crc::Table<16>>::new(&crc::CRC_16_XMODEM);

@@ -1,6 +1,8 @@
-//! Modbus PDUs: the client's request encoding and response decoding (checked against the request)
-//! in `pdu/client.rs`, the server side of both for simulators and tests in `pdu/server.rs`;
-//! function codes, limits and field helpers shared by both here.
+//! Modbus PDUs. One [`Request`] type for both sides (`pdu/request.rs`: what a client encodes, what
+//! a server decodes), carrying [`Registers`] and [`Bits`] (`pdu/values.rs`); the client's response
+//! decoding, checked against the request, in `pdu/client.rs`; the server's request decoding and
+//! response encoding in `pdu/server.rs` (feature `server`); function codes, limits and field
+//! helpers shared by all of them here.
 //!
 //! Everything works on caller-provided slices: nothing allocates, and no input makes a decoder
 //! panic — a malformed PDU is a [`BusError::Frame`], an exception response a
@@ -9,15 +11,21 @@
 use crate::error::BusError;
 
 mod client;
+mod request;
+#[cfg(feature = "server")]
 mod server;
 #[cfg(test)]
 mod tests;
+mod values;
 
-pub use client::{decode_registers, decode_response, Bits, Registers, Request, Response};
+pub use client::{decode_registers, decode_response, Response};
+pub use request::Request;
+#[cfg(feature = "server")]
 pub use server::{
     decode_request, encode_bits_response, encode_exception, encode_registers_response,
-    encode_write_response, ServerRequest,
+    encode_write_response,
 };
+pub use values::{Bits, Registers};
 
 /// Function codes this crate speaks.
 pub mod function {
@@ -96,6 +104,7 @@ pub(crate) fn pack_bits(values: &[bool], out: &mut [u8]) {
     }
 }
 
+#[cfg(feature = "server")]
 #[inline]
 pub(crate) fn be16(bytes: &[u8], at: usize) -> u16 {
     u16::from_be_bytes([bytes[at], bytes[at + 1]])

@@ -1,55 +1,14 @@
-//! The server side: request PDUs decoded as a device sees them, and responses encoded.
+//! The server side: request PDUs decoded into the [`Request`] a client sent, and responses
+//! encoded.
 
 use crate::error::BusError;
 
 use super::*;
 
-/// A request as a server sees it: like [`Request`], with write payloads still in wire form.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ServerRequest<'a> {
-    /// FC 0x01 / 0x02 / 0x03 / 0x04: `count` items from `start`.
-    Read {
-        /// Function code.
-        function: u8,
-        /// First address.
-        start: u16,
-        /// Item count.
-        count: u16,
-    },
-    /// FC 0x05.
-    WriteSingleCoil {
-        /// Coil address.
-        address: u16,
-        /// New state.
-        value: bool,
-    },
-    /// FC 0x06.
-    WriteSingleRegister {
-        /// Register address.
-        address: u16,
-        /// New value.
-        value: u16,
-    },
-    /// FC 0x0F.
-    WriteMultipleCoils {
-        /// First coil.
-        start: u16,
-        /// New states.
-        values: Bits<'a>,
-    },
-    /// FC 0x10.
-    WriteMultipleRegisters {
-        /// First register.
-        start: u16,
-        /// New values.
-        values: Registers<'a>,
-    },
-}
-
 /// Decodes a request PDU (server side); every malformed PDU is a [`BusError::Frame`], an unknown
 /// function code [`BusError::Unsupported`].
 #[inline]
-pub fn decode_request(pdu: &[u8]) -> Result<ServerRequest<'_>, BusError> {
+pub fn decode_request(pdu: &[u8]) -> Result<Request<'_>, BusError> {
     let (&function, _) = pdu.split_first().ok_or(frame_error("empty request PDU"))?;
     if pdu.len() < 5 {
         return Err(frame_error("request PDU too short"));
@@ -63,23 +22,11 @@ pub fn decode_request(pdu: &[u8]) -> Result<ServerRequest<'_>, BusError> {
         }
     };
     let request = match function {
-        function::READ_COILS | function::READ_DISCRETE_INPUTS => {
-            check_span(first, second as usize, MAX_READ_BITS)?;
-            fixed(ServerRequest::Read {
-                function,
-                start: first,
-                count: second,
-            })?
-        }
-        function::READ_HOLDING_REGISTERS | function::READ_INPUT_REGISTERS => {
-            check_span(first, second as usize, MAX_READ_REGISTERS)?;
-            fixed(ServerRequest::Read {
-                function,
-                start: first,
-                count: second,
-            })?
-        }
-        function::WRITE_SINGLE_COIL => fixed(ServerRequest::WriteSingleCoil {
+        function::READ_COILS
+        | function::READ_DISCRETE_INPUTS
+        | function::READ_HOLDING_REGISTERS
+        | function::READ_INPUT_REGISTERS => fixed(read(function, first, second)?)?,
+        function::WRITE_SINGLE_COIL => fixed(Request::WriteSingleCoil {
             address: first,
             value: match second {
                 COIL_ON => true,
@@ -87,7 +34,7 @@ pub fn decode_request(pdu: &[u8]) -> Result<ServerRequest<'_>, BusError> {
                 _ => return Err(frame_error("coil value is neither 0xFF00 nor 0x0000")),
             },
         })?,
-        function::WRITE_SINGLE_REGISTER => fixed(ServerRequest::WriteSingleRegister {
+        function::WRITE_SINGLE_REGISTER => fixed(Request::WriteSingleRegister {
             address: first,
             value: second,
         })?,
@@ -104,12 +51,12 @@ pub fn decode_request(pdu: &[u8]) -> Result<ServerRequest<'_>, BusError> {
                 return Err(frame_error("byte count does not match the item count"));
             }
             if coils {
-                ServerRequest::WriteMultipleCoils {
+                Request::WriteMultipleCoils {
                     start: first,
                     values: Bits::new(data, second as usize),
                 }
             } else {
-                ServerRequest::WriteMultipleRegisters {
+                Request::WriteMultipleRegisters {
                     start: first,
                     values: Registers::new(data),
                 }
@@ -117,6 +64,19 @@ pub fn decode_request(pdu: &[u8]) -> Result<ServerRequest<'_>, BusError> {
         }
         _ => return Err(BusError::Unsupported("function code not implemented")),
     };
+    Ok(request)
+}
+
+/// The read request of read function code `function` for `count` items from `start`, refused
+/// outside the limits of its kind.
+fn read(function: u8, start: u16, count: u16) -> Result<Request<'static>, BusError> {
+    let request = match function {
+        function::READ_COILS => Request::ReadCoils { start, count },
+        function::READ_DISCRETE_INPUTS => Request::ReadDiscreteInputs { start, count },
+        function::READ_HOLDING_REGISTERS => Request::ReadHoldingRegisters { start, count },
+        _ => Request::ReadInputRegisters { start, count },
+    };
+    request.validate()?;
     Ok(request)
 }
 

@@ -24,21 +24,18 @@ fn encodes_the_manuals_requests() {
         count: 17,
     };
     assert_eq!(encoded(&read), [0x04, 0x00, 0x60, 0x00, 0x11]);
-    let coils = Request::WriteMultipleCoils {
-        start: 0x13,
-        values: &[
+    let coils = Request::write_coils(
+        0x13,
+        &[
             true, false, true, true, false, false, true, true, true, false,
         ],
-    };
+    );
     // The specification's own example: 10 coils from 20 (0x13) = CD 01.
     assert_eq!(
         encoded(&coils),
         [0x0F, 0x00, 0x13, 0x00, 0x0A, 0x02, 0xCD, 0x01]
     );
-    let regs = Request::WriteMultipleRegisters {
-        start: 1,
-        values: &[0x000A, 0x0102],
-    };
+    let regs = Request::write_registers(1, &[0x000A, 0x0102]);
     assert_eq!(
         encoded(&regs),
         [0x10, 0, 1, 0, 2, 4, 0x00, 0x0A, 0x01, 0x02]
@@ -62,10 +59,7 @@ fn rejects_out_of_spec_requests_before_sending() {
             start: 0xFFFF,
             count: 2,
         },
-        Request::WriteMultipleRegisters {
-            start: 0,
-            values: &[0; 124],
-        },
+        Request::write_registers(0, &[0; 124]),
     ] {
         assert!(matches!(
             request.encode(&mut out),
@@ -160,14 +154,8 @@ fn build<'a>(kind: u8, start: u16, regs: &'a [u16], bits: &'a [bool]) -> Request
             address: start,
             value: regs[0],
         },
-        6 => Request::WriteMultipleCoils {
-            start,
-            values: bits,
-        },
-        _ => Request::WriteMultipleRegisters {
-            start,
-            values: regs,
-        },
+        6 => Request::write_coils(start, bits),
+        _ => Request::write_registers(start, regs),
     }
 }
 
@@ -242,21 +230,23 @@ proptest! {
         };
         prop_assert_eq!(len, request.encoded_len());
         let server = decode_request(&pdu[..len]).unwrap();
+        prop_assert_eq!(server, request, "the server decodes the request the client sent");
+        let function = server.function();
         let mut reply = [0u8; MAX_PDU];
         let reply_len = match server {
-            ServerRequest::Read { function, count, .. } if function <= 2 => {
+            Request::ReadCoils { count, .. } | Request::ReadDiscreteInputs { count, .. } => {
                 encode_bits_response(function, &bits[..count as usize], &mut reply)
             }
-            ServerRequest::Read { function, count, .. } => {
+            Request::ReadHoldingRegisters { count, .. } | Request::ReadInputRegisters { count, .. } => {
                 encode_registers_response(function, &regs[..count as usize], &mut reply)
             }
-            ServerRequest::WriteMultipleCoils { values, .. } => {
+            Request::WriteMultipleCoils { values, .. } => {
                 let mut back = std::vec![false; values.len()];
                 values.copy_to(&mut back).unwrap();
                 prop_assert_eq!(&back[..], &bits[..]);
                 encode_write_response(&pdu[..len], &mut reply)
             }
-            ServerRequest::WriteMultipleRegisters { values, .. } => {
+            Request::WriteMultipleRegisters { values, .. } => {
                 prop_assert_eq!(values.iter().collect::<Vec<_>>(), regs.clone());
                 encode_write_response(&pdu[..len], &mut reply)
             }

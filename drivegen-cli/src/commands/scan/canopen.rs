@@ -1,10 +1,10 @@
 //! The CANopen scan: expedited uploads of 1000h and 1018h sub 1-3 to node ids 1-127 at once
-//! (`drivebus::canopen::scan`), each node matched against the descriptions' `[identity]`
+//! (`drivebus::canopen::client::scan`), each node matched against the descriptions' `[identity]`
 //! vendor-ID, product code and revision range.
 
 use std::time::Duration;
 
-use drivebus::canopen::scan::{scan as scan_bus, NodeIdentity};
+use drivebus::canopen::client::scan::{scan as scan_bus, NodeIdentity};
 use drivebus::canopen::NodeId;
 use drivegen::ir::Device;
 

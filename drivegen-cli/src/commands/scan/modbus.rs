@@ -9,8 +9,8 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 use std::time::Duration;
 
+use drivebus::modbus::client::{ModbusTcpClient, SerialConfig, SerialRtuClient, TcpConfig};
 use drivebus::modbus::retry::RetryPolicy;
-use drivebus::modbus::transport::{ModbusTcpClient, SerialConfig, SerialRtuClient, TcpConfig};
 use drivebus::modbus::{ExceptionCode, ModbusLimits, RegisterBus, UnitId};
 use drivebus::BusError;
 use drivegen::ir::{Device, IdentityCheck};

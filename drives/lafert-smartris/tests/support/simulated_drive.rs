@@ -5,8 +5,8 @@
 // Each test binary uses a part of the double.
 #![allow(dead_code)]
 
-use drivebus::memory::MemoryBus;
 use drivebus::modbus::{RegisterBus, Table, UnitId};
+use drivebus::testing::MemoryBus;
 use drivebus::BusError;
 
 pub const CONTROL_WORD: u16 = 0x0001;
@@ -80,7 +80,7 @@ impl SimulatedDrive {
             .log()
             .iter()
             .filter_map(|request| match request {
-                drivebus::memory::Request::Write { start, values } => Some((*start, values[0])),
+                drivebus::testing::Request::Write { start, values } => Some((*start, values[0])),
                 _ => None,
             })
             .collect()

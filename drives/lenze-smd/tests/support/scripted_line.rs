@@ -7,9 +7,9 @@
 use std::collections::VecDeque;
 use std::time::{Duration, Instant};
 
+use drivebus::modbus::client::{ByteStream, Client, ClientConfig};
 use drivebus::modbus::retry::RetryPolicy;
 use drivebus::modbus::rtu::RtuFraming;
-use drivebus::modbus::transport::{ByteStream, Client, ClientConfig};
 use drivebus::BusError;
 
 /// The scripted line: `answers[i]` is sent back after the i-th request (none: silence).

@@ -6,8 +6,8 @@
 // Each test binary uses a part of the double.
 #![allow(dead_code)]
 
-use drivebus::memory::MemoryBus;
 use drivebus::modbus::{RegisterBus, Table, UnitId};
+use drivebus::testing::MemoryBus;
 use drivebus::BusError;
 
 pub const DRIVE_CONTROL: u16 = 1;

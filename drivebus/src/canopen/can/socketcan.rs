@@ -506,7 +506,7 @@ mod tests {
     #[cfg(feature = "socketcan-tests")]
     #[test]
     fn a_bus_off_during_an_sdo_transfer_is_reported_as_such() {
-        use crate::canopen::blocking::BlockingSdo;
+        use crate::canopen::client::BlockingSdo;
         use crate::canopen::{NodeId, SdoBus};
         use socketcan::Frame;
         let peer = CanSocket::open("vcan0").unwrap();

@@ -1,5 +1,10 @@
-//! An in-memory bus: a register map and an object dictionary in a `BTreeMap`, for tests and
-//! examples. It records every request so tests can count transactions.
+//! Test doubles for tests and examples (feature `testing`).
+//!
+//! * [`MemoryBus`] — registers and objects in memory, answering Modbus, SDO and RS-232 requests
+//!   as a device would; it records every request, so tests can count transactions.
+//! * [`SdoRecorder`] — a [`MemoryBus`] that also keeps the first CAN frame of every SDO transfer.
+//! * `RtuRecorder` (with `modbus-core`) — a [`MemoryBus`] that also keeps every request as its RTU
+//!   frame.
 
 use std::collections::BTreeMap;
 use std::vec::Vec;
@@ -326,7 +331,7 @@ impl RegisterBus for RtuRecorder {
         start: u16,
         values: &[u16],
     ) -> Result<(), BusError> {
-        let request = crate::modbus::pdu::Request::WriteMultipleRegisters { start, values };
+        let request = crate::modbus::pdu::Request::write_registers(start, values);
         self.record(unit, &request)?;
         self.memory.write_registers(unit, start, values)
     }

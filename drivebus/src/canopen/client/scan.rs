@@ -7,9 +7,9 @@ use std::collections::BTreeMap;
 use std::time::{Duration, Instant};
 use std::vec::Vec;
 
-use super::backend::CanBus;
-use super::frame::CanFrame;
-use super::NodeId;
+use crate::canopen::can::CanBus;
+use crate::canopen::frame::CanFrame;
+use crate::canopen::NodeId;
 use crate::BusError;
 
 /// What a node reported: its device type and identity; an object it did not answer is `None`.

@@ -1,14 +1,16 @@
 //! A blocking SDO client over any [`CanBus`]: the sans-I/O transfers driven with a real clock.
 
+pub mod scan;
+
 use core::time::Duration;
 use std::collections::VecDeque;
 use std::time::Instant;
 
-use super::address::NodeId;
-use super::backend::CanBus;
-use super::frame::CanFrame;
-use super::link::SdoBus;
-use super::sdo::{Progress, SdoClient, Transfer};
+use crate::canopen::address::NodeId;
+use crate::canopen::can::CanBus;
+use crate::canopen::frame::CanFrame;
+use crate::canopen::link::SdoBus;
+use crate::canopen::sdo::{Progress, SdoClient, Transfer};
 use crate::error::BusError;
 
 /// Most frames kept for [`CanBus::recv`] while transfers run; older ones are dropped first.
@@ -18,7 +20,7 @@ pub const BACKLOG: usize = 1024;
 pub const DEFAULT_TIMEOUT: Duration = Duration::from_millis(500);
 
 /// Runs SDO transfers over a [`CanBus`]; implements [`SdoBus`], so a
-/// [`CanOpenLink`](super::CanOpenLink) works over every backend.
+/// [`CanOpenLink`](crate::canopen::CanOpenLink) works over every CAN interface.
 ///
 /// Frames that arrive during a transfer but are not SDO responses for it (PDOs, heartbeats,
 /// EMCY, other nodes' SDOs) are kept, up to [`BACKLOG`] of them, and handed out first by this
@@ -43,7 +45,7 @@ impl<B: CanBus> BlockingSdo<B> {
             dropped: 0,
             timeout: DEFAULT_TIMEOUT,
             block_threshold: None,
-            block_size: super::sdo::block::MAX_BLOCK_SIZE,
+            block_size: crate::canopen::sdo::block::MAX_BLOCK_SIZE,
             epoch: Instant::now(),
         }
     }

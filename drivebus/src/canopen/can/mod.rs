@@ -1,4 +1,5 @@
-//! CAN backends behind one trait.
+//! CAN interfaces behind one trait, used by the client (`canopen::client`) and by simulated
+//! devices alike.
 //!
 //! * `in_process` — several endpoints in one process, frames broadcast to the others (tests).
 //! * `slcan` — Lawicel ASCII adapters over any byte stream (serial port, TCP).

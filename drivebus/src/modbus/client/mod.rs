@@ -17,7 +17,7 @@
 //! use std::time::Duration;
 //! use drivebus::modbus::retry::{Idempotency, RetryPolicy};
 //! use drivebus::modbus::rtu::Parity;
-//! use drivebus::modbus::transport::{
+//! use drivebus::modbus::client::{
 //!     ModbusTcpClient, RtuOverTcpClient, SerialConfig, SerialRtuClient, TcpConfig,
 //! };
 //! use drivebus::modbus::{ModbusLimits, ModbusLink, RegisterBus, Table, UnitId};
@@ -206,7 +206,7 @@ impl<S: ByteStream, F: Framing> Client<S, F> {
         values: &[u16],
         idempotency: Idempotency,
     ) -> Result<(), BusError> {
-        let request = Request::WriteMultipleRegisters { start, values };
+        let request = Request::write_registers(start, values);
         self.execute(unit, &request, Some(idempotency)).map(drop)
     }
 
@@ -407,7 +407,7 @@ impl<S: ByteStream, F: Framing> RegisterBus for Client<S, F> {
         start: u16,
         values: &[u16],
     ) -> Result<(), BusError> {
-        let request = Request::WriteMultipleRegisters { start, values };
+        let request = Request::write_registers(start, values);
         self.execute(unit, &request, None).map(drop)
     }
 
@@ -451,7 +451,7 @@ impl<S: ByteStream, F: Framing> BitBus for Client<S, F> {
     }
 
     fn write_coils(&mut self, unit: UnitId, start: u16, values: &[bool]) -> Result<(), BusError> {
-        let request = Request::WriteMultipleCoils { start, values };
+        let request = Request::write_coils(start, values);
         self.execute(unit, &request, None).map(drop)
     }
 }
