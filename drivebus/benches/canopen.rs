@@ -5,9 +5,6 @@
 //! `cargo bench -p drivebus --features canopen --bench canopen`
 #![allow(missing_docs)] // `criterion_group!` defines an undocumented public function.
 
-// `criterion_group!` defines a public function without docs, which the workspace lints refuse.
-#![allow(missing_docs)]
-
 use std::hint::black_box;
 use std::io::Write;
 use std::path::{Path, PathBuf};
