@@ -2,14 +2,15 @@
 
 use core::marker::PhantomData;
 
+use crate::bound::OutsideBound;
 use crate::error::{BusError, Error, ValueError, WriteRefusal};
 use crate::given::Given;
 use crate::link::{Link, MAX_VALUE_BYTES};
-use crate::parameter::{Parameter, Readable, ValueOf, Writable};
+use crate::parameter::{Parameter, Placement, RawInteger, Readable, ValueOf, Writable};
 use crate::read_set::ReadSet;
 use crate::value::WireValue;
 use crate::write_lock::{LockAccount, WriteLock};
-use crate::VariantId;
+use crate::{Protocol, VariantId};
 
 /// A link plus the device's selected variant; generated drive handles wrap one.
 #[derive(Debug)]
@@ -119,23 +120,42 @@ impl<L: Link> Device<L> {
     /// While the drive reported a variant the description does not cover, a parameter whose
     /// address depends on the variant is not read ([`Error::VariantUnknown`]): nothing is guessed.
     pub fn read_raw<P: Readable<L::Protocol>>(&mut self) -> Result<P::Raw, Error> {
+        let mut buf = [0u8; MAX_VALUE_BYTES];
+        let len = self.read_bytes(P::NAME, &P::READ_AT, &mut buf)?;
+        P::Raw::decode_le(&buf[..len]).map_err(named::<P>)
+    }
+
+    /// Reads another parameter's raw integer value: a bound before a write, an identity
+    /// parameter on connect. The same request, and the same refusals, as [`Self::read_raw`].
+    pub(crate) fn read_integer(
+        &mut self,
+        parameter: &RawInteger<L::Protocol>,
+    ) -> Result<i128, Error> {
+        let mut buf = [0u8; MAX_VALUE_BYTES];
+        let len = self.read_bytes(parameter.name, &parameter.read_at, &mut buf)?;
+        (parameter.decode)(&buf[..len]).map_err(|e| Error::Value(e.named(parameter.name)))
+    }
+
+    /// Reads the bytes of parameter `name`, placed at `read_at`, into `buf`; returns how many.
+    fn read_bytes(
+        &mut self,
+        name: &'static str,
+        read_at: &Placement<<L::Protocol as Protocol>::Address>,
+        buf: &mut [u8; MAX_VALUE_BYTES],
+    ) -> Result<usize, Error> {
         if let Some(WriteRefusal::UnknownVariant { selector, value }) = self.refusal {
-            if P::READ_AT.depends_on_variant() {
+            if read_at.depends_on_variant() {
                 return Err(Error::VariantUnknown {
-                    parameter: P::NAME,
+                    parameter: name,
                     selector,
                     value,
                 });
             }
         }
-        let address =
-            P::read_address(self.variant).ok_or(Error::NotInVariant { parameter: P::NAME })?;
-        let mut buf = [0u8; MAX_VALUE_BYTES];
-        let len = self
-            .link
-            .read(&address, &mut buf)
-            .map_err(bus_error(P::NAME))?;
-        P::Raw::decode_le(&buf[..len]).map_err(named::<P>)
+        let address = read_at
+            .get(self.variant)
+            .ok_or(Error::NotInVariant { parameter: name })?;
+        self.link.read(&address, buf).map_err(bus_error(name))
     }
 
     /// Writes a parameter in engineering units; range-checked before anything is sent.
@@ -145,18 +165,22 @@ impl<L: Link> Device<L> {
         self.write_raw::<P>(raw)
     }
 
-    /// Writes a raw value; still checked against the description's range and allowed values.
-    /// Refused before sending while writes are refused ([`Self::write_refusal_of`]), unless it
-    /// stops the drive ([`crate::stop`]): a stop is always sent and the drive's answer returned.
+    /// Writes a raw value; still checked against the description's range and allowed values,
+    /// and against the current values of the parameters that bound it ([`Writable::BOUNDS`],
+    /// read first). Refused before sending while writes are refused
+    /// ([`Self::write_refusal_of`]). A write that stops the drive ([`crate::stop`]) is neither
+    /// refused nor bounded: a stop is always sent and the drive's answer returned.
     pub fn write_raw<P: Writable<L::Protocol>>(&mut self, raw: P::Raw) -> Result<(), Error> {
         P::check(&raw).map_err(named::<P>)?;
-        let refusal = self.write_refusal_of::<P>();
-        let refusal = if P::stops(&raw) { None } else { refusal };
-        if let Some(reason) = refusal {
+        let stops = P::stops(&raw);
+        if let Some(reason) = self.write_refusal_of::<P>().filter(|_| !stops) {
             return Err(Error::WritesRefused {
                 parameter: P::NAME,
                 reason,
             });
+        }
+        if !stops {
+            self.check_bounds::<P>(&raw)?;
         }
         let address =
             P::write_address(self.variant).ok_or(Error::NotInVariant { parameter: P::NAME })?;
@@ -177,6 +201,27 @@ impl<L: Link> Device<L> {
             lock.follow(P::NAME, bytes, &outcome);
         }
         outcome.map_err(bus_error(P::NAME))
+    }
+
+    /// Reads the parameters that bound `P` and refuses `raw` if it lies beyond one's current
+    /// value. Bounds compare integers; the description's validation keeps them to integer
+    /// parameters, so a raw value without an integer (a float) has none.
+    fn check_bounds<P: Writable<L::Protocol>>(&mut self, raw: &P::Raw) -> Result<(), Error> {
+        let Some(raw) = raw.to_int() else {
+            return Ok(());
+        };
+        for bound in P::BOUNDS {
+            let limit = self.read_integer(&bound.by)?;
+            if bound.bound.breached(raw, limit) {
+                return Err(Error::OutsideBound(OutsideBound {
+                    parameter: P::NAME,
+                    bound: bound.by.name,
+                    raw,
+                    limit,
+                }));
+            }
+        }
+        Ok(())
     }
 
     /// Reads several parameters at once, in as few requests as the link can manage.
@@ -224,7 +269,8 @@ impl<L: Link, P: Parameter> Accessor<'_, L, P> {
         self.device.read_raw::<P>()
     }
 
-    /// Writes a value in engineering units.
+    /// Writes a value in engineering units: range-checked, and checked against the current
+    /// values of the parameters that bound it (read first), before anything is sent.
     #[inline]
     pub fn write(self, value: impl ValueOf<P>) -> Result<(), Error>
     where
@@ -233,7 +279,7 @@ impl<L: Link, P: Parameter> Accessor<'_, L, P> {
         self.device.write::<P>(value.into_value())
     }
 
-    /// Writes a raw value.
+    /// Writes a raw value, checked as [`Self::write`] checks it.
     #[inline]
     pub fn write_raw(self, raw: P::Raw) -> Result<(), Error>
     where

@@ -26,6 +26,7 @@
 extern crate std;
 
 pub mod bound;
+pub mod bus_error_kind;
 pub mod canopen;
 #[doc(hidden)] // the checks generated parameters call before sending
 pub mod check;
@@ -36,6 +37,7 @@ pub mod device;
 pub mod error;
 pub mod error_class;
 pub mod given;
+pub mod identity;
 pub mod interpret;
 pub mod link;
 #[cfg(feature = "std")]
@@ -52,18 +54,22 @@ pub mod stop;
 #[cfg(feature = "std")]
 pub mod stream;
 pub mod units;
+pub mod unlock_error;
 pub mod value;
 pub mod write_lock;
 
 pub use bound::{Bound, OutsideBound};
+pub use bus_error_kind::BusErrorKind;
 pub use data_type::DataType;
 pub use device::{Accessor, Device};
 pub use error::{BusError, Error, ValueError, WriteRefusal};
 pub use error_class::ErrorClass;
+pub use identity::{Covered, IdentityCheck, IdentityChecks};
 pub use link::Link;
-pub use parameter::{Parameter, Placement, Readable, ValueOf, Writable};
+pub use parameter::{BoundBy, Parameter, Placement, RawInteger, Readable, ValueOf, Writable};
 pub use scale::{Ratio, Scale};
 pub use stop::{StopPattern, Stops};
+pub use unlock_error::UnlockError;
 
 /// Re-exported so generated crates need no direct `bitflags` dependency.
 pub use bitflags;

@@ -47,8 +47,7 @@ impl fmt::Display for StoreResetError {
     }
 }
 
-#[cfg(feature = "std")]
-impl std::error::Error for StoreResetError {}
+impl core::error::Error for StoreResetError {}
 
 impl<L: Link<Protocol = Modbus>> Smartris<L> {
     /// Writes `value` to `P`, stores it in E2PROM, resets the drive and waits until it answers

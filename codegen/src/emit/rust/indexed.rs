@@ -90,7 +90,6 @@ fn accessor_type(run: &IndexedParameter, device: &Device) -> TokenStream {
         Literal::u8_unsuffixed(run.first),
         Literal::u8_unsuffixed(run.last),
     );
-    let (min, max) = (f64::from(run.first), f64::from(run.last));
     let docs = doc_attrs(&format!(
         "{}\n\nSub-indices {}..={} of object 0x{:04X}, one marker each (`params::{}` ...).",
         summary(run),
@@ -179,9 +178,9 @@ fn accessor_type(run: &IndexedParameter, device: &Device) -> TokenStream {
             fn out_of_range(&self) -> ::drivebus::Error {
                 ::drivebus::Error::Value(::drivebus::ValueError::OutOfRange {
                     parameter: #name,
-                    raw: f64::from(self.subindex),
-                    min: #min,
-                    max: #max,
+                    raw: ::drivebus::interpret::RawValue::Int(i128::from(self.subindex)),
+                    min: ::drivebus::interpret::RawValue::Int(#lo),
+                    max: ::drivebus::interpret::RawValue::Int(#hi),
                 })
             }
 
