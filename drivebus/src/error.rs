@@ -378,6 +378,32 @@ const _: [&dyn core::error::Error; 4] = [
     },
 ];
 
+impl ValueError {
+    /// Names the parameter in an error raised by a codec that did not know it.
+    pub fn named(self, name: &'static str) -> Self {
+        match self {
+            Self::OutOfRange { raw, min, max, .. } => Self::OutOfRange {
+                parameter: name,
+                raw,
+                min,
+                max,
+            },
+            Self::Overflow { .. } => Self::Overflow { parameter: name },
+            Self::NotRepresentable { value, step, .. } => Self::NotRepresentable {
+                parameter: name,
+                value,
+                step,
+            },
+            Self::NotAllowed { raw, .. } => Self::NotAllowed {
+                parameter: name,
+                raw,
+            },
+            Self::BadScale { .. } => Self::BadScale { parameter: name },
+            other => other,
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -405,31 +431,5 @@ mod tests {
             std::format!("{refused}"),
             "speed_setpoint: raw value 4501 is beyond the current value 4500 of full_scale_velocity"
         );
-    }
-}
-
-impl ValueError {
-    /// Names the parameter in an error raised by a codec that did not know it.
-    pub fn named(self, name: &'static str) -> Self {
-        match self {
-            Self::OutOfRange { raw, min, max, .. } => Self::OutOfRange {
-                parameter: name,
-                raw,
-                min,
-                max,
-            },
-            Self::Overflow { .. } => Self::Overflow { parameter: name },
-            Self::NotRepresentable { value, step, .. } => Self::NotRepresentable {
-                parameter: name,
-                value,
-                step,
-            },
-            Self::NotAllowed { raw, .. } => Self::NotAllowed {
-                parameter: name,
-                raw,
-            },
-            Self::BadScale { .. } => Self::BadScale { parameter: name },
-            other => other,
-        }
     }
 }
