@@ -58,9 +58,10 @@ fn run<B: RegisterBus>(bus: B) -> Result<(), Box<dyn Error>> {
     let mut unlocked = drive.unlock_controls()?; // reads C01 (10 or 11), then #48 = 0
     unlocked.command(Command::SerialSpeedReference)?; // #1 = 0x0100
     unlocked
-        .write_serial_speed_command(Hertz(41.2)) // #40 = 412, within C10 ... C11
+        .serial_speed_command()
+        .write(Hertz(41.2)) // #40 = 412, within C10 ... C11
         .map_err(SmdError::from)?;
-    if let Err(refused) = unlocked.write_serial_speed_command(Hertz(75.0)) {
+    if let Err(refused) = unlocked.serial_speed_command().write(Hertz(75.0)) {
         println!("refused            {}", SmdError::from(refused));
     }
     unlocked.command(Command::Start)?; // #1 = 0x0008

@@ -1,6 +1,7 @@
 //! Bounds set by other parameters (`bounds = { min, max, magnitude }` in a description): a
 //! value must not lie beyond another parameter's current value. One comparison and one refusal
-//! for the generated `write_<name>` methods, the run-time interpreter and the simulator.
+//! for the device handle's writes ([`crate::Writable::BOUNDS`]), the run-time interpreter and the
+//! simulator.
 
 use core::fmt;
 
@@ -57,6 +58,8 @@ impl<N: fmt::Display> fmt::Display for OutsideBound<N> {
         )
     }
 }
+
+impl<N: fmt::Display + fmt::Debug> core::error::Error for OutsideBound<N> {}
 
 #[cfg(test)]
 mod tests {

@@ -1,4 +1,6 @@
-//! Raw-value checks generated parameters call before anything is sent.
+//! Raw-value checks generated parameters call before anything is sent. Errors carry the raw
+//! values exactly ([`RawValue`](crate::interpret::RawValue)): a 64-bit raw value does not pass
+//! through an `f64`.
 
 use crate::error::ValueError;
 use crate::value::Numeric;
@@ -13,9 +15,9 @@ pub fn in_range<R: Numeric>(
     if raw < min || raw > max {
         return Err(ValueError::OutOfRange {
             parameter,
-            raw: raw.to_f64(),
-            min: min.to_f64(),
-            max: max.to_f64(),
+            raw: raw.to_raw_value(),
+            min: min.to_raw_value(),
+            max: max.to_raw_value(),
         });
     }
     Ok(())
@@ -32,13 +34,14 @@ pub fn one_of<R: Numeric>(
     }
     Err(ValueError::NotAllowed {
         parameter,
-        raw: raw.to_f64() as i128,
+        raw: raw.to_raw_value(),
     })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::interpret::RawValue;
 
     #[test]
     fn range_and_set_checks() {
@@ -52,7 +55,7 @@ mod tests {
             one_of("b", 100u16, &[96, 192]),
             Err(ValueError::NotAllowed {
                 parameter: "b",
-                raw: 100
+                raw: RawValue::Int(100)
             })
         );
     }
@@ -64,13 +67,48 @@ mod tests {
             in_range("c", false, true, true),
             Err(ValueError::OutOfRange {
                 parameter: "c",
-                raw: 0.0,
-                min: 1.0,
-                max: 1.0
+                raw: RawValue::Int(0),
+                min: RawValue::Int(1),
+                max: RawValue::Int(1)
             })
         );
         assert!(one_of("c", false, &[false]).is_ok());
         assert_eq!(bool::from_f64(1.0), Some(true));
         assert_eq!(bool::from_f64(0.5), None);
+    }
+
+    #[test]
+    fn a_64_bit_raw_beyond_2_to_the_53_is_reported_exactly() {
+        // 2^53 + 1 has no f64: through a float it would read 2^53.
+        let raw = (1u64 << 53) + 1;
+        assert_eq!(
+            in_range("d", raw, 0, 1 << 53),
+            Err(ValueError::OutOfRange {
+                parameter: "d",
+                raw: RawValue::Int(9_007_199_254_740_993),
+                min: RawValue::Int(0),
+                max: RawValue::Int(9_007_199_254_740_992)
+            })
+        );
+        assert_eq!(
+            one_of("d", u64::MAX, &[0]),
+            Err(ValueError::NotAllowed {
+                parameter: "d",
+                raw: RawValue::Int(i128::from(u64::MAX))
+            })
+        );
+    }
+
+    #[test]
+    fn floats_are_reported_as_floats() {
+        assert_eq!(
+            in_range("e", 1.5f32, 0.0, 1.0),
+            Err(ValueError::OutOfRange {
+                parameter: "e",
+                raw: RawValue::Float(1.5),
+                min: RawValue::Float(0.0),
+                max: RawValue::Float(1.0)
+            })
+        );
     }
 }

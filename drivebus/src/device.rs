@@ -2,10 +2,11 @@
 
 use core::marker::PhantomData;
 
+use crate::bound::OutsideBound;
 use crate::error::{BusError, Error, ValueError, WriteRefusal};
 use crate::given::Given;
 use crate::link::{Link, MAX_VALUE_BYTES};
-use crate::parameter::{Parameter, Readable, ValueOf, Writable};
+use crate::parameter::{Parameter, Placement, RawInteger, Readable, ValueOf, Writable};
 use crate::read_set::ReadSet;
 use crate::value::WireValue;
 use crate::write_lock::{LockAccount, WriteLock};
@@ -132,8 +133,33 @@ impl<L: Link> Device<L> {
         name: &'static str,
         at: impl FnOnce(ProtocolAddress<L>) -> ProtocolAddress<L>,
     ) -> Result<P::Raw, Error> {
+        let mut buf = [0u8; MAX_VALUE_BYTES];
+        let len = self.read_bytes(name, &P::READ_AT, at, &mut buf)?;
+        P::Raw::decode_le(&buf[..len]).map_err(|e| Error::Value(e.named(name)))
+    }
+
+    /// Reads another parameter's raw integer value: a bound before a write, an identity
+    /// parameter on connect. The same request, and the same refusals, as [`Self::read_raw`].
+    pub(crate) fn read_integer(
+        &mut self,
+        parameter: &RawInteger<L::Protocol>,
+    ) -> Result<i128, Error> {
+        let mut buf = [0u8; MAX_VALUE_BYTES];
+        let len = self.read_bytes(parameter.name, &parameter.read_at, |a| a, &mut buf)?;
+        (parameter.decode)(&buf[..len]).map_err(|e| Error::Value(e.named(parameter.name)))
+    }
+
+    /// Reads the bytes of parameter `name`, placed at `read_at` (moved by `at`), into `buf`;
+    /// returns how many.
+    fn read_bytes(
+        &mut self,
+        name: &'static str,
+        read_at: &Placement<ProtocolAddress<L>>,
+        at: impl FnOnce(ProtocolAddress<L>) -> ProtocolAddress<L>,
+        buf: &mut [u8; MAX_VALUE_BYTES],
+    ) -> Result<usize, Error> {
         if let Some(WriteRefusal::UnknownVariant { selector, value }) = self.refusal {
-            if P::READ_AT.depends_on_variant() {
+            if read_at.depends_on_variant() {
                 return Err(Error::VariantUnknown {
                     parameter: name,
                     selector,
@@ -141,15 +167,11 @@ impl<L: Link> Device<L> {
                 });
             }
         }
-        let address = P::read_address(self.variant)
+        let address = read_at
+            .get(self.variant)
             .map(at)
             .ok_or(Error::NotInVariant { parameter: name })?;
-        let mut buf = [0u8; MAX_VALUE_BYTES];
-        let len = self
-            .link
-            .read(&address, &mut buf)
-            .map_err(bus_error(name))?;
-        P::Raw::decode_le(&buf[..len]).map_err(|e| Error::Value(e.named(name)))
+        self.link.read(&address, buf).map_err(bus_error(name))
     }
 
     /// Writes a parameter in engineering units; range-checked before anything is sent.
@@ -159,9 +181,11 @@ impl<L: Link> Device<L> {
         self.write_raw::<P>(raw)
     }
 
-    /// Writes a raw value; still checked against the description's range and allowed values.
-    /// Refused before sending while writes are refused ([`Self::write_refusal_of`]), unless it
-    /// stops the drive ([`crate::stop`]): a stop is always sent and the drive's answer returned.
+    /// Writes a raw value; still checked against the description's range and allowed values,
+    /// and against the current values of the parameters that bound it ([`Writable::BOUNDS`],
+    /// read first). Refused before sending while writes are refused
+    /// ([`Self::write_refusal_of`]). A write that stops the drive ([`crate::stop`]) is neither
+    /// refused nor bounded: a stop is always sent and the drive's answer returned.
     pub fn write_raw<P: Writable<L::Protocol>>(&mut self, raw: P::Raw) -> Result<(), Error> {
         self.write_raw_at::<P>(P::NAME, raw, |address| address)
     }
@@ -176,13 +200,16 @@ impl<L: Link> Device<L> {
     ) -> Result<(), Error> {
         let named = |e: ValueError| Error::Value(e.named(name));
         P::check(&raw).map_err(named)?;
+        let stops = P::stops(&raw);
         let refusal = self.refusal.or_else(|| self.lock.as_ref()?.refusal(name));
-        let refusal = if P::stops(&raw) { None } else { refusal };
-        if let Some(reason) = refusal {
+        if let Some(reason) = refusal.filter(|_| !stops) {
             return Err(Error::WritesRefused {
                 parameter: name,
                 reason,
             });
+        }
+        if !stops {
+            self.check_bounds::<P>(&raw)?;
         }
         let address = P::write_address(self.variant)
             .map(at)
@@ -204,6 +231,27 @@ impl<L: Link> Device<L> {
             lock.follow(name, bytes, &outcome);
         }
         outcome.map_err(bus_error(name))
+    }
+
+    /// Reads the parameters that bound `P` and refuses `raw` if it lies beyond one's current
+    /// value. Bounds compare integers; the description's validation keeps them to integer
+    /// parameters, so a raw value without an integer (a float) has none.
+    fn check_bounds<P: Writable<L::Protocol>>(&mut self, raw: &P::Raw) -> Result<(), Error> {
+        let Some(raw) = raw.to_int() else {
+            return Ok(());
+        };
+        for bound in P::BOUNDS {
+            let limit = self.read_integer(&bound.by)?;
+            if bound.bound.breached(raw, limit) {
+                return Err(Error::OutsideBound(OutsideBound {
+                    parameter: P::NAME,
+                    bound: bound.by.name,
+                    raw,
+                    limit,
+                }));
+            }
+        }
+        Ok(())
     }
 
     /// Reads several parameters at once, in as few requests as the link can manage.
@@ -251,7 +299,8 @@ impl<L: Link, P: Parameter> Accessor<'_, L, P> {
         self.device.read_raw::<P>()
     }
 
-    /// Writes a value in engineering units.
+    /// Writes a value in engineering units: range-checked, and checked against the current
+    /// values of the parameters that bound it (read first), before anything is sent.
     #[inline]
     pub fn write(self, value: impl ValueOf<P>) -> Result<(), Error>
     where
@@ -260,7 +309,7 @@ impl<L: Link, P: Parameter> Accessor<'_, L, P> {
         self.device.write::<P>(value.into_value())
     }
 
-    /// Writes a raw value.
+    /// Writes a raw value, checked as [`Self::write`] checks it.
     #[inline]
     pub fn write_raw(self, raw: P::Raw) -> Result<(), Error>
     where

@@ -2,7 +2,9 @@
 
 use core::fmt;
 
+use crate::bound::OutsideBound;
 use crate::canopen::sdo::AbortCode;
+use crate::interpret::RawValue;
 use crate::modbus::ExceptionCode;
 
 /// A value could not be converted between its engineering form and its raw wire form.
@@ -13,12 +15,12 @@ pub enum ValueError {
     OutOfRange {
         /// Parameter name as in the description.
         parameter: &'static str,
-        /// The raw value that was asked for (as a float so every type fits).
-        raw: f64,
+        /// The raw value that was asked for (exactly: an integer as an integer).
+        raw: RawValue,
         /// Smallest allowed raw value.
-        min: f64,
+        min: RawValue,
         /// Largest allowed raw value.
-        max: f64,
+        max: RawValue,
     },
     /// The value does not fit the parameter's raw type at all.
     Overflow {
@@ -38,8 +40,8 @@ pub enum ValueError {
     NotAllowed {
         /// Parameter name as in the description.
         parameter: &'static str,
-        /// The rejected raw value.
-        raw: i128,
+        /// The rejected raw value (exactly: an integer as an integer).
+        raw: RawValue,
     },
     /// A run-time scale factor evaluated to zero, a division by zero or an overflow.
     BadScale {
@@ -207,6 +209,9 @@ pub enum Error {
         /// Why writes are refused.
         reason: WriteRefusal,
     },
+    /// The value lies beyond the current value of another parameter that bounds it (`bounds`
+    /// in the description, read just before): nothing was written.
+    OutsideBound(OutsideBound),
 }
 
 /// Why a device handle refuses a write before sending anything: the drive on the other end is
@@ -319,6 +324,12 @@ impl From<ValueError> for Error {
     }
 }
 
+impl From<OutsideBound> for Error {
+    fn from(refusal: OutsideBound) -> Self {
+        Self::OutsideBound(refusal)
+    }
+}
+
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
@@ -342,16 +353,30 @@ impl fmt::Display for Error {
             Self::WritesRefused { parameter, reason } => {
                 write!(f, "{parameter} not written: {reason}")
             }
+            Self::OutsideBound(refusal) => write!(f, "{refusal}"),
         }
     }
 }
 
-#[cfg(feature = "std")]
-impl std::error::Error for Error {}
-#[cfg(feature = "std")]
-impl std::error::Error for BusError {}
-#[cfg(feature = "std")]
-impl std::error::Error for ValueError {}
+// `core::error::Error` (Rust 1.81), so that `no_std` users get `?` into their own error types and
+// `&dyn Error` too. Each `Display` already says what the inner error says, so none of them
+// returns it again as a `source`.
+impl core::error::Error for Error {}
+impl core::error::Error for BusError {}
+impl core::error::Error for ValueError {}
+impl core::error::Error for WriteRefusal {}
+
+// Every build, `no_std` included (`scripts/drivebus-features.sh` checks those), fails to compile
+// unless each error is usable as `&dyn core::error::Error`.
+const _: [&dyn core::error::Error; 4] = [
+    &Error::NotInVariant { parameter: "" },
+    &BusError::Timeout,
+    &ValueError::BadText,
+    &WriteRefusal::Locked {
+        scope: "",
+        opened_by: &[],
+    },
+];
 
 impl ValueError {
     /// Names the parameter in an error raised by a codec that did not know it.
@@ -376,5 +401,35 @@ impl ValueError {
             Self::BadScale { .. } => Self::BadScale { parameter: name },
             other => other,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn errors_are_core_errors_with_their_message() {
+        let value = ValueError::Overflow { parameter: "speed" };
+        let bus = BusError::Timeout;
+        let error = Error::Bus {
+            parameter: "speed",
+            cause: BusError::Timeout,
+        };
+        let errors: [&dyn core::error::Error; 3] = [&value, &bus, &error];
+        for error in errors {
+            assert!(error.source().is_none());
+            assert!(!std::format!("{error}").is_empty());
+        }
+        let refused: &dyn core::error::Error = &Error::OutsideBound(OutsideBound {
+            parameter: "speed_setpoint",
+            bound: "full_scale_velocity",
+            raw: 4501,
+            limit: 4500,
+        });
+        assert_eq!(
+            std::format!("{refused}"),
+            "speed_setpoint: raw value 4501 is beyond the current value 4500 of full_scale_velocity"
+        );
     }
 }

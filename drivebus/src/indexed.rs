@@ -13,6 +13,7 @@ use core::marker::PhantomData;
 use crate::canopen::ObjectAddress;
 use crate::device::Device;
 use crate::error::{Error, ValueError};
+use crate::interpret::RawValue;
 use crate::link::Link;
 use crate::parameter::{Parameter, Readable, ValueOf, Writable};
 use crate::scale::Scale;
@@ -47,9 +48,9 @@ fn member_of<R: Run>(subindex: u8) -> Result<u8, Error> {
     }
     Err(Error::Value(ValueError::OutOfRange {
         parameter: R::NAME,
-        raw: f64::from(subindex),
-        min: f64::from(R::FIRST),
-        max: f64::from(R::LAST),
+        raw: RawValue::Int(subindex.into()),
+        min: RawValue::Int(R::FIRST.into()),
+        max: RawValue::Int(R::LAST.into()),
     }))
 }
 
@@ -320,9 +321,9 @@ mod tests {
                 err,
                 Error::Value(ValueError::OutOfRange {
                     parameter: "limit",
-                    raw: f64::from(outside),
-                    min: 2.0,
-                    max: 4.0
+                    raw: RawValue::Int(outside.into()),
+                    min: RawValue::Int(2),
+                    max: RawValue::Int(4)
                 })
             );
             assert!(Indexed::<_, Limit>::new(&mut device, outside)

@@ -33,6 +33,7 @@
 extern crate std;
 
 pub mod bound;
+pub mod bus_error_kind;
 pub mod canopen;
 #[doc(hidden)] // the checks generated parameters call before sending
 pub mod check;
@@ -45,6 +46,7 @@ pub mod error_class;
 #[doc(hidden)] // the `flags!` macro's helpers; generated crates reach them through the macro
 pub mod flags_macro;
 pub mod given;
+pub mod identity;
 pub mod indexed;
 pub mod interpret;
 pub mod link;
@@ -62,18 +64,22 @@ pub mod stream;
 #[cfg(feature = "testing")]
 pub mod testing;
 pub mod units;
+pub mod unlock_error;
 pub mod value;
 pub mod write_lock;
 
 pub use bound::{Bound, OutsideBound};
+pub use bus_error_kind::BusErrorKind;
 pub use data_type::DataType;
 pub use device::{Accessor, Device};
 pub use error::{BusError, Error, ValueError, WriteRefusal};
 pub use error_class::ErrorClass;
+pub use identity::{Covered, IdentityCheck, IdentityChecks};
 pub use link::Link;
-pub use parameter::{Parameter, Placement, Readable, ValueOf, Writable};
+pub use parameter::{BoundBy, Parameter, Placement, RawInteger, Readable, ValueOf, Writable};
 pub use scale::{Ratio, Scale};
 pub use stop::{StopPattern, Stops};
+pub use unlock_error::UnlockError;
 
 /// Re-exported so generated crates need no direct `bitflags` dependency.
 pub use bitflags;

@@ -54,7 +54,7 @@ macro_rules! open_enum {
                 } else {
                     Err($crate::ValueError::NotAllowed {
                         parameter: stringify!($name),
-                        raw: raw as i128,
+                        raw: $crate::interpret::RawValue::Int(raw as i128),
                     })
                 }
             }

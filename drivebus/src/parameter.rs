@@ -4,6 +4,7 @@
 //! [`Readable`] and [`Writable`] are implemented once per protocol the description allows the access
 //! on. A missing implementation is a compile error that reads in plain English.
 
+use crate::bound::Bound;
 use crate::codec::Codec;
 use crate::device::Device;
 use crate::error::{Error, ValueError};
@@ -110,6 +111,11 @@ pub trait Readable<P: Protocol>: Parameter {
 pub trait Writable<P: Protocol>: Parameter {
     /// Where the parameter is written to.
     const WRITE_AT: Placement<P::Address>;
+    /// The parameters whose current values bound this one (`bounds` in the description): every
+    /// write reads them over the same link first and refuses a value beyond one with
+    /// [`Error::OutsideBound`], sending nothing. A write that stops the drive is never refused
+    /// ([`crate::stop`]) and reads none of them.
+    const BOUNDS: &'static [BoundBy<P>] = &[];
     /// The address to write to in the given variant, or `None` if absent there.
     #[inline]
     fn write_address(variant: VariantId) -> Option<P::Address> {
@@ -118,6 +124,62 @@ pub trait Writable<P: Protocol>: Parameter {
     /// The scale in force; reads the factor's inputs for run-time scaled parameters.
     fn write_scale<L: Link<Protocol = P>>(_device: &mut Device<L>) -> Result<Scale, Error> {
         Ok(Self::SCALE)
+    }
+}
+
+/// Another parameter's raw integer value as a check reads it over protocol `P` before a write
+/// (a bound) or on connect (an identity parameter): its name, where it is read and how its bytes
+/// read as an integer. Built from the parameter's marker with [`RawInteger::of`].
+#[derive(Debug, Clone, Copy)]
+pub struct RawInteger<P: Protocol> {
+    /// The parameter's name, as in the description.
+    pub name: &'static str,
+    /// Where it is read.
+    pub read_at: Placement<P::Address>,
+    /// Its raw type's decoding of the bytes read, as an integer.
+    pub decode: fn(&[u8]) -> Result<i128, ValueError>,
+}
+
+impl<P: Protocol> RawInteger<P> {
+    /// Parameter `B`, read over `P`.
+    pub const fn of<B>() -> Self
+    where
+        B: Readable<P>,
+        B::Raw: Into<i128>,
+    {
+        Self {
+            name: B::NAME,
+            read_at: B::READ_AT,
+            decode: decode_integer::<B::Raw>,
+        }
+    }
+}
+
+fn decode_integer<R: WireValue + Into<i128>>(bytes: &[u8]) -> Result<i128, ValueError> {
+    R::decode_le(bytes).map(Into::into)
+}
+
+/// A bound a parameter's writes over protocol `P` are checked against: the raw value written
+/// must not lie beyond the current raw value of the parameter `by` ([`Bound::breached`]).
+#[derive(Debug, Clone, Copy)]
+pub struct BoundBy<P: Protocol> {
+    /// How `by` bounds the parameter.
+    pub bound: Bound,
+    /// The bounding parameter.
+    pub by: RawInteger<P>,
+}
+
+impl<P: Protocol> BoundBy<P> {
+    /// The bound `bound` set by parameter `B`.
+    pub const fn of<B>(bound: Bound) -> Self
+    where
+        B: Readable<P>,
+        B::Raw: Into<i128>,
+    {
+        Self {
+            bound,
+            by: RawInteger::of::<B>(),
+        }
     }
 }
 

@@ -18,6 +18,14 @@
 /// parameter!(MotorTemperature = "motor_temperature": u32 => drivebus::units::Celsius, InUnit,
 ///     scale = 1 / 10, offset = -40 / 1, range(0, 2000);
 ///     read modbus(input 0x0070, 2 words, LowFirst); read canopen(0x2001 sub 3, 4 bytes));
+/// /// Velocity full scale.
+/// pub struct FullScaleVelocity;
+/// parameter!(FullScaleVelocity = "full_scale_velocity": u16 => drivebus::units::Rpm, InUnit;
+///     read modbus(holding 0x0003));
+/// /// Speed setpoint, within ± the full scale.
+/// pub struct SpeedSetpoint;
+/// parameter!(SpeedSetpoint = "speed_setpoint": i16 => drivebus::units::Rpm, InUnit;
+///     write modbus(holding 0x0042) [bounds: magnitude = FullScaleVelocity]);
 /// ```
 ///
 /// After the name, raw type, value type and [`codec`](crate::codec) come optional clauses:
@@ -26,8 +34,10 @@
 /// `stops(mask => value, ...)` (the writes that stop the drive, never refused before sending). Then one clause per capability: `read`
 /// or `write`, the protocol (`modbus`, `canopen` or `rs232`), and the placement — one address,
 /// `(input 0x0064)` / `(holding 0x0010, 2 words, LowFirst)` or `(0x6041 sub 0, 2 bytes)`, or a
-/// list with one slot per variant, `_` where absent. A trailing `runtime` makes the capability
-/// take its scale from the marker's inherent `runtime_scale`.
+/// list with one slot per variant, `_` where absent. A write may name the parameters that bound
+/// it, `[bounds: min = MinimumFrequency, max = MaximumFrequency]` or
+/// `[bounds: magnitude = FullScale]` ([`Writable::BOUNDS`](crate::Writable::BOUNDS)). A trailing
+/// `runtime` makes the capability take its scale from the marker's inherent `runtime_scale`.
 #[doc(hidden)] // generated crates call it; users never need to
 #[macro_export]
 macro_rules! parameter {
@@ -37,7 +47,8 @@ macro_rules! parameter {
         $(, range($min:expr, $max:expr))?
         $(, one_of[$($allowed:expr),*])?
         $(, stops($($stops:tt)*))?
-        $(; $direction:ident $protocol:ident $placement:tt $($runtime:ident)?)*
+        $(; $direction:ident $protocol:ident $placement:tt
+            $([bounds: $($bound:ident = $by:ident),+])? $($runtime:ident)?)*
         $(;)?
     ) => {
         impl $crate::Parameter for $name {
@@ -62,7 +73,8 @@ macro_rules! parameter {
         #[diagnostic::do_not_recommend]
         impl $crate::ValueOf<$name> for $value {}
 
-        $($crate::parameter!(@capability $name $direction $protocol $placement $($runtime)?);)*
+        $($crate::parameter!(@capability $name $direction $protocol $placement
+            $([bounds: $($bound = $by),+])? $($runtime)?);)*
     };
 
     (@stops always) => { $crate::Stops::Always };
@@ -79,11 +91,14 @@ macro_rules! parameter {
             $($crate::parameter!(@runtime $runtime read_scale $protocol);)?
         }
     };
-    (@capability $name:ident write $protocol:ident $placement:tt $($runtime:ident)?) => {
+    (@capability $name:ident write $protocol:ident $placement:tt
+        $([bounds: $($bound:ident = $by:ident),+])? $($runtime:ident)?) => {
         #[diagnostic::do_not_recommend]
         impl $crate::Writable<$crate::parameter!(@protocol $protocol)> for $name {
             const WRITE_AT: $crate::Placement<$crate::parameter!(@address_type $protocol)> =
                 $crate::parameter!(@placement $protocol $placement);
+            $(const BOUNDS: &'static [$crate::BoundBy<$crate::parameter!(@protocol $protocol)>] =
+                &[$($crate::BoundBy::of::<$by>($crate::parameter!(@bound $bound))),+];)?
             $($crate::parameter!(@runtime $runtime write_scale $protocol);)?
         }
     };
@@ -104,6 +119,10 @@ macro_rules! parameter {
             Self::runtime_scale(device)
         }
     };
+
+    (@bound min) => { $crate::Bound::Min };
+    (@bound max) => { $crate::Bound::Max };
+    (@bound magnitude) => { $crate::Bound::Magnitude };
 
     (@protocol modbus) => { $crate::modbus::Modbus };
     (@protocol canopen) => { $crate::canopen::CanOpen };

@@ -6,6 +6,7 @@
 //! zero-extends and refuses anything that does not fit rather than truncating it.
 
 use crate::error::ValueError;
+use crate::interpret::RawValue;
 
 /// A raw value as it crosses the wire.
 pub trait WireValue: Sized + Copy + core::fmt::Debug + PartialEq + 'static {
@@ -15,9 +16,14 @@ pub trait WireValue: Sized + Copy + core::fmt::Debug + PartialEq + 'static {
     fn decode_le(bytes: &[u8]) -> Result<Self, ValueError>;
     /// Encodes into exactly `out.len()` little-endian bytes, or fails if the value does not fit.
     fn encode_le(&self, out: &mut [u8]) -> Result<(), ValueError>;
+    /// The value as an exact integer, for integer and boolean types (`false` 0, `true` 1):
+    /// what bounds set by other parameters compare. `None` for floats and text.
+    fn to_int(&self) -> Option<i128> {
+        None
+    }
 }
 
-/// A numeric raw value, convertible to and from `f64` for scaling and range checks.
+/// A numeric raw value, convertible to and from `f64` for scaling.
 pub trait Numeric: WireValue + PartialOrd {
     /// Whether the type holds only whole numbers (scaled writes must then land on a step).
     const IS_INTEGER: bool;
@@ -25,6 +31,12 @@ pub trait Numeric: WireValue + PartialOrd {
     fn to_f64(self) -> f64;
     /// The value from an `f64` if it is integral (for integer types) and in the type's range.
     fn from_f64(value: f64) -> Option<Self>;
+    /// The value exactly, as errors report it: an integer as an integer (a 64-bit raw value
+    /// beyond 2^53 would lose its low bits in an `f64`), a float as a float.
+    fn to_raw_value(self) -> RawValue {
+        self.to_int()
+            .map_or_else(|| RawValue::Float(self.to_f64()), RawValue::Int)
+    }
 }
 
 /// `x` rounded half away from zero; `core` has no `f64::round` without `std`.
@@ -97,6 +109,9 @@ macro_rules! integer_wire_value {
             fn encode_le(&self, out: &mut [u8]) -> Result<(), ValueError> {
                 int_to_le(*self as i128, $signed, out)
             }
+            fn to_int(&self) -> Option<i128> {
+                Some(*self as i128)
+            }
         }
         impl Numeric for $ty {
             const IS_INTEGER: bool = true;
@@ -160,6 +175,9 @@ impl WireValue for bool {
     }
     fn encode_le(&self, out: &mut [u8]) -> Result<(), ValueError> {
         int_to_le(*self as i128, false, out)
+    }
+    fn to_int(&self) -> Option<i128> {
+        Some(i128::from(*self))
     }
 }
 

@@ -76,7 +76,10 @@ fn a_value_the_description_does_not_allow_is_refused_before_sending() {
     let error = drive.operation_mode().write_raw(5).unwrap_err();
     assert!(matches!(
         error,
-        Error::Value(ValueError::NotAllowed { raw: 5, .. })
+        Error::Value(ValueError::NotAllowed {
+            raw: drivebus::interpret::RawValue::Int(5),
+            ..
+        })
     ));
     assert!(drive.into_link().into_bus().log().is_empty());
 }

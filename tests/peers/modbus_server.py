@@ -8,7 +8,8 @@
                                         the release the Lafert description covers)
 
 Unit 1 holds a Lafert-like register map (non-shared tables, wire address 0 = first value):
-  holding 0x0000..=0x00FF  value = address, except 0x0028 (drive address) = 1
+  holding 0x0000..=0x00FF  value = address, except 0x0003 (full-scale velocity) = 3000 and
+                           0x0028 (drive address) = 1
   holding 0x01FF           the firmware release (--firmware)
   input   0x0060..=0x0070  value = 0x1000 + address, except 0x006B/0x006C = 0x5678/0x1234
                            (AXIS POSITION LOW/HIGH = 0x12345678)
@@ -17,7 +18,7 @@ Unit 1 holds a Lafert-like register map (non-shared tables, wire address 0 = fir
 Anything else answers exception 0x02. Writing 0x0028 with a value outside 1..=247 answers
 exception 0x03 (illegal data value), as the drive documents; so does writing the speed setpoint
 0x0042 beyond +-3000 rpm (the full-scale velocity of an L motor, holding 0x0003, which a client
-cannot know from the register's type).
+cannot know from the register's type: it reads 0x0003 first).
 The process exits when stdin closes, so a test that dies cannot leave it behind.
 """
 
@@ -29,6 +30,7 @@ from pymodbus.constants import ExcCodes
 from pymodbus.server import ModbusSerialServer, ModbusTcpServer
 from pymodbus.simulator import DataType, SimData, SimDevice
 
+FULL_SCALE_REGISTER = 0x0003
 ADDRESS_REGISTER = 0x0028
 SPEED_SETPOINT = 0x0042
 FULL_SCALE_VELOCITY = 3000
@@ -44,6 +46,7 @@ def option(name, default):
 
 def holding():
     values = list(range(0x100))
+    values[FULL_SCALE_REGISTER] = FULL_SCALE_VELOCITY
     values[ADDRESS_REGISTER] = 1
     firmware = option("--firmware", 242)
     return [SimData(address=0, values=values, datatype=DataType.REGISTERS),

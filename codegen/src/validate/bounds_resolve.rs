@@ -1,7 +1,8 @@
 //! `bounds = { min, max, magnitude }` names other parameters that exist wherever the bounded one
-//! does, are readable, and carry the same scale and unit, so their raw values compare with its
-//! own: `min` and `max` the same integer type, `magnitude` any integer type (an unsigned full
-//! scale bounds a signed setpoint).
+//! does, are readable over every protocol it is written over (each write reads them first), and
+//! carry the same scale and unit, so their raw values compare with its own: `min` and `max` the
+//! same integer type, `magnitude` any integer type (an unsigned full scale bounds a signed
+//! setpoint).
 
 use crate::diagnostic::Diagnostic;
 use crate::ir::{Device, Parameter};
@@ -55,6 +56,12 @@ fn problem(device: &Device, p: &Parameter, name: &str, same_type: bool) -> Optio
         || bound.canopen.iter().any(|a| a.access.read))
     {
         "it is not readable"
+    } else if let Some(protocol) = unread_where_written(p, bound) {
+        return Some(format!(
+            "bound `{name}` of `{}` cannot bound it: it is not readable over {protocol}, where \
+             `{}` is written",
+            p.name, p.name
+        ));
     } else if !bound.variants.is_empty()
         && (p.variants.is_empty() || p.variants.iter().any(|v| !bound.variants.contains(v)))
     {
@@ -66,6 +73,30 @@ fn problem(device: &Device, p: &Parameter, name: &str, same_type: bool) -> Optio
         "bound `{name}` of `{}` cannot bound it: {why}",
         p.name
     ))
+}
+
+/// A protocol `p` is written over that does not read `bound`: a write there could not check it.
+fn unread_where_written(p: &Parameter, bound: &Parameter) -> Option<&'static str> {
+    [
+        (
+            "Modbus",
+            p.modbus.iter().any(|a| a.access.write),
+            bound.readable_over_modbus(),
+        ),
+        (
+            "CANopen",
+            p.canopen.iter().any(|a| a.access.write),
+            bound.readable_over_canopen(),
+        ),
+        (
+            "RS-232",
+            p.rs232.iter().any(|a| a.access.write),
+            bound.readable_over_rs232(),
+        ),
+    ]
+    .into_iter()
+    .find(|(_, written, read)| *written && !*read)
+    .map(|(protocol, ..)| protocol)
 }
 
 #[cfg(test)]
@@ -139,6 +170,19 @@ source = {{ doc = "m", line = 3 }}
         assert_eq!(
             messages("bounds_resolve", &body("{}", "u16")),
             ["`speed` has `bounds` without `min`, `max` or `magnitude`"]
+        );
+    }
+
+    #[test]
+    fn a_bound_must_be_readable_over_each_protocol_the_value_is_written_over() {
+        let canopen_too = body(r#"{ max = "maximum" }"#, "u16").replace(
+            "modbus = { table = \"holding\", address = 40 }",
+            "modbus = { table = \"holding\", address = 40 }\ncanopen = { index = 0x2000, subindex = 0 }",
+        );
+        assert_eq!(
+            messages("bounds_resolve", &canopen_too),
+            ["bound `maximum` of `speed` cannot bound it: it is not readable over CANopen, where \
+              `speed` is written"]
         );
     }
 }

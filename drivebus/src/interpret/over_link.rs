@@ -365,7 +365,7 @@ where
 }
 
 /// Reads the parameters that bound `parameter` ([`Described::bounded_by`]) and refuses the raw
-/// value `bytes` if it lies beyond one's current value, as generated `write_<name>` methods do.
+/// value `bytes` if it lies beyond one's current value, as a generated handle's writes do.
 pub fn check_bounds<M, L>(
     model: &M,
     link: &mut L,

@@ -101,3 +101,5 @@ impl fmt::Display for Rs232Error {
         }
     }
 }
+
+impl core::error::Error for Rs232Error {}

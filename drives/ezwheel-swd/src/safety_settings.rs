@@ -65,8 +65,7 @@ impl fmt::Display for SafetySettingError {
     }
 }
 
-#[cfg(feature = "std")]
-impl std::error::Error for SafetySettingError {}
+impl core::error::Error for SafetySettingError {}
 
 impl<B: SdoBus> Swd<CanOpenLink<B>> {
     /// The deliberate write of the unsigned safety settings 6643h and 6607h: refused before any

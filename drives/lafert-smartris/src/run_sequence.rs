@@ -107,8 +107,7 @@ impl fmt::Display for RunError {
     }
 }
 
-#[cfg(feature = "std")]
-impl std::error::Error for RunError {}
+impl core::error::Error for RunError {}
 
 impl<L: Link<Protocol = Modbus>> Smartris<L> {
     /// Step 3: the drive's operation mode (holding 0x0207) must be `mode`.
@@ -134,7 +133,8 @@ impl<L: Link<Protocol = Modbus>> Smartris<L> {
     }
 
     /// Step 7, velocity mode: writes the speed setpoint (holding 0x0042) while the drive runs in
-    /// velocity mode. Range-checked against the description before anything is sent.
+    /// velocity mode. Range-checked against the description, and against ± the full-scale
+    /// velocity (read first), before anything is sent.
     pub fn set_speed(&mut self, speed: Rpm) -> Result<(), RunError> {
         self.status_in(DriveStatus::RUN_VELOCITY)?;
         Ok(self.speed_setpoint().write(speed)?)

@@ -12,6 +12,8 @@ fn drive_with_firmware(release: u16) -> Smartris<ModbusLink<MemoryBus>> {
     bus.set_register(Table::Holding, 0x01FF, release);
     bus.set_register(Table::Holding, 0x0042, 0);
     bus.set_register(Table::Input, 0x0042, 0);
+    // FULL SCALE VELOCITY (L motor): the bound each speed setpoint write reads first.
+    bus.set_register(Table::Holding, 0x0003, 3000);
     Smartris::modbus(bus, UnitId(1))
 }
 

@@ -72,16 +72,28 @@ fn drive_status_word_decodes_into_flags_and_keeps_unknown_bits() {
 
 #[test]
 fn setpoint_write_goes_to_the_holding_register_and_reads_back_from_input() {
-    let mut drive = drive_with(&[(Table::Holding, 0x0042, 0), (Table::Input, 0x0042, 0)]);
+    let mut drive = drive_with(&[
+        (Table::Holding, 0x0003, 0x1194),
+        (Table::Holding, 0x0042, 0),
+        (Table::Input, 0x0042, 0),
+    ]);
     drive.speed_setpoint().write(Rpm(1500.0)).unwrap();
     let bus = drive.into_link().into_bus();
     assert_eq!(bus.register(Table::Holding, 0x0042), Some(1500));
     assert_eq!(
         bus.log(),
-        [Request::Write {
-            start: 0x0042,
-            values: vec![1500]
-        }]
+        [
+            // The bound, FULL SCALE VELOCITY (line 1333), is read before every write.
+            Request::Read {
+                table: Table::Holding,
+                start: 0x0003,
+                count: 1
+            },
+            Request::Write {
+                start: 0x0042,
+                values: vec![1500]
+            }
+        ]
     );
 }
 
@@ -294,6 +306,7 @@ fn identity_examples_of_section_3_2() {
 #[test]
 fn setpoint_write_examples_of_section_4_2() {
     let mut drive = drive_with(&[
+        (Table::Holding, 0x0003, 0x1194),
         (Table::Holding, 0x0042, 0),
         (Table::Holding, 0x0047, 0),
         (Table::Holding, 0x0052, 0),
@@ -351,7 +364,7 @@ fn the_speed_setpoint_lies_within_the_full_scale_velocity() {
         (Table::Holding, 0x0042, 0),
     ]);
     let beyond = |raw, limit| {
-        lafert_smartris::BoundedWriteError::OutsideBound(drivebus::OutsideBound {
+        drivebus::Error::OutsideBound(drivebus::OutsideBound {
             parameter: "speed_setpoint",
             bound: "full_scale_velocity",
             raw,
@@ -359,17 +372,32 @@ fn the_speed_setpoint_lies_within_the_full_scale_velocity() {
         })
     };
     assert_eq!(
-        drive.write_speed_setpoint(Rpm(4501.0)),
+        drive.speed_setpoint().write(Rpm(4501.0)),
         Err(beyond(4501, 4500))
     );
     assert_eq!(
-        drive.write_speed_setpoint(Rpm(-4501.0)),
+        drive.speed_setpoint().write(Rpm(-4501.0)),
         Err(beyond(-4501, 4500))
     );
-    drive.write_speed_setpoint(Rpm(-4500.0)).unwrap();
+    assert_eq!(
+        drive.device().write_raw::<params::SpeedSetpoint>(4501),
+        Err(beyond(4501, 4500)),
+        "the device's raw write is bounded too"
+    );
+    drive.speed_setpoint().write(Rpm(-4500.0)).unwrap();
     // Line 1333's example: 0xF448 is -3000 rpm, so -4500 is 0xEE6C.
     let bus = drive.into_link().into_bus();
     assert_eq!(bus.register(Table::Holding, 0x0042), Some(0xEE6C));
+    let writes: Vec<&Request> = bus
+        .log()
+        .iter()
+        .filter(|r| matches!(r, Request::Write { .. }))
+        .collect();
+    assert_eq!(
+        writes.len(),
+        1,
+        "nothing written beyond the bound: {writes:?}"
+    );
 }
 
 #[test]

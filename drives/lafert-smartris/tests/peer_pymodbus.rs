@@ -147,9 +147,31 @@ fn a_write_the_drive_refuses_is_exception_0x03() {
     let server = start_server();
     let mut drive = connect(&server);
     // 3500 rpm fits the register, but not the full-scale velocity (3000 rpm) the server enforces.
-    let error = drive.speed_setpoint().write(Rpm(3500.0)).unwrap_err();
+    // The typed write reads that bound (holding 0x0003) first and sends nothing.
+    let before = setpoint_register(&mut drive);
     assert_eq!(
-        error.bus().cloned(),
+        drive.speed_setpoint().write(Rpm(3500.0)),
+        Err(drivebus::Error::OutsideBound(drivebus::OutsideBound {
+            parameter: "speed_setpoint",
+            bound: "full_scale_velocity",
+            raw: 3500,
+            limit: 3000,
+        }))
+    );
+    assert_eq!(
+        setpoint_register(&mut drive),
+        before,
+        "the server saw no write"
+    );
+    // Past the typed API, the drive itself answers the same value with exception 0x03.
+    use drivebus::modbus::RegisterBus;
+    let refused = drive
+        .device()
+        .link_mut()
+        .bus_mut()
+        .write_register(UnitId(1), 0x0042, 3500);
+    assert_eq!(
+        refused.err(),
         exception(0x06, ExceptionCode::IllegalDataValue)
     );
 }

@@ -1,12 +1,13 @@
 //! What the hand-written helpers of this crate report: bus and value failures from `drivebus`,
-//! the generated unlock session's refusals ([`UnlockError`]) and bounded writes'
-//! ([`BoundedWriteError`]), in one type, each refusal before anything is sent.
+//! the generated unlock session's refusals ([`UnlockError`]) and writes beyond a bound set by
+//! another parameter ([`Error::OutsideBound`]), in one type, each refusal before anything is
+//! sent.
 
 use core::fmt;
 
 use drivebus::{Error, WriteRefusal};
 
-use crate::{BoundedWriteError, UnlockError, LOCKED_EXCEPTION};
+use crate::{UnlockError, LOCKED_EXCEPTION};
 
 /// Why a helper of this crate failed.
 #[derive(Debug, Clone, PartialEq)]
@@ -42,15 +43,6 @@ pub enum SmdError {
     OutsideBound(drivebus::OutsideBound),
 }
 
-impl From<BoundedWriteError> for SmdError {
-    fn from(error: BoundedWriteError) -> Self {
-        match error {
-            BoundedWriteError::Drive(error) => error.into(),
-            BoundedWriteError::OutsideBound(refusal) => Self::OutsideBound(refusal),
-        }
-    }
-}
-
 impl From<UnlockError> for SmdError {
     fn from(error: UnlockError) -> Self {
         match error {
@@ -63,6 +55,7 @@ impl From<UnlockError> for SmdError {
             ) => Self::UnknownConfiguration {
                 value: u16::try_from(value).unwrap_or(u16::MAX),
             },
+            UnlockError::Drive(Error::OutsideBound(refusal)) => Self::OutsideBound(refusal),
             UnlockError::Drive(error) => Self::Bus(error),
             UnlockError::Locked { parameter } => Self::Locked { parameter },
             UnlockError::Requirement {
@@ -81,7 +74,8 @@ impl From<UnlockError> for SmdError {
 impl From<Error> for SmdError {
     /// A write refused as locked (exception 0x01, or before sending) becomes
     /// [`SmdError::Locked`]; a write refused, or a moved register not read, because #50 named
-    /// no known configuration, [`SmdError::UnknownConfiguration`].
+    /// no known configuration, [`SmdError::UnknownConfiguration`]; a value beyond a bound,
+    /// [`SmdError::OutsideBound`].
     fn from(error: Error) -> Self {
         UnlockError::from(error).into()
     }
@@ -112,5 +106,4 @@ impl fmt::Display for SmdError {
     }
 }
 
-#[cfg(feature = "std")]
-impl std::error::Error for SmdError {}
+impl core::error::Error for SmdError {}

@@ -197,12 +197,15 @@ fn status_registers_24_to_30_one_word_each() {
 
 #[test]
 fn serial_speed_command_40_read_and_write() {
-    // Lines 501-504; 412 → 41.2 Hz (section 7.3, line 1073).
+    // Lines 501-504; 412 → 41.2 Hz (section 7.3, line 1073). The write reads its bounds C10
+    // (#59, 0.0 Hz) and C11 (#60, 50.0 Hz) first (line 501, `bounds`).
     let write = [SA, 0x06, 0x00, 0x28, 0x01, 0x9C];
     let mut d = drive(&[
         &[SA, 0x03, 0x02, 0x01, 0x9C],
         &C01_IS_11,
         &UNLOCK_CONTROLS,
+        &[SA, 0x03, 0x02, 0x00, 0x00],
+        &[SA, 0x03, 0x02, 0x01, 0xF4],
         &write,
         &LOCK,
     ]);
@@ -216,6 +219,8 @@ fn serial_speed_command_40_read_and_write() {
             &[SA, 0x03, 0x00, 0x28, 0x00, 0x01],
             &READ_C01,
             &UNLOCK_CONTROLS,
+            &[SA, 0x03, 0x00, 0x3B, 0x00, 0x01],
+            &[SA, 0x03, 0x00, 0x3C, 0x00, 0x01],
             &write,
             &LOCK
         ])

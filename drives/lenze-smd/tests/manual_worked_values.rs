@@ -197,8 +197,8 @@ fn the_pi_setpoint_lies_within_c86_and_c87() {
     d.set_variant(Variant::Pc507);
     let mut unlocked = d.unlock_parameter_writing(0).unwrap();
     assert_eq!(
-        unlocked.write_pi_setpoint(50.1).unwrap_err(),
-        lenze_smd::BoundedWriteError::OutsideBound(drivebus::OutsideBound {
+        unlocked.pi_setpoint().write(50.1).unwrap_err(),
+        drivebus::Error::OutsideBound(drivebus::OutsideBound {
             parameter: "pi_setpoint",
             bound: "pi_max_feedback",
             raw: 501,
@@ -206,13 +206,13 @@ fn the_pi_setpoint_lies_within_c86_and_c87() {
         })
     );
     assert!(matches!(
-        unlocked.write_pi_setpoint(9.9).unwrap_err(),
-        lenze_smd::BoundedWriteError::OutsideBound(drivebus::OutsideBound {
+        unlocked.pi_setpoint().write(9.9).unwrap_err(),
+        drivebus::Error::OutsideBound(drivebus::OutsideBound {
             bound: "pi_min_feedback",
             ..
         })
     ));
-    unlocked.write_pi_setpoint(25.0).unwrap();
+    unlocked.pi_setpoint().write(25.0).unwrap();
     drop(unlocked);
     let writes: Vec<Request> = requests(d)
         .into_iter()

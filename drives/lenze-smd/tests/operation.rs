@@ -70,7 +70,8 @@ fn start_accelerates_to_the_serial_speed_and_stop_coasts() {
     let mut unlocked = drive.unlock_controls().unwrap();
     unlocked.command(Command::SerialSpeedReference).unwrap();
     unlocked
-        .write_serial_speed_command(Hertz(41.2))
+        .serial_speed_command()
+        .write(Hertz(41.2))
         .map_err(SmdError::from)
         .unwrap();
     unlocked.command(Command::Start).unwrap();

@@ -87,10 +87,11 @@ fn pc507_status_version_and_a_control_session() {
 
     let mut session = drive.unlock_controls().unwrap();
     session.command(Command::SerialSpeedReference).unwrap();
-    session.write_serial_speed_command(Hertz(41.2)).unwrap();
+    session.serial_speed_command().write(Hertz(41.2)).unwrap();
     assert!(matches!(
         session
-            .write_serial_speed_command(Hertz(50.1))
+            .serial_speed_command()
+            .write(Hertz(50.1))
             .map_err(SmdError::from),
         Err(SmdError::OutsideBound(drivebus::OutsideBound {
             bound: "maximum_output_frequency",

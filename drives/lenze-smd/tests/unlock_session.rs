@@ -26,7 +26,7 @@ fn control_session_commands_and_locks() {
     let mut d = drive(SmdDouble::pc507(11, 0));
     let mut session = d.unlock_controls().unwrap();
     session.command(Command::SerialSpeedReference).unwrap();
-    session.write_serial_speed_command(Hertz(41.2)).unwrap();
+    session.serial_speed_command().write(Hertz(41.2)).unwrap();
     session.command(Command::Start).unwrap();
     session.command(Command::Stop).unwrap();
     session.lock().unwrap();
@@ -110,7 +110,12 @@ fn the_serial_speed_stays_within_c10_and_c11() {
     let mut d = drive(double);
     let mut session = d.unlock_controls().unwrap();
     assert_eq!(
-        SmdError::from(session.write_serial_speed_command(Hertz(9.9)).unwrap_err()),
+        SmdError::from(
+            session
+                .serial_speed_command()
+                .write(Hertz(9.9))
+                .unwrap_err()
+        ),
         SmdError::OutsideBound(drivebus::OutsideBound {
             parameter: "serial_speed_command",
             bound: "minimum_output_frequency",
@@ -118,7 +123,12 @@ fn the_serial_speed_stays_within_c10_and_c11() {
             limit: 100,
         })
     );
-    let above = SmdError::from(session.write_serial_speed_command(Hertz(50.1)).unwrap_err());
+    let above = SmdError::from(
+        session
+            .serial_speed_command()
+            .write(Hertz(50.1))
+            .unwrap_err(),
+    );
     assert!(matches!(
         above,
         SmdError::OutsideBound(drivebus::OutsideBound {
@@ -126,7 +136,7 @@ fn the_serial_speed_stays_within_c10_and_c11() {
             ..
         })
     ));
-    session.write_serial_speed_command(Hertz(50.0)).unwrap();
+    session.serial_speed_command().write(Hertz(50.0)).unwrap();
     drop(session);
     let writes = accepted(d);
     let speeds: Vec<_> = writes.iter().filter(|(r, _)| *r == SERIAL_SPEED).collect();

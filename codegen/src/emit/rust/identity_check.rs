@@ -7,10 +7,11 @@
 //! explicit opt-in to write anyway. A fresh handle is open: existing code keeps writing; calling
 //! `verify_identity` first is the documented way to connect.
 //!
-//! Which checks a protocol runs is known per protocol, so they live in the `IdentityChecks`
-//! trait, implemented for each protocol marker that reaches at least one identity parameter.
+//! Which checks a protocol runs is known per protocol: the handle implements
+//! `drivebus::IdentityChecks` for each protocol that reaches at least one identity parameter,
+//! with a table of `drivebus::IdentityCheck`s; `drivebus::Device::verify_identity` reads them.
 
-use proc_macro2::TokenStream;
+use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
 use super::read_protocols::read_protocols;
@@ -25,22 +26,19 @@ pub fn emit(device: &Device) -> TokenStream {
         return TokenStream::new();
     }
     let handle = ident(&names::camel(&device.device.handle));
+    let identity = identity_parameter(&checks, device);
     let protocols = read_protocols();
     let impls = protocols.iter().filter_map(|(protocol, readable)| {
         let reached: Vec<TokenStream> = checks
             .iter()
             .filter(|check| readable(check.parameter))
-            .map(one_check)
+            .map(|check| one_check(check, identity))
             .collect();
         (!reached.is_empty()).then(|| {
             quote! {
-                impl IdentityChecks for #protocol {
-                    fn mismatch<L: ::drivebus::Link<Protocol = Self>>(
-                        device: &mut ::drivebus::Device<L>,
-                    ) -> Result<Option<(&'static str, ::drivebus::WriteRefusal)>, ::drivebus::Error> {
-                        #( #reached )*
-                        Ok(None)
-                    }
+                impl<L: ::drivebus::Link> ::drivebus::IdentityChecks<#protocol> for #handle<L> {
+                    const IDENTITY_CHECKS: &'static [::drivebus::IdentityCheck<#protocol>] =
+                        &[#( #reached ),*];
                 }
             }
         })
@@ -57,34 +55,21 @@ pub fn emit(device: &Device) -> TokenStream {
          `trust_unverified` is the explicit opt-in to write anyway.",
         described.join(", ")
     ));
-    let legacy = identity_values(&checks, device);
+    let values = identity_values(&checks, identity);
     quote! {
-        #legacy
-
-        /// The identity checks a protocol can run: the `[identity]` parameters it reads.
-        pub trait IdentityChecks: ::drivebus::Protocol {
-            /// Reads each identity parameter in turn; the first one holding a value the
-            /// description does not cover, with the refusal naming it.
-            fn mismatch<L: ::drivebus::Link<Protocol = Self>>(
-                device: &mut ::drivebus::Device<L>,
-            ) -> Result<Option<(&'static str, ::drivebus::WriteRefusal)>, ::drivebus::Error>;
-        }
+        #values
 
         #( #impls )*
 
         impl<L: ::drivebus::Link> #handle<L>
         where
-            L::Protocol: IdentityChecks,
+            Self: ::drivebus::IdentityChecks<L::Protocol>,
         {
             #verify_doc
             pub fn verify_identity(&mut self) -> Result<(), ::drivebus::Error> {
-                let Some((parameter, reason)) =
-                    <L::Protocol as IdentityChecks>::mismatch(&mut self.device)?
-                else {
-                    return Ok(());
-                };
-                self.device.refuse_writes(reason);
-                Err(::drivebus::Error::WritesRefused { parameter, reason })
+                self.device.verify_identity(
+                    <Self as ::drivebus::IdentityChecks<L::Protocol>>::IDENTITY_CHECKS,
+                )
             }
         }
 
@@ -99,62 +84,51 @@ pub fn emit(device: &Device) -> TokenStream {
     }
 }
 
-/// Reads one identity parameter and returns the refusal when its value is not covered.
-fn one_check(check: &IdentityCheck) -> TokenStream {
+/// One entry of a protocol's table: the parameter and the values covered, the identity
+/// parameter's through `IDENTITY_VALUES`.
+fn one_check(check: &IdentityCheck, identity: Option<&str>) -> TokenStream {
     let marker = ident(&names::camel(&check.parameter.name));
-    let name = &check.parameter.name;
-    let (prelude, uncovered, reason) = match &check.covered {
+    let covered = match &check.covered {
+        Covered::Values(_) if identity == Some(check.parameter.name.as_str()) => {
+            quote! { ::drivebus::Covered::Values(IDENTITY_VALUES) }
+        }
         Covered::Values(values) => {
             let values = values.iter().map(|v| super::unsuffixed(i128::from(*v)));
-            (
-                quote! { const EXPECTED: &[::core::primitive::i128] = &[#( #values ),*]; },
-                quote! { !EXPECTED.contains(&found) },
-                quote! {
-                    ::drivebus::WriteRefusal::IdentityMismatch {
-                        parameter: #name,
-                        expected: EXPECTED,
-                        found,
-                    }
-                },
-            )
+            quote! { ::drivebus::Covered::Values(&[#( #values ),*]) }
         }
         Covered::Range { min, max } => {
-            let (min, max) = (i128::from(*min), i128::from(*max));
-            (
-                TokenStream::new(),
-                quote! { !(#min..=#max).contains(&found) },
-                quote! {
-                    ::drivebus::WriteRefusal::IdentityOutOfRange {
-                        parameter: #name,
-                        min: #min,
-                        max: #max,
-                        found,
-                    }
-                },
-            )
+            let (min, max) = (
+                Literal::i128_unsuffixed(i128::from(*min)),
+                Literal::i128_unsuffixed(i128::from(*max)),
+            );
+            quote! { ::drivebus::Covered::Range { min: #min, max: #max } }
         }
     };
     quote! {
-        {
-            #prelude
-            let found = ::core::primitive::i128::from(device.read_raw::<params::#marker>()?);
-            if #uncovered {
-                let reason = #reason;
-                return Ok(Some((#name, reason)));
-            }
+        ::drivebus::IdentityCheck {
+            parameter: ::drivebus::RawInteger::of::<params::#marker>(),
+            covered: #covered,
         }
     }
 }
 
-/// `IDENTITY_VALUES`: the values of the firmware / configuration parameter, when there is one.
-fn identity_values(checks: &[IdentityCheck], device: &Device) -> TokenStream {
+/// The firmware / configuration parameter of `[identity]`, when its check lists values.
+fn identity_parameter<'a>(checks: &[IdentityCheck], device: &'a Device) -> Option<&'a str> {
     let named = device
         .identity
         .as_ref()
-        .and_then(|i| i.parameter.as_deref());
+        .and_then(|i| i.parameter.as_deref())?;
+    checks
+        .iter()
+        .any(|check| check.parameter.name == named && matches!(check.covered, Covered::Values(_)))
+        .then_some(named)
+}
+
+/// `IDENTITY_VALUES`: the values of the firmware / configuration parameter, when there is one.
+fn identity_values(checks: &[IdentityCheck], identity: Option<&str>) -> TokenStream {
     let Some(Covered::Values(values)) = checks
         .iter()
-        .find(|check| Some(check.parameter.name.as_str()) == named)
+        .find(|check| Some(check.parameter.name.as_str()) == identity)
         .map(|check| &check.covered)
     else {
         return TokenStream::new();

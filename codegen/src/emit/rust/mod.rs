@@ -146,7 +146,6 @@ pub fn tokens(device: &Device) -> TokenStream {
             &ident(&crate::emit::ident::camel(&device.device.handle)),
         ),
         read_blocks::emit(device),
-        bounds::emit(device),
         triggers::emit(device),
         unlock::emit(device),
         watchdog::emit(device),

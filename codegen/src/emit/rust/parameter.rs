@@ -179,7 +179,8 @@ fn runtime_scale(p: &Parameter, name: &Ident, device: &Device) -> TokenStream {
     }
 }
 
-/// `; read modbus (input 0x0064)`: one capability clause, if the direction is allowed.
+/// `; read modbus (input 0x0064)`: one capability clause, if the direction is allowed; a write
+/// names the parameters that bound it (`[bounds: max = MaximumOutputFrequency]`).
 fn capability(
     p: &Parameter,
     protocol: &str,
@@ -188,13 +189,17 @@ fn capability(
 ) -> Option<TokenStream> {
     let placement = placement?;
     let protocol = ident(protocol);
+    let bounds = match direction {
+        Direction::Write => super::bounds::clause(p),
+        Direction::Read | Direction::SafetyWrite => TokenStream::new(),
+    };
     let direction = ident(match direction {
         Direction::Read => "read",
         Direction::Write => "write",
         Direction::SafetyWrite => "safety_write",
     });
     let runtime = matches!(p.scale, Some(Scale::Runtime { .. })).then(|| quote! { runtime });
-    Some(quote! { ; #direction #protocol #placement #runtime })
+    Some(quote! { ; #direction #protocol #placement #bounds #runtime })
 }
 
 pub fn emit(p: &Parameter, device: &Device) -> TokenStream {

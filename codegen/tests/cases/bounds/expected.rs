@@ -63,7 +63,7 @@ pub mod params {
     ::drivebus::parameter!(
         SpeedSetpoint = "speed_setpoint": i16 => ::drivebus::units::Rpm, InUnit;
         read modbus(holding 0x0006);
-        write modbus(holding 0x0006);
+        write modbus(holding 0x0006) [bounds: magnitude = FullScaleVelocity];
     );
     /// serial_speed
     ///
@@ -78,7 +78,7 @@ pub mod params {
     ::drivebus::parameter!(
         SerialSpeed = "serial_speed": i16 => ::drivebus::units::Rpm, InUnit;
         read modbus(holding 0x0007);
-        write modbus(holding 0x0007);
+        write modbus(holding 0x0007) [bounds: min = MinimumSpeed, max = MaximumSpeed];
     );
 }
 /// A Case drive, reached over the link `L`.
@@ -166,109 +166,5 @@ impl<L: ::drivebus::Link> Case<L> {
     #[inline]
     pub fn serial_speed(&mut self) -> ::drivebus::Accessor<'_, L, params::SerialSpeed> {
         self.device.parameter()
-    }
-}
-/// Why a bounded write (`write_<parameter>`) was refused or failed.
-#[derive(Debug, Clone, PartialEq)]
-pub enum BoundedWriteError {
-    /// Reading a bound, converting the value or the write itself failed.
-    Drive(::drivebus::Error),
-    /// The value lies beyond the current value of another parameter; nothing was
-    /// written.
-    OutsideBound(::drivebus::OutsideBound),
-}
-impl From<::drivebus::Error> for BoundedWriteError {
-    fn from(error: ::drivebus::Error) -> Self {
-        Self::Drive(error)
-    }
-}
-impl From<::drivebus::ValueError> for BoundedWriteError {
-    fn from(error: ::drivebus::ValueError) -> Self {
-        Self::Drive(::drivebus::Error::Value(error))
-    }
-}
-impl ::core::fmt::Display for BoundedWriteError {
-    fn fmt(&self, f: &mut ::core::fmt::Formatter<'_>) -> ::core::fmt::Result {
-        match self {
-            Self::Drive(e) => write!(f, "{e}"),
-            Self::OutsideBound(refusal) => write!(f, "{refusal}"),
-        }
-    }
-}
-impl<L: ::drivebus::Link> Case<L>
-where
-    params::SpeedSetpoint: ::drivebus::Writable<L::Protocol>,
-    params::FullScaleVelocity: ::drivebus::Readable<L::Protocol>,
-{
-    /// Writes `speed_setpoint` after reading `full_scale_velocity` and checking the value against
-    /// their current values; a value beyond one is refused with [`BoundedWriteError::OutsideBound`]
-    /// naming it, and nothing is written.
-    pub fn write_speed_setpoint(
-        &mut self,
-        value: <params::SpeedSetpoint as ::drivebus::Parameter>::Value,
-    ) -> Result<(), BoundedWriteError> {
-        let scale = <params::SpeedSetpoint as ::drivebus::Writable<
-            L::Protocol,
-        >>::write_scale(&mut self.device)?;
-        let raw = <params::SpeedSetpoint as ::drivebus::Parameter>::encode(
-            value,
-            scale,
-        )?;
-        let limit = self.device.read_raw::<params::FullScaleVelocity>()? as i128;
-        if ::drivebus::Bound::Magnitude.breached(raw as i128, limit) {
-            return Err(
-                BoundedWriteError::OutsideBound(::drivebus::OutsideBound {
-                    parameter: "speed_setpoint",
-                    bound: "full_scale_velocity",
-                    raw: raw as i128,
-                    limit,
-                }),
-            );
-        }
-        self.device.write_raw::<params::SpeedSetpoint>(raw)?;
-        Ok(())
-    }
-}
-impl<L: ::drivebus::Link> Case<L>
-where
-    params::SerialSpeed: ::drivebus::Writable<L::Protocol>,
-    params::MinimumSpeed: ::drivebus::Readable<L::Protocol>,
-    params::MaximumSpeed: ::drivebus::Readable<L::Protocol>,
-{
-    /// Writes `serial_speed` after reading `minimum_speed` and `maximum_speed` and checking the
-    /// value against their current values; a value beyond one is refused with
-    /// [`BoundedWriteError::OutsideBound`] naming it, and nothing is written.
-    pub fn write_serial_speed(
-        &mut self,
-        value: <params::SerialSpeed as ::drivebus::Parameter>::Value,
-    ) -> Result<(), BoundedWriteError> {
-        let scale = <params::SerialSpeed as ::drivebus::Writable<
-            L::Protocol,
-        >>::write_scale(&mut self.device)?;
-        let raw = <params::SerialSpeed as ::drivebus::Parameter>::encode(value, scale)?;
-        let limit = self.device.read_raw::<params::MinimumSpeed>()? as i128;
-        if ::drivebus::Bound::Min.breached(raw as i128, limit) {
-            return Err(
-                BoundedWriteError::OutsideBound(::drivebus::OutsideBound {
-                    parameter: "serial_speed",
-                    bound: "minimum_speed",
-                    raw: raw as i128,
-                    limit,
-                }),
-            );
-        }
-        let limit = self.device.read_raw::<params::MaximumSpeed>()? as i128;
-        if ::drivebus::Bound::Max.breached(raw as i128, limit) {
-            return Err(
-                BoundedWriteError::OutsideBound(::drivebus::OutsideBound {
-                    parameter: "serial_speed",
-                    bound: "maximum_speed",
-                    raw: raw as i128,
-                    limit,
-                }),
-            );
-        }
-        self.device.write_raw::<params::SerialSpeed>(raw)?;
-        Ok(())
     }
 }

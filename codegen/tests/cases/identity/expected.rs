@@ -171,52 +171,24 @@ impl<L: ::drivebus::Link> Case<L> {
 }
 /// The values of the identity parameter this description covers.
 pub const IDENTITY_VALUES: &[::core::primitive::i128] = &[242];
-/// The identity checks a protocol can run: the `[identity]` parameters it reads.
-pub trait IdentityChecks: ::drivebus::Protocol {
-    /// Reads each identity parameter in turn; the first one holding a value the
-    /// description does not cover, with the refusal naming it.
-    fn mismatch<L: ::drivebus::Link<Protocol = Self>>(
-        device: &mut ::drivebus::Device<L>,
-    ) -> Result<Option<(&'static str, ::drivebus::WriteRefusal)>, ::drivebus::Error>;
-}
-impl IdentityChecks for ::drivebus::canopen::CanOpen {
-    fn mismatch<L: ::drivebus::Link<Protocol = Self>>(
-        device: &mut ::drivebus::Device<L>,
-    ) -> Result<Option<(&'static str, ::drivebus::WriteRefusal)>, ::drivebus::Error> {
-        {
-            const EXPECTED: &[::core::primitive::i128] = &[242];
-            let found = ::core::primitive::i128::from(
-                device.read_raw::<params::FwRelease>()?,
-            );
-            if !EXPECTED.contains(&found) {
-                let reason = ::drivebus::WriteRefusal::IdentityMismatch {
-                    parameter: "fw_release",
-                    expected: EXPECTED,
-                    found,
-                };
-                return Ok(Some(("fw_release", reason)));
-            }
-        }
-        {
-            const EXPECTED: &[::core::primitive::i128] = &[1301];
-            let found = ::core::primitive::i128::from(
-                device.read_raw::<params::VendorId>()?,
-            );
-            if !EXPECTED.contains(&found) {
-                let reason = ::drivebus::WriteRefusal::IdentityMismatch {
-                    parameter: "vendor_id",
-                    expected: EXPECTED,
-                    found,
-                };
-                return Ok(Some(("vendor_id", reason)));
-            }
-        }
-        Ok(None)
-    }
+impl<L: ::drivebus::Link> ::drivebus::IdentityChecks<::drivebus::canopen::CanOpen>
+for Case<L> {
+    const IDENTITY_CHECKS: &'static [::drivebus::IdentityCheck<
+        ::drivebus::canopen::CanOpen,
+    >] = &[
+        ::drivebus::IdentityCheck {
+            parameter: ::drivebus::RawInteger::of::<params::FwRelease>(),
+            covered: ::drivebus::Covered::Values(IDENTITY_VALUES),
+        },
+        ::drivebus::IdentityCheck {
+            parameter: ::drivebus::RawInteger::of::<params::VendorId>(),
+            covered: ::drivebus::Covered::Values(&[1301]),
+        },
+    ];
 }
 impl<L: ::drivebus::Link> Case<L>
 where
-    L::Protocol: IdentityChecks,
+    Self: ::drivebus::IdentityChecks<L::Protocol>,
 {
     /// Reads the identity parameters this link reaches (`fw_release` in `[242]`, `vendor_id` in
     /// `[1301]`) and checks them against the values the description covers. On a mismatch every
@@ -224,16 +196,10 @@ where
     /// found values) comes back as `Error::WritesRefused`; reads go on. Call it right after
     /// connecting; `trust_unverified` is the explicit opt-in to write anyway.
     pub fn verify_identity(&mut self) -> Result<(), ::drivebus::Error> {
-        let Some((parameter, reason)) = <L::Protocol as IdentityChecks>::mismatch(
-            &mut self.device,
-        )? else {
-            return Ok(());
-        };
-        self.device.refuse_writes(reason);
-        Err(::drivebus::Error::WritesRefused {
-            parameter,
-            reason,
-        })
+        self.device
+            .verify_identity(
+                <Self as ::drivebus::IdentityChecks<L::Protocol>>::IDENTITY_CHECKS,
+            )
     }
 }
 impl<L: ::drivebus::Link> Case<L> {

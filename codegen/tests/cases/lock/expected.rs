@@ -309,67 +309,10 @@ pub static WRITE_LOCK: ::drivebus::write_lock::WriteLock = ::drivebus::write_loc
         },
     ],
 };
-/// Why an unlock, or a write under one, failed.
-#[derive(Debug, Clone, PartialEq)]
-pub enum UnlockError {
-    /// A request failed (bus, exception, a value outside the description's range, or a
-    /// drive whose configuration the description does not cover).
-    Drive(::drivebus::Error),
-    /// The drive answered a write with [`LOCKED_EXCEPTION`], or the handle refused it
-    /// before sending because no unlock sent through it opens the parameter
-    /// (`drivebus::WriteRefusal::Locked`): it is locked. The unlock ended (lock,
-    /// power-down, a serial timeout, a changed requirement) or never began.
-    Locked {
-        /// The parameter whose write was refused.
-        parameter: &'static str,
-    },
-    /// The unlock's requirement does not hold; nothing was written.
-    Requirement {
-        /// The parameter read.
-        parameter: &'static str,
-        /// Its raw value.
-        found: ::core::primitive::i128,
-        /// The raw values that allow the unlock.
-        allowed: &'static [::core::primitive::i128],
-    },
-}
-impl From<::drivebus::Error> for UnlockError {
-    /// A write refused as locked, by the drive with [`LOCKED_EXCEPTION`] or by the
-    /// handle before sending, becomes [`UnlockError::Locked`].
-    fn from(error: ::drivebus::Error) -> Self {
-        match &error {
-            ::drivebus::Error::Bus {
-                parameter,
-                cause: ::drivebus::BusError::ModbusException { code, .. },
-            } if code.code() == LOCKED_EXCEPTION => Self::Locked { parameter },
-            ::drivebus::Error::WritesRefused {
-                parameter,
-                reason: ::drivebus::WriteRefusal::Locked { .. },
-            } => Self::Locked { parameter },
-            _ => Self::Drive(error),
-        }
-    }
-}
-impl ::core::fmt::Display for UnlockError {
-    fn fmt(&self, f: &mut ::core::fmt::Formatter<'_>) -> ::core::fmt::Result {
-        match self {
-            Self::Drive(e) => write!(f, "{e}"),
-            Self::Locked { parameter } => {
-                write!(
-                    f,
-                    "{parameter}: the drive is locked (exception {LOCKED_EXCEPTION:#04x}); unlock it first"
-                )
-            }
-            Self::Requirement { parameter, found, allowed } => {
-                write!(
-                    f,
-                    "{parameter} is {found}; unlocking needs one of {allowed:?}: nothing was written"
-                )
-            }
-        }
-    }
-}
-impl ::core::error::Error for UnlockError {}
+/// Why an unlock, or a write under one, failed: a write the drive refuses with
+/// [`LOCKED_EXCEPTION`], or the handle refuses as locked before sending, is
+/// [`UnlockError::Locked`](::drivebus::UnlockError::Locked).
+pub type UnlockError = ::drivebus::UnlockError<LOCKED_EXCEPTION>;
 /// The bound no parameter meets: a parameter that needs an unlock is written through the
 /// guard `drive.unlock_<name>(..)` returns, never through the handle.
 #[diagnostic::on_unimplemented(

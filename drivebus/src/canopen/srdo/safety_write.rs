@@ -114,8 +114,7 @@ impl fmt::Display for SafetyWriteError {
     }
 }
 
-#[cfg(feature = "std")]
-impl std::error::Error for SafetyWriteError {}
+impl core::error::Error for SafetyWriteError {}
 
 /// The SDO writes of a safety write, in order, with the signature they end with. Pure: computing
 /// it sends nothing.

@@ -115,8 +115,7 @@ impl core::fmt::Display for SignatureMismatch {
     }
 }
 
-#[cfg(feature = "std")]
-impl std::error::Error for SignatureMismatch {}
+impl core::error::Error for SignatureMismatch {}
 
 /// Compares a stored signature with the configuration's, reporting both values on a mismatch.
 pub fn verify(config: &SrdoConfig<'_>, stored: u16) -> Result<(), VerifyError> {
@@ -150,5 +149,4 @@ impl core::fmt::Display for VerifyError {
     }
 }
 
-#[cfg(feature = "std")]
-impl std::error::Error for VerifyError {}
+impl core::error::Error for VerifyError {}

@@ -28,8 +28,7 @@ impl fmt::Display for StoredSignatureError {
     }
 }
 
-#[cfg(feature = "std")]
-impl std::error::Error for StoredSignatureError {}
+impl core::error::Error for StoredSignatureError {}
 
 /// Reads SRDO `config.number`'s signature from `node` and compares it with `config`'s.
 pub fn check_stored_signature<B: SdoBus + ?Sized>(

@@ -15,6 +15,8 @@ pub const RESET: u16 = 0xA5A5;
 pub const OPERATION_MODE: u16 = 0x0207;
 pub const DRIVE_STATUS: u16 = 0x0060;
 pub const ERROR_CODE: u16 = 0x0063;
+/// FULL SCALE VELOCITY, the bound of the speed setpoint (an L motor: 3000 rpm).
+pub const FULL_SCALE_VELOCITY: u16 = 0x0003;
 
 pub const RUN_VELOCITY: u16 = 0x0001;
 pub const STANDBY: u16 = 0x0002;
@@ -45,6 +47,7 @@ impl SimulatedDrive {
         }
         memory
             .set_register(Table::Holding, OPERATION_MODE, operation_mode)
+            .set_register(Table::Holding, FULL_SCALE_VELOCITY, 3000)
             .set_register(Table::Input, DRIVE_STATUS, STANDBY)
             .set_register(Table::Input, ERROR_CODE, 0);
         Self {
