@@ -134,7 +134,9 @@ impl<L: Link> Device<L> {
         at: impl FnOnce(ProtocolAddress<L>) -> ProtocolAddress<L>,
     ) -> Result<P::Raw, Error> {
         let mut buf = [0u8; MAX_VALUE_BYTES];
-        let len = self.read_bytes(name, &P::READ_AT, at, &mut buf)?;
+        // `read_address`, not `READ_AT`: a run's member moves its run's placement.
+        let address = P::read_address(self.variant).map(at);
+        let len = self.read_bytes(name, &P::READ_AT, address, &mut buf)?;
         P::Raw::decode_le(&buf[..len]).map_err(|e| Error::Value(e.named(name)))
     }
 
@@ -145,17 +147,18 @@ impl<L: Link> Device<L> {
         parameter: &RawInteger<L::Protocol>,
     ) -> Result<i128, Error> {
         let mut buf = [0u8; MAX_VALUE_BYTES];
-        let len = self.read_bytes(parameter.name, &parameter.read_at, |a| a, &mut buf)?;
+        let address = parameter.read_at.get(self.variant);
+        let len = self.read_bytes(parameter.name, &parameter.read_at, address, &mut buf)?;
         (parameter.decode)(&buf[..len]).map_err(|e| Error::Value(e.named(parameter.name)))
     }
 
-    /// Reads the bytes of parameter `name`, placed at `read_at` (moved by `at`), into `buf`;
-    /// returns how many.
+    /// Reads the bytes of parameter `name` from `address` (its address in the current variant,
+    /// placed at `read_at`) into `buf`; returns how many.
     fn read_bytes(
         &mut self,
         name: &'static str,
         read_at: &Placement<ProtocolAddress<L>>,
-        at: impl FnOnce(ProtocolAddress<L>) -> ProtocolAddress<L>,
+        address: Option<ProtocolAddress<L>>,
         buf: &mut [u8; MAX_VALUE_BYTES],
     ) -> Result<usize, Error> {
         if let Some(WriteRefusal::UnknownVariant { selector, value }) = self.refusal {
@@ -167,10 +170,7 @@ impl<L: Link> Device<L> {
                 });
             }
         }
-        let address = read_at
-            .get(self.variant)
-            .map(at)
-            .ok_or(Error::NotInVariant { parameter: name })?;
+        let address = address.ok_or(Error::NotInVariant { parameter: name })?;
         self.link.read(&address, buf).map_err(bus_error(name))
     }
 
