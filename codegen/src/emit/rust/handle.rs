@@ -114,21 +114,20 @@ pub fn emit(device: &Device) -> TokenStream {
             let marker = ident(&names::camel(&p.name));
             let summary = doc::summary(p.doc.as_deref(), &p.name);
             let docs = doc_attrs(&format!(
-                "{summary}\n\nSee [`params::{marker}`] for address, type, unit and source."
+                "{summary} Address, type, unit and source: [`params::{marker}`]."
             ));
             let aliases = super::parameter_doc::aliases(p);
             // A stop is written from the handle too: never held back by the lock's account.
             if let Some(scope) = device.lock_scope_of(p).filter(|_| !is_stop_command(p)) {
                 // Written only through the guard of an unlock opening its scope.
                 let docs = doc_attrs(&format!(
-                    "{summary}\n\nRead here; written only while unlocked (scope `{}`, see \
-                     [`Unlocked`]). See [`params::{marker}`] for address, type, unit and source.",
+                    "{summary} Read here; written only while unlocked (scope `{}`, see \
+                     [`Unlocked`]). Address, type, unit and source: [`params::{marker}`].",
                     doc::escape(&scope.name)
                 ));
                 return quote! {
                     #docs
                     #aliases
-                    #[inline]
                     pub fn #method(&mut self) -> LockedAccessor<'_, L, params::#marker> {
                         LockedAccessor(self.device.parameter())
                     }
@@ -137,8 +136,7 @@ pub fn emit(device: &Device) -> TokenStream {
             quote! {
                 #docs
                 #aliases
-                #[inline]
-                pub fn #method(&mut self) -> ::drivebus::Accessor<'_, L, params::#marker> {
+                pub fn #method(&mut self) -> Accessor<'_, L, params::#marker> {
                     self.device.parameter()
                 }
             }
@@ -189,8 +187,18 @@ pub fn emit(device: &Device) -> TokenStream {
             }
 
             #variant_setter
+        }
 
-            #( #accessors )*
+        /// The handle's accessors, one per parameter: in a module of their own so that their
+        /// signatures name `Accessor` without its path.
+        mod parameter_accessors {
+            #[allow(unused_imports)]
+            use super::*;
+            use ::drivebus::Accessor;
+
+            impl<L: ::drivebus::Link> #handle<L> {
+                #( #accessors )*
+            }
         }
     }
 }

@@ -76,7 +76,6 @@ fn handle_method(run: &IndexedParameter) -> TokenStream {
     ));
     quote! {
         #docs
-        #[inline]
         pub fn #method(&mut self, subindex: u8) -> indexed::#ty<'_, L> {
             ::drivebus::indexed::Indexed::new(&mut self.device, subindex)
         }

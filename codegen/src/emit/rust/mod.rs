@@ -135,10 +135,14 @@ pub fn tokens(device: &Device) -> TokenStream {
             pub mod types
         },
         braced(types),
-        quote! {
-            /// One marker type per parameter, implementing its value codec and per-protocol access.
-            pub mod params
-        },
+        concat([
+            doc_attrs(&format!(
+                "One marker type per parameter, implementing its value codec and per-protocol \
+                 access.{}",
+                parameter_doc::sources_doc(device)
+            )),
+            quote! { pub mod params },
+        ]),
         braced(params),
         handle::emit(device),
         indexed::emit(

@@ -229,8 +229,10 @@ fn table(rows: &[(&str, String)], out: &mut String) {
 /// A citation as doc text (escaped): the manual's title (its file when the description gives no
 /// title), section and line. The file behind a title is in the description's `[device] source`.
 pub fn citation(c: &Citation, device: &Device) -> String {
+    // A described source by its id, its title given once in the `params` module's docs
+    // (`sources_doc`); the table row stays one line.
     let mut cite = match device.sources.iter().find(|s| s.id == c.doc()) {
-        Some(source) => doc::escape(&source.title),
+        Some(source) => format!("`{}`", doc::escape(&source.id)),
         None => format!("`{}`", doc::escape(c.file())),
     };
     if let Some(section) = &c.section {
@@ -240,6 +242,19 @@ pub fn citation(c: &Citation, device: &Device) -> String {
         let _ = write!(cite, ", line {line}");
     }
     cite
+}
+
+/// The `params` module's list of the sources the parameters' Source rows cite by id.
+pub fn sources_doc(device: &Device) -> String {
+    let listed: Vec<String> = device
+        .sources
+        .iter()
+        .map(|s| format!("- `{}`: {}", doc::escape(&s.id), doc::escape(&s.title)))
+        .collect();
+    if listed.is_empty() {
+        return String::new();
+    }
+    format!("\n\nSources cited by id:\n\n{}", listed.join("\n"))
 }
 
 /// What a command register does, in words: `store, trigger value 1`.
@@ -256,7 +271,7 @@ fn command_text(c: &Command) -> String {
     }
 }
 
-/// `#[doc(alias = "...")]` with the names and addresses the manuals print, so rustdoc's search
+/// `#[doc(alias("...", ...))]` with the names and addresses the manuals print, so rustdoc's search
 /// finds a parameter by them: the manual's own name (`BUS DC LINK`, from the citation's `name`),
 /// `0x0064` for a Modbus register, `6041h` and `0x6041` for an object (and `6041h:01` for a
 /// sub-index other than 0).
@@ -278,8 +293,10 @@ pub fn aliases(p: &Parameter) -> TokenStream {
         .chain(modbus)
         .chain(objects)
         .collect();
-    let attrs = unique.iter().map(|alias| quote! { #[doc(alias = #alias)] });
-    quote! { #( #attrs )* }
+    if unique.is_empty() {
+        return quote! {};
+    }
+    quote! { #[doc(alias(#( #unique ),*))] }
 }
 
 #[cfg(test)]

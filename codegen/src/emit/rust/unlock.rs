@@ -199,13 +199,12 @@ fn setter(p: &Parameter) -> TokenStream {
     let marker = ident(&names::camel(&p.name));
     let summary = doc::summary(p.doc.as_deref(), &p.name);
     let docs = doc_attrs(&format!(
-        "{summary}\n\nWritable while unlocked. See [`params::{marker}`] for address, type, unit and source."
+        "{summary} Writable while unlocked. Address, type, unit and source: [`params::{marker}`]."
     ));
     let aliases = super::parameter_doc::aliases(p);
     quote! {
         #docs
         #aliases
-        #[inline]
         pub fn #method(&mut self) -> ::drivebus::Accessor<'_, L, params::#marker> {
             self.drive.device.parameter()
         }

@@ -2,6 +2,10 @@
 /// Enumerations and bit-field words shared by the parameters.
 pub mod types {}
 /// One marker type per parameter, implementing its value codec and per-protocol access.
+///
+/// Sources cited by id:
+///
+/// - `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
@@ -11,8 +15,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Holding register `0x0003`, read/write |
     /// | Type | `u16`, unit rpm |
-    /// | Source | Manual, line 1 |
-    #[doc(alias = "0x0003")]
+    /// | Source | `m`, line 1 |
+    #[doc(alias("0x0003"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct FullScaleVelocity;
     ::drivebus::parameter!(
@@ -26,8 +30,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Holding register `0x0004`, read/write |
     /// | Type | `i16`, unit rpm |
-    /// | Source | Manual, line 2 |
-    #[doc(alias = "0x0004")]
+    /// | Source | `m`, line 2 |
+    #[doc(alias("0x0004"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct MinimumSpeed;
     ::drivebus::parameter!(
@@ -41,8 +45,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Holding register `0x0005`, read/write |
     /// | Type | `i16`, unit rpm |
-    /// | Source | Manual, line 3 |
-    #[doc(alias = "0x0005")]
+    /// | Source | `m`, line 3 |
+    #[doc(alias("0x0005"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct MaximumSpeed;
     ::drivebus::parameter!(
@@ -56,8 +60,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Holding register `0x0006`, read/write |
     /// | Type | `i16`, unit rpm |
-    /// | Source | Manual, line 4 |
-    #[doc(alias = "0x0006")]
+    /// | Source | `m`, line 4 |
+    #[doc(alias("0x0006"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct SpeedSetpoint;
     ::drivebus::parameter!(
@@ -71,8 +75,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Holding register `0x0007`, read/write |
     /// | Type | `i16`, unit rpm |
-    /// | Source | Manual, line 5 |
-    #[doc(alias = "0x0007")]
+    /// | Source | `m`, line 5 |
+    #[doc(alias("0x0007"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct SerialSpeed;
     ::drivebus::parameter!(
@@ -119,52 +123,40 @@ impl<L: ::drivebus::Link> Case<L> {
     ) -> Result<S::Values, ::drivebus::Error> {
         self.device.read_many(set)
     }
-    /// full_scale_velocity
-    ///
-    /// See [`params::FullScaleVelocity`] for address, type, unit and source.
-    #[doc(alias = "0x0003")]
-    #[inline]
-    pub fn full_scale_velocity(
-        &mut self,
-    ) -> ::drivebus::Accessor<'_, L, params::FullScaleVelocity> {
-        self.device.parameter()
-    }
-    /// minimum_speed
-    ///
-    /// See [`params::MinimumSpeed`] for address, type, unit and source.
-    #[doc(alias = "0x0004")]
-    #[inline]
-    pub fn minimum_speed(
-        &mut self,
-    ) -> ::drivebus::Accessor<'_, L, params::MinimumSpeed> {
-        self.device.parameter()
-    }
-    /// maximum_speed
-    ///
-    /// See [`params::MaximumSpeed`] for address, type, unit and source.
-    #[doc(alias = "0x0005")]
-    #[inline]
-    pub fn maximum_speed(
-        &mut self,
-    ) -> ::drivebus::Accessor<'_, L, params::MaximumSpeed> {
-        self.device.parameter()
-    }
-    /// speed_setpoint
-    ///
-    /// See [`params::SpeedSetpoint`] for address, type, unit and source.
-    #[doc(alias = "0x0006")]
-    #[inline]
-    pub fn speed_setpoint(
-        &mut self,
-    ) -> ::drivebus::Accessor<'_, L, params::SpeedSetpoint> {
-        self.device.parameter()
-    }
-    /// serial_speed
-    ///
-    /// See [`params::SerialSpeed`] for address, type, unit and source.
-    #[doc(alias = "0x0007")]
-    #[inline]
-    pub fn serial_speed(&mut self) -> ::drivebus::Accessor<'_, L, params::SerialSpeed> {
-        self.device.parameter()
+}
+/// The handle's accessors, one per parameter: in a module of their own so that their
+/// signatures name `Accessor` without its path.
+mod parameter_accessors {
+    #[allow(unused_imports)]
+    use super::*;
+    use ::drivebus::Accessor;
+    impl<L: ::drivebus::Link> Case<L> {
+        /// full_scale_velocity Address, type, unit and source: [`params::FullScaleVelocity`].
+        #[doc(alias("0x0003"))]
+        pub fn full_scale_velocity(
+            &mut self,
+        ) -> Accessor<'_, L, params::FullScaleVelocity> {
+            self.device.parameter()
+        }
+        /// minimum_speed Address, type, unit and source: [`params::MinimumSpeed`].
+        #[doc(alias("0x0004"))]
+        pub fn minimum_speed(&mut self) -> Accessor<'_, L, params::MinimumSpeed> {
+            self.device.parameter()
+        }
+        /// maximum_speed Address, type, unit and source: [`params::MaximumSpeed`].
+        #[doc(alias("0x0005"))]
+        pub fn maximum_speed(&mut self) -> Accessor<'_, L, params::MaximumSpeed> {
+            self.device.parameter()
+        }
+        /// speed_setpoint Address, type, unit and source: [`params::SpeedSetpoint`].
+        #[doc(alias("0x0006"))]
+        pub fn speed_setpoint(&mut self) -> Accessor<'_, L, params::SpeedSetpoint> {
+            self.device.parameter()
+        }
+        /// serial_speed Address, type, unit and source: [`params::SerialSpeed`].
+        #[doc(alias("0x0007"))]
+        pub fn serial_speed(&mut self) -> Accessor<'_, L, params::SerialSpeed> {
+            self.device.parameter()
+        }
     }
 }

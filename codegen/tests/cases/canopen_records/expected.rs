@@ -2,6 +2,10 @@
 /// Enumerations and bit-field words shared by the parameters.
 pub mod types {}
 /// One marker type per parameter, implementing its value codec and per-protocol access.
+///
+/// Sources cited by id:
+///
+/// - `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
@@ -11,9 +15,8 @@ pub mod params {
     /// |---|---|
     /// | CANopen | object `0x1000:0`, read-only |
     /// | Type | `u32` |
-    /// | Source | Manual, line 1 |
-    #[doc(alias = "0x1000")]
-    #[doc(alias = "1000h")]
+    /// | Source | `m`, line 1 |
+    #[doc(alias("0x1000", "1000h"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct DeviceType;
     ::drivebus::parameter!(
@@ -26,9 +29,8 @@ pub mod params {
     /// |---|---|
     /// | CANopen | object `0x1001:0`, read-only |
     /// | Type | `u8` |
-    /// | Source | Manual, line 1 |
-    #[doc(alias = "0x1001")]
-    #[doc(alias = "1001h")]
+    /// | Source | `m`, line 1 |
+    #[doc(alias("0x1001", "1001h"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct ErrorRegister;
     ::drivebus::parameter!(
@@ -41,9 +43,8 @@ pub mod params {
     /// |---|---|
     /// | CANopen | object `0x1018:0`, read-only |
     /// | Type | `u8` |
-    /// | Source | Manual, line 1 |
-    #[doc(alias = "0x1018")]
-    #[doc(alias = "1018h")]
+    /// | Source | `m`, line 1 |
+    #[doc(alias("0x1018", "1018h"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct IdentityCount;
     ::drivebus::parameter!(
@@ -56,10 +57,8 @@ pub mod params {
     /// |---|---|
     /// | CANopen | object `0x1018:1`, read-only |
     /// | Type | `u32` |
-    /// | Source | Manual, line 1 |
-    #[doc(alias = "0x1018")]
-    #[doc(alias = "1018h")]
-    #[doc(alias = "1018h:01")]
+    /// | Source | `m`, line 1 |
+    #[doc(alias("0x1018", "1018h", "1018h:01"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct VendorId;
     ::drivebus::parameter!(
@@ -73,10 +72,8 @@ pub mod params {
     /// | CANopen | object `0x2000:1`, read/write |
     /// | Type | `u8` |
     /// | Default (raw) | 4 |
-    /// | Source | Manual, line 4 |
-    #[doc(alias = "0x2000")]
-    #[doc(alias = "2000h")]
-    #[doc(alias = "2000h:01")]
+    /// | Source | `m`, line 4 |
+    #[doc(alias("0x2000", "2000h", "2000h:01"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct MotorPolePairs;
     ::drivebus::parameter!(
@@ -90,10 +87,8 @@ pub mod params {
     /// |---|---|
     /// | CANopen | object `0x2000:2`, read-only |
     /// | Type | `string` |
-    /// | Source | Manual, line 5 |
-    #[doc(alias = "0x2000")]
-    #[doc(alias = "2000h")]
-    #[doc(alias = "2000h:02")]
+    /// | Source | `m`, line 5 |
+    #[doc(alias("0x2000", "2000h", "2000h:02"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct MotorName;
     ::drivebus::parameter!(
@@ -106,9 +101,8 @@ pub mod params {
     /// |---|---|
     /// | CANopen | object `0x2001:0`, read-only (const) |
     /// | Type | `u32` |
-    /// | Source | Manual, line 6 |
-    #[doc(alias = "0x2001")]
-    #[doc(alias = "2001h")]
+    /// | Source | `m`, line 6 |
+    #[doc(alias("0x2001", "2001h"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct NodeGuard;
     ::drivebus::parameter!(
@@ -152,76 +146,48 @@ impl<L: ::drivebus::Link> Case<L> {
     ) -> Result<S::Values, ::drivebus::Error> {
         self.device.read_many(set)
     }
-    /// device_type
-    ///
-    /// See [`params::DeviceType`] for address, type, unit and source.
-    #[doc(alias = "0x1000")]
-    #[doc(alias = "1000h")]
-    #[inline]
-    pub fn device_type(&mut self) -> ::drivebus::Accessor<'_, L, params::DeviceType> {
-        self.device.parameter()
-    }
-    /// error_register
-    ///
-    /// See [`params::ErrorRegister`] for address, type, unit and source.
-    #[doc(alias = "0x1001")]
-    #[doc(alias = "1001h")]
-    #[inline]
-    pub fn error_register(
-        &mut self,
-    ) -> ::drivebus::Accessor<'_, L, params::ErrorRegister> {
-        self.device.parameter()
-    }
-    /// identity_count
-    ///
-    /// See [`params::IdentityCount`] for address, type, unit and source.
-    #[doc(alias = "0x1018")]
-    #[doc(alias = "1018h")]
-    #[inline]
-    pub fn identity_count(
-        &mut self,
-    ) -> ::drivebus::Accessor<'_, L, params::IdentityCount> {
-        self.device.parameter()
-    }
-    /// vendor_id
-    ///
-    /// See [`params::VendorId`] for address, type, unit and source.
-    #[doc(alias = "0x1018")]
-    #[doc(alias = "1018h")]
-    #[doc(alias = "1018h:01")]
-    #[inline]
-    pub fn vendor_id(&mut self) -> ::drivebus::Accessor<'_, L, params::VendorId> {
-        self.device.parameter()
-    }
-    /// motor_pole_pairs
-    ///
-    /// See [`params::MotorPolePairs`] for address, type, unit and source.
-    #[doc(alias = "0x2000")]
-    #[doc(alias = "2000h")]
-    #[doc(alias = "2000h:01")]
-    #[inline]
-    pub fn motor_pole_pairs(
-        &mut self,
-    ) -> ::drivebus::Accessor<'_, L, params::MotorPolePairs> {
-        self.device.parameter()
-    }
-    /// motor_name
-    ///
-    /// See [`params::MotorName`] for address, type, unit and source.
-    #[doc(alias = "0x2000")]
-    #[doc(alias = "2000h")]
-    #[doc(alias = "2000h:02")]
-    #[inline]
-    pub fn motor_name(&mut self) -> ::drivebus::Accessor<'_, L, params::MotorName> {
-        self.device.parameter()
-    }
-    /// node_guard
-    ///
-    /// See [`params::NodeGuard`] for address, type, unit and source.
-    #[doc(alias = "0x2001")]
-    #[doc(alias = "2001h")]
-    #[inline]
-    pub fn node_guard(&mut self) -> ::drivebus::Accessor<'_, L, params::NodeGuard> {
-        self.device.parameter()
+}
+/// The handle's accessors, one per parameter: in a module of their own so that their
+/// signatures name `Accessor` without its path.
+mod parameter_accessors {
+    #[allow(unused_imports)]
+    use super::*;
+    use ::drivebus::Accessor;
+    impl<L: ::drivebus::Link> Case<L> {
+        /// device_type Address, type, unit and source: [`params::DeviceType`].
+        #[doc(alias("0x1000", "1000h"))]
+        pub fn device_type(&mut self) -> Accessor<'_, L, params::DeviceType> {
+            self.device.parameter()
+        }
+        /// error_register Address, type, unit and source: [`params::ErrorRegister`].
+        #[doc(alias("0x1001", "1001h"))]
+        pub fn error_register(&mut self) -> Accessor<'_, L, params::ErrorRegister> {
+            self.device.parameter()
+        }
+        /// identity_count Address, type, unit and source: [`params::IdentityCount`].
+        #[doc(alias("0x1018", "1018h"))]
+        pub fn identity_count(&mut self) -> Accessor<'_, L, params::IdentityCount> {
+            self.device.parameter()
+        }
+        /// vendor_id Address, type, unit and source: [`params::VendorId`].
+        #[doc(alias("0x1018", "1018h", "1018h:01"))]
+        pub fn vendor_id(&mut self) -> Accessor<'_, L, params::VendorId> {
+            self.device.parameter()
+        }
+        /// motor_pole_pairs Address, type, unit and source: [`params::MotorPolePairs`].
+        #[doc(alias("0x2000", "2000h", "2000h:01"))]
+        pub fn motor_pole_pairs(&mut self) -> Accessor<'_, L, params::MotorPolePairs> {
+            self.device.parameter()
+        }
+        /// motor_name Address, type, unit and source: [`params::MotorName`].
+        #[doc(alias("0x2000", "2000h", "2000h:02"))]
+        pub fn motor_name(&mut self) -> Accessor<'_, L, params::MotorName> {
+            self.device.parameter()
+        }
+        /// node_guard Address, type, unit and source: [`params::NodeGuard`].
+        #[doc(alias("0x2001", "2001h"))]
+        pub fn node_guard(&mut self) -> Accessor<'_, L, params::NodeGuard> {
+            self.device.parameter()
+        }
     }
 }

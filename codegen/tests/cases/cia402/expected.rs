@@ -152,6 +152,13 @@ pub mod types {
     );
 }
 /// One marker type per parameter, implementing its value codec and per-protocol access.
+///
+/// Sources cited by id:
+///
+/// - `m`: Manual
+/// - `lafert`: Lafert Smartris Drive user guide, FW 2.4.2, rel. 2.2 (16.05.2025)
+/// - `swd`: ez-Wheel SWD Safety Drive & Wheel Drive user manual v2.0.3 (2024)
+/// - `kinco`: Kinco FD1X3 / FD1X4 low-voltage servo driver user manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
@@ -161,9 +168,8 @@ pub mod params {
     /// |---|---|
     /// | CANopen | object `0x1000:0`, read-only |
     /// | Type | `u32` |
-    /// | Source | Manual, line 1 |
-    #[doc(alias = "0x1000")]
-    #[doc(alias = "1000h")]
+    /// | Source | `m`, line 1 |
+    #[doc(alias("0x1000", "1000h"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct DeviceType;
     ::drivebus::parameter!(
@@ -176,9 +182,8 @@ pub mod params {
     /// |---|---|
     /// | CANopen | object `0x1001:0`, read-only |
     /// | Type | `u8` |
-    /// | Source | Manual, line 1 |
-    #[doc(alias = "0x1001")]
-    #[doc(alias = "1001h")]
+    /// | Source | `m`, line 1 |
+    #[doc(alias("0x1001", "1001h"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct ErrorRegister;
     ::drivebus::parameter!(
@@ -191,9 +196,8 @@ pub mod params {
     /// |---|---|
     /// | CANopen | object `0x1018:0`, read-only |
     /// | Type | `u8` |
-    /// | Source | Manual, line 1 |
-    #[doc(alias = "0x1018")]
-    #[doc(alias = "1018h")]
+    /// | Source | `m`, line 1 |
+    #[doc(alias("0x1018", "1018h"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct IdentityCount;
     ::drivebus::parameter!(
@@ -206,10 +210,8 @@ pub mod params {
     /// |---|---|
     /// | CANopen | object `0x1018:1`, read-only |
     /// | Type | `u32` |
-    /// | Source | Manual, line 1 |
-    #[doc(alias = "0x1018")]
-    #[doc(alias = "1018h")]
-    #[doc(alias = "1018h:01")]
+    /// | Source | `m`, line 1 |
+    #[doc(alias("0x1018", "1018h", "1018h:01"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct VendorId;
     ::drivebus::parameter!(
@@ -223,15 +225,12 @@ pub mod params {
     /// | CANopen | object `0x6040:0`, read/write |
     /// | Type | `u16` |
     /// | Default (raw) | 0 |
+    /// | Source | `swd` §10.1 6040h Controlword, line 2350 |
     ///
     /// **Stops the drive:** a write with `raw & 0x0002 == 0x0000` or `raw & 0x0004 == 0x0000` or
     /// `raw & 0x0008 == 0x0000` or `raw & 0x0100 == 0x0100`: always sent, whatever the handle
     /// believes of locks, identity or variant
-    ///
-    /// **Source:** ez-Wheel SWD Safety Drive & Wheel Drive user manual v2.0.3 (2024) §10.1 6040h
-    /// Controlword, line 2350
-    #[doc(alias = "0x6040")]
-    #[doc(alias = "6040h")]
+    #[doc(alias("0x6040", "6040h"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Controlword;
     ::drivebus::parameter!(
@@ -246,11 +245,8 @@ pub mod params {
     /// |---|---|
     /// | CANopen | object `0x6041:0`, read-only |
     /// | Type | `u16` |
-    ///
-    /// **Source:** ez-Wheel SWD Safety Drive & Wheel Drive user manual v2.0.3 (2024) §10.1 6041h
-    /// Statusword, line 2384
-    #[doc(alias = "0x6041")]
-    #[doc(alias = "6041h")]
+    /// | Source | `swd` §10.1 6041h Statusword, line 2384 |
+    #[doc(alias("0x6041", "6041h"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Statusword;
     ::drivebus::parameter!(
@@ -263,15 +259,12 @@ pub mod params {
     /// |---|---|
     /// | CANopen | object `0x6060:0`, read/write |
     /// | Type | `i8` |
-    ///
-    /// **Source:** Lafert Smartris Drive user guide, FW 2.4.2, rel. 2.2 (16.05.2025) §6.9.2, line
-    /// 4968
+    /// | Source | `lafert` §6.9.2, line 4968 |
     ///
     /// **Erratum:** The SWD manual's object table (line 2454) types 6060h as U32 (4 bytes); CiA
     /// 402, the Lafert guide (INT8, line 4968) and the Kinco manual (Integer8, line 1937) give
     /// INTEGER8, and negative manufacturer modes only make sense signed. Chose i8.
-    #[doc(alias = "0x6060")]
-    #[doc(alias = "6060h")]
+    #[doc(alias("0x6060", "6060h"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct ModesOfOperation;
     ::drivebus::parameter!(
@@ -285,15 +278,12 @@ pub mod params {
     /// |---|---|
     /// | CANopen | object `0x6061:0`, read-only |
     /// | Type | `i8` |
-    ///
-    /// **Source:** Lafert Smartris Drive user guide, FW 2.4.2, rel. 2.2 (16.05.2025) §6.9.2, line
-    /// 4970
+    /// | Source | `lafert` §6.9.2, line 4970 |
     ///
     /// **Erratum:** The Lafert guide (line 4970) prints the index of "mode of operation display" as
     /// 6041h (the statusword); CiA 402 and the SWD manual (line 2455) give 6061h. The SWD table
     /// types it U32; chose INTEGER8 as for 6060h.
-    #[doc(alias = "0x6061")]
-    #[doc(alias = "6061h")]
+    #[doc(alias("0x6061", "6061h"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct ModesOfOperationDisplay;
     ::drivebus::parameter!(
@@ -338,86 +328,62 @@ impl<L: ::drivebus::Link> Case<L> {
     ) -> Result<S::Values, ::drivebus::Error> {
         self.device.read_many(set)
     }
-    /// device_type
-    ///
-    /// See [`params::DeviceType`] for address, type, unit and source.
-    #[doc(alias = "0x1000")]
-    #[doc(alias = "1000h")]
-    #[inline]
-    pub fn device_type(&mut self) -> ::drivebus::Accessor<'_, L, params::DeviceType> {
-        self.device.parameter()
-    }
-    /// error_register
-    ///
-    /// See [`params::ErrorRegister`] for address, type, unit and source.
-    #[doc(alias = "0x1001")]
-    #[doc(alias = "1001h")]
-    #[inline]
-    pub fn error_register(
-        &mut self,
-    ) -> ::drivebus::Accessor<'_, L, params::ErrorRegister> {
-        self.device.parameter()
-    }
-    /// identity_count
-    ///
-    /// See [`params::IdentityCount`] for address, type, unit and source.
-    #[doc(alias = "0x1018")]
-    #[doc(alias = "1018h")]
-    #[inline]
-    pub fn identity_count(
-        &mut self,
-    ) -> ::drivebus::Accessor<'_, L, params::IdentityCount> {
-        self.device.parameter()
-    }
-    /// vendor_id
-    ///
-    /// See [`params::VendorId`] for address, type, unit and source.
-    #[doc(alias = "0x1018")]
-    #[doc(alias = "1018h")]
-    #[doc(alias = "1018h:01")]
-    #[inline]
-    pub fn vendor_id(&mut self) -> ::drivebus::Accessor<'_, L, params::VendorId> {
-        self.device.parameter()
-    }
-    /// Controlword: commands the power drive system state machine.
-    ///
-    /// See [`params::Controlword`] for address, type, unit and source.
-    #[doc(alias = "0x6040")]
-    #[doc(alias = "6040h")]
-    #[inline]
-    pub fn controlword(&mut self) -> ::drivebus::Accessor<'_, L, params::Controlword> {
-        self.device.parameter()
-    }
-    /// Statusword: state of the power drive system state machine.
-    ///
-    /// See [`params::Statusword`] for address, type, unit and source.
-    #[doc(alias = "0x6041")]
-    #[doc(alias = "6041h")]
-    #[inline]
-    pub fn statusword(&mut self) -> ::drivebus::Accessor<'_, L, params::Statusword> {
-        self.device.parameter()
-    }
-    /// Requested mode of operation.
-    ///
-    /// See [`params::ModesOfOperation`] for address, type, unit and source.
-    #[doc(alias = "0x6060")]
-    #[doc(alias = "6060h")]
-    #[inline]
-    pub fn modes_of_operation(
-        &mut self,
-    ) -> ::drivebus::Accessor<'_, L, params::ModesOfOperation> {
-        self.device.parameter()
-    }
-    /// Mode of operation the drive is actually in.
-    ///
-    /// See [`params::ModesOfOperationDisplay`] for address, type, unit and source.
-    #[doc(alias = "0x6061")]
-    #[doc(alias = "6061h")]
-    #[inline]
-    pub fn modes_of_operation_display(
-        &mut self,
-    ) -> ::drivebus::Accessor<'_, L, params::ModesOfOperationDisplay> {
-        self.device.parameter()
+}
+/// The handle's accessors, one per parameter: in a module of their own so that their
+/// signatures name `Accessor` without its path.
+mod parameter_accessors {
+    #[allow(unused_imports)]
+    use super::*;
+    use ::drivebus::Accessor;
+    impl<L: ::drivebus::Link> Case<L> {
+        /// device_type Address, type, unit and source: [`params::DeviceType`].
+        #[doc(alias("0x1000", "1000h"))]
+        pub fn device_type(&mut self) -> Accessor<'_, L, params::DeviceType> {
+            self.device.parameter()
+        }
+        /// error_register Address, type, unit and source: [`params::ErrorRegister`].
+        #[doc(alias("0x1001", "1001h"))]
+        pub fn error_register(&mut self) -> Accessor<'_, L, params::ErrorRegister> {
+            self.device.parameter()
+        }
+        /// identity_count Address, type, unit and source: [`params::IdentityCount`].
+        #[doc(alias("0x1018", "1018h"))]
+        pub fn identity_count(&mut self) -> Accessor<'_, L, params::IdentityCount> {
+            self.device.parameter()
+        }
+        /// vendor_id Address, type, unit and source: [`params::VendorId`].
+        #[doc(alias("0x1018", "1018h", "1018h:01"))]
+        pub fn vendor_id(&mut self) -> Accessor<'_, L, params::VendorId> {
+            self.device.parameter()
+        }
+        /// Controlword: commands the power drive system state machine. Address, type, unit and
+        /// source: [`params::Controlword`].
+        #[doc(alias("0x6040", "6040h"))]
+        pub fn controlword(&mut self) -> Accessor<'_, L, params::Controlword> {
+            self.device.parameter()
+        }
+        /// Statusword: state of the power drive system state machine. Address, type, unit and
+        /// source: [`params::Statusword`].
+        #[doc(alias("0x6041", "6041h"))]
+        pub fn statusword(&mut self) -> Accessor<'_, L, params::Statusword> {
+            self.device.parameter()
+        }
+        /// Requested mode of operation. Address, type, unit and source:
+        /// [`params::ModesOfOperation`].
+        #[doc(alias("0x6060", "6060h"))]
+        pub fn modes_of_operation(
+            &mut self,
+        ) -> Accessor<'_, L, params::ModesOfOperation> {
+            self.device.parameter()
+        }
+        /// Mode of operation the drive is actually in. Address, type, unit and source:
+        /// [`params::ModesOfOperationDisplay`].
+        #[doc(alias("0x6061", "6061h"))]
+        pub fn modes_of_operation_display(
+            &mut self,
+        ) -> Accessor<'_, L, params::ModesOfOperationDisplay> {
+            self.device.parameter()
+        }
     }
 }
 /// The drive's deviations from CiA 402 (its description's `[cia402]` table), read by the

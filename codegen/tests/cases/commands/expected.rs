@@ -2,6 +2,10 @@
 /// Enumerations and bit-field words shared by the parameters.
 pub mod types {}
 /// One marker type per parameter, implementing its value codec and per-protocol access.
+///
+/// Sources cited by id:
+///
+/// - `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
@@ -12,8 +16,8 @@ pub mod params {
     /// | Modbus | Holding register `0x0000`, write-only |
     /// | Type | `u16` |
     /// | Command | store, trigger value 1; never retried |
-    /// | Source | Manual, line 160 |
-    #[doc(alias = "0x0000")]
+    /// | Source | `m`, line 160 |
+    #[doc(alias("0x0000"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct StoreEeprom;
     ::drivebus::parameter!(
@@ -27,8 +31,8 @@ pub mod params {
     /// | Modbus | Holding register `0x0001`, write-only |
     /// | Type | `u16` |
     /// | Command | reset; never retried |
-    /// | Source | Manual, line 161 |
-    #[doc(alias = "0x0001")]
+    /// | Source | `m`, line 161 |
+    #[doc(alias("0x0001"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Reset;
     ::drivebus::parameter!(Reset = "reset": u16 => u16, Plain; write modbus(holding 0x0001));
@@ -71,20 +75,23 @@ impl<L: ::drivebus::Link> Case<L> {
     ) -> Result<S::Values, ::drivebus::Error> {
         self.device.read_many(set)
     }
-    /// Stores the parameters.
-    ///
-    /// See [`params::StoreEeprom`] for address, type, unit and source.
-    #[doc(alias = "0x0000")]
-    #[inline]
-    pub fn store_eeprom(&mut self) -> ::drivebus::Accessor<'_, L, params::StoreEeprom> {
-        self.device.parameter()
-    }
-    /// reset
-    ///
-    /// See [`params::Reset`] for address, type, unit and source.
-    #[doc(alias = "0x0001")]
-    #[inline]
-    pub fn reset(&mut self) -> ::drivebus::Accessor<'_, L, params::Reset> {
-        self.device.parameter()
+}
+/// The handle's accessors, one per parameter: in a module of their own so that their
+/// signatures name `Accessor` without its path.
+mod parameter_accessors {
+    #[allow(unused_imports)]
+    use super::*;
+    use ::drivebus::Accessor;
+    impl<L: ::drivebus::Link> Case<L> {
+        /// Stores the parameters. Address, type, unit and source: [`params::StoreEeprom`].
+        #[doc(alias("0x0000"))]
+        pub fn store_eeprom(&mut self) -> Accessor<'_, L, params::StoreEeprom> {
+            self.device.parameter()
+        }
+        /// reset Address, type, unit and source: [`params::Reset`].
+        #[doc(alias("0x0001"))]
+        pub fn reset(&mut self) -> Accessor<'_, L, params::Reset> {
+            self.device.parameter()
+        }
     }
 }

@@ -87,6 +87,10 @@ pub mod types {
     ::drivebus::open_enum!(ErrorCode: u16);
 }
 /// One marker type per parameter, implementing its value codec and per-protocol access.
+///
+/// Sources cited by id:
+///
+/// - `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
@@ -99,8 +103,8 @@ pub mod params {
     /// | Allowed (raw) | 96, 192, 384 |
     /// | Default (raw) | 192 |
     /// | Takes effect | after store + reset |
-    /// | Source | Manual, line 106 |
-    #[doc(alias = "0x0035")]
+    /// | Source | `m`, line 106 |
+    #[doc(alias("0x0035"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct BaudRate;
     ::drivebus::parameter!(
@@ -114,8 +118,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Input register `0x0063`, read-only |
     /// | Type | `u16` |
-    /// | Source | Manual, line 210 |
-    #[doc(alias = "0x0063")]
+    /// | Source | `m`, line 210 |
+    #[doc(alias("0x0063"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct ErrorCode;
     ::drivebus::parameter!(
@@ -161,20 +165,23 @@ impl<L: ::drivebus::Link> Case<L> {
     ) -> Result<S::Values, ::drivebus::Error> {
         self.device.read_many(set)
     }
-    /// baud_rate
-    ///
-    /// See [`params::BaudRate`] for address, type, unit and source.
-    #[doc(alias = "0x0035")]
-    #[inline]
-    pub fn baud_rate(&mut self) -> ::drivebus::Accessor<'_, L, params::BaudRate> {
-        self.device.parameter()
-    }
-    /// error_code
-    ///
-    /// See [`params::ErrorCode`] for address, type, unit and source.
-    #[doc(alias = "0x0063")]
-    #[inline]
-    pub fn error_code(&mut self) -> ::drivebus::Accessor<'_, L, params::ErrorCode> {
-        self.device.parameter()
+}
+/// The handle's accessors, one per parameter: in a module of their own so that their
+/// signatures name `Accessor` without its path.
+mod parameter_accessors {
+    #[allow(unused_imports)]
+    use super::*;
+    use ::drivebus::Accessor;
+    impl<L: ::drivebus::Link> Case<L> {
+        /// baud_rate Address, type, unit and source: [`params::BaudRate`].
+        #[doc(alias("0x0035"))]
+        pub fn baud_rate(&mut self) -> Accessor<'_, L, params::BaudRate> {
+            self.device.parameter()
+        }
+        /// error_code Address, type, unit and source: [`params::ErrorCode`].
+        #[doc(alias("0x0063"))]
+        pub fn error_code(&mut self) -> Accessor<'_, L, params::ErrorCode> {
+            self.device.parameter()
+        }
     }
 }

@@ -101,6 +101,10 @@ pub mod types {
     }
 }
 /// One marker type per parameter, implementing its value codec and per-protocol access.
+///
+/// Sources cited by id:
+///
+/// - `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
@@ -110,8 +114,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Input register `0x0060`, read-only |
     /// | Type | `u16` |
-    /// | Source | Manual, line 400 |
-    #[doc(alias = "0x0060")]
+    /// | Source | `m`, line 400 |
+    #[doc(alias("0x0060"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct DriveStatus;
     ::drivebus::parameter!(
@@ -124,8 +128,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Input register `0x0061`, read-only |
     /// | Type | `u8` |
-    /// | Source | Manual, line 410 |
-    #[doc(alias = "0x0061")]
+    /// | Source | `m`, line 410 |
+    #[doc(alias("0x0061"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Inputs;
     ::drivebus::parameter!(
@@ -171,20 +175,23 @@ impl<L: ::drivebus::Link> Case<L> {
     ) -> Result<S::Values, ::drivebus::Error> {
         self.device.read_many(set)
     }
-    /// drive_status
-    ///
-    /// See [`params::DriveStatus`] for address, type, unit and source.
-    #[doc(alias = "0x0060")]
-    #[inline]
-    pub fn drive_status(&mut self) -> ::drivebus::Accessor<'_, L, params::DriveStatus> {
-        self.device.parameter()
-    }
-    /// inputs
-    ///
-    /// See [`params::Inputs`] for address, type, unit and source.
-    #[doc(alias = "0x0061")]
-    #[inline]
-    pub fn inputs(&mut self) -> ::drivebus::Accessor<'_, L, params::Inputs> {
-        self.device.parameter()
+}
+/// The handle's accessors, one per parameter: in a module of their own so that their
+/// signatures name `Accessor` without its path.
+mod parameter_accessors {
+    #[allow(unused_imports)]
+    use super::*;
+    use ::drivebus::Accessor;
+    impl<L: ::drivebus::Link> Case<L> {
+        /// drive_status Address, type, unit and source: [`params::DriveStatus`].
+        #[doc(alias("0x0060"))]
+        pub fn drive_status(&mut self) -> Accessor<'_, L, params::DriveStatus> {
+            self.device.parameter()
+        }
+        /// inputs Address, type, unit and source: [`params::Inputs`].
+        #[doc(alias("0x0061"))]
+        pub fn inputs(&mut self) -> Accessor<'_, L, params::Inputs> {
+            self.device.parameter()
+        }
     }
 }

@@ -2,6 +2,10 @@
 /// Enumerations and bit-field words shared by the parameters.
 pub mod types {}
 /// One marker type per parameter, implementing its value codec and per-protocol access.
+///
+/// Sources cited by id:
+///
+/// - `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
@@ -11,9 +15,8 @@ pub mod params {
     /// |---|---|
     /// | CANopen | object `0x1000:0`, read-only |
     /// | Type | `u32` |
-    /// | Source | Manual, line 1 |
-    #[doc(alias = "0x1000")]
-    #[doc(alias = "1000h")]
+    /// | Source | `m`, line 1 |
+    #[doc(alias("0x1000", "1000h"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct DeviceType;
     ::drivebus::parameter!(
@@ -26,9 +29,8 @@ pub mod params {
     /// |---|---|
     /// | CANopen | object `0x1001:0`, read-only |
     /// | Type | `u8` |
-    /// | Source | Manual, line 1 |
-    #[doc(alias = "0x1001")]
-    #[doc(alias = "1001h")]
+    /// | Source | `m`, line 1 |
+    #[doc(alias("0x1001", "1001h"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct ErrorRegister;
     ::drivebus::parameter!(
@@ -41,9 +43,8 @@ pub mod params {
     /// |---|---|
     /// | CANopen | object `0x1018:0`, read-only |
     /// | Type | `u8` |
-    /// | Source | Manual, line 1 |
-    #[doc(alias = "0x1018")]
-    #[doc(alias = "1018h")]
+    /// | Source | `m`, line 1 |
+    #[doc(alias("0x1018", "1018h"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct IdentityCount;
     ::drivebus::parameter!(
@@ -56,10 +57,8 @@ pub mod params {
     /// |---|---|
     /// | CANopen | object `0x1018:1`, read-only |
     /// | Type | `u32` |
-    /// | Source | Manual, line 1 |
-    #[doc(alias = "0x1018")]
-    #[doc(alias = "1018h")]
-    #[doc(alias = "1018h:01")]
+    /// | Source | `m`, line 1 |
+    #[doc(alias("0x1018", "1018h", "1018h:01"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct VendorId;
     ::drivebus::parameter!(
@@ -72,9 +71,8 @@ pub mod params {
     /// |---|---|
     /// | CANopen | object `0x2100:0`, read-only |
     /// | Type | `u16` |
-    /// | Source | Manual, line 181 |
-    #[doc(alias = "0x2100")]
-    #[doc(alias = "2100h")]
+    /// | Source | `m`, line 181 |
+    #[doc(alias("0x2100", "2100h"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct FwRelease;
     ::drivebus::parameter!(
@@ -118,55 +116,39 @@ impl<L: ::drivebus::Link> Case<L> {
     ) -> Result<S::Values, ::drivebus::Error> {
         self.device.read_many(set)
     }
-    /// device_type
-    ///
-    /// See [`params::DeviceType`] for address, type, unit and source.
-    #[doc(alias = "0x1000")]
-    #[doc(alias = "1000h")]
-    #[inline]
-    pub fn device_type(&mut self) -> ::drivebus::Accessor<'_, L, params::DeviceType> {
-        self.device.parameter()
-    }
-    /// error_register
-    ///
-    /// See [`params::ErrorRegister`] for address, type, unit and source.
-    #[doc(alias = "0x1001")]
-    #[doc(alias = "1001h")]
-    #[inline]
-    pub fn error_register(
-        &mut self,
-    ) -> ::drivebus::Accessor<'_, L, params::ErrorRegister> {
-        self.device.parameter()
-    }
-    /// identity_count
-    ///
-    /// See [`params::IdentityCount`] for address, type, unit and source.
-    #[doc(alias = "0x1018")]
-    #[doc(alias = "1018h")]
-    #[inline]
-    pub fn identity_count(
-        &mut self,
-    ) -> ::drivebus::Accessor<'_, L, params::IdentityCount> {
-        self.device.parameter()
-    }
-    /// vendor_id
-    ///
-    /// See [`params::VendorId`] for address, type, unit and source.
-    #[doc(alias = "0x1018")]
-    #[doc(alias = "1018h")]
-    #[doc(alias = "1018h:01")]
-    #[inline]
-    pub fn vendor_id(&mut self) -> ::drivebus::Accessor<'_, L, params::VendorId> {
-        self.device.parameter()
-    }
-    /// fw_release
-    ///
-    /// See [`params::FwRelease`] for address, type, unit and source.
-    #[doc(alias = "0x2100")]
-    #[doc(alias = "2100h")]
-    #[inline]
-    pub fn fw_release(&mut self) -> ::drivebus::Accessor<'_, L, params::FwRelease> {
-        self.device.parameter()
+}
+/// The handle's accessors, one per parameter: in a module of their own so that their
+/// signatures name `Accessor` without its path.
+mod parameter_accessors {
+    #[allow(unused_imports)]
+    use super::*;
+    use ::drivebus::Accessor;
+    impl<L: ::drivebus::Link> Case<L> {
+        /// device_type Address, type, unit and source: [`params::DeviceType`].
+        #[doc(alias("0x1000", "1000h"))]
+        pub fn device_type(&mut self) -> Accessor<'_, L, params::DeviceType> {
+            self.device.parameter()
+        }
+        /// error_register Address, type, unit and source: [`params::ErrorRegister`].
+        #[doc(alias("0x1001", "1001h"))]
+        pub fn error_register(&mut self) -> Accessor<'_, L, params::ErrorRegister> {
+            self.device.parameter()
+        }
+        /// identity_count Address, type, unit and source: [`params::IdentityCount`].
+        #[doc(alias("0x1018", "1018h"))]
+        pub fn identity_count(&mut self) -> Accessor<'_, L, params::IdentityCount> {
+            self.device.parameter()
+        }
+        /// vendor_id Address, type, unit and source: [`params::VendorId`].
+        #[doc(alias("0x1018", "1018h", "1018h:01"))]
+        pub fn vendor_id(&mut self) -> Accessor<'_, L, params::VendorId> {
+            self.device.parameter()
+        }
+        /// fw_release Address, type, unit and source: [`params::FwRelease`].
+        #[doc(alias("0x2100", "2100h"))]
+        pub fn fw_release(&mut self) -> Accessor<'_, L, params::FwRelease> {
+            self.device.parameter()
+        }
     }
 }
 /// The values of the identity parameter this description covers.

@@ -25,6 +25,10 @@ pub mod types {
     ::drivebus::open_enum!(TimeoutAction: u16);
 }
 /// One marker type per parameter, implementing its value codec and per-protocol access.
+///
+/// Sources cited by id:
+///
+/// - `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
@@ -35,8 +39,8 @@ pub mod params {
     /// | Modbus | Holding register `0x0001`, write-only |
     /// | Type | `u16` |
     /// | Command | action, trigger value 2; never retried |
-    /// | Source | Manual, line 1 |
-    #[doc(alias = "0x0001")]
+    /// | Source | `m`, line 1 |
+    #[doc(alias("0x0001"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct LockCommand;
     ::drivebus::parameter!(
@@ -50,8 +54,8 @@ pub mod params {
     /// | Modbus | Holding register `0x0001`, write-only |
     /// | Type | `u16` |
     /// | Command | action, trigger value 8; never retried |
-    /// | Source | Manual, line 1 |
-    #[doc(alias = "0x0001")]
+    /// | Source | `m`, line 1 |
+    #[doc(alias("0x0001"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Start;
     ::drivebus::parameter!(Start = "start": u16 => u16, Plain; write modbus(holding 0x0001));
@@ -61,8 +65,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Holding register `0x0030`, write-only |
     /// | Type | `u16` |
-    /// | Source | Manual, line 2 |
-    #[doc(alias = "0x0030")]
+    /// | Source | `m`, line 2 |
+    #[doc(alias("0x0030"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct UnlockWord;
     ::drivebus::parameter!(
@@ -75,8 +79,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Holding register `0x005E`, read/write |
     /// | Type | `u16` |
-    /// | Source | Manual, line 3 |
-    #[doc(alias = "0x005E")]
+    /// | Source | `m`, line 3 |
+    #[doc(alias("0x005E"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Password;
     ::drivebus::parameter!(
@@ -90,8 +94,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Holding register `0x0033`, read/write |
     /// | Type | `u16` |
-    /// | Source | Manual, line 4 |
-    #[doc(alias = "0x0033")]
+    /// | Source | `m`, line 4 |
+    #[doc(alias("0x0033"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct ControlSource;
     ::drivebus::parameter!(
@@ -105,8 +109,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Holding register `0x0085`, read/write |
     /// | Type | `u16`, unit ms |
-    /// | Source | Manual, line 5 |
-    #[doc(alias = "0x0085")]
+    /// | Source | `m`, line 5 |
+    #[doc(alias("0x0085"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Timeout;
     ::drivebus::parameter!(
@@ -120,8 +124,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Holding register `0x0084`, read/write |
     /// | Type | `u16` |
-    /// | Source | Manual, line 6 |
-    #[doc(alias = "0x0084")]
+    /// | Source | `m`, line 6 |
+    #[doc(alias("0x0084"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Action;
     ::drivebus::parameter!(
@@ -169,57 +173,50 @@ impl<L: ::drivebus::Link> Case<L> {
     ) -> Result<S::Values, ::drivebus::Error> {
         self.device.read_many(set)
     }
-    /// lock_command
-    ///
-    /// See [`params::LockCommand`] for address, type, unit and source.
-    #[doc(alias = "0x0001")]
-    #[inline]
-    pub fn lock_command(&mut self) -> ::drivebus::Accessor<'_, L, params::LockCommand> {
-        self.device.parameter()
-    }
-    /// unlock_word
-    ///
-    /// See [`params::UnlockWord`] for address, type, unit and source.
-    #[doc(alias = "0x0030")]
-    #[inline]
-    pub fn unlock_word(&mut self) -> ::drivebus::Accessor<'_, L, params::UnlockWord> {
-        self.device.parameter()
-    }
-    /// password
-    ///
-    /// Read here; written only while unlocked (scope `parameters`, see [`Unlocked`]). See
-    /// [`params::Password`] for address, type, unit and source.
-    #[doc(alias = "0x005E")]
-    #[inline]
-    pub fn password(&mut self) -> LockedAccessor<'_, L, params::Password> {
-        LockedAccessor(self.device.parameter())
-    }
-    /// control_source
-    ///
-    /// Read here; written only while unlocked (scope `parameters`, see [`Unlocked`]). See
-    /// [`params::ControlSource`] for address, type, unit and source.
-    #[doc(alias = "0x0033")]
-    #[inline]
-    pub fn control_source(&mut self) -> LockedAccessor<'_, L, params::ControlSource> {
-        LockedAccessor(self.device.parameter())
-    }
-    /// timeout
-    ///
-    /// Read here; written only while unlocked (scope `parameters`, see [`Unlocked`]). See
-    /// [`params::Timeout`] for address, type, unit and source.
-    #[doc(alias = "0x0085")]
-    #[inline]
-    pub fn timeout(&mut self) -> LockedAccessor<'_, L, params::Timeout> {
-        LockedAccessor(self.device.parameter())
-    }
-    /// action
-    ///
-    /// Read here; written only while unlocked (scope `parameters`, see [`Unlocked`]). See
-    /// [`params::Action`] for address, type, unit and source.
-    #[doc(alias = "0x0084")]
-    #[inline]
-    pub fn action(&mut self) -> LockedAccessor<'_, L, params::Action> {
-        LockedAccessor(self.device.parameter())
+}
+/// The handle's accessors, one per parameter: in a module of their own so that their
+/// signatures name `Accessor` without its path.
+mod parameter_accessors {
+    #[allow(unused_imports)]
+    use super::*;
+    use ::drivebus::Accessor;
+    impl<L: ::drivebus::Link> Case<L> {
+        /// lock_command Address, type, unit and source: [`params::LockCommand`].
+        #[doc(alias("0x0001"))]
+        pub fn lock_command(&mut self) -> Accessor<'_, L, params::LockCommand> {
+            self.device.parameter()
+        }
+        /// unlock_word Address, type, unit and source: [`params::UnlockWord`].
+        #[doc(alias("0x0030"))]
+        pub fn unlock_word(&mut self) -> Accessor<'_, L, params::UnlockWord> {
+            self.device.parameter()
+        }
+        /// password Read here; written only while unlocked (scope `parameters`, see [`Unlocked`]).
+        /// Address, type, unit and source: [`params::Password`].
+        #[doc(alias("0x005E"))]
+        pub fn password(&mut self) -> LockedAccessor<'_, L, params::Password> {
+            LockedAccessor(self.device.parameter())
+        }
+        /// control_source Read here; written only while unlocked (scope `parameters`, see
+        /// [`Unlocked`]). Address, type, unit and source: [`params::ControlSource`].
+        #[doc(alias("0x0033"))]
+        pub fn control_source(
+            &mut self,
+        ) -> LockedAccessor<'_, L, params::ControlSource> {
+            LockedAccessor(self.device.parameter())
+        }
+        /// timeout Read here; written only while unlocked (scope `parameters`, see [`Unlocked`]).
+        /// Address, type, unit and source: [`params::Timeout`].
+        #[doc(alias("0x0085"))]
+        pub fn timeout(&mut self) -> LockedAccessor<'_, L, params::Timeout> {
+            LockedAccessor(self.device.parameter())
+        }
+        /// action Read here; written only while unlocked (scope `parameters`, see [`Unlocked`]).
+        /// Address, type, unit and source: [`params::Action`].
+        #[doc(alias("0x0084"))]
+        pub fn action(&mut self) -> LockedAccessor<'_, L, params::Action> {
+            LockedAccessor(self.device.parameter())
+        }
     }
 }
 /// Commands of the drive: `drive.<command>().trigger()` writes the command's value.
@@ -416,11 +413,8 @@ impl<'d, L: ::drivebus::Link, U: unlock::OpensControls> Unlocked<'d, L, U>
 where
     params::LockCommand: ::drivebus::Writable<L::Protocol>,
 {
-    /// start
-    ///
-    /// Writable while unlocked. See [`params::Start`] for address, type, unit and source.
-    #[doc(alias = "0x0001")]
-    #[inline]
+    /// start Writable while unlocked. Address, type, unit and source: [`params::Start`].
+    #[doc(alias("0x0001"))]
     pub fn start(&mut self) -> ::drivebus::Accessor<'_, L, params::Start> {
         self.drive.device.parameter()
     }
@@ -429,37 +423,26 @@ impl<'d, L: ::drivebus::Link, U: unlock::OpensParameters> Unlocked<'d, L, U>
 where
     params::LockCommand: ::drivebus::Writable<L::Protocol>,
 {
-    /// password
-    ///
-    /// Writable while unlocked. See [`params::Password`] for address, type, unit and source.
-    #[doc(alias = "0x005E")]
-    #[inline]
+    /// password Writable while unlocked. Address, type, unit and source: [`params::Password`].
+    #[doc(alias("0x005E"))]
     pub fn password(&mut self) -> ::drivebus::Accessor<'_, L, params::Password> {
         self.drive.device.parameter()
     }
-    /// control_source
-    ///
-    /// Writable while unlocked. See [`params::ControlSource`] for address, type, unit and source.
-    #[doc(alias = "0x0033")]
-    #[inline]
+    /// control_source Writable while unlocked. Address, type, unit and source:
+    /// [`params::ControlSource`].
+    #[doc(alias("0x0033"))]
     pub fn control_source(
         &mut self,
     ) -> ::drivebus::Accessor<'_, L, params::ControlSource> {
         self.drive.device.parameter()
     }
-    /// timeout
-    ///
-    /// Writable while unlocked. See [`params::Timeout`] for address, type, unit and source.
-    #[doc(alias = "0x0085")]
-    #[inline]
+    /// timeout Writable while unlocked. Address, type, unit and source: [`params::Timeout`].
+    #[doc(alias("0x0085"))]
     pub fn timeout(&mut self) -> ::drivebus::Accessor<'_, L, params::Timeout> {
         self.drive.device.parameter()
     }
-    /// action
-    ///
-    /// Writable while unlocked. See [`params::Action`] for address, type, unit and source.
-    #[doc(alias = "0x0084")]
-    #[inline]
+    /// action Writable while unlocked. Address, type, unit and source: [`params::Action`].
+    #[doc(alias("0x0084"))]
     pub fn action(&mut self) -> ::drivebus::Accessor<'_, L, params::Action> {
         self.drive.device.parameter()
     }

@@ -2,6 +2,10 @@
 /// Enumerations and bit-field words shared by the parameters.
 pub mod types {}
 /// One marker type per parameter, implementing its value codec and per-protocol access.
+///
+/// Sources cited by id:
+///
+/// - `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
@@ -11,8 +15,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Holding register `0x0042`, read/write |
     /// | Type | `i16`, unit rpm |
-    /// | Source | Manual, line 1 |
-    #[doc(alias = "0x0042")]
+    /// | Source | `m`, line 1 |
+    #[doc(alias("0x0042"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct SpeedSetpoint;
     ::drivebus::parameter!(
@@ -26,8 +30,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Holding register `0x0003`, read/write |
     /// | Type | `u16`, unit rpm |
-    /// | Source | Manual, line 2 |
-    #[doc(alias = "0x0003")]
+    /// | Source | `m`, line 2 |
+    #[doc(alias("0x0003"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct FullScaleVelocity;
     ::drivebus::parameter!(
@@ -41,8 +45,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Holding register `0x0040`, read/write |
     /// | Type | `u16`, unit ms |
-    /// | Source | Manual, line 3 |
-    #[doc(alias = "0x0040")]
+    /// | Source | `m`, line 3 |
+    #[doc(alias("0x0040"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct SpeedRampUp;
     ::drivebus::parameter!(
@@ -56,8 +60,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Holding register `0x0041`, read/write |
     /// | Type | `u16`, unit ms |
-    /// | Source | Manual, line 4 |
-    #[doc(alias = "0x0041")]
+    /// | Source | `m`, line 4 |
+    #[doc(alias("0x0041"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct SpeedRampDown;
     ::drivebus::parameter!(
@@ -71,8 +75,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Holding register `0x003F`, read/write |
     /// | Type | `u16` |
-    /// | Source | Manual, line 5 |
-    #[doc(alias = "0x003F")]
+    /// | Source | `m`, line 5 |
+    #[doc(alias("0x003F"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct RampEnable;
     ::drivebus::parameter!(
@@ -119,50 +123,40 @@ impl<L: ::drivebus::Link> Case<L> {
     ) -> Result<S::Values, ::drivebus::Error> {
         self.device.read_many(set)
     }
-    /// speed_setpoint
-    ///
-    /// See [`params::SpeedSetpoint`] for address, type, unit and source.
-    #[doc(alias = "0x0042")]
-    #[inline]
-    pub fn speed_setpoint(
-        &mut self,
-    ) -> ::drivebus::Accessor<'_, L, params::SpeedSetpoint> {
-        self.device.parameter()
-    }
-    /// full_scale_velocity
-    ///
-    /// See [`params::FullScaleVelocity`] for address, type, unit and source.
-    #[doc(alias = "0x0003")]
-    #[inline]
-    pub fn full_scale_velocity(
-        &mut self,
-    ) -> ::drivebus::Accessor<'_, L, params::FullScaleVelocity> {
-        self.device.parameter()
-    }
-    /// speed_ramp_up
-    ///
-    /// See [`params::SpeedRampUp`] for address, type, unit and source.
-    #[doc(alias = "0x0040")]
-    #[inline]
-    pub fn speed_ramp_up(&mut self) -> ::drivebus::Accessor<'_, L, params::SpeedRampUp> {
-        self.device.parameter()
-    }
-    /// speed_ramp_down
-    ///
-    /// See [`params::SpeedRampDown`] for address, type, unit and source.
-    #[doc(alias = "0x0041")]
-    #[inline]
-    pub fn speed_ramp_down(
-        &mut self,
-    ) -> ::drivebus::Accessor<'_, L, params::SpeedRampDown> {
-        self.device.parameter()
-    }
-    /// ramp_enable
-    ///
-    /// See [`params::RampEnable`] for address, type, unit and source.
-    #[doc(alias = "0x003F")]
-    #[inline]
-    pub fn ramp_enable(&mut self) -> ::drivebus::Accessor<'_, L, params::RampEnable> {
-        self.device.parameter()
+}
+/// The handle's accessors, one per parameter: in a module of their own so that their
+/// signatures name `Accessor` without its path.
+mod parameter_accessors {
+    #[allow(unused_imports)]
+    use super::*;
+    use ::drivebus::Accessor;
+    impl<L: ::drivebus::Link> Case<L> {
+        /// speed_setpoint Address, type, unit and source: [`params::SpeedSetpoint`].
+        #[doc(alias("0x0042"))]
+        pub fn speed_setpoint(&mut self) -> Accessor<'_, L, params::SpeedSetpoint> {
+            self.device.parameter()
+        }
+        /// full_scale_velocity Address, type, unit and source: [`params::FullScaleVelocity`].
+        #[doc(alias("0x0003"))]
+        pub fn full_scale_velocity(
+            &mut self,
+        ) -> Accessor<'_, L, params::FullScaleVelocity> {
+            self.device.parameter()
+        }
+        /// speed_ramp_up Address, type, unit and source: [`params::SpeedRampUp`].
+        #[doc(alias("0x0040"))]
+        pub fn speed_ramp_up(&mut self) -> Accessor<'_, L, params::SpeedRampUp> {
+            self.device.parameter()
+        }
+        /// speed_ramp_down Address, type, unit and source: [`params::SpeedRampDown`].
+        #[doc(alias("0x0041"))]
+        pub fn speed_ramp_down(&mut self) -> Accessor<'_, L, params::SpeedRampDown> {
+            self.device.parameter()
+        }
+        /// ramp_enable Address, type, unit and source: [`params::RampEnable`].
+        #[doc(alias("0x003F"))]
+        pub fn ramp_enable(&mut self) -> Accessor<'_, L, params::RampEnable> {
+            self.device.parameter()
+        }
     }
 }

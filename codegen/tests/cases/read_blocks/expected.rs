@@ -2,6 +2,10 @@
 /// Enumerations and bit-field words shared by the parameters.
 pub mod types {}
 /// One marker type per parameter, implementing its value codec and per-protocol access.
+///
+/// Sources cited by id:
+///
+/// - `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
@@ -11,8 +15,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Holding register `0x0018`, read-only |
     /// | Type | `u16` |
-    /// | Source | Manual, line 3 |
-    #[doc(alias = "0x0018")]
+    /// | Source | `m`, line 3 |
+    #[doc(alias("0x0018"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Status;
     ::drivebus::parameter!(Status = "status": u16 => u16, Plain; read modbus(holding 0x0018));
@@ -22,8 +26,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Holding register `0x0019`, read-only |
     /// | Type | `u16`, unit Hz, scale 1/10 |
-    /// | Source | Manual, line 4 |
-    #[doc(alias = "0x0019")]
+    /// | Source | `m`, line 4 |
+    #[doc(alias("0x0019"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Frequency;
     ::drivebus::parameter!(
@@ -78,21 +82,24 @@ impl<L: ::drivebus::Link> Case<L> {
     ) -> Result<S::Values, ::drivebus::Error> {
         self.device.read_many(set)
     }
-    /// status
-    ///
-    /// See [`params::Status`] for address, type, unit and source.
-    #[doc(alias = "0x0018")]
-    #[inline]
-    pub fn status(&mut self) -> ::drivebus::Accessor<'_, L, params::Status> {
-        self.device.parameter()
-    }
-    /// frequency
-    ///
-    /// See [`params::Frequency`] for address, type, unit and source.
-    #[doc(alias = "0x0019")]
-    #[inline]
-    pub fn frequency(&mut self) -> ::drivebus::Accessor<'_, L, params::Frequency> {
-        self.device.parameter()
+}
+/// The handle's accessors, one per parameter: in a module of their own so that their
+/// signatures name `Accessor` without its path.
+mod parameter_accessors {
+    #[allow(unused_imports)]
+    use super::*;
+    use ::drivebus::Accessor;
+    impl<L: ::drivebus::Link> Case<L> {
+        /// status Address, type, unit and source: [`params::Status`].
+        #[doc(alias("0x0018"))]
+        pub fn status(&mut self) -> Accessor<'_, L, params::Status> {
+            self.device.parameter()
+        }
+        /// frequency Address, type, unit and source: [`params::Frequency`].
+        #[doc(alias("0x0019"))]
+        pub fn frequency(&mut self) -> Accessor<'_, L, params::Frequency> {
+            self.device.parameter()
+        }
     }
 }
 /// Reads the device answers beyond `MODBUS_LIMITS.max_read_registers`, exactly as

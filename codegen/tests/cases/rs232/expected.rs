@@ -2,6 +2,10 @@
 /// Enumerations and bit-field words shared by the parameters.
 pub mod types {}
 /// One marker type per parameter, implementing its value codec and per-protocol access.
+///
+/// Sources cited by id:
+///
+/// - `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
@@ -12,10 +16,8 @@ pub mod params {
     /// | Modbus | Holding register `0x6F00`, 2 words, low word first, read/write |
     /// | RS-232 | object `0x60FF:0`, read/write |
     /// | Type | `i32`, unit rpm |
-    /// | Source | Manual, line 2500 |
-    #[doc(alias = "0x60FF")]
-    #[doc(alias = "0x6F00")]
-    #[doc(alias = "60FFh")]
+    /// | Source | `m`, line 2500 |
+    #[doc(alias("0x60FF", "0x6F00", "60FFh"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct TargetSpeed;
     ::drivebus::parameter!(
@@ -70,14 +72,19 @@ impl<L: ::drivebus::Link> Case<L> {
     ) -> Result<S::Values, ::drivebus::Error> {
         self.device.read_many(set)
     }
-    /// Target speed, one object over two protocols.
-    ///
-    /// See [`params::TargetSpeed`] for address, type, unit and source.
-    #[doc(alias = "0x60FF")]
-    #[doc(alias = "0x6F00")]
-    #[doc(alias = "60FFh")]
-    #[inline]
-    pub fn target_speed(&mut self) -> ::drivebus::Accessor<'_, L, params::TargetSpeed> {
-        self.device.parameter()
+}
+/// The handle's accessors, one per parameter: in a module of their own so that their
+/// signatures name `Accessor` without its path.
+mod parameter_accessors {
+    #[allow(unused_imports)]
+    use super::*;
+    use ::drivebus::Accessor;
+    impl<L: ::drivebus::Link> Case<L> {
+        /// Target speed, one object over two protocols. Address, type, unit and source:
+        /// [`params::TargetSpeed`].
+        #[doc(alias("0x60FF", "0x6F00", "60FFh"))]
+        pub fn target_speed(&mut self) -> Accessor<'_, L, params::TargetSpeed> {
+            self.device.parameter()
+        }
     }
 }

@@ -2,6 +2,10 @@
 /// Enumerations and bit-field words shared by the parameters.
 pub mod types {}
 /// One marker type per parameter, implementing its value codec and per-protocol access.
+///
+/// Sources cited by id:
+///
+/// - `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
@@ -11,8 +15,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Holding register `0x0010`, 2 words, high word first, read/write |
     /// | Type | `u32` |
-    /// | Source | Manual, line 4 |
-    #[doc(alias = "0x0010")]
+    /// | Source | `m`, line 4 |
+    #[doc(alias("0x0010"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct EncoderResolution;
     ::drivebus::parameter!(
@@ -26,8 +30,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Holding register `0x0012`, 2 words, high word first, read/write |
     /// | Type | `i32`, unit rpm, scale `1875 / (512 * encoder_resolution)` (read at run time) |
-    /// | Source | Manual, line 5 |
-    #[doc(alias = "0x0012")]
+    /// | Source | `m`, line 5 |
+    #[doc(alias("0x0012"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct TargetSpeed;
     ::drivebus::parameter!(
@@ -67,8 +71,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Input register `0x0020`, read-only |
     /// | Type | `i16`, unit A, scale `peak_current / 2048` (read at run time) |
-    /// | Source | Manual, line 6 |
-    #[doc(alias = "0x0020")]
+    /// | Source | `m`, line 6 |
+    #[doc(alias("0x0020"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Current;
     ::drivebus::parameter!(
@@ -153,31 +157,31 @@ impl<L: ::drivebus::Link> Case<L> {
     ) -> Result<S::Values, ::drivebus::Error> {
         self.device.read_many(set)
     }
-    /// encoder_resolution
-    ///
-    /// See [`params::EncoderResolution`] for address, type, unit and source.
-    #[doc(alias = "0x0010")]
-    #[inline]
-    pub fn encoder_resolution(
-        &mut self,
-    ) -> ::drivebus::Accessor<'_, L, params::EncoderResolution> {
-        self.device.parameter()
-    }
-    /// target_speed
-    ///
-    /// See [`params::TargetSpeed`] for address, type, unit and source.
-    #[doc(alias = "0x0012")]
-    #[inline]
-    pub fn target_speed(&mut self) -> ::drivebus::Accessor<'_, L, params::TargetSpeed> {
-        self.device.parameter()
-    }
-    /// current
-    ///
-    /// See [`params::Current`] for address, type, unit and source.
-    #[doc(alias = "0x0020")]
-    #[inline]
-    pub fn current(&mut self) -> ::drivebus::Accessor<'_, L, params::Current> {
-        self.device.parameter()
+}
+/// The handle's accessors, one per parameter: in a module of their own so that their
+/// signatures name `Accessor` without its path.
+mod parameter_accessors {
+    #[allow(unused_imports)]
+    use super::*;
+    use ::drivebus::Accessor;
+    impl<L: ::drivebus::Link> Case<L> {
+        /// encoder_resolution Address, type, unit and source: [`params::EncoderResolution`].
+        #[doc(alias("0x0010"))]
+        pub fn encoder_resolution(
+            &mut self,
+        ) -> Accessor<'_, L, params::EncoderResolution> {
+            self.device.parameter()
+        }
+        /// target_speed Address, type, unit and source: [`params::TargetSpeed`].
+        #[doc(alias("0x0012"))]
+        pub fn target_speed(&mut self) -> Accessor<'_, L, params::TargetSpeed> {
+            self.device.parameter()
+        }
+        /// current Address, type, unit and source: [`params::Current`].
+        #[doc(alias("0x0020"))]
+        pub fn current(&mut self) -> Accessor<'_, L, params::Current> {
+            self.device.parameter()
+        }
     }
 }
 /// The product models of the description; the model fixes the constants run-time scales read.

@@ -2,6 +2,10 @@
 /// Enumerations and bit-field words shared by the parameters.
 pub mod types {}
 /// One marker type per parameter, implementing its value codec and per-protocol access.
+///
+/// Sources cited by id:
+///
+/// - `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
@@ -11,10 +15,9 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Input register `0x0064`, read-only |
     /// | Type | `u16`, unit V, scale 1/100 |
-    /// | Source | Manual §2.2, line 432 |
+    /// | Source | `m` §2.2, line 432 |
     /// | Manual example | 0x1356 -&gt; 49.5 V |
-    #[doc(alias = "0x0064")]
-    #[doc(alias = "BUS DC LINK")]
+    #[doc(alias("0x0064", "BUS DC LINK"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct BusDcLink;
     ::drivebus::parameter!(
@@ -28,8 +31,8 @@ pub mod params {
     /// | Modbus | Input register `0x0070`, read-only |
     /// | Type | `i16`, unit °C, scale 1/10, offset -40/1 |
     /// | Range (raw) | 0..=2000 |
-    /// | Source | Manual, line 440 |
-    #[doc(alias = "0x0070")]
+    /// | Source | `m`, line 440 |
+    #[doc(alias("0x0070"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct MotorTemperature;
     ::drivebus::parameter!(
@@ -46,9 +49,9 @@ pub mod params {
     /// | Type | `i16`, unit rpm |
     /// | Range (raw) | -3000..=3000 |
     /// | Default (raw) | 0 |
-    /// | Source | Manual, line 900 |
+    /// | Source | `m`, line 900 |
     /// | Erratum | The table gives holding 0x0043; the worked example and the drive use 0x0042. |
-    #[doc(alias = "0x0042")]
+    #[doc(alias("0x0042"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct SpeedSetpoint;
     ::drivebus::parameter!(
@@ -62,8 +65,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Input register `0x0080`, 2 words, low word first, read-only |
     /// | Type | `i32`, unit rev, scale 1/4096 |
-    /// | Source | Manual, line 950 |
-    #[doc(alias = "0x0080")]
+    /// | Source | `m`, line 950 |
+    #[doc(alias("0x0080"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Position;
     ::drivebus::parameter!(
@@ -77,8 +80,8 @@ pub mod params {
     /// | Modbus | Holding register `0x0090`, 2 words, high word first, read/write |
     /// | Type | `f32` |
     /// | Range (raw) | 0.5..=2.5 |
-    /// | Source | Manual, line 960 |
-    #[doc(alias = "0x0090")]
+    /// | Source | `m`, line 960 |
+    #[doc(alias("0x0090"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Gain;
     ::drivebus::parameter!(
@@ -125,49 +128,42 @@ impl<L: ::drivebus::Link> Case<L> {
     ) -> Result<S::Values, ::drivebus::Error> {
         self.device.read_many(set)
     }
-    /// DC link voltage.
-    ///
-    /// See [`params::BusDcLink`] for address, type, unit and source.
-    #[doc(alias = "0x0064")]
-    #[doc(alias = "BUS DC LINK")]
-    #[inline]
-    pub fn bus_dc_link(&mut self) -> ::drivebus::Accessor<'_, L, params::BusDcLink> {
-        self.device.parameter()
-    }
-    /// Motor temperature.
-    ///
-    /// See [`params::MotorTemperature`] for address, type, unit and source.
-    #[doc(alias = "0x0070")]
-    #[inline]
-    pub fn motor_temperature(
-        &mut self,
-    ) -> ::drivebus::Accessor<'_, L, params::MotorTemperature> {
-        self.device.parameter()
-    }
-    /// Speed setpoint, written with FC 06 and read back with FC 04.
-    ///
-    /// See [`params::SpeedSetpoint`] for address, type, unit and source.
-    #[doc(alias = "0x0042")]
-    #[inline]
-    pub fn speed_setpoint(
-        &mut self,
-    ) -> ::drivebus::Accessor<'_, L, params::SpeedSetpoint> {
-        self.device.parameter()
-    }
-    /// Position, two registers, low word first.
-    ///
-    /// See [`params::Position`] for address, type, unit and source.
-    #[doc(alias = "0x0080")]
-    #[inline]
-    pub fn position(&mut self) -> ::drivebus::Accessor<'_, L, params::Position> {
-        self.device.parameter()
-    }
-    /// A plain dimensionless gain.
-    ///
-    /// See [`params::Gain`] for address, type, unit and source.
-    #[doc(alias = "0x0090")]
-    #[inline]
-    pub fn gain(&mut self) -> ::drivebus::Accessor<'_, L, params::Gain> {
-        self.device.parameter()
+}
+/// The handle's accessors, one per parameter: in a module of their own so that their
+/// signatures name `Accessor` without its path.
+mod parameter_accessors {
+    #[allow(unused_imports)]
+    use super::*;
+    use ::drivebus::Accessor;
+    impl<L: ::drivebus::Link> Case<L> {
+        /// DC link voltage. Address, type, unit and source: [`params::BusDcLink`].
+        #[doc(alias("0x0064", "BUS DC LINK"))]
+        pub fn bus_dc_link(&mut self) -> Accessor<'_, L, params::BusDcLink> {
+            self.device.parameter()
+        }
+        /// Motor temperature. Address, type, unit and source: [`params::MotorTemperature`].
+        #[doc(alias("0x0070"))]
+        pub fn motor_temperature(
+            &mut self,
+        ) -> Accessor<'_, L, params::MotorTemperature> {
+            self.device.parameter()
+        }
+        /// Speed setpoint, written with FC 06 and read back with FC 04. Address, type, unit and
+        /// source: [`params::SpeedSetpoint`].
+        #[doc(alias("0x0042"))]
+        pub fn speed_setpoint(&mut self) -> Accessor<'_, L, params::SpeedSetpoint> {
+            self.device.parameter()
+        }
+        /// Position, two registers, low word first. Address, type, unit and source:
+        /// [`params::Position`].
+        #[doc(alias("0x0080"))]
+        pub fn position(&mut self) -> Accessor<'_, L, params::Position> {
+            self.device.parameter()
+        }
+        /// A plain dimensionless gain. Address, type, unit and source: [`params::Gain`].
+        #[doc(alias("0x0090"))]
+        pub fn gain(&mut self) -> Accessor<'_, L, params::Gain> {
+            self.device.parameter()
+        }
     }
 }

@@ -2,6 +2,10 @@
 /// Enumerations and bit-field words shared by the parameters.
 pub mod types {}
 /// One marker type per parameter, implementing its value codec and per-protocol access.
+///
+/// Sources cited by id:
+///
+/// - `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
@@ -11,9 +15,8 @@ pub mod params {
     /// |---|---|
     /// | CANopen | object `0x1000:0`, read-only |
     /// | Type | `u32` |
-    /// | Source | Manual, line 1 |
-    #[doc(alias = "0x1000")]
-    #[doc(alias = "1000h")]
+    /// | Source | `m`, line 1 |
+    #[doc(alias("0x1000", "1000h"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct DeviceType;
     ::drivebus::parameter!(
@@ -26,9 +29,8 @@ pub mod params {
     /// |---|---|
     /// | CANopen | object `0x1001:0`, read-only |
     /// | Type | `u8` |
-    /// | Source | Manual, line 1 |
-    #[doc(alias = "0x1001")]
-    #[doc(alias = "1001h")]
+    /// | Source | `m`, line 1 |
+    #[doc(alias("0x1001", "1001h"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct ErrorRegister;
     ::drivebus::parameter!(
@@ -41,9 +43,8 @@ pub mod params {
     /// |---|---|
     /// | CANopen | object `0x1018:0`, read-only |
     /// | Type | `u8` |
-    /// | Source | Manual, line 1 |
-    #[doc(alias = "0x1018")]
-    #[doc(alias = "1018h")]
+    /// | Source | `m`, line 1 |
+    #[doc(alias("0x1018", "1018h"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct IdentityCount;
     ::drivebus::parameter!(
@@ -56,10 +57,8 @@ pub mod params {
     /// |---|---|
     /// | CANopen | object `0x1018:1`, read-only |
     /// | Type | `u32` |
-    /// | Source | Manual, line 1 |
-    #[doc(alias = "0x1018")]
-    #[doc(alias = "1018h")]
-    #[doc(alias = "1018h:01")]
+    /// | Source | `m`, line 1 |
+    #[doc(alias("0x1018", "1018h", "1018h:01"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct VendorId;
     ::drivebus::parameter!(
@@ -72,10 +71,8 @@ pub mod params {
     /// |---|---|
     /// | CANopen | object `0x6620:1`, read/write |
     /// | Type | `u8` |
-    /// | Source | Manual, line 1 |
-    #[doc(alias = "0x6620")]
-    #[doc(alias = "6620h")]
-    #[doc(alias = "6620h:01")]
+    /// | Source | `m`, line 1 |
+    #[doc(alias("0x6620", "6620h", "6620h:01"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct SafetyControlword;
     ::drivebus::parameter!(
@@ -89,10 +86,8 @@ pub mod params {
     /// |---|---|
     /// | CANopen | object `0x6622:1`, read/write |
     /// | Type | `u8` |
-    /// | Source | Manual, line 2 |
-    #[doc(alias = "0x6622")]
-    #[doc(alias = "6622h")]
-    #[doc(alias = "6622h:01")]
+    /// | Source | `m`, line 2 |
+    #[doc(alias("0x6622", "6622h", "6622h:01"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct SafetyControlwordInverted;
     ::drivebus::parameter!(
@@ -137,70 +132,49 @@ impl<L: ::drivebus::Link> Case<L> {
     ) -> Result<S::Values, ::drivebus::Error> {
         self.device.read_many(set)
     }
-    /// device_type
-    ///
-    /// See [`params::DeviceType`] for address, type, unit and source.
-    #[doc(alias = "0x1000")]
-    #[doc(alias = "1000h")]
-    #[inline]
-    pub fn device_type(&mut self) -> ::drivebus::Accessor<'_, L, params::DeviceType> {
-        self.device.parameter()
-    }
-    /// error_register
-    ///
-    /// See [`params::ErrorRegister`] for address, type, unit and source.
-    #[doc(alias = "0x1001")]
-    #[doc(alias = "1001h")]
-    #[inline]
-    pub fn error_register(
-        &mut self,
-    ) -> ::drivebus::Accessor<'_, L, params::ErrorRegister> {
-        self.device.parameter()
-    }
-    /// identity_count
-    ///
-    /// See [`params::IdentityCount`] for address, type, unit and source.
-    #[doc(alias = "0x1018")]
-    #[doc(alias = "1018h")]
-    #[inline]
-    pub fn identity_count(
-        &mut self,
-    ) -> ::drivebus::Accessor<'_, L, params::IdentityCount> {
-        self.device.parameter()
-    }
-    /// vendor_id
-    ///
-    /// See [`params::VendorId`] for address, type, unit and source.
-    #[doc(alias = "0x1018")]
-    #[doc(alias = "1018h")]
-    #[doc(alias = "1018h:01")]
-    #[inline]
-    pub fn vendor_id(&mut self) -> ::drivebus::Accessor<'_, L, params::VendorId> {
-        self.device.parameter()
-    }
-    /// Safety controlword 1.
-    ///
-    /// See [`params::SafetyControlword`] for address, type, unit and source.
-    #[doc(alias = "0x6620")]
-    #[doc(alias = "6620h")]
-    #[doc(alias = "6620h:01")]
-    #[inline]
-    pub fn safety_controlword(
-        &mut self,
-    ) -> ::drivebus::Accessor<'_, L, params::SafetyControlword> {
-        self.device.parameter()
-    }
-    /// Safety controlword 1, inverted.
-    ///
-    /// See [`params::SafetyControlwordInverted`] for address, type, unit and source.
-    #[doc(alias = "0x6622")]
-    #[doc(alias = "6622h")]
-    #[doc(alias = "6622h:01")]
-    #[inline]
-    pub fn safety_controlword_inverted(
-        &mut self,
-    ) -> ::drivebus::Accessor<'_, L, params::SafetyControlwordInverted> {
-        self.device.parameter()
+}
+/// The handle's accessors, one per parameter: in a module of their own so that their
+/// signatures name `Accessor` without its path.
+mod parameter_accessors {
+    #[allow(unused_imports)]
+    use super::*;
+    use ::drivebus::Accessor;
+    impl<L: ::drivebus::Link> Case<L> {
+        /// device_type Address, type, unit and source: [`params::DeviceType`].
+        #[doc(alias("0x1000", "1000h"))]
+        pub fn device_type(&mut self) -> Accessor<'_, L, params::DeviceType> {
+            self.device.parameter()
+        }
+        /// error_register Address, type, unit and source: [`params::ErrorRegister`].
+        #[doc(alias("0x1001", "1001h"))]
+        pub fn error_register(&mut self) -> Accessor<'_, L, params::ErrorRegister> {
+            self.device.parameter()
+        }
+        /// identity_count Address, type, unit and source: [`params::IdentityCount`].
+        #[doc(alias("0x1018", "1018h"))]
+        pub fn identity_count(&mut self) -> Accessor<'_, L, params::IdentityCount> {
+            self.device.parameter()
+        }
+        /// vendor_id Address, type, unit and source: [`params::VendorId`].
+        #[doc(alias("0x1018", "1018h", "1018h:01"))]
+        pub fn vendor_id(&mut self) -> Accessor<'_, L, params::VendorId> {
+            self.device.parameter()
+        }
+        /// Safety controlword 1. Address, type, unit and source: [`params::SafetyControlword`].
+        #[doc(alias("0x6620", "6620h", "6620h:01"))]
+        pub fn safety_controlword(
+            &mut self,
+        ) -> Accessor<'_, L, params::SafetyControlword> {
+            self.device.parameter()
+        }
+        /// Safety controlword 1, inverted. Address, type, unit and source:
+        /// [`params::SafetyControlwordInverted`].
+        #[doc(alias("0x6622", "6622h", "6622h:01"))]
+        pub fn safety_controlword_inverted(
+            &mut self,
+        ) -> Accessor<'_, L, params::SafetyControlwordInverted> {
+            self.device.parameter()
+        }
     }
 }
 /// The SRDOs (CANopen Safety, EN 50325-5) the description declares, as typed safety
@@ -214,7 +188,7 @@ pub mod srdo {
     /// | COB-IDs | 0xFF + 2 × node-ID (normal), 0x100 + 2 × node-ID (inverted) |
     /// | SCT / SRVT | 50 ms / 20 ms |
     /// | Normal data | 1 bytes, 1 entries |
-    /// | Source | Manual §SRDO 1 RX, line 1736 |
+    /// | Source | `m` §SRDO 1 RX, line 1736 |
     #[derive(Debug, Clone, Copy, PartialEq)]
     pub struct SafetyControl {
         /// Safety controlword 1.

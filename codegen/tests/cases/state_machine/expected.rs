@@ -2,6 +2,10 @@
 /// Enumerations and bit-field words shared by the parameters.
 pub mod types {}
 /// One marker type per parameter, implementing its value codec and per-protocol access.
+///
+/// Sources cited by id:
+///
+/// - `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
@@ -11,8 +15,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Input register `0x0060`, read-only |
     /// | Type | `u16` |
-    /// | Source | Manual, line 1 |
-    #[doc(alias = "0x0060")]
+    /// | Source | `m`, line 1 |
+    #[doc(alias("0x0060"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Status;
     ::drivebus::parameter!(Status = "status": u16 => u16, Plain; read modbus(input 0x0060));
@@ -23,8 +27,8 @@ pub mod params {
     /// | Modbus | Holding register `0x0001`, write-only |
     /// | Type | `u16` |
     /// | Command | action, trigger value 4; never retried |
-    /// | Source | Manual, line 7 |
-    #[doc(alias = "0x0001")]
+    /// | Source | `m`, line 7 |
+    #[doc(alias("0x0001"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Stop;
     ::drivebus::parameter!(Stop = "stop": u16 => u16, Plain; write modbus(holding 0x0001));
@@ -35,8 +39,8 @@ pub mod params {
     /// | Modbus | Holding register `0x0001`, write-only |
     /// | Type | `u16` |
     /// | Command | action, trigger value 8; never retried |
-    /// | Source | Manual, line 8 |
-    #[doc(alias = "0x0001")]
+    /// | Source | `m`, line 8 |
+    #[doc(alias("0x0001"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Start;
     ::drivebus::parameter!(Start = "start": u16 => u16, Plain; write modbus(holding 0x0001));
@@ -79,29 +83,29 @@ impl<L: ::drivebus::Link> Case<L> {
     ) -> Result<S::Values, ::drivebus::Error> {
         self.device.read_many(set)
     }
-    /// status
-    ///
-    /// See [`params::Status`] for address, type, unit and source.
-    #[doc(alias = "0x0060")]
-    #[inline]
-    pub fn status(&mut self) -> ::drivebus::Accessor<'_, L, params::Status> {
-        self.device.parameter()
-    }
-    /// stop
-    ///
-    /// See [`params::Stop`] for address, type, unit and source.
-    #[doc(alias = "0x0001")]
-    #[inline]
-    pub fn stop(&mut self) -> ::drivebus::Accessor<'_, L, params::Stop> {
-        self.device.parameter()
-    }
-    /// start
-    ///
-    /// See [`params::Start`] for address, type, unit and source.
-    #[doc(alias = "0x0001")]
-    #[inline]
-    pub fn start(&mut self) -> ::drivebus::Accessor<'_, L, params::Start> {
-        self.device.parameter()
+}
+/// The handle's accessors, one per parameter: in a module of their own so that their
+/// signatures name `Accessor` without its path.
+mod parameter_accessors {
+    #[allow(unused_imports)]
+    use super::*;
+    use ::drivebus::Accessor;
+    impl<L: ::drivebus::Link> Case<L> {
+        /// status Address, type, unit and source: [`params::Status`].
+        #[doc(alias("0x0060"))]
+        pub fn status(&mut self) -> Accessor<'_, L, params::Status> {
+            self.device.parameter()
+        }
+        /// stop Address, type, unit and source: [`params::Stop`].
+        #[doc(alias("0x0001"))]
+        pub fn stop(&mut self) -> Accessor<'_, L, params::Stop> {
+            self.device.parameter()
+        }
+        /// start Address, type, unit and source: [`params::Start`].
+        #[doc(alias("0x0001"))]
+        pub fn start(&mut self) -> Accessor<'_, L, params::Start> {
+            self.device.parameter()
+        }
     }
 }
 /// Commands of the drive: `drive.<command>().trigger()` writes the command's value.

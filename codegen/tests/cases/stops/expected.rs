@@ -2,6 +2,10 @@
 /// Enumerations and bit-field words shared by the parameters.
 pub mod types {}
 /// One marker type per parameter, implementing its value codec and per-protocol access.
+///
+/// Sources cited by id:
+///
+/// - `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
@@ -12,11 +16,11 @@ pub mod params {
     /// | Modbus | Holding register `0x0001`, write-only |
     /// | Type | `u16` |
     /// | Command | action, trigger value 4; never retried |
-    /// | Source | Manual, line 1 |
+    /// | Source | `m`, line 1 |
     ///
     /// **Stops the drive:** every write: always sent, whatever the handle believes of locks,
     /// identity or variant
-    #[doc(alias = "0x0001")]
+    #[doc(alias("0x0001"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Stop;
     ::drivebus::parameter!(
@@ -29,11 +33,11 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Holding register `0x0002`, read/write |
     /// | Type | `u16` |
-    /// | Source | Manual, line 2 |
+    /// | Source | `m`, line 2 |
     ///
     /// **Stops the drive:** a write with `raw & 0x0002 == 0x0000` or `raw & 0x0100 == 0x0100`:
     /// always sent, whatever the handle believes of locks, identity or variant
-    #[doc(alias = "0x0002")]
+    #[doc(alias("0x0002"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Control;
     ::drivebus::parameter!(
@@ -80,21 +84,24 @@ impl<L: ::drivebus::Link> Case<L> {
     ) -> Result<S::Values, ::drivebus::Error> {
         self.device.read_many(set)
     }
-    /// Stop command.
-    ///
-    /// See [`params::Stop`] for address, type, unit and source.
-    #[doc(alias = "0x0001")]
-    #[inline]
-    pub fn stop(&mut self) -> ::drivebus::Accessor<'_, L, params::Stop> {
-        self.device.parameter()
-    }
-    /// Control word.
-    ///
-    /// See [`params::Control`] for address, type, unit and source.
-    #[doc(alias = "0x0002")]
-    #[inline]
-    pub fn control(&mut self) -> ::drivebus::Accessor<'_, L, params::Control> {
-        self.device.parameter()
+}
+/// The handle's accessors, one per parameter: in a module of their own so that their
+/// signatures name `Accessor` without its path.
+mod parameter_accessors {
+    #[allow(unused_imports)]
+    use super::*;
+    use ::drivebus::Accessor;
+    impl<L: ::drivebus::Link> Case<L> {
+        /// Stop command. Address, type, unit and source: [`params::Stop`].
+        #[doc(alias("0x0001"))]
+        pub fn stop(&mut self) -> Accessor<'_, L, params::Stop> {
+            self.device.parameter()
+        }
+        /// Control word. Address, type, unit and source: [`params::Control`].
+        #[doc(alias("0x0002"))]
+        pub fn control(&mut self) -> Accessor<'_, L, params::Control> {
+            self.device.parameter()
+        }
     }
 }
 /// Commands of the drive: `drive.<command>().trigger()` writes the command's value.

@@ -20,6 +20,10 @@ impl Variant {
 /// Enumerations and bit-field words shared by the parameters.
 pub mod types {}
 /// One marker type per parameter, implementing its value codec and per-protocol access.
+///
+/// Sources cited by id:
+///
+/// - `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
@@ -29,8 +33,8 @@ pub mod params {
     /// |---|---|
     /// | Modbus | Holding register `0x0032`, read-only |
     /// | Type | `u16` |
-    /// | Source | Manual, line 42 |
-    #[doc(alias = "0x0032")]
+    /// | Source | `m`, line 42 |
+    #[doc(alias("0x0032"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct ParameterConfiguration;
     ::drivebus::parameter!(
@@ -44,9 +48,8 @@ pub mod params {
     /// | Modbus | Holding register `0x003C`, read/write (variant `pc400`) |
     /// | Modbus | Holding register `0x003D`, read/write (variant `pc507`) |
     /// | Type | `u16` |
-    /// | Source | Manual, line 43 |
-    #[doc(alias = "0x003C")]
-    #[doc(alias = "0x003D")]
+    /// | Source | `m`, line 43 |
+    #[doc(alias("0x003C", "0x003D"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct SpeedSource;
     ::drivebus::parameter!(
@@ -61,8 +64,8 @@ pub mod params {
     /// | Modbus | Holding register `0x0046`, read/write |
     /// | Type | `u16` |
     /// | Variants | pc507 |
-    /// | Source | Manual, line 44 |
-    #[doc(alias = "0x0046")]
+    /// | Source | `m`, line 44 |
+    #[doc(alias("0x0046"))]
     #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Boost;
     ::drivebus::parameter!(
@@ -113,32 +116,32 @@ impl<L: ::drivebus::Link> Case<L> {
     pub fn set_variant(&mut self, variant: Variant) {
         self.device.set_variant(variant.id());
     }
-    /// parameter_configuration
-    ///
-    /// See [`params::ParameterConfiguration`] for address, type, unit and source.
-    #[doc(alias = "0x0032")]
-    #[inline]
-    pub fn parameter_configuration(
-        &mut self,
-    ) -> ::drivebus::Accessor<'_, L, params::ParameterConfiguration> {
-        self.device.parameter()
-    }
-    /// speed_source
-    ///
-    /// See [`params::SpeedSource`] for address, type, unit and source.
-    #[doc(alias = "0x003C")]
-    #[doc(alias = "0x003D")]
-    #[inline]
-    pub fn speed_source(&mut self) -> ::drivebus::Accessor<'_, L, params::SpeedSource> {
-        self.device.parameter()
-    }
-    /// boost
-    ///
-    /// See [`params::Boost`] for address, type, unit and source.
-    #[doc(alias = "0x0046")]
-    #[inline]
-    pub fn boost(&mut self) -> ::drivebus::Accessor<'_, L, params::Boost> {
-        self.device.parameter()
+}
+/// The handle's accessors, one per parameter: in a module of their own so that their
+/// signatures name `Accessor` without its path.
+mod parameter_accessors {
+    #[allow(unused_imports)]
+    use super::*;
+    use ::drivebus::Accessor;
+    impl<L: ::drivebus::Link> Case<L> {
+        /// parameter_configuration Address, type, unit and source:
+        /// [`params::ParameterConfiguration`].
+        #[doc(alias("0x0032"))]
+        pub fn parameter_configuration(
+            &mut self,
+        ) -> Accessor<'_, L, params::ParameterConfiguration> {
+            self.device.parameter()
+        }
+        /// speed_source Address, type, unit and source: [`params::SpeedSource`].
+        #[doc(alias("0x003C", "0x003D"))]
+        pub fn speed_source(&mut self) -> Accessor<'_, L, params::SpeedSource> {
+            self.device.parameter()
+        }
+        /// boost Address, type, unit and source: [`params::Boost`].
+        #[doc(alias("0x0046"))]
+        pub fn boost(&mut self) -> Accessor<'_, L, params::Boost> {
+            self.device.parameter()
+        }
     }
 }
 /// What the drive reported about its variant.
