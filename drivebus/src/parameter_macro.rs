@@ -41,6 +41,35 @@
 #[doc(hidden)] // generated crates call it; users never need to
 #[macro_export]
 macro_rules! parameter {
+    // What `#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]` gives a unit marker,
+    // written here so that each generated marker is one line, not two.
+    (@marker $name:ident) => {
+        impl ::core::fmt::Debug for $name {
+            fn fmt(&self, f: &mut ::core::fmt::Formatter<'_>) -> ::core::fmt::Result {
+                f.write_str(::core::stringify!($name))
+            }
+        }
+        impl ::core::clone::Clone for $name {
+            fn clone(&self) -> Self {
+                *self
+            }
+        }
+        impl ::core::marker::Copy for $name {}
+        impl ::core::default::Default for $name {
+            fn default() -> Self {
+                $name
+            }
+        }
+        impl ::core::cmp::PartialEq for $name {
+            fn eq(&self, _: &Self) -> bool {
+                true
+            }
+        }
+        impl ::core::cmp::Eq for $name {}
+        impl ::core::hash::Hash for $name {
+            fn hash<H: ::core::hash::Hasher>(&self, _: &mut H) {}
+        }
+    };
     (
         $name:ident = $param_name:literal : $raw:ty => $value:ty, $codec:ident
         $(, scale = $num:literal / $den:literal $(, offset = $off_num:literal / $off_den:literal)?)?
@@ -51,6 +80,8 @@ macro_rules! parameter {
             $([bounds: $($bound:ident = $by:ident),+])? $($runtime:ident)?)*
         $(;)?
     ) => {
+        $crate::parameter!(@marker $name);
+
         impl $crate::Parameter for $name {
             const NAME: &'static str = $param_name;
             $(const SCALE: $crate::Scale =

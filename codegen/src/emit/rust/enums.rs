@@ -51,7 +51,8 @@ pub fn emit(e: &Enum) -> TokenStream {
             Some(text) => doc::escape(text),
             None => format!("The value `{}`.", v.value),
         };
-        doc_attrs(&format!("{meaning}{}", error_attribute_doc(v)))
+        let attributes = error_attribute_doc(v, &meaning);
+        doc_attrs(&format!("{meaning}{attributes}"))
     });
     let open_enum = layout::list_call("::drivebus::open_enum", quote! { #name: #raw });
     quote! {
@@ -123,18 +124,21 @@ fn error_attributes(e: &Enum) -> TokenStream {
     quote! { #class #led #meaning }
 }
 
-/// The error-code attributes of one value as rustdoc paragraphs; empty when it has none.
-fn error_attribute_doc(v: &EnumValue) -> String {
+/// The error-code attributes of one value as a rustdoc paragraph after its `doc`; empty when it
+/// has none. The meaning is left out where the doc already begins with it.
+fn error_attribute_doc(v: &EnumValue, doc: &str) -> String {
     let mut text = String::new();
-    if let Some(meaning) = &v.meaning {
-        text += &format!("\n\n{}", doc::escape(meaning));
+    if let Some(meaning) = v.meaning.as_deref().map(doc::escape) {
+        if !doc.starts_with(meaning.trim_end_matches('.')) {
+            text += &format!("\n\n{meaning}");
+        }
     }
     if let Some(class) = v.class {
         let class = match class {
             ValueClass::Fault => "fault",
             ValueClass::Warning => "warning",
         };
-        text += &format!("\n\nClass: {class}.");
+        text += &format!(" Class: {class}.");
     }
     if let Some([first, second]) = v.led {
         text += &format!(" LED code: {first},{second}.");

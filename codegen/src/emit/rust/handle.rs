@@ -1,6 +1,6 @@
 //! The drive handle: constructors per protocol and one accessor method per parameter.
 
-use proc_macro2::{Literal, TokenStream};
+use proc_macro2::{Ident, Literal, TokenStream};
 use quote::quote;
 
 use super::addresses::hex;
@@ -100,6 +100,17 @@ fn is_stop_command(p: &crate::ir::Parameter) -> bool {
     p.stops.as_ref().is_some_and(|s| s.patterns.is_none())
 }
 
+/// A marker as the accessor module names it: bare (the module glob-imports `params`), unless the
+/// bare name means one of the module's own imports.
+fn marker_path(marker: &Ident, handle: &Ident) -> TokenStream {
+    let taken = ["Accessor", "LockedAccessor", "Unlocked", "L"];
+    if marker == handle || taken.iter().any(|name| marker == name) {
+        quote! { params::#marker }
+    } else {
+        quote! { #marker }
+    }
+}
+
 pub fn emit(device: &Device) -> TokenStream {
     let handle = ident(&names::camel(&device.device.handle));
     let title = doc::escape(&device.device.name);
@@ -112,23 +123,22 @@ pub fn emit(device: &Device) -> TokenStream {
         .map(|p| {
             let method = ident(&names::method(&p.name));
             let marker = ident(&names::camel(&p.name));
+            let marker_path = marker_path(&marker, &handle);
             let summary = doc::summary(p.doc.as_deref(), &p.name);
-            let docs = doc_attrs(&format!(
-                "{summary} Address, type, unit and source: [`params::{marker}`]."
-            ));
+            let docs = doc_attrs(&format!("{summary} Details: [`params::{marker}`]."));
             let aliases = super::parameter_doc::aliases(p);
             // A stop is written from the handle too: never held back by the lock's account.
             if let Some(scope) = device.lock_scope_of(p).filter(|_| !is_stop_command(p)) {
                 // Written only through the guard of an unlock opening its scope.
                 let docs = doc_attrs(&format!(
                     "{summary} Read here; written only while unlocked (scope `{}`, see \
-                     [`Unlocked`]). Address, type, unit and source: [`params::{marker}`].",
+                     [`Unlocked`]). Details: [`params::{marker}`].",
                     doc::escape(&scope.name)
                 ));
                 return quote! {
                     #docs
                     #aliases
-                    pub fn #method(&mut self) -> LockedAccessor<'_, L, params::#marker> {
+                    pub fn #method(&mut self) -> LockedAccessor<'_, L, #marker_path> {
                         LockedAccessor(self.device.parameter())
                     }
                 };
@@ -136,7 +146,7 @@ pub fn emit(device: &Device) -> TokenStream {
             quote! {
                 #docs
                 #aliases
-                pub fn #method(&mut self) -> Accessor<'_, L, params::#marker> {
+                pub fn #method(&mut self) -> Accessor<'_, L, #marker_path> {
                     self.device.parameter()
                 }
             }
@@ -150,6 +160,10 @@ pub fn emit(device: &Device) -> TokenStream {
         }
     });
     let constructors = constructors(device, &handle);
+    let lock_items = device
+        .lock
+        .is_some()
+        .then(|| quote! { , LockedAccessor, Unlocked });
     // A drive with a write lock: the device follows it (`unlock.rs` emits `WRITE_LOCK`).
     let write_lock = device
         .lock
@@ -190,10 +204,11 @@ pub fn emit(device: &Device) -> TokenStream {
         }
 
         /// The handle's accessors, one per parameter: in a module of their own so that their
-        /// signatures name `Accessor` without its path.
+        /// signatures name `Accessor` and the markers without a path.
         mod parameter_accessors {
+            use super::params::*;
             #[allow(unused_imports)]
-            use super::*;
+            use super::{params, #handle #lock_items};
             use ::drivebus::Accessor;
 
             impl<L: ::drivebus::Link> #handle<L> {

@@ -68,7 +68,7 @@ fn handle_method(run: &IndexedParameter) -> TokenStream {
     let method = ident(&names::method(&run.name));
     let ty = ident(&names::camel(&run.name));
     let docs = doc_attrs(&format!(
-        "{}\n\nSub-indices {}..={} of object 0x{:04X}; see [`indexed::{ty}`].",
+        "{} Sub-indices {}..={} of object 0x{:04X}: [`indexed::{ty}`].",
         summary(run),
         run.first,
         run.last,
@@ -89,8 +89,7 @@ fn summary(run: &IndexedParameter) -> String {
 fn accessor_type(run: &IndexedParameter) -> TokenStream {
     let (ty, marker) = (ident(&names::camel(&run.name)), marker(run));
     let docs = doc_attrs(&format!(
-        "{}\n\nSub-indices {}..={} of object 0x{:04X} (marker [`params::{marker}`]; one member as \
-         a type: `drivebus::indexed::At<params::{marker}, N>`).",
+        "{} Sub-indices {}..={} of object 0x{:04X}, marker [`params::{marker}`].",
         summary(run),
         run.first,
         run.last,

@@ -27,6 +27,7 @@ pub fn emit(device: &Device) -> TokenStream {
         quote! {
             /// The PDO mappings the description declares, as typed payloads.
             pub mod pdo {
+                use ::drivebus::canopen::{pdo, NodeId};
                 #( #pdos )*
             }
         }
@@ -36,6 +37,7 @@ pub fn emit(device: &Device) -> TokenStream {
             /// The SRDOs (CANopen Safety, EN 50325-5) the description declares, as typed safety
             /// payloads. Needs `drivebus`'s `srdo` feature.
             pub mod srdo {
+                use ::drivebus::canopen::{pdo, srdo, NodeId};
                 #( #srdos )*
             }
         }

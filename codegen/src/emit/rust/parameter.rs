@@ -239,7 +239,6 @@ pub fn emit_as(p: &Parameter, name: &Ident, device: &Device) -> TokenStream {
     );
     let declaration = quote! {
         #aliases
-        #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
         pub struct #name;
         #invocation
     };

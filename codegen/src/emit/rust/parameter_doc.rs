@@ -204,19 +204,19 @@ pub fn text(p: &Parameter, device: &Device) -> String {
     out
 }
 
-/// The longest table row kept in the table: a row is one line, and a line of the generated source
+/// The longest row kept in the list: a row is one line, and a line of the generated source
 /// stays within 100 columns (after `    /// `).
 const ROW_WIDTH: usize = 92;
 
-/// The short rows as a two-column table, then each long one as a paragraph (`**Erratum:** ...`),
-/// which the emitter can wrap.
+/// The short rows as a list (`- Type: ...`: a table would cost two more lines per parameter),
+/// then each long one as a paragraph (`**Erratum:** ...`), which the emitter can wrap.
 fn table(rows: &[(&str, String)], out: &mut String) {
-    let line = |(key, value): &(&str, String)| format!("| {key} | {value} |");
+    let line = |(key, value): &(&str, String)| format!("- {key}: {value}");
     let (short, long): (Vec<_>, Vec<_>) = rows
         .iter()
         .partition(|r| line(r).chars().count() <= ROW_WIDTH);
     if !short.is_empty() {
-        out.push_str("\n\n| | |\n|---|---|");
+        out.push('\n');
         for r in short {
             let _ = write!(out, "\n{}", line(r));
         }
@@ -249,12 +249,14 @@ pub fn sources_doc(device: &Device) -> String {
     let listed: Vec<String> = device
         .sources
         .iter()
-        .map(|s| format!("- `{}`: {}", doc::escape(&s.id), doc::escape(&s.title)))
+        .map(|s| format!("`{}`: {}", doc::escape(&s.id), doc::escape(&s.title)))
         .collect();
     if listed.is_empty() {
         return String::new();
     }
-    format!("\n\nSources cited by id:\n\n{}", listed.join("\n"))
+    // One paragraph each, not a list: a long title wraps, and a list item's wrapped lines would
+    // need an indentation the doc wrapper does not give.
+    format!("\n\nSources cited by id:\n\n{}", listed.join("\n\n"))
 }
 
 /// What a command register does, in words: `store, trigger value 1`.
@@ -312,11 +314,13 @@ mod tests {
         let text = |name: &str| super::text(device.parameter(name).unwrap(), &device);
         let cob_id = text("cob_id_used_by_tpdo1");
         assert!(
-            cob_id.contains("| Default (raw) | node id + 384 |"),
+            cob_id.contains("- Default (raw): node id + 384"),
             "{cob_id}"
         );
         assert!(
-            cob_id.contains("| Node IDs | the default is a value this parameter accepts on node IDs 1..=15 only |"),
+            cob_id.contains(
+                "- Node IDs: the default is a value this parameter accepts on node IDs 1..=15 only"
+            ),
             "{cob_id}"
         );
         assert!(text("gateway_id").contains("on node IDs 16..=32 only"));

@@ -22,8 +22,8 @@ pub(super) fn emit(m: &Mapping, defaults: &PdoDefaults, device: &Device) -> Toke
         constants: quote! {
             /// The mapping, packed from bit 0 in this order. A constant: a mapping over 8 bytes
             /// does not compile.
-            pub const LAYOUT: ::drivebus::canopen::pdo::PdoLayout<#count> =
-                ::drivebus::canopen::pdo::PdoLayout::new([#( #entries ),*]);
+            pub const LAYOUT: pdo::PdoLayout<#count> =
+                pdo::PdoLayout::new([#( #entries ),*]);
 
             #config
         },

@@ -102,20 +102,23 @@ pub(super) fn emit(
         } else {
             (
                 quote! { let _ = node; #value },
-                format!("The COB-ID: 0x{:X} on every node (it does not follow the node id).", c.value),
+                format!(
+                    "The COB-ID: 0x{:X} on every node (it does not follow the node id).",
+                    c.value
+                ),
             )
         };
         let docs = doc_attrs(&text);
         quote! {
             #docs
-            pub const fn cob_id(node: ::drivebus::canopen::NodeId) -> u32 {
+            pub const fn cob_id(node: NodeId) -> u32 {
                 #body
             }
 
             /// The configuration that maps and enables this PDO on `node`, to apply over SDO in
             /// pre-operational (`config(node).apply(bus, node)`: disable, map, enable, as CiA 301
             /// orders it).
-            pub fn config(node: ::drivebus::canopen::NodeId) -> ::drivebus::canopen::pdo::PdoConfig<'static> {
+            pub fn config(node: NodeId) -> pdo::PdoConfig<'static> {
                 Self::config_with_cob_id(Self::cob_id(node))
             }
         }
@@ -136,10 +139,10 @@ pub(super) fn emit(
         /// by the plan's last step), to apply over SDO in pre-operational. It writes the
         /// transmission type, inhibit time and event timer the description gives, except an
         /// object the description makes read-only.
-        pub fn config_with_cob_id(cob_id: u32) -> ::drivebus::canopen::pdo::PdoConfig<'static> {
-            let layout: &'static ::drivebus::canopen::pdo::PdoLayout<#count> = &Self::LAYOUT;
-            ::drivebus::canopen::pdo::PdoConfig {
-                kind: ::drivebus::canopen::pdo::PdoKind::#kind,
+        pub fn config_with_cob_id(cob_id: u32) -> pdo::PdoConfig<'static> {
+            let layout: &'static pdo::PdoLayout<#count> = &Self::LAYOUT;
+            pdo::PdoConfig {
+                kind: pdo::PdoKind::#kind,
                 number: #number,
                 cob_id,
                 transmission_type: Self::TRANSMISSION_TYPE,

@@ -25,18 +25,18 @@ pub(super) fn emit(m: &Mapping, defaults: &SrdoDefaults, device: &Device) -> Tok
         doc: struct_doc(m, defaults, &fields, device),
         after_struct: quote! {
             const _: () = assert!(
-                ::drivebus::canopen::srdo::mapping::mapping_is_valid(&#name::MAPPING),
+                srdo::mapping::mapping_is_valid(&#name::MAPPING),
                 "SRDO mapping does not pair or does not fit 8 bytes"
             );
         },
         constants: quote! {
             /// The mapping object's entries in sub-index order: normal, inverted, normal, ...
-            pub const MAPPING: [::drivebus::canopen::pdo::MappedObject; #total] = [#( #entries ),*];
+            pub const MAPPING: [pdo::MappedObject; #total] = [#( #entries ),*];
 
             /// The normal data, packed from bit 0 as a PDO is.
-            pub const LAYOUT: ::drivebus::canopen::pdo::PdoLayout<#count> =
-                ::drivebus::canopen::pdo::PdoLayout::new(
-                    ::drivebus::canopen::srdo::mapping::normal_entries::<#count>(&Self::MAPPING),
+            pub const LAYOUT: pdo::PdoLayout<#count> =
+                pdo::PdoLayout::new(
+                    srdo::mapping::normal_entries::<#count>(&Self::MAPPING),
                 );
 
             #configuration
@@ -86,10 +86,10 @@ fn configuration(m: &Mapping, s: &SrdoDefaults) -> TokenStream {
         pub const NUMBER: u8 = #number;
 
         /// The default communication parameters on `node`.
-        pub fn communication(node: ::drivebus::canopen::NodeId) -> ::drivebus::canopen::srdo::SrdoCommunication {
+        pub fn communication(node: NodeId) -> srdo::SrdoCommunication {
             #ignore_node
-            ::drivebus::canopen::srdo::SrdoCommunication {
-                direction: ::drivebus::canopen::srdo::SrdoDirection::#direction,
+            srdo::SrdoCommunication {
+                direction: srdo::SrdoDirection::#direction,
                 sct_ms: #sct,
                 srvt_ms: #srvt,
                 transmission_type: #transmission_type,
@@ -100,8 +100,8 @@ fn configuration(m: &Mapping, s: &SrdoDefaults) -> TokenStream {
 
         /// The default configuration on `node`: what
         /// [`signature`](::drivebus::canopen::srdo::signature()) signs and the safety write writes.
-        pub fn config(node: ::drivebus::canopen::NodeId) -> ::drivebus::canopen::srdo::SrdoConfig<'static> {
-            ::drivebus::canopen::srdo::SrdoConfig {
+        pub fn config(node: NodeId) -> srdo::SrdoConfig<'static> {
+            srdo::SrdoConfig {
                 number: Self::NUMBER,
                 communication: Self::communication(node),
                 mapping: &Self::MAPPING,
@@ -109,22 +109,22 @@ fn configuration(m: &Mapping, s: &SrdoDefaults) -> TokenStream {
         }
 
         /// A consumer of this SRDO from `node`, with the default times.
-        pub fn consumer(node: ::drivebus::canopen::NodeId) -> Result<::drivebus::canopen::srdo::SrdoConsumer, ::drivebus::canopen::srdo::SrdoError> {
+        pub fn consumer(node: NodeId) -> Result<srdo::SrdoConsumer, srdo::SrdoError> {
             let c = Self::communication(node);
-            ::drivebus::canopen::srdo::SrdoConsumer::new(
+            srdo::SrdoConsumer::new(
                 c.cob_ids()?,
                 c.timing()?,
-                ::drivebus::canopen::srdo::mapping::data_bits(&Self::MAPPING),
+                srdo::mapping::data_bits(&Self::MAPPING),
             )
         }
 
         /// A producer of this SRDO for `node`, sending every SCT.
-        pub fn producer(node: ::drivebus::canopen::NodeId) -> Result<::drivebus::canopen::srdo::SrdoProducer, ::drivebus::canopen::srdo::SrdoError> {
+        pub fn producer(node: NodeId) -> Result<srdo::SrdoProducer, srdo::SrdoError> {
             let c = Self::communication(node);
-            ::drivebus::canopen::srdo::SrdoProducer::new(
+            srdo::SrdoProducer::new(
                 c.cob_ids()?,
                 c.timing()?.sct(),
-                ::drivebus::canopen::srdo::mapping::data_bits(&Self::MAPPING),
+                srdo::mapping::data_bits(&Self::MAPPING),
             )
         }
     }

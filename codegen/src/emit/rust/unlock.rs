@@ -199,7 +199,7 @@ fn setter(p: &Parameter) -> TokenStream {
     let marker = ident(&names::camel(&p.name));
     let summary = doc::summary(p.doc.as_deref(), &p.name);
     let docs = doc_attrs(&format!(
-        "{summary} Writable while unlocked. Address, type, unit and source: [`params::{marker}`]."
+        "{summary} Writable while unlocked. Details: [`params::{marker}`]."
     ));
     let aliases = super::parameter_doc::aliases(p);
     quote! {

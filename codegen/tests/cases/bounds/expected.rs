@@ -5,19 +5,16 @@ pub mod types {}
 ///
 /// Sources cited by id:
 ///
-/// - `m`: Manual
+/// `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
     /// full_scale_velocity
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0003`, read/write |
-    /// | Type | `u16`, unit rpm |
-    /// | Source | `m`, line 1 |
+    /// - Modbus: Holding register `0x0003`, read/write
+    /// - Type: `u16`, unit rpm
+    /// - Source: `m`, line 1
     #[doc(alias("0x0003"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct FullScaleVelocity;
     ::drivebus::parameter!(
         FullScaleVelocity = "full_scale_velocity": u16 => ::drivebus::units::Rpm, InUnit;
@@ -26,13 +23,10 @@ pub mod params {
     );
     /// minimum_speed
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0004`, read/write |
-    /// | Type | `i16`, unit rpm |
-    /// | Source | `m`, line 2 |
+    /// - Modbus: Holding register `0x0004`, read/write
+    /// - Type: `i16`, unit rpm
+    /// - Source: `m`, line 2
     #[doc(alias("0x0004"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct MinimumSpeed;
     ::drivebus::parameter!(
         MinimumSpeed = "minimum_speed": i16 => ::drivebus::units::Rpm, InUnit;
@@ -41,13 +35,10 @@ pub mod params {
     );
     /// maximum_speed
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0005`, read/write |
-    /// | Type | `i16`, unit rpm |
-    /// | Source | `m`, line 3 |
+    /// - Modbus: Holding register `0x0005`, read/write
+    /// - Type: `i16`, unit rpm
+    /// - Source: `m`, line 3
     #[doc(alias("0x0005"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct MaximumSpeed;
     ::drivebus::parameter!(
         MaximumSpeed = "maximum_speed": i16 => ::drivebus::units::Rpm, InUnit;
@@ -56,13 +47,10 @@ pub mod params {
     );
     /// speed_setpoint
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0006`, read/write |
-    /// | Type | `i16`, unit rpm |
-    /// | Source | `m`, line 4 |
+    /// - Modbus: Holding register `0x0006`, read/write
+    /// - Type: `i16`, unit rpm
+    /// - Source: `m`, line 4
     #[doc(alias("0x0006"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct SpeedSetpoint;
     ::drivebus::parameter!(
         SpeedSetpoint = "speed_setpoint": i16 => ::drivebus::units::Rpm, InUnit;
@@ -71,13 +59,10 @@ pub mod params {
     );
     /// serial_speed
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0007`, read/write |
-    /// | Type | `i16`, unit rpm |
-    /// | Source | `m`, line 5 |
+    /// - Modbus: Holding register `0x0007`, read/write
+    /// - Type: `i16`, unit rpm
+    /// - Source: `m`, line 5
     #[doc(alias("0x0007"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct SerialSpeed;
     ::drivebus::parameter!(
         SerialSpeed = "serial_speed": i16 => ::drivebus::units::Rpm, InUnit;
@@ -125,37 +110,36 @@ impl<L: ::drivebus::Link> Case<L> {
     }
 }
 /// The handle's accessors, one per parameter: in a module of their own so that their
-/// signatures name `Accessor` without its path.
+/// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
+    use super::params::*;
     #[allow(unused_imports)]
-    use super::*;
+    use super::{params, Case};
     use ::drivebus::Accessor;
     impl<L: ::drivebus::Link> Case<L> {
-        /// full_scale_velocity Address, type, unit and source: [`params::FullScaleVelocity`].
+        /// full_scale_velocity Details: [`params::FullScaleVelocity`].
         #[doc(alias("0x0003"))]
-        pub fn full_scale_velocity(
-            &mut self,
-        ) -> Accessor<'_, L, params::FullScaleVelocity> {
+        pub fn full_scale_velocity(&mut self) -> Accessor<'_, L, FullScaleVelocity> {
             self.device.parameter()
         }
-        /// minimum_speed Address, type, unit and source: [`params::MinimumSpeed`].
+        /// minimum_speed Details: [`params::MinimumSpeed`].
         #[doc(alias("0x0004"))]
-        pub fn minimum_speed(&mut self) -> Accessor<'_, L, params::MinimumSpeed> {
+        pub fn minimum_speed(&mut self) -> Accessor<'_, L, MinimumSpeed> {
             self.device.parameter()
         }
-        /// maximum_speed Address, type, unit and source: [`params::MaximumSpeed`].
+        /// maximum_speed Details: [`params::MaximumSpeed`].
         #[doc(alias("0x0005"))]
-        pub fn maximum_speed(&mut self) -> Accessor<'_, L, params::MaximumSpeed> {
+        pub fn maximum_speed(&mut self) -> Accessor<'_, L, MaximumSpeed> {
             self.device.parameter()
         }
-        /// speed_setpoint Address, type, unit and source: [`params::SpeedSetpoint`].
+        /// speed_setpoint Details: [`params::SpeedSetpoint`].
         #[doc(alias("0x0006"))]
-        pub fn speed_setpoint(&mut self) -> Accessor<'_, L, params::SpeedSetpoint> {
+        pub fn speed_setpoint(&mut self) -> Accessor<'_, L, SpeedSetpoint> {
             self.device.parameter()
         }
-        /// serial_speed Address, type, unit and source: [`params::SerialSpeed`].
+        /// serial_speed Details: [`params::SerialSpeed`].
         #[doc(alias("0x0007"))]
-        pub fn serial_speed(&mut self) -> Accessor<'_, L, params::SerialSpeed> {
+        pub fn serial_speed(&mut self) -> Accessor<'_, L, SerialSpeed> {
             self.device.parameter()
         }
     }

@@ -5,19 +5,16 @@ pub mod types {}
 ///
 /// Sources cited by id:
 ///
-/// - `m`: Manual
+/// `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
     /// device_type
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x1000:0`, read-only |
-    /// | Type | `u32` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x1000:0`, read-only
+    /// - Type: `u32`
+    /// - Source: `m`, line 1
     #[doc(alias("0x1000", "1000h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct DeviceType;
     ::drivebus::parameter!(
         DeviceType = "device_type": u32 => u32, Plain;
@@ -25,13 +22,10 @@ pub mod params {
     );
     /// error_register
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x1001:0`, read-only |
-    /// | Type | `u8` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x1001:0`, read-only
+    /// - Type: `u8`
+    /// - Source: `m`, line 1
     #[doc(alias("0x1001", "1001h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct ErrorRegister;
     ::drivebus::parameter!(
         ErrorRegister = "error_register": u8 => u8, Plain;
@@ -39,13 +33,10 @@ pub mod params {
     );
     /// identity_count
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x1018:0`, read-only |
-    /// | Type | `u8` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x1018:0`, read-only
+    /// - Type: `u8`
+    /// - Source: `m`, line 1
     #[doc(alias("0x1018", "1018h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct IdentityCount;
     ::drivebus::parameter!(
         IdentityCount = "identity_count": u8 => u8, Plain;
@@ -53,13 +44,10 @@ pub mod params {
     );
     /// vendor_id
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x1018:1`, read-only |
-    /// | Type | `u32` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x1018:1`, read-only
+    /// - Type: `u32`
+    /// - Source: `m`, line 1
     #[doc(alias("0x1018", "1018h", "1018h:01"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct VendorId;
     ::drivebus::parameter!(
         VendorId = "vendor_id": u32 => u32, Plain;
@@ -67,14 +55,11 @@ pub mod params {
     );
     /// motor_pole_pairs
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x2000:1`, read/write |
-    /// | Type | `u8` |
-    /// | Default (raw) | 4 |
-    /// | Source | `m`, line 4 |
+    /// - CANopen: object `0x2000:1`, read/write
+    /// - Type: `u8`
+    /// - Default (raw): 4
+    /// - Source: `m`, line 4
     #[doc(alias("0x2000", "2000h", "2000h:01"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct MotorPolePairs;
     ::drivebus::parameter!(
         MotorPolePairs = "motor_pole_pairs": u8 => u8, Plain;
@@ -83,13 +68,10 @@ pub mod params {
     );
     /// motor_name
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x2000:2`, read-only |
-    /// | Type | `string` |
-    /// | Source | `m`, line 5 |
+    /// - CANopen: object `0x2000:2`, read-only
+    /// - Type: `string`
+    /// - Source: `m`, line 5
     #[doc(alias("0x2000", "2000h", "2000h:02"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct MotorName;
     ::drivebus::parameter!(
         MotorName = "motor_name": ::drivebus::value::Text<8> => ::drivebus::value::Text<8>, Plain;
@@ -97,13 +79,10 @@ pub mod params {
     );
     /// node_guard
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x2001:0`, read-only (const) |
-    /// | Type | `u32` |
-    /// | Source | `m`, line 6 |
+    /// - CANopen: object `0x2001:0`, read-only (const)
+    /// - Type: `u32`
+    /// - Source: `m`, line 6
     #[doc(alias("0x2001", "2001h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct NodeGuard;
     ::drivebus::parameter!(
         NodeGuard = "node_guard": u32 => u32, Plain;
@@ -148,45 +127,46 @@ impl<L: ::drivebus::Link> Case<L> {
     }
 }
 /// The handle's accessors, one per parameter: in a module of their own so that their
-/// signatures name `Accessor` without its path.
+/// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
+    use super::params::*;
     #[allow(unused_imports)]
-    use super::*;
+    use super::{params, Case};
     use ::drivebus::Accessor;
     impl<L: ::drivebus::Link> Case<L> {
-        /// device_type Address, type, unit and source: [`params::DeviceType`].
+        /// device_type Details: [`params::DeviceType`].
         #[doc(alias("0x1000", "1000h"))]
-        pub fn device_type(&mut self) -> Accessor<'_, L, params::DeviceType> {
+        pub fn device_type(&mut self) -> Accessor<'_, L, DeviceType> {
             self.device.parameter()
         }
-        /// error_register Address, type, unit and source: [`params::ErrorRegister`].
+        /// error_register Details: [`params::ErrorRegister`].
         #[doc(alias("0x1001", "1001h"))]
-        pub fn error_register(&mut self) -> Accessor<'_, L, params::ErrorRegister> {
+        pub fn error_register(&mut self) -> Accessor<'_, L, ErrorRegister> {
             self.device.parameter()
         }
-        /// identity_count Address, type, unit and source: [`params::IdentityCount`].
+        /// identity_count Details: [`params::IdentityCount`].
         #[doc(alias("0x1018", "1018h"))]
-        pub fn identity_count(&mut self) -> Accessor<'_, L, params::IdentityCount> {
+        pub fn identity_count(&mut self) -> Accessor<'_, L, IdentityCount> {
             self.device.parameter()
         }
-        /// vendor_id Address, type, unit and source: [`params::VendorId`].
+        /// vendor_id Details: [`params::VendorId`].
         #[doc(alias("0x1018", "1018h", "1018h:01"))]
-        pub fn vendor_id(&mut self) -> Accessor<'_, L, params::VendorId> {
+        pub fn vendor_id(&mut self) -> Accessor<'_, L, VendorId> {
             self.device.parameter()
         }
-        /// motor_pole_pairs Address, type, unit and source: [`params::MotorPolePairs`].
+        /// motor_pole_pairs Details: [`params::MotorPolePairs`].
         #[doc(alias("0x2000", "2000h", "2000h:01"))]
-        pub fn motor_pole_pairs(&mut self) -> Accessor<'_, L, params::MotorPolePairs> {
+        pub fn motor_pole_pairs(&mut self) -> Accessor<'_, L, MotorPolePairs> {
             self.device.parameter()
         }
-        /// motor_name Address, type, unit and source: [`params::MotorName`].
+        /// motor_name Details: [`params::MotorName`].
         #[doc(alias("0x2000", "2000h", "2000h:02"))]
-        pub fn motor_name(&mut self) -> Accessor<'_, L, params::MotorName> {
+        pub fn motor_name(&mut self) -> Accessor<'_, L, MotorName> {
             self.device.parameter()
         }
-        /// node_guard Address, type, unit and source: [`params::NodeGuard`].
+        /// node_guard Details: [`params::NodeGuard`].
         #[doc(alias("0x2001", "2001h"))]
-        pub fn node_guard(&mut self) -> Accessor<'_, L, params::NodeGuard> {
+        pub fn node_guard(&mut self) -> Accessor<'_, L, NodeGuard> {
             self.device.parameter()
         }
     }

@@ -155,22 +155,22 @@ pub mod types {
 ///
 /// Sources cited by id:
 ///
-/// - `m`: Manual
-/// - `lafert`: Lafert Smartris Drive user guide, FW 2.4.2, rel. 2.2 (16.05.2025)
-/// - `swd`: ez-Wheel SWD Safety Drive & Wheel Drive user manual v2.0.3 (2024)
-/// - `kinco`: Kinco FD1X3 / FD1X4 low-voltage servo driver user manual
+/// `m`: Manual
+///
+/// `lafert`: Lafert Smartris Drive user guide, FW 2.4.2, rel. 2.2 (16.05.2025)
+///
+/// `swd`: ez-Wheel SWD Safety Drive & Wheel Drive user manual v2.0.3 (2024)
+///
+/// `kinco`: Kinco FD1X3 / FD1X4 low-voltage servo driver user manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
     /// device_type
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x1000:0`, read-only |
-    /// | Type | `u32` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x1000:0`, read-only
+    /// - Type: `u32`
+    /// - Source: `m`, line 1
     #[doc(alias("0x1000", "1000h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct DeviceType;
     ::drivebus::parameter!(
         DeviceType = "device_type": u32 => u32, Plain;
@@ -178,13 +178,10 @@ pub mod params {
     );
     /// error_register
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x1001:0`, read-only |
-    /// | Type | `u8` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x1001:0`, read-only
+    /// - Type: `u8`
+    /// - Source: `m`, line 1
     #[doc(alias("0x1001", "1001h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct ErrorRegister;
     ::drivebus::parameter!(
         ErrorRegister = "error_register": u8 => u8, Plain;
@@ -192,13 +189,10 @@ pub mod params {
     );
     /// identity_count
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x1018:0`, read-only |
-    /// | Type | `u8` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x1018:0`, read-only
+    /// - Type: `u8`
+    /// - Source: `m`, line 1
     #[doc(alias("0x1018", "1018h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct IdentityCount;
     ::drivebus::parameter!(
         IdentityCount = "identity_count": u8 => u8, Plain;
@@ -206,13 +200,10 @@ pub mod params {
     );
     /// vendor_id
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x1018:1`, read-only |
-    /// | Type | `u32` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x1018:1`, read-only
+    /// - Type: `u32`
+    /// - Source: `m`, line 1
     #[doc(alias("0x1018", "1018h", "1018h:01"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct VendorId;
     ::drivebus::parameter!(
         VendorId = "vendor_id": u32 => u32, Plain;
@@ -220,18 +211,15 @@ pub mod params {
     );
     /// Controlword: commands the power drive system state machine.
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x6040:0`, read/write |
-    /// | Type | `u16` |
-    /// | Default (raw) | 0 |
-    /// | Source | `swd` §10.1 6040h Controlword, line 2350 |
+    /// - CANopen: object `0x6040:0`, read/write
+    /// - Type: `u16`
+    /// - Default (raw): 0
+    /// - Source: `swd` §10.1 6040h Controlword, line 2350
     ///
     /// **Stops the drive:** a write with `raw & 0x0002 == 0x0000` or `raw & 0x0004 == 0x0000` or
     /// `raw & 0x0008 == 0x0000` or `raw & 0x0100 == 0x0100`: always sent, whatever the handle
     /// believes of locks, identity or variant
     #[doc(alias("0x6040", "6040h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Controlword;
     ::drivebus::parameter!(
         Controlword = "controlword": u16 => types::Controlword, Flags,
@@ -241,13 +229,10 @@ pub mod params {
     );
     /// Statusword: state of the power drive system state machine.
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x6041:0`, read-only |
-    /// | Type | `u16` |
-    /// | Source | `swd` §10.1 6041h Statusword, line 2384 |
+    /// - CANopen: object `0x6041:0`, read-only
+    /// - Type: `u16`
+    /// - Source: `swd` §10.1 6041h Statusword, line 2384
     #[doc(alias("0x6041", "6041h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Statusword;
     ::drivebus::parameter!(
         Statusword = "statusword": u16 => types::Statusword, Flags;
@@ -255,17 +240,14 @@ pub mod params {
     );
     /// Requested mode of operation.
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x6060:0`, read/write |
-    /// | Type | `i8` |
-    /// | Source | `lafert` §6.9.2, line 4968 |
+    /// - CANopen: object `0x6060:0`, read/write
+    /// - Type: `i8`
+    /// - Source: `lafert` §6.9.2, line 4968
     ///
     /// **Erratum:** The SWD manual's object table (line 2454) types 6060h as U32 (4 bytes); CiA
     /// 402, the Lafert guide (INT8, line 4968) and the Kinco manual (Integer8, line 1937) give
     /// INTEGER8, and negative manufacturer modes only make sense signed. Chose i8.
     #[doc(alias("0x6060", "6060h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct ModesOfOperation;
     ::drivebus::parameter!(
         ModesOfOperation = "modes_of_operation": i8 => types::ModesOfOperation, Enumerated;
@@ -274,17 +256,14 @@ pub mod params {
     );
     /// Mode of operation the drive is actually in.
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x6061:0`, read-only |
-    /// | Type | `i8` |
-    /// | Source | `lafert` §6.9.2, line 4970 |
+    /// - CANopen: object `0x6061:0`, read-only
+    /// - Type: `i8`
+    /// - Source: `lafert` §6.9.2, line 4970
     ///
     /// **Erratum:** The Lafert guide (line 4970) prints the index of "mode of operation display" as
     /// 6041h (the statusword); CiA 402 and the SWD manual (line 2455) give 6061h. The SWD table
     /// types it U32; chose INTEGER8 as for 6060h.
     #[doc(alias("0x6061", "6061h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct ModesOfOperationDisplay;
     ::drivebus::parameter!(
         ModesOfOperationDisplay = "modes_of_operation_display": i8 => types::ModesOfOperation,
@@ -330,58 +309,56 @@ impl<L: ::drivebus::Link> Case<L> {
     }
 }
 /// The handle's accessors, one per parameter: in a module of their own so that their
-/// signatures name `Accessor` without its path.
+/// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
+    use super::params::*;
     #[allow(unused_imports)]
-    use super::*;
+    use super::{params, Case};
     use ::drivebus::Accessor;
     impl<L: ::drivebus::Link> Case<L> {
-        /// device_type Address, type, unit and source: [`params::DeviceType`].
+        /// device_type Details: [`params::DeviceType`].
         #[doc(alias("0x1000", "1000h"))]
-        pub fn device_type(&mut self) -> Accessor<'_, L, params::DeviceType> {
+        pub fn device_type(&mut self) -> Accessor<'_, L, DeviceType> {
             self.device.parameter()
         }
-        /// error_register Address, type, unit and source: [`params::ErrorRegister`].
+        /// error_register Details: [`params::ErrorRegister`].
         #[doc(alias("0x1001", "1001h"))]
-        pub fn error_register(&mut self) -> Accessor<'_, L, params::ErrorRegister> {
+        pub fn error_register(&mut self) -> Accessor<'_, L, ErrorRegister> {
             self.device.parameter()
         }
-        /// identity_count Address, type, unit and source: [`params::IdentityCount`].
+        /// identity_count Details: [`params::IdentityCount`].
         #[doc(alias("0x1018", "1018h"))]
-        pub fn identity_count(&mut self) -> Accessor<'_, L, params::IdentityCount> {
+        pub fn identity_count(&mut self) -> Accessor<'_, L, IdentityCount> {
             self.device.parameter()
         }
-        /// vendor_id Address, type, unit and source: [`params::VendorId`].
+        /// vendor_id Details: [`params::VendorId`].
         #[doc(alias("0x1018", "1018h", "1018h:01"))]
-        pub fn vendor_id(&mut self) -> Accessor<'_, L, params::VendorId> {
+        pub fn vendor_id(&mut self) -> Accessor<'_, L, VendorId> {
             self.device.parameter()
         }
-        /// Controlword: commands the power drive system state machine. Address, type, unit and
-        /// source: [`params::Controlword`].
+        /// Controlword: commands the power drive system state machine. Details:
+        /// [`params::Controlword`].
         #[doc(alias("0x6040", "6040h"))]
-        pub fn controlword(&mut self) -> Accessor<'_, L, params::Controlword> {
+        pub fn controlword(&mut self) -> Accessor<'_, L, Controlword> {
             self.device.parameter()
         }
-        /// Statusword: state of the power drive system state machine. Address, type, unit and
-        /// source: [`params::Statusword`].
+        /// Statusword: state of the power drive system state machine. Details:
+        /// [`params::Statusword`].
         #[doc(alias("0x6041", "6041h"))]
-        pub fn statusword(&mut self) -> Accessor<'_, L, params::Statusword> {
+        pub fn statusword(&mut self) -> Accessor<'_, L, Statusword> {
             self.device.parameter()
         }
-        /// Requested mode of operation. Address, type, unit and source:
-        /// [`params::ModesOfOperation`].
+        /// Requested mode of operation. Details: [`params::ModesOfOperation`].
         #[doc(alias("0x6060", "6060h"))]
-        pub fn modes_of_operation(
-            &mut self,
-        ) -> Accessor<'_, L, params::ModesOfOperation> {
+        pub fn modes_of_operation(&mut self) -> Accessor<'_, L, ModesOfOperation> {
             self.device.parameter()
         }
-        /// Mode of operation the drive is actually in. Address, type, unit and source:
+        /// Mode of operation the drive is actually in. Details:
         /// [`params::ModesOfOperationDisplay`].
         #[doc(alias("0x6061", "6061h"))]
         pub fn modes_of_operation_display(
             &mut self,
-        ) -> Accessor<'_, L, params::ModesOfOperationDisplay> {
+        ) -> Accessor<'_, L, ModesOfOperationDisplay> {
             self.device.parameter()
         }
     }

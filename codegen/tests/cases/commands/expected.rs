@@ -5,20 +5,17 @@ pub mod types {}
 ///
 /// Sources cited by id:
 ///
-/// - `m`: Manual
+/// `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
     /// Stores the parameters.
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0000`, write-only |
-    /// | Type | `u16` |
-    /// | Command | store, trigger value 1; never retried |
-    /// | Source | `m`, line 160 |
+    /// - Modbus: Holding register `0x0000`, write-only
+    /// - Type: `u16`
+    /// - Command: store, trigger value 1; never retried
+    /// - Source: `m`, line 160
     #[doc(alias("0x0000"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct StoreEeprom;
     ::drivebus::parameter!(
         StoreEeprom = "store_eeprom": u16 => u16, Plain;
@@ -26,14 +23,11 @@ pub mod params {
     );
     /// reset
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0001`, write-only |
-    /// | Type | `u16` |
-    /// | Command | reset; never retried |
-    /// | Source | `m`, line 161 |
+    /// - Modbus: Holding register `0x0001`, write-only
+    /// - Type: `u16`
+    /// - Command: reset; never retried
+    /// - Source: `m`, line 161
     #[doc(alias("0x0001"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Reset;
     ::drivebus::parameter!(Reset = "reset": u16 => u16, Plain; write modbus(holding 0x0001));
 }
@@ -77,20 +71,21 @@ impl<L: ::drivebus::Link> Case<L> {
     }
 }
 /// The handle's accessors, one per parameter: in a module of their own so that their
-/// signatures name `Accessor` without its path.
+/// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
+    use super::params::*;
     #[allow(unused_imports)]
-    use super::*;
+    use super::{params, Case};
     use ::drivebus::Accessor;
     impl<L: ::drivebus::Link> Case<L> {
-        /// Stores the parameters. Address, type, unit and source: [`params::StoreEeprom`].
+        /// Stores the parameters. Details: [`params::StoreEeprom`].
         #[doc(alias("0x0000"))]
-        pub fn store_eeprom(&mut self) -> Accessor<'_, L, params::StoreEeprom> {
+        pub fn store_eeprom(&mut self) -> Accessor<'_, L, StoreEeprom> {
             self.device.parameter()
         }
-        /// reset Address, type, unit and source: [`params::Reset`].
+        /// reset Details: [`params::Reset`].
         #[doc(alias("0x0001"))]
-        pub fn reset(&mut self) -> Accessor<'_, L, params::Reset> {
+        pub fn reset(&mut self) -> Accessor<'_, L, Reset> {
             self.device.parameter()
         }
     }

@@ -36,13 +36,10 @@ pub mod types {
         pub const NONE: Self = Self(0);
         /// DC link overvoltage.
         ///
-        /// The DC link voltage exceeded its limit. Check the braking resistor.
-        ///
-        /// Class: fault. LED code: 3,1.
+        /// The DC link voltage exceeded its limit. Check the braking resistor. Class: fault. LED
+        /// code: 3,1.
         pub const OVERVOLTAGE: Self = Self(12816);
-        /// Heat sink hot.
-        ///
-        /// Class: warning.
+        /// Heat sink hot. Class: warning.
         pub const HOT: Self = Self(16912);
         /// Every documented value.
         pub const VALUES: &'static [Self] = &[Self::NONE, Self::OVERVOLTAGE, Self::HOT];
@@ -90,22 +87,19 @@ pub mod types {
 ///
 /// Sources cited by id:
 ///
-/// - `m`: Manual
+/// `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
     /// baud_rate
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0035`, read/write |
-    /// | Type | `u16` |
-    /// | Allowed (raw) | 96, 192, 384 |
-    /// | Default (raw) | 192 |
-    /// | Takes effect | after store + reset |
-    /// | Source | `m`, line 106 |
+    /// - Modbus: Holding register `0x0035`, read/write
+    /// - Type: `u16`
+    /// - Allowed (raw): 96, 192, 384
+    /// - Default (raw): 192
+    /// - Takes effect: after store + reset
+    /// - Source: `m`, line 106
     #[doc(alias("0x0035"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct BaudRate;
     ::drivebus::parameter!(
         BaudRate = "baud_rate": u16 => types::BaudRate, Enumerated, one_of[96, 192, 384];
@@ -114,13 +108,10 @@ pub mod params {
     );
     /// error_code
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Input register `0x0063`, read-only |
-    /// | Type | `u16` |
-    /// | Source | `m`, line 210 |
+    /// - Modbus: Input register `0x0063`, read-only
+    /// - Type: `u16`
+    /// - Source: `m`, line 210
     #[doc(alias("0x0063"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct ErrorCode;
     ::drivebus::parameter!(
         ErrorCode = "error_code": u16 => types::ErrorCode, Enumerated;
@@ -167,20 +158,21 @@ impl<L: ::drivebus::Link> Case<L> {
     }
 }
 /// The handle's accessors, one per parameter: in a module of their own so that their
-/// signatures name `Accessor` without its path.
+/// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
+    use super::params::*;
     #[allow(unused_imports)]
-    use super::*;
+    use super::{params, Case};
     use ::drivebus::Accessor;
     impl<L: ::drivebus::Link> Case<L> {
-        /// baud_rate Address, type, unit and source: [`params::BaudRate`].
+        /// baud_rate Details: [`params::BaudRate`].
         #[doc(alias("0x0035"))]
-        pub fn baud_rate(&mut self) -> Accessor<'_, L, params::BaudRate> {
+        pub fn baud_rate(&mut self) -> Accessor<'_, L, BaudRate> {
             self.device.parameter()
         }
-        /// error_code Address, type, unit and source: [`params::ErrorCode`].
+        /// error_code Details: [`params::ErrorCode`].
         #[doc(alias("0x0063"))]
-        pub fn error_code(&mut self) -> Accessor<'_, L, params::ErrorCode> {
+        pub fn error_code(&mut self) -> Accessor<'_, L, ErrorCode> {
             self.device.parameter()
         }
     }

@@ -104,19 +104,16 @@ pub mod types {
 ///
 /// Sources cited by id:
 ///
-/// - `m`: Manual
+/// `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
     /// drive_status
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Input register `0x0060`, read-only |
-    /// | Type | `u16` |
-    /// | Source | `m`, line 400 |
+    /// - Modbus: Input register `0x0060`, read-only
+    /// - Type: `u16`
+    /// - Source: `m`, line 400
     #[doc(alias("0x0060"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct DriveStatus;
     ::drivebus::parameter!(
         DriveStatus = "drive_status": u16 => types::DriveStatus, Flags;
@@ -124,13 +121,10 @@ pub mod params {
     );
     /// inputs
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Input register `0x0061`, read-only |
-    /// | Type | `u8` |
-    /// | Source | `m`, line 410 |
+    /// - Modbus: Input register `0x0061`, read-only
+    /// - Type: `u8`
+    /// - Source: `m`, line 410
     #[doc(alias("0x0061"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Inputs;
     ::drivebus::parameter!(
         Inputs = "inputs": u8 => types::Inputs, Flags;
@@ -177,20 +171,21 @@ impl<L: ::drivebus::Link> Case<L> {
     }
 }
 /// The handle's accessors, one per parameter: in a module of their own so that their
-/// signatures name `Accessor` without its path.
+/// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
+    use super::params::*;
     #[allow(unused_imports)]
-    use super::*;
+    use super::{params, Case};
     use ::drivebus::Accessor;
     impl<L: ::drivebus::Link> Case<L> {
-        /// drive_status Address, type, unit and source: [`params::DriveStatus`].
+        /// drive_status Details: [`params::DriveStatus`].
         #[doc(alias("0x0060"))]
-        pub fn drive_status(&mut self) -> Accessor<'_, L, params::DriveStatus> {
+        pub fn drive_status(&mut self) -> Accessor<'_, L, DriveStatus> {
             self.device.parameter()
         }
-        /// inputs Address, type, unit and source: [`params::Inputs`].
+        /// inputs Details: [`params::Inputs`].
         #[doc(alias("0x0061"))]
-        pub fn inputs(&mut self) -> Accessor<'_, L, params::Inputs> {
+        pub fn inputs(&mut self) -> Accessor<'_, L, Inputs> {
             self.device.parameter()
         }
     }

@@ -5,19 +5,16 @@ pub mod types {}
 ///
 /// Sources cited by id:
 ///
-/// - `m`: Manual
+/// `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
     /// device_type
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x1000:0`, read-only |
-    /// | Type | `u32` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x1000:0`, read-only
+    /// - Type: `u32`
+    /// - Source: `m`, line 1
     #[doc(alias("0x1000", "1000h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct DeviceType;
     ::drivebus::parameter!(
         DeviceType = "device_type": u32 => u32, Plain;
@@ -25,13 +22,10 @@ pub mod params {
     );
     /// error_register
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x1001:0`, read-only |
-    /// | Type | `u8` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x1001:0`, read-only
+    /// - Type: `u8`
+    /// - Source: `m`, line 1
     #[doc(alias("0x1001", "1001h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct ErrorRegister;
     ::drivebus::parameter!(
         ErrorRegister = "error_register": u8 => u8, Plain;
@@ -39,13 +33,10 @@ pub mod params {
     );
     /// identity_count
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x1018:0`, read-only |
-    /// | Type | `u8` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x1018:0`, read-only
+    /// - Type: `u8`
+    /// - Source: `m`, line 1
     #[doc(alias("0x1018", "1018h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct IdentityCount;
     ::drivebus::parameter!(
         IdentityCount = "identity_count": u8 => u8, Plain;
@@ -53,13 +44,10 @@ pub mod params {
     );
     /// vendor_id
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x1018:1`, read-only |
-    /// | Type | `u32` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x1018:1`, read-only
+    /// - Type: `u32`
+    /// - Source: `m`, line 1
     #[doc(alias("0x1018", "1018h", "1018h:01"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct VendorId;
     ::drivebus::parameter!(
         VendorId = "vendor_id": u32 => u32, Plain;
@@ -67,13 +55,10 @@ pub mod params {
     );
     /// fw_release
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x2100:0`, read-only |
-    /// | Type | `u16` |
-    /// | Source | `m`, line 181 |
+    /// - CANopen: object `0x2100:0`, read-only
+    /// - Type: `u16`
+    /// - Source: `m`, line 181
     #[doc(alias("0x2100", "2100h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct FwRelease;
     ::drivebus::parameter!(
         FwRelease = "fw_release": u16 => u16, Plain;
@@ -118,35 +103,36 @@ impl<L: ::drivebus::Link> Case<L> {
     }
 }
 /// The handle's accessors, one per parameter: in a module of their own so that their
-/// signatures name `Accessor` without its path.
+/// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
+    use super::params::*;
     #[allow(unused_imports)]
-    use super::*;
+    use super::{params, Case};
     use ::drivebus::Accessor;
     impl<L: ::drivebus::Link> Case<L> {
-        /// device_type Address, type, unit and source: [`params::DeviceType`].
+        /// device_type Details: [`params::DeviceType`].
         #[doc(alias("0x1000", "1000h"))]
-        pub fn device_type(&mut self) -> Accessor<'_, L, params::DeviceType> {
+        pub fn device_type(&mut self) -> Accessor<'_, L, DeviceType> {
             self.device.parameter()
         }
-        /// error_register Address, type, unit and source: [`params::ErrorRegister`].
+        /// error_register Details: [`params::ErrorRegister`].
         #[doc(alias("0x1001", "1001h"))]
-        pub fn error_register(&mut self) -> Accessor<'_, L, params::ErrorRegister> {
+        pub fn error_register(&mut self) -> Accessor<'_, L, ErrorRegister> {
             self.device.parameter()
         }
-        /// identity_count Address, type, unit and source: [`params::IdentityCount`].
+        /// identity_count Details: [`params::IdentityCount`].
         #[doc(alias("0x1018", "1018h"))]
-        pub fn identity_count(&mut self) -> Accessor<'_, L, params::IdentityCount> {
+        pub fn identity_count(&mut self) -> Accessor<'_, L, IdentityCount> {
             self.device.parameter()
         }
-        /// vendor_id Address, type, unit and source: [`params::VendorId`].
+        /// vendor_id Details: [`params::VendorId`].
         #[doc(alias("0x1018", "1018h", "1018h:01"))]
-        pub fn vendor_id(&mut self) -> Accessor<'_, L, params::VendorId> {
+        pub fn vendor_id(&mut self) -> Accessor<'_, L, VendorId> {
             self.device.parameter()
         }
-        /// fw_release Address, type, unit and source: [`params::FwRelease`].
+        /// fw_release Details: [`params::FwRelease`].
         #[doc(alias("0x2100", "2100h"))]
-        pub fn fw_release(&mut self) -> Accessor<'_, L, params::FwRelease> {
+        pub fn fw_release(&mut self) -> Accessor<'_, L, FwRelease> {
             self.device.parameter()
         }
     }

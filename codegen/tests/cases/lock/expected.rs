@@ -28,20 +28,17 @@ pub mod types {
 ///
 /// Sources cited by id:
 ///
-/// - `m`: Manual
+/// `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
     /// lock_command
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0001`, write-only |
-    /// | Type | `u16` |
-    /// | Command | action, trigger value 2; never retried |
-    /// | Source | `m`, line 1 |
+    /// - Modbus: Holding register `0x0001`, write-only
+    /// - Type: `u16`
+    /// - Command: action, trigger value 2; never retried
+    /// - Source: `m`, line 1
     #[doc(alias("0x0001"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct LockCommand;
     ::drivebus::parameter!(
         LockCommand = "lock_command": u16 => u16, Plain;
@@ -49,25 +46,19 @@ pub mod params {
     );
     /// start
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0001`, write-only |
-    /// | Type | `u16` |
-    /// | Command | action, trigger value 8; never retried |
-    /// | Source | `m`, line 1 |
+    /// - Modbus: Holding register `0x0001`, write-only
+    /// - Type: `u16`
+    /// - Command: action, trigger value 8; never retried
+    /// - Source: `m`, line 1
     #[doc(alias("0x0001"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Start;
     ::drivebus::parameter!(Start = "start": u16 => u16, Plain; write modbus(holding 0x0001));
     /// unlock_word
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0030`, write-only |
-    /// | Type | `u16` |
-    /// | Source | `m`, line 2 |
+    /// - Modbus: Holding register `0x0030`, write-only
+    /// - Type: `u16`
+    /// - Source: `m`, line 2
     #[doc(alias("0x0030"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct UnlockWord;
     ::drivebus::parameter!(
         UnlockWord = "unlock_word": u16 => u16, Plain;
@@ -75,13 +66,10 @@ pub mod params {
     );
     /// password
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x005E`, read/write |
-    /// | Type | `u16` |
-    /// | Source | `m`, line 3 |
+    /// - Modbus: Holding register `0x005E`, read/write
+    /// - Type: `u16`
+    /// - Source: `m`, line 3
     #[doc(alias("0x005E"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Password;
     ::drivebus::parameter!(
         Password = "password": u16 => u16, Plain;
@@ -90,13 +78,10 @@ pub mod params {
     );
     /// control_source
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0033`, read/write |
-    /// | Type | `u16` |
-    /// | Source | `m`, line 4 |
+    /// - Modbus: Holding register `0x0033`, read/write
+    /// - Type: `u16`
+    /// - Source: `m`, line 4
     #[doc(alias("0x0033"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct ControlSource;
     ::drivebus::parameter!(
         ControlSource = "control_source": u16 => u16, Plain;
@@ -105,13 +90,10 @@ pub mod params {
     );
     /// timeout
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0085`, read/write |
-    /// | Type | `u16`, unit ms |
-    /// | Source | `m`, line 5 |
+    /// - Modbus: Holding register `0x0085`, read/write
+    /// - Type: `u16`, unit ms
+    /// - Source: `m`, line 5
     #[doc(alias("0x0085"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Timeout;
     ::drivebus::parameter!(
         Timeout = "timeout": u16 => ::drivebus::units::Milliseconds, InUnit;
@@ -120,13 +102,10 @@ pub mod params {
     );
     /// action
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0084`, read/write |
-    /// | Type | `u16` |
-    /// | Source | `m`, line 6 |
+    /// - Modbus: Holding register `0x0084`, read/write
+    /// - Type: `u16`
+    /// - Source: `m`, line 6
     #[doc(alias("0x0084"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Action;
     ::drivebus::parameter!(
         Action = "action": u16 => types::TimeoutAction, Enumerated;
@@ -175,46 +154,45 @@ impl<L: ::drivebus::Link> Case<L> {
     }
 }
 /// The handle's accessors, one per parameter: in a module of their own so that their
-/// signatures name `Accessor` without its path.
+/// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
+    use super::params::*;
     #[allow(unused_imports)]
-    use super::*;
+    use super::{params, Case, LockedAccessor, Unlocked};
     use ::drivebus::Accessor;
     impl<L: ::drivebus::Link> Case<L> {
-        /// lock_command Address, type, unit and source: [`params::LockCommand`].
+        /// lock_command Details: [`params::LockCommand`].
         #[doc(alias("0x0001"))]
-        pub fn lock_command(&mut self) -> Accessor<'_, L, params::LockCommand> {
+        pub fn lock_command(&mut self) -> Accessor<'_, L, LockCommand> {
             self.device.parameter()
         }
-        /// unlock_word Address, type, unit and source: [`params::UnlockWord`].
+        /// unlock_word Details: [`params::UnlockWord`].
         #[doc(alias("0x0030"))]
-        pub fn unlock_word(&mut self) -> Accessor<'_, L, params::UnlockWord> {
+        pub fn unlock_word(&mut self) -> Accessor<'_, L, UnlockWord> {
             self.device.parameter()
         }
         /// password Read here; written only while unlocked (scope `parameters`, see [`Unlocked`]).
-        /// Address, type, unit and source: [`params::Password`].
+        /// Details: [`params::Password`].
         #[doc(alias("0x005E"))]
-        pub fn password(&mut self) -> LockedAccessor<'_, L, params::Password> {
+        pub fn password(&mut self) -> LockedAccessor<'_, L, Password> {
             LockedAccessor(self.device.parameter())
         }
         /// control_source Read here; written only while unlocked (scope `parameters`, see
-        /// [`Unlocked`]). Address, type, unit and source: [`params::ControlSource`].
+        /// [`Unlocked`]). Details: [`params::ControlSource`].
         #[doc(alias("0x0033"))]
-        pub fn control_source(
-            &mut self,
-        ) -> LockedAccessor<'_, L, params::ControlSource> {
+        pub fn control_source(&mut self) -> LockedAccessor<'_, L, ControlSource> {
             LockedAccessor(self.device.parameter())
         }
         /// timeout Read here; written only while unlocked (scope `parameters`, see [`Unlocked`]).
-        /// Address, type, unit and source: [`params::Timeout`].
+        /// Details: [`params::Timeout`].
         #[doc(alias("0x0085"))]
-        pub fn timeout(&mut self) -> LockedAccessor<'_, L, params::Timeout> {
+        pub fn timeout(&mut self) -> LockedAccessor<'_, L, Timeout> {
             LockedAccessor(self.device.parameter())
         }
         /// action Read here; written only while unlocked (scope `parameters`, see [`Unlocked`]).
-        /// Address, type, unit and source: [`params::Action`].
+        /// Details: [`params::Action`].
         #[doc(alias("0x0084"))]
-        pub fn action(&mut self) -> LockedAccessor<'_, L, params::Action> {
+        pub fn action(&mut self) -> LockedAccessor<'_, L, Action> {
             LockedAccessor(self.device.parameter())
         }
     }
@@ -413,7 +391,7 @@ impl<'d, L: ::drivebus::Link, U: unlock::OpensControls> Unlocked<'d, L, U>
 where
     params::LockCommand: ::drivebus::Writable<L::Protocol>,
 {
-    /// start Writable while unlocked. Address, type, unit and source: [`params::Start`].
+    /// start Writable while unlocked. Details: [`params::Start`].
     #[doc(alias("0x0001"))]
     pub fn start(&mut self) -> ::drivebus::Accessor<'_, L, params::Start> {
         self.drive.device.parameter()
@@ -423,25 +401,24 @@ impl<'d, L: ::drivebus::Link, U: unlock::OpensParameters> Unlocked<'d, L, U>
 where
     params::LockCommand: ::drivebus::Writable<L::Protocol>,
 {
-    /// password Writable while unlocked. Address, type, unit and source: [`params::Password`].
+    /// password Writable while unlocked. Details: [`params::Password`].
     #[doc(alias("0x005E"))]
     pub fn password(&mut self) -> ::drivebus::Accessor<'_, L, params::Password> {
         self.drive.device.parameter()
     }
-    /// control_source Writable while unlocked. Address, type, unit and source:
-    /// [`params::ControlSource`].
+    /// control_source Writable while unlocked. Details: [`params::ControlSource`].
     #[doc(alias("0x0033"))]
     pub fn control_source(
         &mut self,
     ) -> ::drivebus::Accessor<'_, L, params::ControlSource> {
         self.drive.device.parameter()
     }
-    /// timeout Writable while unlocked. Address, type, unit and source: [`params::Timeout`].
+    /// timeout Writable while unlocked. Details: [`params::Timeout`].
     #[doc(alias("0x0085"))]
     pub fn timeout(&mut self) -> ::drivebus::Accessor<'_, L, params::Timeout> {
         self.drive.device.parameter()
     }
-    /// action Writable while unlocked. Address, type, unit and source: [`params::Action`].
+    /// action Writable while unlocked. Details: [`params::Action`].
     #[doc(alias("0x0084"))]
     pub fn action(&mut self) -> ::drivebus::Accessor<'_, L, params::Action> {
         self.drive.device.parameter()

@@ -5,19 +5,16 @@ pub mod types {}
 ///
 /// Sources cited by id:
 ///
-/// - `m`: Manual
+/// `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
     /// device_type
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x1000:0`, read-only |
-    /// | Type | `u32` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x1000:0`, read-only
+    /// - Type: `u32`
+    /// - Source: `m`, line 1
     #[doc(alias("0x1000", "1000h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct DeviceType;
     ::drivebus::parameter!(
         DeviceType = "device_type": u32 => u32, Plain;
@@ -25,13 +22,10 @@ pub mod params {
     );
     /// error_register
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x1001:0`, read-only |
-    /// | Type | `u8` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x1001:0`, read-only
+    /// - Type: `u8`
+    /// - Source: `m`, line 1
     #[doc(alias("0x1001", "1001h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct ErrorRegister;
     ::drivebus::parameter!(
         ErrorRegister = "error_register": u8 => u8, Plain;
@@ -39,13 +33,10 @@ pub mod params {
     );
     /// identity_count
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x1018:0`, read-only |
-    /// | Type | `u8` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x1018:0`, read-only
+    /// - Type: `u8`
+    /// - Source: `m`, line 1
     #[doc(alias("0x1018", "1018h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct IdentityCount;
     ::drivebus::parameter!(
         IdentityCount = "identity_count": u8 => u8, Plain;
@@ -53,13 +44,10 @@ pub mod params {
     );
     /// vendor_id
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x1018:1`, read-only |
-    /// | Type | `u32` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x1018:1`, read-only
+    /// - Type: `u32`
+    /// - Source: `m`, line 1
     #[doc(alias("0x1018", "1018h", "1018h:01"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct VendorId;
     ::drivebus::parameter!(
         VendorId = "vendor_id": u32 => u32, Plain;
@@ -67,13 +55,10 @@ pub mod params {
     );
     /// statusword
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x6041:0`, read-only |
-    /// | Type | `u16` |
-    /// | Source | `m`, line 2 |
+    /// - CANopen: object `0x6041:0`, read-only
+    /// - Type: `u16`
+    /// - Source: `m`, line 2
     #[doc(alias("0x6041", "6041h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Statusword;
     ::drivebus::parameter!(
         Statusword = "statusword": u16 => u16, Plain;
@@ -81,13 +66,10 @@ pub mod params {
     );
     /// position_actual_value
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x6064:0`, read-only |
-    /// | Type | `i32` |
-    /// | Source | `m`, line 3 |
+    /// - CANopen: object `0x6064:0`, read-only
+    /// - Type: `i32`
+    /// - Source: `m`, line 3
     #[doc(alias("0x6064", "6064h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct PositionActualValue;
     ::drivebus::parameter!(
         PositionActualValue = "position_actual_value": i32 => i32, Plain;
@@ -132,48 +114,48 @@ impl<L: ::drivebus::Link> Case<L> {
     }
 }
 /// The handle's accessors, one per parameter: in a module of their own so that their
-/// signatures name `Accessor` without its path.
+/// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
+    use super::params::*;
     #[allow(unused_imports)]
-    use super::*;
+    use super::{params, Case};
     use ::drivebus::Accessor;
     impl<L: ::drivebus::Link> Case<L> {
-        /// device_type Address, type, unit and source: [`params::DeviceType`].
+        /// device_type Details: [`params::DeviceType`].
         #[doc(alias("0x1000", "1000h"))]
-        pub fn device_type(&mut self) -> Accessor<'_, L, params::DeviceType> {
+        pub fn device_type(&mut self) -> Accessor<'_, L, DeviceType> {
             self.device.parameter()
         }
-        /// error_register Address, type, unit and source: [`params::ErrorRegister`].
+        /// error_register Details: [`params::ErrorRegister`].
         #[doc(alias("0x1001", "1001h"))]
-        pub fn error_register(&mut self) -> Accessor<'_, L, params::ErrorRegister> {
+        pub fn error_register(&mut self) -> Accessor<'_, L, ErrorRegister> {
             self.device.parameter()
         }
-        /// identity_count Address, type, unit and source: [`params::IdentityCount`].
+        /// identity_count Details: [`params::IdentityCount`].
         #[doc(alias("0x1018", "1018h"))]
-        pub fn identity_count(&mut self) -> Accessor<'_, L, params::IdentityCount> {
+        pub fn identity_count(&mut self) -> Accessor<'_, L, IdentityCount> {
             self.device.parameter()
         }
-        /// vendor_id Address, type, unit and source: [`params::VendorId`].
+        /// vendor_id Details: [`params::VendorId`].
         #[doc(alias("0x1018", "1018h", "1018h:01"))]
-        pub fn vendor_id(&mut self) -> Accessor<'_, L, params::VendorId> {
+        pub fn vendor_id(&mut self) -> Accessor<'_, L, VendorId> {
             self.device.parameter()
         }
-        /// statusword Address, type, unit and source: [`params::Statusword`].
+        /// statusword Details: [`params::Statusword`].
         #[doc(alias("0x6041", "6041h"))]
-        pub fn statusword(&mut self) -> Accessor<'_, L, params::Statusword> {
+        pub fn statusword(&mut self) -> Accessor<'_, L, Statusword> {
             self.device.parameter()
         }
-        /// position_actual_value Address, type, unit and source: [`params::PositionActualValue`].
+        /// position_actual_value Details: [`params::PositionActualValue`].
         #[doc(alias("0x6064", "6064h"))]
-        pub fn position_actual_value(
-            &mut self,
-        ) -> Accessor<'_, L, params::PositionActualValue> {
+        pub fn position_actual_value(&mut self) -> Accessor<'_, L, PositionActualValue> {
             self.device.parameter()
         }
     }
 }
 /// The PDO mappings the description declares, as typed payloads.
 pub mod pdo {
+    use ::drivebus::canopen::{pdo, NodeId};
     /// TPDO 3: statusword and position actual value.
     ///
     /// | | |
@@ -198,7 +180,7 @@ pub mod pdo {
     impl Tpdo3 {
         /// The mapping, packed from bit 0 in this order. A constant: a mapping over 8 bytes
         /// does not compile.
-        pub const LAYOUT: ::drivebus::canopen::pdo::PdoLayout<2> = ::drivebus::canopen::pdo::PdoLayout::new([
+        pub const LAYOUT: pdo::PdoLayout<2> = pdo::PdoLayout::new([
             ::drivebus::canopen::pdo::MappedObject::new(0x6041, 0, 16),
             ::drivebus::canopen::pdo::MappedObject::new(0x6064, 0, 32),
         ]);
@@ -211,27 +193,23 @@ pub mod pdo {
         /// Default event timer (communication sub-index 5, raw), if the description gives it.
         pub const EVENT_TIMER: Option<u16> = None;
         /// The COB-ID on node `node`: 0x40000380 + node id.
-        pub const fn cob_id(node: ::drivebus::canopen::NodeId) -> u32 {
+        pub const fn cob_id(node: NodeId) -> u32 {
             0x40000380 + node.get() as u32
         }
         /// The configuration that maps and enables this PDO on `node`, to apply over SDO in
         /// pre-operational (`config(node).apply(bus, node)`: disable, map, enable, as CiA 301
         /// orders it).
-        pub fn config(
-            node: ::drivebus::canopen::NodeId,
-        ) -> ::drivebus::canopen::pdo::PdoConfig<'static> {
+        pub fn config(node: NodeId) -> pdo::PdoConfig<'static> {
             Self::config_with_cob_id(Self::cob_id(node))
         }
         /// The configuration that maps and enables this PDO under `cob_id` (bit 31 is cleared
         /// by the plan's last step), to apply over SDO in pre-operational. It writes the
         /// transmission type, inhibit time and event timer the description gives, except an
         /// object the description makes read-only.
-        pub fn config_with_cob_id(
-            cob_id: u32,
-        ) -> ::drivebus::canopen::pdo::PdoConfig<'static> {
-            let layout: &'static ::drivebus::canopen::pdo::PdoLayout<2> = &Self::LAYOUT;
-            ::drivebus::canopen::pdo::PdoConfig {
-                kind: ::drivebus::canopen::pdo::PdoKind::Transmit,
+        pub fn config_with_cob_id(cob_id: u32) -> pdo::PdoConfig<'static> {
+            let layout: &'static pdo::PdoLayout<2> = &Self::LAYOUT;
+            pdo::PdoConfig {
+                kind: pdo::PdoKind::Transmit,
                 number: 3,
                 cob_id,
                 transmission_type: Self::TRANSMISSION_TYPE,

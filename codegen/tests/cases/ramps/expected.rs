@@ -5,19 +5,16 @@ pub mod types {}
 ///
 /// Sources cited by id:
 ///
-/// - `m`: Manual
+/// `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
     /// speed_setpoint
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0042`, read/write |
-    /// | Type | `i16`, unit rpm |
-    /// | Source | `m`, line 1 |
+    /// - Modbus: Holding register `0x0042`, read/write
+    /// - Type: `i16`, unit rpm
+    /// - Source: `m`, line 1
     #[doc(alias("0x0042"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct SpeedSetpoint;
     ::drivebus::parameter!(
         SpeedSetpoint = "speed_setpoint": i16 => ::drivebus::units::Rpm, InUnit;
@@ -26,13 +23,10 @@ pub mod params {
     );
     /// full_scale_velocity
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0003`, read/write |
-    /// | Type | `u16`, unit rpm |
-    /// | Source | `m`, line 2 |
+    /// - Modbus: Holding register `0x0003`, read/write
+    /// - Type: `u16`, unit rpm
+    /// - Source: `m`, line 2
     #[doc(alias("0x0003"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct FullScaleVelocity;
     ::drivebus::parameter!(
         FullScaleVelocity = "full_scale_velocity": u16 => ::drivebus::units::Rpm, InUnit;
@@ -41,13 +35,10 @@ pub mod params {
     );
     /// speed_ramp_up
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0040`, read/write |
-    /// | Type | `u16`, unit ms |
-    /// | Source | `m`, line 3 |
+    /// - Modbus: Holding register `0x0040`, read/write
+    /// - Type: `u16`, unit ms
+    /// - Source: `m`, line 3
     #[doc(alias("0x0040"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct SpeedRampUp;
     ::drivebus::parameter!(
         SpeedRampUp = "speed_ramp_up": u16 => ::drivebus::units::Milliseconds, InUnit;
@@ -56,13 +47,10 @@ pub mod params {
     );
     /// speed_ramp_down
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0041`, read/write |
-    /// | Type | `u16`, unit ms |
-    /// | Source | `m`, line 4 |
+    /// - Modbus: Holding register `0x0041`, read/write
+    /// - Type: `u16`, unit ms
+    /// - Source: `m`, line 4
     #[doc(alias("0x0041"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct SpeedRampDown;
     ::drivebus::parameter!(
         SpeedRampDown = "speed_ramp_down": u16 => ::drivebus::units::Milliseconds, InUnit;
@@ -71,13 +59,10 @@ pub mod params {
     );
     /// ramp_enable
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x003F`, read/write |
-    /// | Type | `u16` |
-    /// | Source | `m`, line 5 |
+    /// - Modbus: Holding register `0x003F`, read/write
+    /// - Type: `u16`
+    /// - Source: `m`, line 5
     #[doc(alias("0x003F"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct RampEnable;
     ::drivebus::parameter!(
         RampEnable = "ramp_enable": u16 => u16, Plain;
@@ -125,37 +110,36 @@ impl<L: ::drivebus::Link> Case<L> {
     }
 }
 /// The handle's accessors, one per parameter: in a module of their own so that their
-/// signatures name `Accessor` without its path.
+/// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
+    use super::params::*;
     #[allow(unused_imports)]
-    use super::*;
+    use super::{params, Case};
     use ::drivebus::Accessor;
     impl<L: ::drivebus::Link> Case<L> {
-        /// speed_setpoint Address, type, unit and source: [`params::SpeedSetpoint`].
+        /// speed_setpoint Details: [`params::SpeedSetpoint`].
         #[doc(alias("0x0042"))]
-        pub fn speed_setpoint(&mut self) -> Accessor<'_, L, params::SpeedSetpoint> {
+        pub fn speed_setpoint(&mut self) -> Accessor<'_, L, SpeedSetpoint> {
             self.device.parameter()
         }
-        /// full_scale_velocity Address, type, unit and source: [`params::FullScaleVelocity`].
+        /// full_scale_velocity Details: [`params::FullScaleVelocity`].
         #[doc(alias("0x0003"))]
-        pub fn full_scale_velocity(
-            &mut self,
-        ) -> Accessor<'_, L, params::FullScaleVelocity> {
+        pub fn full_scale_velocity(&mut self) -> Accessor<'_, L, FullScaleVelocity> {
             self.device.parameter()
         }
-        /// speed_ramp_up Address, type, unit and source: [`params::SpeedRampUp`].
+        /// speed_ramp_up Details: [`params::SpeedRampUp`].
         #[doc(alias("0x0040"))]
-        pub fn speed_ramp_up(&mut self) -> Accessor<'_, L, params::SpeedRampUp> {
+        pub fn speed_ramp_up(&mut self) -> Accessor<'_, L, SpeedRampUp> {
             self.device.parameter()
         }
-        /// speed_ramp_down Address, type, unit and source: [`params::SpeedRampDown`].
+        /// speed_ramp_down Details: [`params::SpeedRampDown`].
         #[doc(alias("0x0041"))]
-        pub fn speed_ramp_down(&mut self) -> Accessor<'_, L, params::SpeedRampDown> {
+        pub fn speed_ramp_down(&mut self) -> Accessor<'_, L, SpeedRampDown> {
             self.device.parameter()
         }
-        /// ramp_enable Address, type, unit and source: [`params::RampEnable`].
+        /// ramp_enable Details: [`params::RampEnable`].
         #[doc(alias("0x003F"))]
-        pub fn ramp_enable(&mut self) -> Accessor<'_, L, params::RampEnable> {
+        pub fn ramp_enable(&mut self) -> Accessor<'_, L, RampEnable> {
             self.device.parameter()
         }
     }

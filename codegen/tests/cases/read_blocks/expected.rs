@@ -5,30 +5,24 @@ pub mod types {}
 ///
 /// Sources cited by id:
 ///
-/// - `m`: Manual
+/// `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
     /// status
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0018`, read-only |
-    /// | Type | `u16` |
-    /// | Source | `m`, line 3 |
+    /// - Modbus: Holding register `0x0018`, read-only
+    /// - Type: `u16`
+    /// - Source: `m`, line 3
     #[doc(alias("0x0018"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Status;
     ::drivebus::parameter!(Status = "status": u16 => u16, Plain; read modbus(holding 0x0018));
     /// frequency
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0019`, read-only |
-    /// | Type | `u16`, unit Hz, scale 1/10 |
-    /// | Source | `m`, line 4 |
+    /// - Modbus: Holding register `0x0019`, read-only
+    /// - Type: `u16`, unit Hz, scale 1/10
+    /// - Source: `m`, line 4
     #[doc(alias("0x0019"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Frequency;
     ::drivebus::parameter!(
         Frequency = "frequency": u16 => ::drivebus::units::Hertz, InUnit, scale = 1 / 10;
@@ -84,20 +78,21 @@ impl<L: ::drivebus::Link> Case<L> {
     }
 }
 /// The handle's accessors, one per parameter: in a module of their own so that their
-/// signatures name `Accessor` without its path.
+/// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
+    use super::params::*;
     #[allow(unused_imports)]
-    use super::*;
+    use super::{params, Case};
     use ::drivebus::Accessor;
     impl<L: ::drivebus::Link> Case<L> {
-        /// status Address, type, unit and source: [`params::Status`].
+        /// status Details: [`params::Status`].
         #[doc(alias("0x0018"))]
-        pub fn status(&mut self) -> Accessor<'_, L, params::Status> {
+        pub fn status(&mut self) -> Accessor<'_, L, Status> {
             self.device.parameter()
         }
-        /// frequency Address, type, unit and source: [`params::Frequency`].
+        /// frequency Details: [`params::Frequency`].
         #[doc(alias("0x0019"))]
-        pub fn frequency(&mut self) -> Accessor<'_, L, params::Frequency> {
+        pub fn frequency(&mut self) -> Accessor<'_, L, Frequency> {
             self.device.parameter()
         }
     }

@@ -5,20 +5,17 @@ pub mod types {}
 ///
 /// Sources cited by id:
 ///
-/// - `m`: Manual
+/// `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
     /// Target speed, one object over two protocols.
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x6F00`, 2 words, low word first, read/write |
-    /// | RS-232 | object `0x60FF:0`, read/write |
-    /// | Type | `i32`, unit rpm |
-    /// | Source | `m`, line 2500 |
+    /// - Modbus: Holding register `0x6F00`, 2 words, low word first, read/write
+    /// - RS-232: object `0x60FF:0`, read/write
+    /// - Type: `i32`, unit rpm
+    /// - Source: `m`, line 2500
     #[doc(alias("0x60FF", "0x6F00", "60FFh"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct TargetSpeed;
     ::drivebus::parameter!(
         TargetSpeed = "target_speed": i32 => ::drivebus::units::Rpm, InUnit;
@@ -74,16 +71,16 @@ impl<L: ::drivebus::Link> Case<L> {
     }
 }
 /// The handle's accessors, one per parameter: in a module of their own so that their
-/// signatures name `Accessor` without its path.
+/// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
+    use super::params::*;
     #[allow(unused_imports)]
-    use super::*;
+    use super::{params, Case};
     use ::drivebus::Accessor;
     impl<L: ::drivebus::Link> Case<L> {
-        /// Target speed, one object over two protocols. Address, type, unit and source:
-        /// [`params::TargetSpeed`].
+        /// Target speed, one object over two protocols. Details: [`params::TargetSpeed`].
         #[doc(alias("0x60FF", "0x6F00", "60FFh"))]
-        pub fn target_speed(&mut self) -> Accessor<'_, L, params::TargetSpeed> {
+        pub fn target_speed(&mut self) -> Accessor<'_, L, TargetSpeed> {
             self.device.parameter()
         }
     }

@@ -5,19 +5,16 @@ pub mod types {}
 ///
 /// Sources cited by id:
 ///
-/// - `m`: Manual
+/// `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
     /// encoder_resolution
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0010`, 2 words, high word first, read/write |
-    /// | Type | `u32` |
-    /// | Source | `m`, line 4 |
+    /// - Modbus: Holding register `0x0010`, 2 words, high word first, read/write
+    /// - Type: `u32`
+    /// - Source: `m`, line 4
     #[doc(alias("0x0010"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct EncoderResolution;
     ::drivebus::parameter!(
         EncoderResolution = "encoder_resolution": u32 => u32, Plain;
@@ -26,13 +23,10 @@ pub mod params {
     );
     /// target_speed
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0012`, 2 words, high word first, read/write |
-    /// | Type | `i32`, unit rpm, scale `1875 / (512 * encoder_resolution)` (read at run time) |
-    /// | Source | `m`, line 5 |
+    /// - Modbus: Holding register `0x0012`, 2 words, high word first, read/write
+    /// - Type: `i32`, unit rpm, scale `1875 / (512 * encoder_resolution)` (read at run time)
+    /// - Source: `m`, line 5
     #[doc(alias("0x0012"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct TargetSpeed;
     ::drivebus::parameter!(
         TargetSpeed = "target_speed": i32 => ::drivebus::units::Rpm, InUnit;
@@ -67,13 +61,10 @@ pub mod params {
     }
     /// current
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Input register `0x0020`, read-only |
-    /// | Type | `i16`, unit A, scale `peak_current / 2048` (read at run time) |
-    /// | Source | `m`, line 6 |
+    /// - Modbus: Input register `0x0020`, read-only
+    /// - Type: `i16`, unit A, scale `peak_current / 2048` (read at run time)
+    /// - Source: `m`, line 6
     #[doc(alias("0x0020"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Current;
     ::drivebus::parameter!(
         Current = "current": i16 => ::drivebus::units::Amperes, InUnit;
@@ -159,27 +150,26 @@ impl<L: ::drivebus::Link> Case<L> {
     }
 }
 /// The handle's accessors, one per parameter: in a module of their own so that their
-/// signatures name `Accessor` without its path.
+/// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
+    use super::params::*;
     #[allow(unused_imports)]
-    use super::*;
+    use super::{params, Case};
     use ::drivebus::Accessor;
     impl<L: ::drivebus::Link> Case<L> {
-        /// encoder_resolution Address, type, unit and source: [`params::EncoderResolution`].
+        /// encoder_resolution Details: [`params::EncoderResolution`].
         #[doc(alias("0x0010"))]
-        pub fn encoder_resolution(
-            &mut self,
-        ) -> Accessor<'_, L, params::EncoderResolution> {
+        pub fn encoder_resolution(&mut self) -> Accessor<'_, L, EncoderResolution> {
             self.device.parameter()
         }
-        /// target_speed Address, type, unit and source: [`params::TargetSpeed`].
+        /// target_speed Details: [`params::TargetSpeed`].
         #[doc(alias("0x0012"))]
-        pub fn target_speed(&mut self) -> Accessor<'_, L, params::TargetSpeed> {
+        pub fn target_speed(&mut self) -> Accessor<'_, L, TargetSpeed> {
             self.device.parameter()
         }
-        /// current Address, type, unit and source: [`params::Current`].
+        /// current Details: [`params::Current`].
         #[doc(alias("0x0020"))]
-        pub fn current(&mut self) -> Accessor<'_, L, params::Current> {
+        pub fn current(&mut self) -> Accessor<'_, L, Current> {
             self.device.parameter()
         }
     }

@@ -5,20 +5,17 @@ pub mod types {}
 ///
 /// Sources cited by id:
 ///
-/// - `m`: Manual
+/// `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
     /// DC link voltage.
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Input register `0x0064`, read-only |
-    /// | Type | `u16`, unit V, scale 1/100 |
-    /// | Source | `m` §2.2, line 432 |
-    /// | Manual example | 0x1356 -&gt; 49.5 V |
+    /// - Modbus: Input register `0x0064`, read-only
+    /// - Type: `u16`, unit V, scale 1/100
+    /// - Source: `m` §2.2, line 432
+    /// - Manual example: 0x1356 -&gt; 49.5 V
     #[doc(alias("0x0064", "BUS DC LINK"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct BusDcLink;
     ::drivebus::parameter!(
         BusDcLink = "bus_dc_link": u16 => ::drivebus::units::Volts, InUnit, scale = 1 / 100;
@@ -26,14 +23,11 @@ pub mod params {
     );
     /// Motor temperature.
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Input register `0x0070`, read-only |
-    /// | Type | `i16`, unit °C, scale 1/10, offset -40/1 |
-    /// | Range (raw) | 0..=2000 |
-    /// | Source | `m`, line 440 |
+    /// - Modbus: Input register `0x0070`, read-only
+    /// - Type: `i16`, unit °C, scale 1/10, offset -40/1
+    /// - Range (raw): 0..=2000
+    /// - Source: `m`, line 440
     #[doc(alias("0x0070"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct MotorTemperature;
     ::drivebus::parameter!(
         MotorTemperature = "motor_temperature": i16 => ::drivebus::units::Celsius, InUnit,
@@ -42,17 +36,14 @@ pub mod params {
     );
     /// Speed setpoint, written with FC 06 and read back with FC 04.
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0042`, write-only |
-    /// | Modbus | Input register `0x0042`, read-only |
-    /// | Type | `i16`, unit rpm |
-    /// | Range (raw) | -3000..=3000 |
-    /// | Default (raw) | 0 |
-    /// | Source | `m`, line 900 |
-    /// | Erratum | The table gives holding 0x0043; the worked example and the drive use 0x0042. |
+    /// - Modbus: Holding register `0x0042`, write-only
+    /// - Modbus: Input register `0x0042`, read-only
+    /// - Type: `i16`, unit rpm
+    /// - Range (raw): -3000..=3000
+    /// - Default (raw): 0
+    /// - Source: `m`, line 900
+    /// - Erratum: The table gives holding 0x0043; the worked example and the drive use 0x0042.
     #[doc(alias("0x0042"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct SpeedSetpoint;
     ::drivebus::parameter!(
         SpeedSetpoint = "speed_setpoint": i16 => ::drivebus::units::Rpm, InUnit, range(-3000, 3000);
@@ -61,13 +52,10 @@ pub mod params {
     );
     /// Position, two registers, low word first.
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Input register `0x0080`, 2 words, low word first, read-only |
-    /// | Type | `i32`, unit rev, scale 1/4096 |
-    /// | Source | `m`, line 950 |
+    /// - Modbus: Input register `0x0080`, 2 words, low word first, read-only
+    /// - Type: `i32`, unit rev, scale 1/4096
+    /// - Source: `m`, line 950
     #[doc(alias("0x0080"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Position;
     ::drivebus::parameter!(
         Position = "position": i32 => ::drivebus::units::Revolutions, InUnit, scale = 1 / 4096;
@@ -75,14 +63,11 @@ pub mod params {
     );
     /// A plain dimensionless gain.
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0090`, 2 words, high word first, read/write |
-    /// | Type | `f32` |
-    /// | Range (raw) | 0.5..=2.5 |
-    /// | Source | `m`, line 960 |
+    /// - Modbus: Holding register `0x0090`, 2 words, high word first, read/write
+    /// - Type: `f32`
+    /// - Range (raw): 0.5..=2.5
+    /// - Source: `m`, line 960
     #[doc(alias("0x0090"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Gain;
     ::drivebus::parameter!(
         Gain = "gain": f32 => f32, Plain, range(0.5, 2.5);
@@ -130,39 +115,37 @@ impl<L: ::drivebus::Link> Case<L> {
     }
 }
 /// The handle's accessors, one per parameter: in a module of their own so that their
-/// signatures name `Accessor` without its path.
+/// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
+    use super::params::*;
     #[allow(unused_imports)]
-    use super::*;
+    use super::{params, Case};
     use ::drivebus::Accessor;
     impl<L: ::drivebus::Link> Case<L> {
-        /// DC link voltage. Address, type, unit and source: [`params::BusDcLink`].
+        /// DC link voltage. Details: [`params::BusDcLink`].
         #[doc(alias("0x0064", "BUS DC LINK"))]
-        pub fn bus_dc_link(&mut self) -> Accessor<'_, L, params::BusDcLink> {
+        pub fn bus_dc_link(&mut self) -> Accessor<'_, L, BusDcLink> {
             self.device.parameter()
         }
-        /// Motor temperature. Address, type, unit and source: [`params::MotorTemperature`].
+        /// Motor temperature. Details: [`params::MotorTemperature`].
         #[doc(alias("0x0070"))]
-        pub fn motor_temperature(
-            &mut self,
-        ) -> Accessor<'_, L, params::MotorTemperature> {
+        pub fn motor_temperature(&mut self) -> Accessor<'_, L, MotorTemperature> {
             self.device.parameter()
         }
-        /// Speed setpoint, written with FC 06 and read back with FC 04. Address, type, unit and
-        /// source: [`params::SpeedSetpoint`].
+        /// Speed setpoint, written with FC 06 and read back with FC 04. Details:
+        /// [`params::SpeedSetpoint`].
         #[doc(alias("0x0042"))]
-        pub fn speed_setpoint(&mut self) -> Accessor<'_, L, params::SpeedSetpoint> {
+        pub fn speed_setpoint(&mut self) -> Accessor<'_, L, SpeedSetpoint> {
             self.device.parameter()
         }
-        /// Position, two registers, low word first. Address, type, unit and source:
-        /// [`params::Position`].
+        /// Position, two registers, low word first. Details: [`params::Position`].
         #[doc(alias("0x0080"))]
-        pub fn position(&mut self) -> Accessor<'_, L, params::Position> {
+        pub fn position(&mut self) -> Accessor<'_, L, Position> {
             self.device.parameter()
         }
-        /// A plain dimensionless gain. Address, type, unit and source: [`params::Gain`].
+        /// A plain dimensionless gain. Details: [`params::Gain`].
         #[doc(alias("0x0090"))]
-        pub fn gain(&mut self) -> Accessor<'_, L, params::Gain> {
+        pub fn gain(&mut self) -> Accessor<'_, L, Gain> {
             self.device.parameter()
         }
     }

@@ -5,19 +5,16 @@ pub mod types {}
 ///
 /// Sources cited by id:
 ///
-/// - `m`: Manual
+/// `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
     /// device_type
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x1000:0`, read-only |
-    /// | Type | `u32` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x1000:0`, read-only
+    /// - Type: `u32`
+    /// - Source: `m`, line 1
     #[doc(alias("0x1000", "1000h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct DeviceType;
     ::drivebus::parameter!(
         DeviceType = "device_type": u32 => u32, Plain;
@@ -25,13 +22,10 @@ pub mod params {
     );
     /// error_register
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x1001:0`, read-only |
-    /// | Type | `u8` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x1001:0`, read-only
+    /// - Type: `u8`
+    /// - Source: `m`, line 1
     #[doc(alias("0x1001", "1001h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct ErrorRegister;
     ::drivebus::parameter!(
         ErrorRegister = "error_register": u8 => u8, Plain;
@@ -39,13 +33,10 @@ pub mod params {
     );
     /// identity_count
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x1018:0`, read-only |
-    /// | Type | `u8` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x1018:0`, read-only
+    /// - Type: `u8`
+    /// - Source: `m`, line 1
     #[doc(alias("0x1018", "1018h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct IdentityCount;
     ::drivebus::parameter!(
         IdentityCount = "identity_count": u8 => u8, Plain;
@@ -53,13 +44,10 @@ pub mod params {
     );
     /// vendor_id
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x1018:1`, read-only |
-    /// | Type | `u32` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x1018:1`, read-only
+    /// - Type: `u32`
+    /// - Source: `m`, line 1
     #[doc(alias("0x1018", "1018h", "1018h:01"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct VendorId;
     ::drivebus::parameter!(
         VendorId = "vendor_id": u32 => u32, Plain;
@@ -67,13 +55,10 @@ pub mod params {
     );
     /// Safety controlword 1.
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x6620:1`, read/write |
-    /// | Type | `u8` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x6620:1`, read/write
+    /// - Type: `u8`
+    /// - Source: `m`, line 1
     #[doc(alias("0x6620", "6620h", "6620h:01"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct SafetyControlword;
     ::drivebus::parameter!(
         SafetyControlword = "safety_controlword": u8 => u8, Plain;
@@ -82,13 +67,10 @@ pub mod params {
     );
     /// Safety controlword 1, inverted.
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x6622:1`, read/write |
-    /// | Type | `u8` |
-    /// | Source | `m`, line 2 |
+    /// - CANopen: object `0x6622:1`, read/write
+    /// - Type: `u8`
+    /// - Source: `m`, line 2
     #[doc(alias("0x6622", "6622h", "6622h:01"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct SafetyControlwordInverted;
     ::drivebus::parameter!(
         SafetyControlwordInverted = "safety_controlword_inverted": u8 => u8, Plain;
@@ -134,45 +116,43 @@ impl<L: ::drivebus::Link> Case<L> {
     }
 }
 /// The handle's accessors, one per parameter: in a module of their own so that their
-/// signatures name `Accessor` without its path.
+/// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
+    use super::params::*;
     #[allow(unused_imports)]
-    use super::*;
+    use super::{params, Case};
     use ::drivebus::Accessor;
     impl<L: ::drivebus::Link> Case<L> {
-        /// device_type Address, type, unit and source: [`params::DeviceType`].
+        /// device_type Details: [`params::DeviceType`].
         #[doc(alias("0x1000", "1000h"))]
-        pub fn device_type(&mut self) -> Accessor<'_, L, params::DeviceType> {
+        pub fn device_type(&mut self) -> Accessor<'_, L, DeviceType> {
             self.device.parameter()
         }
-        /// error_register Address, type, unit and source: [`params::ErrorRegister`].
+        /// error_register Details: [`params::ErrorRegister`].
         #[doc(alias("0x1001", "1001h"))]
-        pub fn error_register(&mut self) -> Accessor<'_, L, params::ErrorRegister> {
+        pub fn error_register(&mut self) -> Accessor<'_, L, ErrorRegister> {
             self.device.parameter()
         }
-        /// identity_count Address, type, unit and source: [`params::IdentityCount`].
+        /// identity_count Details: [`params::IdentityCount`].
         #[doc(alias("0x1018", "1018h"))]
-        pub fn identity_count(&mut self) -> Accessor<'_, L, params::IdentityCount> {
+        pub fn identity_count(&mut self) -> Accessor<'_, L, IdentityCount> {
             self.device.parameter()
         }
-        /// vendor_id Address, type, unit and source: [`params::VendorId`].
+        /// vendor_id Details: [`params::VendorId`].
         #[doc(alias("0x1018", "1018h", "1018h:01"))]
-        pub fn vendor_id(&mut self) -> Accessor<'_, L, params::VendorId> {
+        pub fn vendor_id(&mut self) -> Accessor<'_, L, VendorId> {
             self.device.parameter()
         }
-        /// Safety controlword 1. Address, type, unit and source: [`params::SafetyControlword`].
+        /// Safety controlword 1. Details: [`params::SafetyControlword`].
         #[doc(alias("0x6620", "6620h", "6620h:01"))]
-        pub fn safety_controlword(
-            &mut self,
-        ) -> Accessor<'_, L, params::SafetyControlword> {
+        pub fn safety_controlword(&mut self) -> Accessor<'_, L, SafetyControlword> {
             self.device.parameter()
         }
-        /// Safety controlword 1, inverted. Address, type, unit and source:
-        /// [`params::SafetyControlwordInverted`].
+        /// Safety controlword 1, inverted. Details: [`params::SafetyControlwordInverted`].
         #[doc(alias("0x6622", "6622h", "6622h:01"))]
         pub fn safety_controlword_inverted(
             &mut self,
-        ) -> Accessor<'_, L, params::SafetyControlwordInverted> {
+        ) -> Accessor<'_, L, SafetyControlwordInverted> {
             self.device.parameter()
         }
     }
@@ -180,6 +160,7 @@ mod parameter_accessors {
 /// The SRDOs (CANopen Safety, EN 50325-5) the description declares, as typed safety
 /// payloads. Needs `drivebus`'s `srdo` feature.
 pub mod srdo {
+    use ::drivebus::canopen::{pdo, srdo, NodeId};
     /// SRDO 1: safety controlword 1, received by the drive.
     ///
     /// | | |
@@ -197,28 +178,26 @@ pub mod srdo {
         pub safety_controlword: u8,
     }
     const _: () = assert!(
-        ::drivebus::canopen::srdo::mapping::mapping_is_valid(& SafetyControl::MAPPING),
+        srdo::mapping::mapping_is_valid(& SafetyControl::MAPPING),
         "SRDO mapping does not pair or does not fit 8 bytes"
     );
     impl SafetyControl {
         /// The mapping object's entries in sub-index order: normal, inverted, normal, ...
-        pub const MAPPING: [::drivebus::canopen::pdo::MappedObject; 2] = [
+        pub const MAPPING: [pdo::MappedObject; 2] = [
             ::drivebus::canopen::pdo::MappedObject::new(0x6620, 1, 8),
             ::drivebus::canopen::pdo::MappedObject::new(0x6622, 1, 8),
         ];
         /// The normal data, packed from bit 0 as a PDO is.
-        pub const LAYOUT: ::drivebus::canopen::pdo::PdoLayout<1> = ::drivebus::canopen::pdo::PdoLayout::new(
-            ::drivebus::canopen::srdo::mapping::normal_entries::<1>(&Self::MAPPING),
+        pub const LAYOUT: pdo::PdoLayout<1> = pdo::PdoLayout::new(
+            srdo::mapping::normal_entries::<1>(&Self::MAPPING),
         );
         /// The SRDO number (communication object 1300h + number, mapping 1380h + number,
         /// signature 13FFh sub number).
         pub const NUMBER: u8 = 1;
         /// The default communication parameters on `node`.
-        pub fn communication(
-            node: ::drivebus::canopen::NodeId,
-        ) -> ::drivebus::canopen::srdo::SrdoCommunication {
-            ::drivebus::canopen::srdo::SrdoCommunication {
-                direction: ::drivebus::canopen::srdo::SrdoDirection::Receive,
+        pub fn communication(node: NodeId) -> srdo::SrdoCommunication {
+            srdo::SrdoCommunication {
+                direction: srdo::SrdoDirection::Receive,
                 sct_ms: 50,
                 srvt_ms: 20,
                 transmission_type: 254,
@@ -228,41 +207,29 @@ pub mod srdo {
         }
         /// The default configuration on `node`: what
         /// [`signature`](::drivebus::canopen::srdo::signature()) signs and the safety write writes.
-        pub fn config(
-            node: ::drivebus::canopen::NodeId,
-        ) -> ::drivebus::canopen::srdo::SrdoConfig<'static> {
-            ::drivebus::canopen::srdo::SrdoConfig {
+        pub fn config(node: NodeId) -> srdo::SrdoConfig<'static> {
+            srdo::SrdoConfig {
                 number: Self::NUMBER,
                 communication: Self::communication(node),
                 mapping: &Self::MAPPING,
             }
         }
         /// A consumer of this SRDO from `node`, with the default times.
-        pub fn consumer(
-            node: ::drivebus::canopen::NodeId,
-        ) -> Result<
-            ::drivebus::canopen::srdo::SrdoConsumer,
-            ::drivebus::canopen::srdo::SrdoError,
-        > {
+        pub fn consumer(node: NodeId) -> Result<srdo::SrdoConsumer, srdo::SrdoError> {
             let c = Self::communication(node);
-            ::drivebus::canopen::srdo::SrdoConsumer::new(
+            srdo::SrdoConsumer::new(
                 c.cob_ids()?,
                 c.timing()?,
-                ::drivebus::canopen::srdo::mapping::data_bits(&Self::MAPPING),
+                srdo::mapping::data_bits(&Self::MAPPING),
             )
         }
         /// A producer of this SRDO for `node`, sending every SCT.
-        pub fn producer(
-            node: ::drivebus::canopen::NodeId,
-        ) -> Result<
-            ::drivebus::canopen::srdo::SrdoProducer,
-            ::drivebus::canopen::srdo::SrdoError,
-        > {
+        pub fn producer(node: NodeId) -> Result<srdo::SrdoProducer, srdo::SrdoError> {
             let c = Self::communication(node);
-            ::drivebus::canopen::srdo::SrdoProducer::new(
+            srdo::SrdoProducer::new(
                 c.cob_ids()?,
                 c.timing()?.sct(),
-                ::drivebus::canopen::srdo::mapping::data_bits(&Self::MAPPING),
+                srdo::mapping::data_bits(&Self::MAPPING),
             )
         }
         /// Decodes released normal data (from

@@ -5,43 +5,34 @@ pub mod types {}
 ///
 /// Sources cited by id:
 ///
-/// - `m`: Manual
+/// `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
     /// status
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Input register `0x0060`, read-only |
-    /// | Type | `u16` |
-    /// | Source | `m`, line 1 |
+    /// - Modbus: Input register `0x0060`, read-only
+    /// - Type: `u16`
+    /// - Source: `m`, line 1
     #[doc(alias("0x0060"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Status;
     ::drivebus::parameter!(Status = "status": u16 => u16, Plain; read modbus(input 0x0060));
     /// stop
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0001`, write-only |
-    /// | Type | `u16` |
-    /// | Command | action, trigger value 4; never retried |
-    /// | Source | `m`, line 7 |
+    /// - Modbus: Holding register `0x0001`, write-only
+    /// - Type: `u16`
+    /// - Command: action, trigger value 4; never retried
+    /// - Source: `m`, line 7
     #[doc(alias("0x0001"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Stop;
     ::drivebus::parameter!(Stop = "stop": u16 => u16, Plain; write modbus(holding 0x0001));
     /// start
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0001`, write-only |
-    /// | Type | `u16` |
-    /// | Command | action, trigger value 8; never retried |
-    /// | Source | `m`, line 8 |
+    /// - Modbus: Holding register `0x0001`, write-only
+    /// - Type: `u16`
+    /// - Command: action, trigger value 8; never retried
+    /// - Source: `m`, line 8
     #[doc(alias("0x0001"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Start;
     ::drivebus::parameter!(Start = "start": u16 => u16, Plain; write modbus(holding 0x0001));
 }
@@ -85,25 +76,26 @@ impl<L: ::drivebus::Link> Case<L> {
     }
 }
 /// The handle's accessors, one per parameter: in a module of their own so that their
-/// signatures name `Accessor` without its path.
+/// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
+    use super::params::*;
     #[allow(unused_imports)]
-    use super::*;
+    use super::{params, Case};
     use ::drivebus::Accessor;
     impl<L: ::drivebus::Link> Case<L> {
-        /// status Address, type, unit and source: [`params::Status`].
+        /// status Details: [`params::Status`].
         #[doc(alias("0x0060"))]
-        pub fn status(&mut self) -> Accessor<'_, L, params::Status> {
+        pub fn status(&mut self) -> Accessor<'_, L, Status> {
             self.device.parameter()
         }
-        /// stop Address, type, unit and source: [`params::Stop`].
+        /// stop Details: [`params::Stop`].
         #[doc(alias("0x0001"))]
-        pub fn stop(&mut self) -> Accessor<'_, L, params::Stop> {
+        pub fn stop(&mut self) -> Accessor<'_, L, Stop> {
             self.device.parameter()
         }
-        /// start Address, type, unit and source: [`params::Start`].
+        /// start Details: [`params::Start`].
         #[doc(alias("0x0001"))]
-        pub fn start(&mut self) -> Accessor<'_, L, params::Start> {
+        pub fn start(&mut self) -> Accessor<'_, L, Start> {
             self.device.parameter()
         }
     }

@@ -5,23 +5,20 @@ pub mod types {}
 ///
 /// Sources cited by id:
 ///
-/// - `m`: Manual
+/// `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
     /// Stop command.
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0001`, write-only |
-    /// | Type | `u16` |
-    /// | Command | action, trigger value 4; never retried |
-    /// | Source | `m`, line 1 |
+    /// - Modbus: Holding register `0x0001`, write-only
+    /// - Type: `u16`
+    /// - Command: action, trigger value 4; never retried
+    /// - Source: `m`, line 1
     ///
     /// **Stops the drive:** every write: always sent, whatever the handle believes of locks,
     /// identity or variant
     #[doc(alias("0x0001"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Stop;
     ::drivebus::parameter!(
         Stop = "stop": u16 => u16, Plain, stops(always);
@@ -29,16 +26,13 @@ pub mod params {
     );
     /// Control word.
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0002`, read/write |
-    /// | Type | `u16` |
-    /// | Source | `m`, line 2 |
+    /// - Modbus: Holding register `0x0002`, read/write
+    /// - Type: `u16`
+    /// - Source: `m`, line 2
     ///
     /// **Stops the drive:** a write with `raw & 0x0002 == 0x0000` or `raw & 0x0100 == 0x0100`:
     /// always sent, whatever the handle believes of locks, identity or variant
     #[doc(alias("0x0002"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Control;
     ::drivebus::parameter!(
         Control = "control": u16 => u16, Plain, stops(0x0002 => 0x0000, 0x0100 => 0x0100);
@@ -86,20 +80,21 @@ impl<L: ::drivebus::Link> Case<L> {
     }
 }
 /// The handle's accessors, one per parameter: in a module of their own so that their
-/// signatures name `Accessor` without its path.
+/// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
+    use super::params::*;
     #[allow(unused_imports)]
-    use super::*;
+    use super::{params, Case};
     use ::drivebus::Accessor;
     impl<L: ::drivebus::Link> Case<L> {
-        /// Stop command. Address, type, unit and source: [`params::Stop`].
+        /// Stop command. Details: [`params::Stop`].
         #[doc(alias("0x0001"))]
-        pub fn stop(&mut self) -> Accessor<'_, L, params::Stop> {
+        pub fn stop(&mut self) -> Accessor<'_, L, Stop> {
             self.device.parameter()
         }
-        /// Control word. Address, type, unit and source: [`params::Control`].
+        /// Control word. Details: [`params::Control`].
         #[doc(alias("0x0002"))]
-        pub fn control(&mut self) -> Accessor<'_, L, params::Control> {
+        pub fn control(&mut self) -> Accessor<'_, L, Control> {
             self.device.parameter()
         }
     }

@@ -5,19 +5,16 @@ pub mod types {}
 ///
 /// Sources cited by id:
 ///
-/// - `m`: Manual
+/// `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
     /// device_type
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x1000:0`, read-only |
-    /// | Type | `u32` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x1000:0`, read-only
+    /// - Type: `u32`
+    /// - Source: `m`, line 1
     #[doc(alias("0x1000", "1000h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct DeviceType;
     ::drivebus::parameter!(
         DeviceType = "device_type": u32 => u32, Plain;
@@ -25,13 +22,10 @@ pub mod params {
     );
     /// error_register
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x1001:0`, read-only |
-    /// | Type | `u8` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x1001:0`, read-only
+    /// - Type: `u8`
+    /// - Source: `m`, line 1
     #[doc(alias("0x1001", "1001h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct ErrorRegister;
     ::drivebus::parameter!(
         ErrorRegister = "error_register": u8 => u8, Plain;
@@ -39,13 +33,10 @@ pub mod params {
     );
     /// identity_count
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x1018:0`, read-only |
-    /// | Type | `u8` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x1018:0`, read-only
+    /// - Type: `u8`
+    /// - Source: `m`, line 1
     #[doc(alias("0x1018", "1018h"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct IdentityCount;
     ::drivebus::parameter!(
         IdentityCount = "identity_count": u8 => u8, Plain;
@@ -53,13 +44,10 @@ pub mod params {
     );
     /// vendor_id
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x1018:1`, read-only |
-    /// | Type | `u32` |
-    /// | Source | `m`, line 1 |
+    /// - CANopen: object `0x1018:1`, read-only
+    /// - Type: `u32`
+    /// - Source: `m`, line 1
     #[doc(alias("0x1018", "1018h", "1018h:01"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct VendorId;
     ::drivebus::parameter!(
         VendorId = "vendor_id": u32 => u32, Plain;
@@ -67,18 +55,15 @@ pub mod params {
     );
     /// n_SLS of SLS n.
     ///
-    /// | | |
-    /// |---|---|
-    /// | CANopen | object `0x6693:1..=4`, read/write |
-    /// | Type | `u32`, unit rpm |
-    /// | Default (raw) | 0 |
-    /// | Source | `m` §11.7, line 3399 |
+    /// - CANopen: object `0x6693:1..=4`, read/write
+    /// - Type: `u32`, unit rpm
+    /// - Default (raw): 0
+    /// - Source: `m` §11.7, line 3399
     ///
     /// **Run:** sub-indices 1..=4: `drive.sls_velocity_limit(n)`; one of them as a type is
     /// `drivebus::indexed::At<params::SlsVelocityLimitRun, N>`. This marker on its own is sub-index
     /// 1
     #[doc(alias("0x6693", "6693h", "6693h:01"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct SlsVelocityLimitRun;
     ::drivebus::parameter!(
         SlsVelocityLimitRun = "sls_velocity_limit": u32 => ::drivebus::units::Rpm, InUnit;
@@ -128,30 +113,31 @@ impl<L: ::drivebus::Link> Case<L> {
     }
 }
 /// The handle's accessors, one per parameter: in a module of their own so that their
-/// signatures name `Accessor` without its path.
+/// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
+    use super::params::*;
     #[allow(unused_imports)]
-    use super::*;
+    use super::{params, Case};
     use ::drivebus::Accessor;
     impl<L: ::drivebus::Link> Case<L> {
-        /// device_type Address, type, unit and source: [`params::DeviceType`].
+        /// device_type Details: [`params::DeviceType`].
         #[doc(alias("0x1000", "1000h"))]
-        pub fn device_type(&mut self) -> Accessor<'_, L, params::DeviceType> {
+        pub fn device_type(&mut self) -> Accessor<'_, L, DeviceType> {
             self.device.parameter()
         }
-        /// error_register Address, type, unit and source: [`params::ErrorRegister`].
+        /// error_register Details: [`params::ErrorRegister`].
         #[doc(alias("0x1001", "1001h"))]
-        pub fn error_register(&mut self) -> Accessor<'_, L, params::ErrorRegister> {
+        pub fn error_register(&mut self) -> Accessor<'_, L, ErrorRegister> {
             self.device.parameter()
         }
-        /// identity_count Address, type, unit and source: [`params::IdentityCount`].
+        /// identity_count Details: [`params::IdentityCount`].
         #[doc(alias("0x1018", "1018h"))]
-        pub fn identity_count(&mut self) -> Accessor<'_, L, params::IdentityCount> {
+        pub fn identity_count(&mut self) -> Accessor<'_, L, IdentityCount> {
             self.device.parameter()
         }
-        /// vendor_id Address, type, unit and source: [`params::VendorId`].
+        /// vendor_id Details: [`params::VendorId`].
         #[doc(alias("0x1018", "1018h", "1018h:01"))]
-        pub fn vendor_id(&mut self) -> Accessor<'_, L, params::VendorId> {
+        pub fn vendor_id(&mut self) -> Accessor<'_, L, VendorId> {
             self.device.parameter()
         }
     }
@@ -160,10 +146,7 @@ mod parameter_accessors {
 pub mod indexed {
     #[allow(unused_imports)]
     use super::params;
-    /// n_SLS of SLS n.
-    ///
-    /// Sub-indices 1..=4 of object 0x6693 (marker [`params::SlsVelocityLimitRun`]; one member as a
-    /// type: `drivebus::indexed::At<params::SlsVelocityLimitRun, N>`).
+    /// n_SLS of SLS n. Sub-indices 1..=4 of object 0x6693, marker [`params::SlsVelocityLimitRun`].
     pub type SlsVelocityLimit<'d, L> = ::drivebus::indexed::Indexed<
         'd,
         L,
@@ -171,9 +154,7 @@ pub mod indexed {
     >;
 }
 impl<L: ::drivebus::Link> Case<L> {
-    /// n_SLS of SLS n.
-    ///
-    /// Sub-indices 1..=4 of object 0x6693; see [`indexed::SlsVelocityLimit`].
+    /// n_SLS of SLS n. Sub-indices 1..=4 of object 0x6693: [`indexed::SlsVelocityLimit`].
     pub fn sls_velocity_limit(
         &mut self,
         subindex: u8,

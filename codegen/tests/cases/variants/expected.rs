@@ -23,19 +23,16 @@ pub mod types {}
 ///
 /// Sources cited by id:
 ///
-/// - `m`: Manual
+/// `m`: Manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;
     /// parameter_configuration
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0032`, read-only |
-    /// | Type | `u16` |
-    /// | Source | `m`, line 42 |
+    /// - Modbus: Holding register `0x0032`, read-only
+    /// - Type: `u16`
+    /// - Source: `m`, line 42
     #[doc(alias("0x0032"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct ParameterConfiguration;
     ::drivebus::parameter!(
         ParameterConfiguration = "parameter_configuration": u16 => u16, Plain;
@@ -43,14 +40,11 @@ pub mod params {
     );
     /// speed_source
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x003C`, read/write (variant `pc400`) |
-    /// | Modbus | Holding register `0x003D`, read/write (variant `pc507`) |
-    /// | Type | `u16` |
-    /// | Source | `m`, line 43 |
+    /// - Modbus: Holding register `0x003C`, read/write (variant `pc400`)
+    /// - Modbus: Holding register `0x003D`, read/write (variant `pc507`)
+    /// - Type: `u16`
+    /// - Source: `m`, line 43
     #[doc(alias("0x003C", "0x003D"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct SpeedSource;
     ::drivebus::parameter!(
         SpeedSource = "speed_source": u16 => u16, Plain;
@@ -59,14 +53,11 @@ pub mod params {
     );
     /// boost
     ///
-    /// | | |
-    /// |---|---|
-    /// | Modbus | Holding register `0x0046`, read/write |
-    /// | Type | `u16` |
-    /// | Variants | pc507 |
-    /// | Source | `m`, line 44 |
+    /// - Modbus: Holding register `0x0046`, read/write
+    /// - Type: `u16`
+    /// - Variants: pc507
+    /// - Source: `m`, line 44
     #[doc(alias("0x0046"))]
-    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
     pub struct Boost;
     ::drivebus::parameter!(
         Boost = "boost": u16 => u16, Plain;
@@ -118,28 +109,28 @@ impl<L: ::drivebus::Link> Case<L> {
     }
 }
 /// The handle's accessors, one per parameter: in a module of their own so that their
-/// signatures name `Accessor` without its path.
+/// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
+    use super::params::*;
     #[allow(unused_imports)]
-    use super::*;
+    use super::{params, Case};
     use ::drivebus::Accessor;
     impl<L: ::drivebus::Link> Case<L> {
-        /// parameter_configuration Address, type, unit and source:
-        /// [`params::ParameterConfiguration`].
+        /// parameter_configuration Details: [`params::ParameterConfiguration`].
         #[doc(alias("0x0032"))]
         pub fn parameter_configuration(
             &mut self,
-        ) -> Accessor<'_, L, params::ParameterConfiguration> {
+        ) -> Accessor<'_, L, ParameterConfiguration> {
             self.device.parameter()
         }
-        /// speed_source Address, type, unit and source: [`params::SpeedSource`].
+        /// speed_source Details: [`params::SpeedSource`].
         #[doc(alias("0x003C", "0x003D"))]
-        pub fn speed_source(&mut self) -> Accessor<'_, L, params::SpeedSource> {
+        pub fn speed_source(&mut self) -> Accessor<'_, L, SpeedSource> {
             self.device.parameter()
         }
-        /// boost Address, type, unit and source: [`params::Boost`].
+        /// boost Details: [`params::Boost`].
         #[doc(alias("0x0046"))]
-        pub fn boost(&mut self) -> Accessor<'_, L, params::Boost> {
+        pub fn boost(&mut self) -> Accessor<'_, L, Boost> {
             self.device.parameter()
         }
     }
