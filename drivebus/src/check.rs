@@ -39,6 +39,7 @@ pub fn one_of<R: Numeric>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::value::Scalable;
 
     #[test]
     fn range_and_set_checks() {

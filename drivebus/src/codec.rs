@@ -44,7 +44,7 @@ impl<R: Numeric> Codec<R, f64> for Scaled {
     }
     #[inline]
     fn encode(parameter: &'static str, value: f64, scale: Scale) -> Result<R, ValueError> {
-        scale.to_raw(parameter, value)
+        Ok(scale.to_raw(parameter, value)?)
     }
 }
 
@@ -59,7 +59,7 @@ impl<R: Numeric, Q: Quantity> Codec<R, Q> for InUnit {
     }
     #[inline]
     fn encode(parameter: &'static str, value: Q, scale: Scale) -> Result<R, ValueError> {
-        scale.to_raw(parameter, value.get())
+        Ok(scale.to_raw(parameter, value.get())?)
     }
 }
 

@@ -6,6 +6,8 @@
 //! zero-extends and refuses anything that does not fit rather than truncating it.
 
 use crate::error::ValueError;
+pub use drivebus_model::Scalable;
+use drivebus_model::ScaleError;
 
 /// A raw value as it crosses the wire.
 pub trait WireValue: Sized + Copy + core::fmt::Debug + PartialEq + 'static {
@@ -17,35 +19,28 @@ pub trait WireValue: Sized + Copy + core::fmt::Debug + PartialEq + 'static {
     fn encode_le(&self, out: &mut [u8]) -> Result<(), ValueError>;
 }
 
-/// A numeric raw value, convertible to and from `f64` for scaling and range checks.
-pub trait Numeric: WireValue + PartialOrd {
-    /// Whether the type holds only whole numbers (scaled writes must then land on a step).
-    const IS_INTEGER: bool;
-    /// The value as `f64` (exact for every integer up to 2^53 and for floats).
-    fn to_f64(self) -> f64;
-    /// The value from an `f64` if it is integral (for integer types) and in the type's range.
-    fn from_f64(value: f64) -> Option<Self>;
-}
+/// A numeric raw value as it crosses the wire: a [`WireValue`] a [`Scale`](crate::Scale)
+/// converts and range checks compare ([`Scalable`]).
+pub trait Numeric: WireValue + Scalable {}
 
-/// `x` rounded half away from zero; `core` has no `f64::round` without `std`.
-pub(crate) fn round(x: f64) -> f64 {
-    // Beyond 2^52 every f64 is already a whole number (and NaN/inf pass through).
-    if x.is_nan() || x.abs() >= 4_503_599_627_370_496.0 {
-        return x;
-    }
-    let t = x as i64 as f64;
-    let diff = x - t;
-    if diff >= 0.5 {
-        t + 1.0
-    } else if diff <= -0.5 {
-        t - 1.0
-    } else {
-        t
-    }
-}
+impl<T: WireValue + Scalable> Numeric for T {}
 
-fn is_whole(x: f64) -> bool {
-    round(x) == x
+/// A scale's refusal, as the value error of the parameter it was asked for.
+impl From<ScaleError> for ValueError {
+    fn from(error: ScaleError) -> Self {
+        match error {
+            ScaleError::Overflow { parameter } => ValueError::Overflow { parameter },
+            ScaleError::NotRepresentable {
+                parameter,
+                value,
+                step,
+            } => ValueError::NotRepresentable {
+                parameter,
+                value,
+                step,
+            },
+        }
+    }
 }
 
 const ERR_OVERFLOW: ValueError = ValueError::Overflow { parameter: "" };
@@ -98,16 +93,6 @@ macro_rules! integer_wire_value {
                 int_to_le(*self as i128, $signed, out)
             }
         }
-        impl Numeric for $ty {
-            const IS_INTEGER: bool = true;
-            fn to_f64(self) -> f64 {
-                self as f64
-            }
-            fn from_f64(value: f64) -> Option<Self> {
-                let in_range = value >= <$ty>::MIN as f64 && value <= <$ty>::MAX as f64;
-                (is_whole(value) && in_range).then(|| value as $ty)
-            }
-        }
     )*};
 }
 
@@ -132,18 +117,6 @@ macro_rules! float_wire_value {
                 Ok(())
             }
         }
-        impl Numeric for $ty {
-            const IS_INTEGER: bool = false;
-            fn to_f64(self) -> f64 {
-                self as f64
-            }
-            /// `None` where the value is infinite in this width (an `f32` beyond `f32::MAX`):
-            /// it would reach the drive as infinity.
-            fn from_f64(value: f64) -> Option<Self> {
-                let narrowed = value as $ty;
-                narrowed.is_finite().then_some(narrowed)
-            }
-        }
     )*};
 }
 
@@ -160,22 +133,6 @@ impl WireValue for bool {
     }
     fn encode_le(&self, out: &mut [u8]) -> Result<(), ValueError> {
         int_to_le(*self as i128, false, out)
-    }
-}
-
-/// CiA 301 BOOLEAN as the numbers 0 and 1 (`false < true`), so that the range and allowed values
-/// a description gives a boolean are checked like any other parameter's.
-impl Numeric for bool {
-    const IS_INTEGER: bool = true;
-    fn to_f64(self) -> f64 {
-        f64::from(u8::from(self))
-    }
-    fn from_f64(value: f64) -> Option<Self> {
-        match value {
-            0.0 => Some(false),
-            1.0 => Some(true),
-            _ => None,
-        }
     }
 }
 
@@ -266,7 +223,7 @@ mod tests {
         assert_eq!(f64::from_f64(f64::INFINITY), None);
         assert_eq!(
             crate::Scale::IDENTITY.to_raw::<f32>("gain", 1e39),
-            Err(ValueError::Overflow { parameter: "gain" })
+            Err(ScaleError::Overflow { parameter: "gain" })
         );
     }
 
@@ -281,21 +238,5 @@ mod tests {
         let t = Text::<8>::decode_le(b"SWD\0\0").unwrap();
         assert_eq!(t.as_str(), Some("SWD"));
         assert!(Text::<2>::decode_le(b"SWD").is_err());
-    }
-
-    #[test]
-    fn rounding_is_half_away_from_zero() {
-        assert_eq!(round(2.5), 3.0);
-        assert_eq!(round(-2.5), -3.0);
-        assert_eq!(round(2.4999), 2.0);
-        assert_eq!(round(1e300), 1e300);
-    }
-
-    #[test]
-    fn numeric_from_f64_rejects_fractions_and_overflow() {
-        assert_eq!(u16::from_f64(4950.0), Some(4950));
-        assert_eq!(u16::from_f64(49.5), None);
-        assert_eq!(u16::from_f64(70000.0), None);
-        assert_eq!(i16::from_f64(-3000.0), Some(-3000));
     }
 }

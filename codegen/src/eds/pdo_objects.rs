@@ -5,7 +5,7 @@
 //! A description that defines a PDO's communication or mapping object itself keeps its own
 //! definition; that object is not derived again.
 
-use drivebus::canopen::pdo::MappedObject;
+use drivebus_model::canopen::MappedObject;
 
 use crate::ir::{self, pdo_bits, DataType, Device, Number, PdoDirection, PdoMapping};
 

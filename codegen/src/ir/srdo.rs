@@ -78,14 +78,14 @@ impl SrdoMapping {
     pub fn mapped_objects(
         &self,
         device: &super::Device,
-    ) -> Option<Vec<drivebus::canopen::pdo::MappedObject>> {
+    ) -> Option<Vec<drivebus_model::canopen::MappedObject>> {
         self.entries
             .iter()
             .map(|name| {
                 let parameter = device.parameter(name)?;
                 let object = parameter.pdo_object()?;
                 let bits = u8::try_from(super::pdo_bits(parameter.data_type)).ok()?;
-                Some(drivebus::canopen::pdo::MappedObject::new(
+                Some(drivebus_model::canopen::MappedObject::new(
                     object.index,
                     object.subindex,
                     bits,

@@ -1,7 +1,7 @@
 //! Every declared SRDO maps pairs (normal entry, then an inverted entry of the same width) whose
 //! normal data fits one 8-byte frame: the rule of `drivebus::canopen::srdo::mapping`.
 
-use drivebus::canopen::srdo::{mapping::check_mapping, SrdoError};
+use drivebus_model::canopen::srdo::{mapping::check_mapping, SrdoError};
 
 use crate::diagnostic::Diagnostic;
 use crate::ir::Device;

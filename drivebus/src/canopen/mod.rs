@@ -52,7 +52,7 @@
 //! # fn main() {}
 //! ```
 
-mod address;
+pub(crate) use drivebus_model::canopen as address;
 pub mod backend;
 #[cfg(feature = "canopen")]
 pub mod blocking;

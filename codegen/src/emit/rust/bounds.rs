@@ -3,8 +3,8 @@
 //! `write_<name>(value)` that reads the bounds' current raw values, refuses a value beyond them
 //! naming the bound, and only then writes.
 
-use drivebus::interpret::Described;
-use drivebus::Bound;
+use drivebus_model::model::Described;
+use drivebus_model::Bound;
 use proc_macro2::TokenStream;
 use quote::quote;
 

@@ -2,7 +2,7 @@
 //! `enable_operation` & co. on the handle) when the description has the CiA 402 objects, and a
 //! vendor state machine as data (`[state_machine]`) with its typed states.
 
-use drivebus::control::Quirk;
+use drivebus_model::control::Quirk;
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 

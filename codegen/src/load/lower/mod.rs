@@ -28,7 +28,7 @@ use super::LoadedFile;
 use crate::diagnostic::{Diagnostic, FileId, Files, Span};
 use crate::eds::EdsModel;
 use crate::ir::{self, DataType, Expr, Number};
-use drivebus::Ratio;
+use drivebus_model::Ratio;
 use overlay::Overlay;
 
 /// Turns loaded files into one device model. Returns `None` if the root file has neither
@@ -694,7 +694,7 @@ impl Lowering<'_> {
         };
         match (factor, offset) {
             (Some(factor), Some(offset)) => {
-                Some(ir::Scale::Fixed(drivebus::Scale { factor, offset }))
+                Some(ir::Scale::Fixed(drivebus_model::Scale { factor, offset }))
             }
             _ => {
                 self.error_help(
@@ -796,7 +796,7 @@ impl Lowering<'_> {
         };
         let access = self.modbus_access(raw.access.as_deref(), span, default_access)?;
         Some(ir::ModbusAddress {
-            wire: drivebus::modbus::ModbusAddress {
+            wire: drivebus_model::modbus::ModbusAddress {
                 table,
                 address,
                 words,

@@ -3,8 +3,9 @@
 //! A scale is `engineering = raw × factor + offset` with `factor` and `offset` exact rationals, so a
 //! description's `1/100` stays exact; conversion to `f64` happens once, at the edge.
 
-use crate::error::ValueError;
-use crate::value::Numeric;
+use core::fmt;
+
+use crate::scalable::{round, Scalable};
 
 /// Below this magnitude every integer is exact in `f64` (2^53).
 pub const EXACT_INTEGERS: f64 = 9_007_199_254_740_992.0;
@@ -103,7 +104,7 @@ impl Ratio {
     }
 
     /// An integer raw value as a ratio, `None` if it is not a whole number within `i64`.
-    pub fn from_raw<R: Numeric>(raw: R) -> Option<Ratio> {
+    pub fn from_raw<R: Scalable>(raw: R) -> Option<Ratio> {
         let value = raw.to_f64();
         let whole = i64::from_f64(value)?;
         // `to_f64` is exact only up to 2^53; refuse larger values rather than use a rounded one.
@@ -172,6 +173,39 @@ impl serde::Serialize for Scale {
     }
 }
 
+/// Why an engineering value has no raw value under a scale; nothing is rounded or truncated.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ScaleError {
+    /// The value does not fit the raw type (or is not finite).
+    Overflow {
+        /// Parameter name as in the description.
+        parameter: &'static str,
+    },
+    /// The value is not a whole multiple of the scale's step; writing it would round.
+    NotRepresentable {
+        /// Parameter name as in the description.
+        parameter: &'static str,
+        /// The engineering value that was asked for.
+        value: f64,
+        /// The scale's step (its factor's magnitude).
+        step: f64,
+    },
+}
+
+impl fmt::Display for ScaleError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Overflow { parameter } => write!(f, "{parameter}: value does not fit the raw type"),
+            Self::NotRepresentable { parameter, value, step } => write!(
+                f,
+                "{parameter}: {value} is not a multiple of the parameter's resolution {step}; it would be rounded"
+            ),
+        }
+    }
+}
+
+impl core::error::Error for ScaleError {}
+
 /// `engineering = raw × factor + offset`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Scale {
@@ -221,7 +255,7 @@ impl Scale {
     /// Engineering value of a raw value: `raw × factor + offset`. Where every term is an exact
     /// `f64` integer it is computed as one fraction, rounded once, so that decimal steps read back
     /// as written (3 × 1/10 is 0.3, not 0.30000000000000004).
-    pub fn to_engineering<R: Numeric>(self, raw: R) -> f64 {
+    pub fn to_engineering<R: Scalable>(self, raw: R) -> f64 {
         let raw = raw.to_f64();
         let int = |r: Ratio| (r.numerator() as f64, r.denominator() as f64);
         let ((num, den), (offset_num, offset_den)) = (int(self.factor), int(self.offset));
@@ -237,26 +271,26 @@ impl Scale {
 
     /// Raw value of an engineering value; refuses values that would have to be rounded or do not
     /// fit the raw type, so nothing is silently changed on its way to the drive.
-    pub fn to_raw<R: Numeric>(self, parameter: &'static str, value: f64) -> Result<R, ValueError> {
+    pub fn to_raw<R: Scalable>(self, parameter: &'static str, value: f64) -> Result<R, ScaleError> {
         if !value.is_finite() {
-            return Err(ValueError::Overflow { parameter });
+            return Err(ScaleError::Overflow { parameter });
         }
         let exact = (value - self.offset.to_f64()) / self.factor.to_f64();
         if !R::IS_INTEGER {
-            return R::from_f64(exact).ok_or(ValueError::Overflow { parameter });
+            return R::from_f64(exact).ok_or(ScaleError::Overflow { parameter });
         }
-        let nearest = crate::value::round(exact);
+        let nearest = round(exact);
         // A relative tolerance absorbs decimal→binary noise (49.5 / 0.01) but no real rounding.
         let tolerance = 1e-9 * nearest.abs().max(1.0);
         if (exact - nearest).abs() > tolerance {
             let step = self.factor.to_f64().abs();
-            return Err(ValueError::NotRepresentable {
+            return Err(ScaleError::NotRepresentable {
                 parameter,
                 value,
                 step,
             });
         }
-        R::from_f64(nearest).ok_or(ValueError::Overflow { parameter })
+        R::from_f64(nearest).ok_or(ScaleError::Overflow { parameter })
     }
 }
 
@@ -356,7 +390,7 @@ mod tests {
         let scale = Scale::factor(Ratio::new(1, 10).unwrap());
         assert!(matches!(
             scale.to_raw::<i16>("motor_temperature", 35.55),
-            Err(ValueError::NotRepresentable { .. })
+            Err(ScaleError::NotRepresentable { .. })
         ));
     }
 
@@ -374,7 +408,7 @@ mod tests {
     fn raw_overflow_is_an_error() {
         assert_eq!(
             Scale::IDENTITY.to_raw::<u8>("x", 300.0),
-            Err(ValueError::Overflow { parameter: "x" })
+            Err(ScaleError::Overflow { parameter: "x" })
         );
     }
 }

@@ -82,5 +82,4 @@ impl fmt::Display for SrdoError {
     }
 }
 
-#[cfg(feature = "std")]
-impl std::error::Error for SrdoError {}
+impl core::error::Error for SrdoError {}
