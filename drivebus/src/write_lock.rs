@@ -29,7 +29,7 @@ pub use drivebus_model::write_lock::{LockScope, Requirement, UnlockRule, WriteLo
 /// The unlocks a handle has sent and not seen end.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct LockAccount {
-    lock: &'static WriteLock,
+    lock: &'static WriteLock<'static>,
     /// Bit `i` set: `lock.unlocks[i]` may be in force.
     in_force: u32,
     /// Bit `i` set: `lock.unlocks[i]` lost its requirement, which closed its guarded scopes.
@@ -38,7 +38,7 @@ pub(crate) struct LockAccount {
 
 impl LockAccount {
     /// A freshly opened handle's account: locked, as the drive powers up.
-    pub(crate) fn locked(lock: &'static WriteLock) -> Self {
+    pub(crate) fn locked(lock: &'static WriteLock<'static>) -> Self {
         Self {
             lock,
             in_force: 0,
@@ -66,7 +66,7 @@ impl LockAccount {
         }
     }
 
-    fn scope_of(&self, parameter: &str) -> Option<&'static LockScope> {
+    fn scope_of(&self, parameter: &str) -> Option<&'static LockScope<'static>> {
         self.lock
             .scopes
             .iter()
@@ -84,8 +84,8 @@ impl LockAccount {
     }
 
     /// Each unlock with its bit in `in_force`.
-    fn unlocks(&self) -> impl Iterator<Item = (u32, &'static UnlockRule)> {
-        let lock: &'static WriteLock = self.lock;
+    fn unlocks(&self) -> impl Iterator<Item = (u32, &'static UnlockRule<'static>)> {
+        let lock: &'static WriteLock<'static> = self.lock;
         lock.unlocks
             .iter()
             .take(MAX_UNLOCKS)

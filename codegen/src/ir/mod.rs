@@ -41,7 +41,6 @@ pub use node_ids::{DefaultCheck, NodeIds, FIRST_NODE_ID, LAST_NODE_ID};
 pub use pdo::{pdo_bits, CobId, PdoDirection, PdoMapping};
 pub use ramp::{per_second, Polarity, Ramp, Slope};
 pub use read_block::ReadBlock;
-pub use readable_registers::{PlannerLimits, RegisterRun};
 pub use refinement::Refinement;
 pub use safety::is_safety_configuration;
 pub use srdo::{SrdoCobId, SrdoMapping};
@@ -438,6 +437,9 @@ pub struct ModbusCaps {
     pub combined_commands: Option<CombinedCommands>,
     /// Citation.
     pub source: Option<Citation>,
+    /// The register lists of [`Device::modbus_limits`], derived on first use.
+    #[serde(skip)]
+    pub(crate) register_lists: readable_registers::RegisterListsCell,
 }
 
 /// The rule of a command register whose commands are one bit each, for a write that sets several

@@ -227,7 +227,7 @@ fn vendor(device: &Device, handle: &Ident) -> Option<TokenStream> {
             }
 
             /// States and transitions as data, walked by `drivebus::control::machine`'s planner.
-            pub const MACHINE: ::drivebus::control::Machine = #data;
+            pub const MACHINE: ::drivebus::control::Machine<'static> = #data;
 
             /// The machine's registers, for `drivebus::control::driver::goto_state`.
             #[derive(Debug, Clone, Copy)]
@@ -236,7 +236,7 @@ fn vendor(device: &Device, handle: &Ident) -> Option<TokenStream> {
             impl ::drivebus::control::VendorMachine for Registers {
                 type Status = super::params::#status;
                 type Command = super::params::#command;
-                const MACHINE: ::drivebus::control::Machine = MACHINE;
+                const MACHINE: ::drivebus::control::Machine<'static> = MACHINE;
             }
         }
 

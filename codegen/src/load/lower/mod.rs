@@ -418,6 +418,7 @@ impl Lowering<'_> {
                 .as_ref()
                 .and_then(|c| self.combined_commands(c)),
             source: raw.source.as_ref().and_then(|c| self.citation(c)),
+            register_lists: Default::default(),
         }
     }
 
