@@ -37,7 +37,7 @@ pub use lock::{
     Watchdog,
 };
 pub use model::{Constant, Model};
-pub use node_ids::{DefaultCheck, NodeIds, FIRST_NODE_ID, LAST_NODE_ID};
+pub use node_ids::{DefaultCheck, NodeIds};
 pub use pdo::{pdo_bits, CobId, PdoDirection, PdoMapping};
 pub use ramp::{per_second, Polarity, Ramp, Slope};
 pub use read_block::ReadBlock;

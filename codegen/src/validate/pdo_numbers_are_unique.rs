@@ -4,8 +4,8 @@
 use std::collections::HashMap;
 
 use crate::diagnostic::Diagnostic;
-use crate::emit::ident::camel;
 use crate::ir::{Device, PdoDirection};
+use crate::names::camel;
 
 const RULE: &str = "pdo_numbers_are_unique";
 

@@ -3,8 +3,8 @@
 use std::collections::HashMap;
 
 use crate::diagnostic::Diagnostic;
-use crate::emit::ident::camel;
 use crate::ir::Device;
+use crate::names::camel;
 
 const RULE: &str = "srdo_numbers_are_unique";
 

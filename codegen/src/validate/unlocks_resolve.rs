@@ -5,8 +5,8 @@
 use std::collections::BTreeSet;
 
 use crate::diagnostic::{Diagnostic, Span};
-use crate::emit::ident as names;
 use crate::ir::{CommandKind, Device, GrantKey, Lock, Parameter, Unlock, UnlockEnd, Watchdog};
+use crate::names;
 
 const RULE: &str = "unlocks_resolve";
 
