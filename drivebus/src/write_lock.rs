@@ -67,19 +67,12 @@ impl LockAccount {
     }
 
     fn scope_of(&self, parameter: &str) -> Option<&'static LockScope<'static>> {
-        self.lock
-            .scopes
-            .iter()
-            .find(|s| s.parameters.contains(&parameter))
+        self.lock.scope_of(parameter)
     }
 
     fn opens(&self, scope: &LockScope) -> bool {
         self.unlocks().any(|(bit, u)| {
-            let closed_by_loss = self.requirement_lost & bit != 0
-                && u.lost_without
-                    .as_ref()
-                    .is_some_and(|r| r.scopes.contains(&scope.name));
-            self.in_force & bit != 0 && u.opens.contains(&scope.name) && !closed_by_loss
+            self.in_force & bit != 0 && u.opens(scope.name, self.requirement_lost & bit != 0)
         })
     }
 
@@ -99,15 +92,10 @@ impl LockAccount {
             return;
         }
         for (bit, unlock) in self.unlocks() {
-            let granted =
-                unlock.grant == parameter && unlock.key.is_none_or(|key| encodes(bytes, key));
-            let lost = unlock.lost_without.as_ref().is_some_and(|r| {
-                r.parameter == parameter && !r.values.iter().any(|v| encodes(bytes, *v))
-            });
-            if granted {
+            if unlock.granted_by(parameter, bytes) {
                 self.in_force |= bit;
                 self.requirement_lost &= !bit;
-            } else if lost {
+            } else if unlock.requirement_lost_by(parameter, bytes) {
                 self.requirement_lost |= bit;
             }
         }
@@ -129,17 +117,6 @@ impl LockAccount {
             }
         }
     }
-}
-
-/// Whether `bytes` (a raw value sent little-endian) hold `value`: the same bits, and nothing of
-/// `value` beyond them but its sign extension.
-fn encodes(bytes: &[u8], value: i128) -> bool {
-    let extension = if value < 0 { 0xFF } else { 0 };
-    let held = value.to_le_bytes();
-    (0..bytes.len().max(held.len())).all(|i| {
-        let value_byte = held.get(i).copied().unwrap_or(extension);
-        bytes.get(i).copied().unwrap_or(extension) == value_byte
-    })
 }
 
 #[cfg(test)]
@@ -285,15 +262,5 @@ mod tests {
         );
         account.follow("lock_security", &2u16.to_le_bytes(), &locked);
         assert!(!open(&account, "start"), "a refused lock: locked already");
-    }
-
-    #[test]
-    fn values_compare_in_the_width_sent() {
-        assert!(encodes(&[0, 0], 0));
-        assert!(encodes(&[0xE8, 0x03], 1000));
-        assert!(!encodes(&[0xE8, 0x03], 1001));
-        assert!(encodes(&[0xFF, 0xFF], -1));
-        assert!(!encodes(&[0xFF, 0xFF], 65535 + 65536));
-        assert!(encodes(&[0xFF, 0xFF], 65535), "the same bits as -1");
     }
 }

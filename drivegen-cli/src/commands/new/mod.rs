@@ -133,6 +133,6 @@ fn is_checkout(root: &Path) -> bool {
         "drivebus/Cargo.toml",
         "codegen/Cargo.toml",
     ]
-        .iter()
-        .all(|manifest| root.join(manifest).is_file())
+    .iter()
+    .all(|manifest| root.join(manifest).is_file())
 }
