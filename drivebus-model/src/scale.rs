@@ -174,19 +174,13 @@ impl serde::Serialize for Scale {
 }
 
 /// Why an engineering value has no raw value under a scale; nothing is rounded or truncated.
+/// The caller knows which value of which parameter it asked for (drivebus reports both).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum ScaleError {
     /// The value does not fit the raw type (or is not finite).
-    Overflow {
-        /// Parameter name as in the description.
-        parameter: &'static str,
-    },
-    /// The value is not a whole multiple of the scale's step; writing it would round.
-    NotRepresentable {
-        /// Parameter name as in the description.
-        parameter: &'static str,
-        /// The engineering value that was asked for.
-        value: f64,
+    Overflow,
+    /// The value lies between two steps of the scale (`step` apart); writing it would round.
+    BetweenSteps {
         /// The scale's step (its factor's magnitude).
         step: f64,
     },
@@ -195,10 +189,10 @@ pub enum ScaleError {
 impl fmt::Display for ScaleError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Self::Overflow { parameter } => write!(f, "{parameter}: value does not fit the raw type"),
-            Self::NotRepresentable { parameter, value, step } => write!(
+            Self::Overflow => f.write_str("the value does not fit the raw type"),
+            Self::BetweenSteps { step } => write!(
                 f,
-                "{parameter}: {value} is not a multiple of the parameter's resolution {step}; it would be rounded"
+                "the value lies between two steps of {step}; it would be rounded"
             ),
         }
     }
@@ -271,26 +265,22 @@ impl Scale {
 
     /// Raw value of an engineering value; refuses values that would have to be rounded or do not
     /// fit the raw type, so nothing is silently changed on its way to the drive.
-    pub fn to_raw<R: Scalable>(self, parameter: &'static str, value: f64) -> Result<R, ScaleError> {
+    pub fn to_raw<R: Scalable>(self, value: f64) -> Result<R, ScaleError> {
         if !value.is_finite() {
-            return Err(ScaleError::Overflow { parameter });
+            return Err(ScaleError::Overflow);
         }
         let exact = (value - self.offset.to_f64()) / self.factor.to_f64();
         if !R::IS_INTEGER {
-            return R::from_f64(exact).ok_or(ScaleError::Overflow { parameter });
+            return R::from_f64(exact).ok_or(ScaleError::Overflow);
         }
         let nearest = round(exact);
         // A relative tolerance absorbs decimal→binary noise (49.5 / 0.01) but no real rounding.
         let tolerance = 1e-9 * nearest.abs().max(1.0);
         if (exact - nearest).abs() > tolerance {
             let step = self.factor.to_f64().abs();
-            return Err(ScaleError::NotRepresentable {
-                parameter,
-                value,
-                step,
-            });
+            return Err(ScaleError::BetweenSteps { step });
         }
-        R::from_f64(nearest).ok_or(ScaleError::Overflow { parameter })
+        R::from_f64(nearest).ok_or(ScaleError::Overflow)
     }
 }
 
@@ -328,7 +318,7 @@ mod tests {
                 i128::from(den) * i128::from(offset_den),
             );
             proptest::prop_assert_eq!(value, n as f64 / d as f64);
-            proptest::prop_assert_eq!(scale.to_raw::<i32>("p", value), Ok(raw));
+            proptest::prop_assert_eq!(scale.to_raw::<i32>(value), Ok(raw));
         }
     }
 
@@ -375,22 +365,22 @@ mod tests {
             Ratio::int(1875).checked_div(Ratio::int(512).checked_mul(Ratio::int(10_000)).unwrap());
         assert_eq!(f, Ratio::new(3, 8192));
         let scale = Scale::factor(f.unwrap());
-        assert_eq!(scale.to_raw::<i32>("target_speed", 1500.0), Ok(4_096_000));
+        assert_eq!(scale.to_raw::<i32>(1500.0), Ok(4_096_000));
     }
 
     #[test]
     fn volts_round_trip_through_hundredths() {
         let scale = Scale::factor(Ratio::new(1, 100).unwrap());
         assert_eq!(scale.to_engineering(4950u16), 49.5);
-        assert_eq!(scale.to_raw::<u16>("bus_dc_link", 49.5), Ok(4950));
+        assert_eq!(scale.to_raw::<u16>(49.5), Ok(4950));
     }
 
     #[test]
     fn values_between_steps_are_refused_not_rounded() {
         let scale = Scale::factor(Ratio::new(1, 10).unwrap());
         assert!(matches!(
-            scale.to_raw::<i16>("motor_temperature", 35.55),
-            Err(ScaleError::NotRepresentable { .. })
+            scale.to_raw::<i16>(35.55),
+            Err(ScaleError::BetweenSteps { .. })
         ));
     }
 
@@ -401,14 +391,14 @@ mod tests {
             offset: Ratio::int(-40),
         };
         assert_eq!(scale.to_engineering(400u16), 0.0);
-        assert_eq!(scale.to_raw::<u16>("t", -40.0), Ok(0));
+        assert_eq!(scale.to_raw::<u16>(-40.0), Ok(0));
     }
 
     #[test]
     fn raw_overflow_is_an_error() {
         assert_eq!(
-            Scale::IDENTITY.to_raw::<u8>("x", 300.0),
-            Err(ScaleError::Overflow { parameter: "x" })
+            Scale::IDENTITY.to_raw::<u8>(300.0),
+            Err(ScaleError::Overflow)
         );
     }
 }

@@ -25,21 +25,15 @@ pub trait Numeric: WireValue + Scalable {}
 
 impl<T: WireValue + Scalable> Numeric for T {}
 
-/// A scale's refusal, as the value error of the parameter it was asked for.
-impl From<ScaleError> for ValueError {
-    fn from(error: ScaleError) -> Self {
-        match error {
-            ScaleError::Overflow { parameter } => ValueError::Overflow { parameter },
-            ScaleError::NotRepresentable {
-                parameter,
-                value,
-                step,
-            } => ValueError::NotRepresentable {
-                parameter,
-                value,
-                step,
-            },
-        }
+/// `value`, refused by `parameter`'s scale, as the value error a write reports.
+pub(crate) fn scale_refusal(parameter: &'static str, value: f64, error: ScaleError) -> ValueError {
+    match error {
+        ScaleError::Overflow => ValueError::Overflow { parameter },
+        ScaleError::BetweenSteps { step } => ValueError::NotRepresentable {
+            parameter,
+            value,
+            step,
+        },
     }
 }
 
@@ -222,8 +216,8 @@ mod tests {
         assert_eq!(f32::from_f64(3.0e38), Some(3.0e38));
         assert_eq!(f64::from_f64(f64::INFINITY), None);
         assert_eq!(
-            crate::Scale::IDENTITY.to_raw::<f32>("gain", 1e39),
-            Err(ScaleError::Overflow { parameter: "gain" })
+            crate::Scale::IDENTITY.to_raw::<f32>(1e39),
+            Err(ScaleError::Overflow)
         );
     }
 
