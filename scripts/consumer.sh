@@ -14,7 +14,8 @@ trap 'rm -rf "$project"' EXIT
 mkdir -p "$project/crates" "$project/src"
 
 patches=""
-for crate in drivebus drivegen drivesim lafert-smartris; do
+# drivebus-model too: drivebus and drivegen depend on it, pinned to the packaged version.
+for crate in drivebus-model drivebus drivegen drivesim lafert-smartris; do
     version=$(cargo pkgid --offline -p "$crate" | sed 's/.*[#@]//')
     archive="target/package/$crate-$version.crate"
     [[ -f $archive ]] || { echo "consumer: no $archive; run scripts/package.sh first" >&2; exit 1; }

@@ -4,7 +4,9 @@
 # temporary local registry of each other (target/package-build/package/tmp-registry). The
 # archives are copied to target/package/*.crate for scripts/consumer.sh. Test and bench targets
 # are left out of the packages on purpose (they need the workspace), so cargo's notes about them
-# are not shown.
+# are not shown. Cargo packages in dependency order: drivebus-model first (drivebus and drivegen
+# pin it exactly), then drivebus and drivegen, drivesim, the drive crates and drivegen-cli; crates
+# are published in the same order.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

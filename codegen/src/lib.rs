@@ -8,6 +8,8 @@
 //! * [`emit`] turns a valid IR into Rust source;
 //! * [`diff`] compares two descriptions and classifies each change by its impact on user code;
 //! * [`eds`] reads CiA 306 EDS / DCF files (alone or under a TOML overlay) and writes EDS files;
+//! * [`names`] is the naming policy (description names to Rust identifiers) that validation,
+//!   the EDS reader and writer and the emitter share;
 //! * [`Builder`] is the `build.rs` entry point of drive crates.
 
 mod builder;
@@ -17,6 +19,8 @@ pub mod eds;
 pub mod emit;
 pub mod ir;
 pub mod load;
+mod mandatory_objects;
+pub mod names;
 #[cfg(test)]
 mod test_support;
 pub mod validate;

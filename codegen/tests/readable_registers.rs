@@ -1,7 +1,8 @@
 //! `Device::readable_register_runs`: what a request planner may read past on a device that
 //! refuses reads over unlisted addresses.
 
-use drivegen::ir::{RegisterRun, Table};
+use drivebus::modbus::RegisterSpan;
+use drivegen::ir::Table;
 
 const DESCRIPTION: &str = r#"
 format = 1
@@ -70,7 +71,7 @@ fn runs_merge_neighbours_and_leave_out_write_only_and_variant_bound_registers() 
     std::fs::remove_dir_all(&dir).unwrap();
     let rendered = checked.render();
     let device = checked.device.unwrap_or_else(|| panic!("{rendered}"));
-    let run = |table, start, count| RegisterRun {
+    let run = |table, start, count| RegisterSpan {
         table,
         start,
         count,

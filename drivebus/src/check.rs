@@ -42,6 +42,7 @@ pub fn one_of<R: Numeric>(
 mod tests {
     use super::*;
     use crate::interpret::RawValue;
+    use crate::value::Scalable;
 
     #[test]
     fn range_and_set_checks() {

@@ -8,7 +8,7 @@ use crate::error::ValueError;
 use crate::parameter::{FromWire, OpenEnum};
 use crate::scale::Scale;
 use crate::units::Quantity;
-use crate::value::Numeric;
+use crate::value::{scale_refusal, Numeric};
 
 /// Converts between raw type `R` and engineering type `V`.
 pub trait Codec<R, V> {
@@ -44,7 +44,9 @@ impl<R: Numeric> Codec<R, f64> for Scaled {
     }
     #[inline]
     fn encode(parameter: &'static str, value: f64, scale: Scale) -> Result<R, ValueError> {
-        scale.to_raw(parameter, value)
+        scale
+            .to_raw(value)
+            .map_err(|e| scale_refusal(parameter, value, e))
     }
 }
 
@@ -59,7 +61,10 @@ impl<R: Numeric, Q: Quantity> Codec<R, Q> for InUnit {
     }
     #[inline]
     fn encode(parameter: &'static str, value: Q, scale: Scale) -> Result<R, ValueError> {
-        scale.to_raw(parameter, value.get())
+        let value = value.get();
+        scale
+            .to_raw(value)
+            .map_err(|e| scale_refusal(parameter, value, e))
     }
 }
 

@@ -49,7 +49,7 @@ impl<L: Link> Device<L> {
     /// `WRITE_LOCK`): it starts locked, as the drive powers up, and writes to a locked
     /// parameter are refused until a grant that opens it is written through this handle (see
     /// [`crate::write_lock`]).
-    pub fn with_write_lock(mut self, lock: &'static WriteLock) -> Self {
+    pub fn with_write_lock(mut self, lock: &'static WriteLock<'static>) -> Self {
         self.lock = Some(LockAccount::locked(lock));
         self
     }

@@ -6,7 +6,8 @@
 //!   per-protocol read/write capabilities (a missing capability is a compile error).
 //! * [`codec`] — the conversions between raw and engineering values parameters name.
 //! * [`value`] — raw wire types and their little-endian codecs.
-//! * [`scale`] / [`units`] — exact rational scaling and the unit newtypes values are returned in.
+//! * [`scale`] / [`units`] — exact rational scaling and the unit newtypes values are returned in
+//!   (from `drivebus-model`, the vocabulary this crate shares with the generator).
 //! * [`link`] — the one trait a protocol binding implements; [`device`] drives it.
 //! * [`indexed`] — members described once over a run of sub-indices: one marker, one indexed
 //!   accessor with a range-checked sub-index.
@@ -32,17 +33,14 @@
 #[cfg(any(feature = "std", test))]
 extern crate std;
 
-pub mod bound;
 pub mod bus_error_kind;
 pub mod canopen;
 #[doc(hidden)] // the checks generated parameters call before sending
 pub mod check;
 pub mod codec;
 pub mod control;
-pub mod data_type;
 pub mod device;
 pub mod error;
-pub mod error_class;
 #[doc(hidden)] // the `flags!` macro's helpers; generated crates reach them through the macro
 pub mod flags_macro;
 pub mod given;
@@ -57,16 +55,16 @@ mod parameter_macro;
 pub mod prelude;
 pub mod read_set;
 pub mod rs232;
-pub mod scale;
-pub mod stop;
 #[cfg(feature = "std")]
 pub mod stream;
 #[cfg(feature = "testing")]
 pub mod testing;
-pub mod units;
 pub mod unlock_error;
 pub mod value;
 pub mod write_lock;
+
+// The vocabulary lives in `drivebus-model`; it is re-exported at the paths generated code names.
+pub use drivebus_model::{bound, data_type, error_class, scalable, scale, stop, units};
 
 pub use bound::{Bound, OutsideBound};
 pub use bus_error_kind::BusErrorKind;
@@ -77,20 +75,14 @@ pub use error_class::ErrorClass;
 pub use identity::{Covered, IdentityCheck, IdentityChecks};
 pub use link::Link;
 pub use parameter::{BoundBy, Parameter, Placement, RawInteger, Readable, ValueOf, Writable};
-pub use scale::{Ratio, Scale};
+pub use scale::{Ratio, Scale, ScaleError};
 pub use stop::{StopPattern, Stops};
 pub use unlock_error::UnlockError;
 
 /// Re-exported so generated crates need no direct `bitflags` dependency.
 pub use bitflags;
 
-/// The protocol a [`Link`] speaks; selects which address a parameter is reached at.
-pub trait Protocol: 'static {
-    /// How a parameter is addressed on this protocol.
-    type Address: Copy + core::fmt::Debug + PartialEq;
-    /// Human-readable protocol name used in diagnostics.
-    const NAME: &'static str;
-}
+pub use drivebus_model::Protocol;
 
 /// Index of a firmware or parameter-configuration variant, as numbered by the generated crate.
 ///

@@ -3,8 +3,7 @@
 use crate::error::BusError;
 use crate::Protocol;
 
-/// Most bytes one parameter value may occupy on the wire.
-pub const MAX_VALUE_BYTES: usize = 64;
+pub use drivebus_model::MAX_VALUE_BYTES;
 
 /// One value to fetch in a batch read: where it lives, and where its bytes go.
 #[derive(Debug)]

@@ -7,6 +7,8 @@
 
 use crate::error::ValueError;
 use crate::interpret::RawValue;
+pub use drivebus_model::Scalable;
+use drivebus_model::ScaleError;
 
 /// A raw value as it crosses the wire.
 pub trait WireValue: Sized + Copy + core::fmt::Debug + PartialEq + 'static {
@@ -23,14 +25,9 @@ pub trait WireValue: Sized + Copy + core::fmt::Debug + PartialEq + 'static {
     }
 }
 
-/// A numeric raw value, convertible to and from `f64` for scaling.
-pub trait Numeric: WireValue + PartialOrd {
-    /// Whether the type holds only whole numbers (scaled writes must then land on a step).
-    const IS_INTEGER: bool;
-    /// The value as `f64` (exact for every integer up to 2^53 and for floats).
-    fn to_f64(self) -> f64;
-    /// The value from an `f64` if it is integral (for integer types) and in the type's range.
-    fn from_f64(value: f64) -> Option<Self>;
+/// A numeric raw value as it crosses the wire: a [`WireValue`] a [`Scale`](crate::Scale)
+/// converts and range checks compare ([`Scalable`]).
+pub trait Numeric: WireValue + Scalable {
     /// The value exactly, as errors report it: an integer as an integer (a 64-bit raw value
     /// beyond 2^53 would lose its low bits in an `f64`), a float as a float.
     fn to_raw_value(self) -> RawValue {
@@ -39,25 +36,18 @@ pub trait Numeric: WireValue + PartialOrd {
     }
 }
 
-/// `x` rounded half away from zero; `core` has no `f64::round` without `std`.
-pub(crate) fn round(x: f64) -> f64 {
-    // Beyond 2^52 every f64 is already a whole number (and NaN/inf pass through).
-    if x.is_nan() || x.abs() >= 4_503_599_627_370_496.0 {
-        return x;
-    }
-    let t = x as i64 as f64;
-    let diff = x - t;
-    if diff >= 0.5 {
-        t + 1.0
-    } else if diff <= -0.5 {
-        t - 1.0
-    } else {
-        t
-    }
-}
+impl<T: WireValue + Scalable> Numeric for T {}
 
-fn is_whole(x: f64) -> bool {
-    round(x) == x
+/// `value`, refused by `parameter`'s scale, as the value error a write reports.
+pub(crate) fn scale_refusal(parameter: &'static str, value: f64, error: ScaleError) -> ValueError {
+    match error {
+        ScaleError::Overflow => ValueError::Overflow { parameter },
+        ScaleError::BetweenSteps { step } => ValueError::NotRepresentable {
+            parameter,
+            value,
+            step,
+        },
+    }
 }
 
 const ERR_OVERFLOW: ValueError = ValueError::Overflow { parameter: "" };
@@ -113,16 +103,6 @@ macro_rules! integer_wire_value {
                 Some(*self as i128)
             }
         }
-        impl Numeric for $ty {
-            const IS_INTEGER: bool = true;
-            fn to_f64(self) -> f64 {
-                self as f64
-            }
-            fn from_f64(value: f64) -> Option<Self> {
-                let in_range = value >= <$ty>::MIN as f64 && value <= <$ty>::MAX as f64;
-                (is_whole(value) && in_range).then(|| value as $ty)
-            }
-        }
     )*};
 }
 
@@ -147,18 +127,6 @@ macro_rules! float_wire_value {
                 Ok(())
             }
         }
-        impl Numeric for $ty {
-            const IS_INTEGER: bool = false;
-            fn to_f64(self) -> f64 {
-                self as f64
-            }
-            /// `None` where the value is infinite in this width (an `f32` beyond `f32::MAX`):
-            /// it would reach the drive as infinity.
-            fn from_f64(value: f64) -> Option<Self> {
-                let narrowed = value as $ty;
-                narrowed.is_finite().then_some(narrowed)
-            }
-        }
     )*};
 }
 
@@ -178,22 +146,6 @@ impl WireValue for bool {
     }
     fn to_int(&self) -> Option<i128> {
         Some(i128::from(*self))
-    }
-}
-
-/// CiA 301 BOOLEAN as the numbers 0 and 1 (`false < true`), so that the range and allowed values
-/// a description gives a boolean are checked like any other parameter's.
-impl Numeric for bool {
-    const IS_INTEGER: bool = true;
-    fn to_f64(self) -> f64 {
-        f64::from(u8::from(self))
-    }
-    fn from_f64(value: f64) -> Option<Self> {
-        match value {
-            0.0 => Some(false),
-            1.0 => Some(true),
-            _ => None,
-        }
     }
 }
 
@@ -283,8 +235,8 @@ mod tests {
         assert_eq!(f32::from_f64(3.0e38), Some(3.0e38));
         assert_eq!(f64::from_f64(f64::INFINITY), None);
         assert_eq!(
-            crate::Scale::IDENTITY.to_raw::<f32>("gain", 1e39),
-            Err(ValueError::Overflow { parameter: "gain" })
+            crate::Scale::IDENTITY.to_raw::<f32>(1e39),
+            Err(ScaleError::Overflow)
         );
     }
 
@@ -299,21 +251,5 @@ mod tests {
         let t = Text::<8>::decode_le(b"SWD\0\0").unwrap();
         assert_eq!(t.as_str(), Some("SWD"));
         assert!(Text::<2>::decode_le(b"SWD").is_err());
-    }
-
-    #[test]
-    fn rounding_is_half_away_from_zero() {
-        assert_eq!(round(2.5), 3.0);
-        assert_eq!(round(-2.5), -3.0);
-        assert_eq!(round(2.4999), 2.0);
-        assert_eq!(round(1e300), 1e300);
-    }
-
-    #[test]
-    fn numeric_from_f64_rejects_fractions_and_overflow() {
-        assert_eq!(u16::from_f64(4950.0), Some(4950));
-        assert_eq!(u16::from_f64(49.5), None);
-        assert_eq!(u16::from_f64(70000.0), None);
-        assert_eq!(i16::from_f64(-3000.0), Some(-3000));
     }
 }

@@ -24,64 +24,12 @@
 
 use crate::error::{BusError, WriteRefusal};
 
-/// The most unlocks a lock may declare: the handle keeps the unlocks in force in one `u32`.
-pub const MAX_UNLOCKS: usize = 32;
-
-/// A drive's write lock, generated from its description (`WRITE_LOCK` in a drive crate).
-#[derive(Debug)]
-pub struct WriteLock {
-    /// The command parameter whose write locks the drive.
-    pub command: &'static str,
-    /// The Modbus exception code the drive answers a write with while locked.
-    pub refusal: u8,
-    /// The groups of parameters an unlock opens together.
-    pub scopes: &'static [LockScope],
-    /// The ways of unlocking (at most [`MAX_UNLOCKS`]).
-    pub unlocks: &'static [UnlockRule],
-}
-
-/// Parameters an unlock opens together.
-#[derive(Debug)]
-pub struct LockScope {
-    /// The scope's name in the description.
-    pub name: &'static str,
-    /// Its parameters (the `rest` resolved to names).
-    pub parameters: &'static [&'static str],
-    /// The unlocks that open it, by name.
-    pub opened_by: &'static [&'static str],
-}
-
-/// One way of unlocking, as far as the handle can follow it.
-#[derive(Debug)]
-pub struct UnlockRule {
-    /// The unlock's name in the description.
-    pub name: &'static str,
-    /// The parameter whose write unlocks.
-    pub grant: &'static str,
-    /// The raw value that unlocks; `None` for a password, which the drive checks.
-    pub key: Option<i128>,
-    /// The scopes it opens, by name.
-    pub opens: &'static [&'static str],
-    /// The requirement whose loss ends it, if it ends on `requirement_lost`.
-    pub lost_without: Option<Requirement>,
-}
-
-/// A parameter's raw values an unlock needs to stay in force.
-#[derive(Debug)]
-pub struct Requirement {
-    /// The required parameter.
-    pub parameter: &'static str,
-    /// The raw values that keep the unlock.
-    pub values: &'static [i128],
-    /// The scopes its loss closes (Lenze smd: a C01 change ends the controls, line 414; what it
-    /// does to the parameters is not written, so they stay open).
-    pub scopes: &'static [&'static str],
-}
+pub use drivebus_model::write_lock::{LockScope, Requirement, UnlockRule, WriteLock, MAX_UNLOCKS};
 
 /// The unlocks a handle has sent and not seen end.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct LockAccount {
-    lock: &'static WriteLock,
+    lock: &'static WriteLock<'static>,
     /// Bit `i` set: `lock.unlocks[i]` may be in force.
     in_force: u32,
     /// Bit `i` set: `lock.unlocks[i]` lost its requirement, which closed its guarded scopes.
@@ -90,7 +38,7 @@ pub(crate) struct LockAccount {
 
 impl LockAccount {
     /// A freshly opened handle's account: locked, as the drive powers up.
-    pub(crate) fn locked(lock: &'static WriteLock) -> Self {
+    pub(crate) fn locked(lock: &'static WriteLock<'static>) -> Self {
         Self {
             lock,
             in_force: 0,
@@ -118,26 +66,19 @@ impl LockAccount {
         }
     }
 
-    fn scope_of(&self, parameter: &str) -> Option<&'static LockScope> {
-        self.lock
-            .scopes
-            .iter()
-            .find(|s| s.parameters.contains(&parameter))
+    fn scope_of(&self, parameter: &str) -> Option<&'static LockScope<'static>> {
+        self.lock.scope_of(parameter)
     }
 
     fn opens(&self, scope: &LockScope) -> bool {
         self.unlocks().any(|(bit, u)| {
-            let closed_by_loss = self.requirement_lost & bit != 0
-                && u.lost_without
-                    .as_ref()
-                    .is_some_and(|r| r.scopes.contains(&scope.name));
-            self.in_force & bit != 0 && u.opens.contains(&scope.name) && !closed_by_loss
+            self.in_force & bit != 0 && u.opens(scope.name, self.requirement_lost & bit != 0)
         })
     }
 
     /// Each unlock with its bit in `in_force`.
-    fn unlocks(&self) -> impl Iterator<Item = (u32, &'static UnlockRule)> {
-        let lock: &'static WriteLock = self.lock;
+    fn unlocks(&self) -> impl Iterator<Item = (u32, &'static UnlockRule<'static>)> {
+        let lock: &'static WriteLock<'static> = self.lock;
         lock.unlocks
             .iter()
             .take(MAX_UNLOCKS)
@@ -151,15 +92,10 @@ impl LockAccount {
             return;
         }
         for (bit, unlock) in self.unlocks() {
-            let granted =
-                unlock.grant == parameter && unlock.key.is_none_or(|key| encodes(bytes, key));
-            let lost = unlock.lost_without.as_ref().is_some_and(|r| {
-                r.parameter == parameter && !r.values.iter().any(|v| encodes(bytes, *v))
-            });
-            if granted {
+            if unlock.granted_by(parameter, bytes) {
                 self.in_force |= bit;
                 self.requirement_lost &= !bit;
-            } else if lost {
+            } else if unlock.requirement_lost_by(parameter, bytes) {
                 self.requirement_lost |= bit;
             }
         }
@@ -181,17 +117,6 @@ impl LockAccount {
             }
         }
     }
-}
-
-/// Whether `bytes` (a raw value sent little-endian) hold `value`: the same bits, and nothing of
-/// `value` beyond them but its sign extension.
-fn encodes(bytes: &[u8], value: i128) -> bool {
-    let extension = if value < 0 { 0xFF } else { 0 };
-    let held = value.to_le_bytes();
-    (0..bytes.len().max(held.len())).all(|i| {
-        let value_byte = held.get(i).copied().unwrap_or(extension);
-        bytes.get(i).copied().unwrap_or(extension) == value_byte
-    })
 }
 
 #[cfg(test)]
@@ -337,15 +262,5 @@ mod tests {
         );
         account.follow("lock_security", &2u16.to_le_bytes(), &locked);
         assert!(!open(&account, "start"), "a refused lock: locked already");
-    }
-
-    #[test]
-    fn values_compare_in_the_width_sent() {
-        assert!(encodes(&[0, 0], 0));
-        assert!(encodes(&[0xE8, 0x03], 1000));
-        assert!(!encodes(&[0xE8, 0x03], 1001));
-        assert!(encodes(&[0xFF, 0xFF], -1));
-        assert!(!encodes(&[0xFF, 0xFF], 65535 + 65536));
-        assert!(encodes(&[0xFF, 0xFF], 65535), "the same bits as -1");
     }
 }

@@ -19,7 +19,6 @@ use drivegen::ir::{Device, Parameter};
 
 use crate::can::{self, CanSettings};
 use crate::error::CliError;
-use crate::modbus_limits;
 
 /// How to reach the drive.
 #[derive(Debug, Args, Clone)]
@@ -94,13 +93,13 @@ impl CanBus for DynCan {
     }
 }
 
-enum Link {
+enum Link<'d> {
     Modbus {
         bus: Box<dyn RegisterBus + Send>,
         unit: UnitId,
         /// The described limits: registers per read, and whether FC 0x10 exists (without it
         /// values are written word by word).
-        limits: ModbusLimits,
+        limits: ModbusLimits<'d>,
     },
     CanOpen {
         sdo: BlockingSdo<DynCan>,
@@ -113,14 +112,14 @@ enum Link {
 }
 
 /// A connection to one drive described by `device`, in the variant it reports.
-pub struct Session {
-    link: Link,
+pub struct Session<'d> {
+    link: Link<'d>,
     target: String,
     relay: Option<Child>,
     variant: Variant,
 }
 
-impl Drop for Session {
+impl Drop for Session<'_> {
     fn drop(&mut self) {
         if let Some(child) = &mut self.relay {
             let _ = child.kill();
@@ -144,14 +143,14 @@ fn connect_error(target: &str, e: BusError) -> CliError {
     CliError::Io(format!("cannot open {target}: {e}"))
 }
 
-impl Session {
+impl<'d> Session<'d> {
     /// Opens the bus the options name and learns the drive's variant: `--variant`, else the
     /// one the description's `selected_by` parameter reports (as the generated handle's
     /// `detect_variant` does), else, where the drive reports none, the description's default
     /// (its first). A drive that reports a variant the description does not cover still opens:
     /// parameters whose address depends on the variant are then refused, and so is every write
     /// but a stop.
-    pub fn open(args: &BusArgs, device: &Device) -> Result<Self, CliError> {
+    pub fn open(args: &BusArgs, device: &'d Device) -> Result<Self, CliError> {
         let mut session = Self::connect(args, device)?;
         session.variant = session.detect_variant(args.variant.as_deref(), device)?;
         Ok(session)
@@ -223,7 +222,7 @@ impl Session {
     }
 
     /// Opens the bus the options name.
-    fn connect(args: &BusArgs, device: &Device) -> Result<Self, CliError> {
+    fn connect(args: &BusArgs, device: &'d Device) -> Result<Self, CliError> {
         let timeout = Duration::from_millis(args.timeout_ms);
         if let Some(addr) = &args.modbus_tcp {
             let config = TcpConfig {
@@ -301,12 +300,17 @@ impl Session {
         })
     }
 
-    fn modbus(bus: Box<dyn RegisterBus + Send>, unit: u8, device: &Device, target: String) -> Self {
+    fn modbus(
+        bus: Box<dyn RegisterBus + Send>,
+        unit: u8,
+        device: &'d Device,
+        target: String,
+    ) -> Self {
         Self {
             link: Link::Modbus {
                 bus,
                 unit: UnitId(unit),
-                limits: modbus_limits::limits(device),
+                limits: device.modbus_limits(),
             },
             target,
             relay: None,
@@ -410,7 +414,7 @@ fn interpret_error(target: &str, error: InterpretError) -> CliError {
 pub fn read_modbus(
     bus: &mut dyn RegisterBus,
     unit: UnitId,
-    limits: ModbusLimits,
+    limits: ModbusLimits<'_>,
     target: &str,
     variant: &Variant,
     parameters: &[&Parameter],

@@ -7,7 +7,6 @@ mod commands;
 mod connect;
 mod error;
 mod identity_check;
-mod modbus_limits;
 mod pdo_mappings;
 mod suggest;
 mod table;

@@ -177,13 +177,15 @@ fn variants(p: &Parameter) -> String {
 fn scale(scale: &Option<Scale>) -> String {
     match scale {
         None => "none".into(),
-        Some(Scale::Fixed(scale)) if scale.offset == drivebus::Ratio::ZERO => ratio(scale.factor),
+        Some(Scale::Fixed(scale)) if scale.offset == drivebus_model::Ratio::ZERO => {
+            ratio(scale.factor)
+        }
         Some(Scale::Fixed(scale)) => format!("{} + {}", ratio(scale.factor), ratio(scale.offset)),
         Some(Scale::Runtime { expr, .. }) => format!("`{expr}`"),
     }
 }
 
-fn ratio(ratio: drivebus::Ratio) -> String {
+fn ratio(ratio: drivebus_model::Ratio) -> String {
     match (ratio.numerator(), ratio.denominator()) {
         (numerator, 1) => numerator.to_string(),
         (numerator, denominator) => format!("{numerator}/{denominator}"),

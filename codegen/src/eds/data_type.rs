@@ -3,7 +3,7 @@
 use crate::ir::DataType;
 
 /// Capacity given to strings and octet strings an EDS does not size: the runtime's maximum.
-pub const UNSIZED_CAPACITY: u16 = drivebus::link::MAX_VALUE_BYTES as u16;
+pub const UNSIZED_CAPACITY: u16 = drivebus_model::MAX_VALUE_BYTES as u16;
 
 /// What a data type code means.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

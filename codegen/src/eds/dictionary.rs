@@ -5,6 +5,8 @@
 
 use std::ops::Range;
 
+use drivebus_model::canopen::NodeId;
+
 use super::parse::{Entry, Ini, Section};
 use super::short_text::ShortText;
 use super::trim::trim;
@@ -785,7 +787,7 @@ fn commissioning(section: &Section, diagnostics: &mut Vec<Diagnostic>) -> Option
     let entry = section.get("nodeid")?;
     let id = parse_small(entry.value)
         .and_then(|n| u8::try_from(n).ok())
-        .filter(|n| (1..=127).contains(n));
+        .filter(|n| (NodeId::MIN..=NodeId::MAX).contains(n));
     if id.is_none() {
         diagnostics.push(
             Diagnostic::error(

@@ -63,7 +63,7 @@ fn header(out: &mut String, device: &Device) {
     let _ = writeln!(
         out,
         "FileName={}.eds",
-        clean(&crate::emit::ident::snake(&id.handle))
+        clean(&crate::names::snake(&id.handle))
     );
     let _ = writeln!(out, "FileVersion=1");
     let _ = writeln!(out, "FileRevision=0");
@@ -89,7 +89,7 @@ fn header(out: &mut String, device: &Device) {
 /// `[MandatoryObjects]`, `[OptionalObjects]` and `[ManufacturerObjects]` (CiA 306 §4.5).
 fn object_lists(out: &mut String, objects: &BTreeMap<u16, BTreeMap<u8, Entry<'_>>>) {
     let mandatory = |i: u16| {
-        crate::validate::canopen_has_mandatory_objects::MANDATORY_OBJECTS
+        crate::mandatory_objects::MANDATORY_OBJECTS
             .iter()
             .any(|(index, _, _)| *index == i)
     };

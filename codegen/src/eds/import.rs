@@ -137,7 +137,7 @@ fn skeleton(model: &EdsModel, reference: &str) -> String {
     let _ = writeln!(out, "eds = {}", quote(reference));
     let _ = writeln!(out, "\n[device]");
     let _ = writeln!(out, "name = {}", quote(&name));
-    let _ = writeln!(out, "handle = {}", quote(&crate::emit::ident::camel(&name)));
+    let _ = writeln!(out, "handle = {}", quote(&crate::names::camel(&name)));
     if let Some(vendor) = &model.device.vendor_name {
         let _ = writeln!(out, "vendor = {}", quote(vendor));
     }

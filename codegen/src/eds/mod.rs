@@ -135,7 +135,7 @@ pub fn empty_device(name: &str, model: &EdsModel) -> ir::Device {
         schema: ir::IR_SCHEMA_VERSION,
         device: ir::Identity {
             name: name.to_owned(),
-            handle: crate::emit::ident::camel(name),
+            handle: crate::names::camel(name),
             vendor: model.device.vendor_name.clone(),
             firmware: None,
             doc: (!model.device.comments.is_empty()).then(|| model.device.comments.join("\n")),

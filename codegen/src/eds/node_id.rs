@@ -4,10 +4,10 @@
 //! value stays a function of the node id (a COB-ID default differs on every node). A REAL32 or
 //! REAL64 value written in hex is its IEEE-754 bit pattern (`0x41200000` is 10.0).
 
+use drivebus_model::canopen::NodeId;
+
 use super::trim::trim;
 use crate::ir::{DataType, Number};
-
-pub use crate::ir::{FIRST_NODE_ID, LAST_NODE_ID};
 
 /// A value of `DefaultValue`, `LowLimit`, `HighLimit` or `ParameterValue`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -139,14 +139,13 @@ fn parse_integer(text: &str, ty: DataType) -> Result<EdsValue, String> {
     }
     let (min, max) = ty.integer_bounds().unwrap_or((i128::MIN, i128::MAX));
     if node_terms == 1 {
-        let (lowest, highest) = (
-            sum + i128::from(FIRST_NODE_ID),
-            sum + i128::from(LAST_NODE_ID),
-        );
+        let (lowest, highest) = (sum + i128::from(NodeId::MIN), sum + i128::from(NodeId::MAX));
         if lowest < min || highest > max {
             return Err(format!(
-                "$NODEID+{sum} does not fit {} for every node ID {FIRST_NODE_ID}..={LAST_NODE_ID} ({lowest}..={highest})",
-                ty.name()
+                "$NODEID+{sum} does not fit {} for every node ID {}..={} ({lowest}..={highest})",
+                ty.name(),
+                NodeId::MIN,
+                NodeId::MAX
             ));
         }
     } else if sum < min || sum > max {

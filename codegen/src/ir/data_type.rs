@@ -1,7 +1,7 @@
 //! Description data types are the runtime's own ([`drivebus::DataType`]); what the IR adds is
 //! how they serialize inside their owner.
 
-pub use drivebus::DataType;
+pub use drivebus_model::DataType;
 
 #[cfg(test)]
 mod tests {

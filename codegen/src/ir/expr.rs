@@ -4,7 +4,7 @@
 
 use std::fmt;
 
-use drivebus::Ratio;
+use drivebus_model::Ratio;
 
 /// A parsed scale expression.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -183,7 +183,7 @@ impl Parser<'_> {
         let literal = self
             .take_while(|c| c.is_ascii_digit() || c == '.')
             .to_owned();
-        drivebus::Ratio::parse_decimal(&literal)
+        drivebus_model::Ratio::parse_decimal(&literal)
             .map(Expr::Number)
             .ok_or(ExprError {
                 at: start,

@@ -3,7 +3,7 @@
 //! under a communication object that sets its identifiers and timing. The generated crate turns
 //! each into a typed struct; only the communication defaults differ by kind.
 
-use drivebus::canopen::pdo::MappedObject;
+use drivebus_model::canopen::MappedObject;
 
 use super::{Citation, DataType, Device};
 use crate::diagnostic::Span;

@@ -27,7 +27,7 @@ mod variant_selector;
 
 pub use bounds::Bounds;
 pub use data_type::DataType;
-pub use drivebus::interpret::{Number, Range};
+pub use drivebus_model::{Number, Range};
 pub use expected_identity::ExpectedIdentity;
 pub use expr::{Expr, ExprError, Op};
 pub use identity_checks::{Covered, IdentityCheck};
@@ -40,10 +40,9 @@ pub use mapping::{
     pdo_bits, CobId, Direction, Mapping, MappingKind, PdoDefaults, SrdoCobId, SrdoDefaults,
 };
 pub use model::{Constant, Model};
-pub use node_ids::{DefaultCheck, NodeIds, FIRST_NODE_ID, LAST_NODE_ID};
+pub use node_ids::{DefaultCheck, NodeIds};
 pub use ramp::{per_second, Polarity, Ramp, Slope};
 pub use read_block::ReadBlock;
-pub use readable_registers::{PlannerLimits, RegisterRun};
 pub use refinement::Refinement;
 pub use safety::is_safety_configuration;
 pub use stop_writes::StopWrites;
@@ -51,7 +50,7 @@ pub use value_type::ValueType;
 pub use variant_selector::VariantSelector;
 
 /// The Modbus vocabulary is the runtime's own: the IR names the types generated code uses.
-pub use drivebus::modbus::{Table, WordOrder};
+pub use drivebus_model::modbus::{Table, WordOrder};
 
 use std::sync::Arc;
 
@@ -437,6 +436,9 @@ pub struct ModbusCaps {
     pub combined_commands: Option<CombinedCommands>,
     /// Citation.
     pub source: Option<Citation>,
+    /// The register lists of [`Device::modbus_limits`], derived on first use.
+    #[serde(skip)]
+    pub(crate) register_lists: readable_registers::RegisterListsCell,
 }
 
 /// The rule of a command register whose commands are one bit each, for a write that sets several
@@ -670,7 +672,7 @@ pub struct Access {
 pub struct ModbusAddress {
     /// Table, PDU address, registers occupied and word order.
     #[serde(flatten)]
-    pub wire: drivebus::modbus::ModbusAddress,
+    pub wire: drivebus_model::modbus::ModbusAddress,
     /// Registers of the map the value occupies from `address`: `words`, unless the device
     /// answers a read of `words` words at this one address (Lenze smd C99: 4 words, 1 register).
     pub occupies: u16,
@@ -685,7 +687,7 @@ pub struct ModbusAddress {
 
 /// `address.table`, `address.words`, ...: a described address is first of all its wire address.
 impl std::ops::Deref for ModbusAddress {
-    type Target = drivebus::modbus::ModbusAddress;
+    type Target = drivebus_model::modbus::ModbusAddress;
 
     fn deref(&self) -> &Self::Target {
         &self.wire
@@ -732,7 +734,7 @@ pub struct ObjectAddress {
 pub enum Scale {
     /// `raw × factor + offset`, exact; serialized as the factor's `numerator` and
     /// `denominator` beside the `offset` ratio.
-    Fixed(drivebus::Scale),
+    Fixed(drivebus_model::Scale),
     /// A factor computed at run time from other parameters.
     Runtime {
         /// The expression as written.

@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use drivebus::Ratio;
+use drivebus_model::Ratio;
 
 use super::Citation;
 use crate::diagnostic::Span;

@@ -9,12 +9,9 @@
 
 use std::fmt;
 
-use super::{Device, Number, Parameter};
+use drivebus_model::canopen::NodeId;
 
-/// The lowest node ID a `$NODEID` term stands for (CiA 301: 1..=127).
-pub const FIRST_NODE_ID: u8 = 1;
-/// The highest node ID a `$NODEID` term stands for.
-pub const LAST_NODE_ID: u8 = 127;
+use super::{Device, Number, Parameter};
 
 /// A set of CANopen node IDs within 1..=127.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -28,7 +25,7 @@ impl NodeIds {
 
     /// The node IDs 1..=127 for which `keep` holds.
     pub fn matching(keep: impl Fn(u8) -> bool) -> Self {
-        let bits = (FIRST_NODE_ID..=LAST_NODE_ID)
+        let bits = (NodeId::MIN..=NodeId::MAX)
             .filter(|&id| keep(id))
             .fold(0u128, |bits, id| bits | (1u128 << id));
         NodeIds(bits)
@@ -61,7 +58,7 @@ impl NodeIds {
 
     /// The node IDs in the set, lowest first.
     pub fn iter(self) -> impl Iterator<Item = u8> {
-        (FIRST_NODE_ID..=LAST_NODE_ID).filter(move |&id| self.contains(id))
+        (NodeId::MIN..=NodeId::MAX).filter(move |&id| self.contains(id))
     }
 
     /// The set as runs of consecutive node IDs, each `(first, last)`, lowest first.

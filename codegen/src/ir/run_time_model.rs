@@ -2,10 +2,10 @@
 //! description loaded at run time is read and written by name through the same scale and checks
 //! as generated code.
 
-use drivebus::canopen::CanOpen;
-use drivebus::interpret::{Access, Addressed, BoundedBy, Described, Model, Symbols, Unreachable};
-use drivebus::modbus::Modbus;
-use drivebus::rs232::Rs232;
+use drivebus_model::canopen::CanOpen;
+use drivebus_model::modbus::Modbus;
+use drivebus_model::model::{Access, Addressed, BoundedBy, Described, Model, Symbols, Unreachable};
+use drivebus_model::rs232::Rs232;
 
 use super::{DataType, Device, Number, ObjectAddress, Parameter, Range, Scale, StopWrites};
 
@@ -22,9 +22,9 @@ impl Described for Parameter {
         self.unit.as_deref()
     }
 
-    fn fixed_scale(&self) -> Option<drivebus::Scale> {
+    fn fixed_scale(&self) -> Option<drivebus_model::Scale> {
         match &self.scale {
-            None => Some(drivebus::Scale::IDENTITY),
+            None => Some(drivebus_model::Scale::IDENTITY),
             Some(Scale::Fixed(scale)) => Some(*scale),
             Some(Scale::Runtime { .. }) => None,
         }
@@ -48,10 +48,10 @@ impl Described for Parameter {
             })
     }
 
-    fn stops(&self) -> drivebus::Stops<'_> {
+    fn stops(&self) -> drivebus_model::Stops<'_> {
         self.stops
             .as_ref()
-            .map_or(drivebus::Stops::Never, StopWrites::view)
+            .map_or(drivebus_model::Stops::Never, StopWrites::view)
     }
 }
 
@@ -132,7 +132,7 @@ impl Addressed<Modbus> for Parameter {
         &self,
         access: Access,
         variant: Option<&str>,
-    ) -> Result<drivebus::modbus::ModbusAddress, Unreachable> {
+    ) -> Result<drivebus_model::modbus::ModbusAddress, Unreachable> {
         let addresses = self
             .modbus
             .iter()
@@ -146,7 +146,7 @@ impl Addressed<CanOpen> for Parameter {
         &self,
         access: Access,
         variant: Option<&str>,
-    ) -> Result<drivebus::canopen::ObjectAddress, Unreachable> {
+    ) -> Result<drivebus_model::canopen::ObjectAddress, Unreachable> {
         object_address(self, &self.canopen, access, variant)
     }
 }
@@ -156,7 +156,7 @@ impl Addressed<Rs232> for Parameter {
         &self,
         access: Access,
         variant: Option<&str>,
-    ) -> Result<drivebus::canopen::ObjectAddress, Unreachable> {
+    ) -> Result<drivebus_model::canopen::ObjectAddress, Unreachable> {
         object_address(self, &self.rs232, access, variant)
     }
 }
@@ -169,13 +169,13 @@ fn object_address(
     addresses: &[ObjectAddress],
     access: Access,
     variant: Option<&str>,
-) -> Result<drivebus::canopen::ObjectAddress, Unreachable> {
+) -> Result<drivebus_model::canopen::ObjectAddress, Unreachable> {
     let bytes = match parameter.data_type {
         DataType::String(_) | DataType::Octets(_) => 0,
         data_type => data_type.bytes(),
     };
     let addresses = addresses.iter().map(|a| {
-        let address = drivebus::canopen::ObjectAddress {
+        let address = drivebus_model::canopen::ObjectAddress {
             index: a.index,
             subindex: a.subindex,
             bytes,

@@ -3,7 +3,7 @@
 //! drive: a CiA 402 controlword without "enable operation"). They are never refused client-side
 //! ([`drivebus::stop`]).
 
-use drivebus::{StopPattern, Stops};
+use drivebus_model::{StopPattern, Stops};
 use serde::Serialize;
 
 use crate::diagnostic::Span;

@@ -30,7 +30,9 @@ impl Parameter {
             return ValueType::Flags(f);
         }
         match (
-            self.unit.as_deref().and_then(drivebus::units::type_name),
+            self.unit
+                .as_deref()
+                .and_then(drivebus_model::units::type_name),
             &self.scale,
         ) {
             (Some(unit), _) => ValueType::Unit(unit),

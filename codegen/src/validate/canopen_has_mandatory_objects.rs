@@ -8,16 +8,9 @@
 
 use crate::diagnostic::Diagnostic;
 use crate::ir::Device;
+use crate::mandatory_objects::MANDATORY_OBJECTS;
 
 const RULE: &str = "canopen_has_mandatory_objects";
-
-/// The mandatory objects: (index, sub-index, name in the CiA 301 profile).
-pub const MANDATORY_OBJECTS: &[(u16, u8, &str)] = &[
-    (0x1000, 0, "device_type"),
-    (0x1001, 0, "error_register"),
-    (0x1018, 0, "identity_count"),
-    (0x1018, 1, "vendor_id"),
-];
 
 /// Reports each mandatory object a CANopen description leaves out.
 pub fn check(device: &Device) -> Vec<Diagnostic> {

@@ -7,8 +7,10 @@
 //! which node IDs the limits allow, not an error (python canopen and other tools load such files).
 //! A default no node ID makes acceptable is an error naming the range and the offset.
 
+use drivebus_model::canopen::NodeId;
+
 use crate::diagnostic::{Diagnostic, Span};
-use crate::ir::{DefaultCheck, Device, NodeIds, Number, Parameter, FIRST_NODE_ID, LAST_NODE_ID};
+use crate::ir::{DefaultCheck, Device, NodeIds, Number, Parameter};
 
 use super::ranges_fit_type::fits;
 
@@ -77,10 +79,10 @@ fn node_relative(
     let written = written(offset);
     let values = {
         let (lo, hi) = (
-            offset.saturating_add(FIRST_NODE_ID.into()),
-            offset.saturating_add(LAST_NODE_ID.into()),
+            offset.saturating_add(NodeId::MIN.into()),
+            offset.saturating_add(NodeId::MAX.into()),
         );
-        format!("{lo}..={hi} on node IDs {FIRST_NODE_ID}..={LAST_NODE_ID}")
+        format!("{lo}..={hi} on node IDs {}..={}", NodeId::MIN, NodeId::MAX)
     };
     let error = |message: String| {
         Diagnostic::error(

@@ -5,8 +5,8 @@
 use std::collections::HashMap;
 
 use crate::diagnostic::Diagnostic;
-use crate::emit::ident::{camel, method};
 use crate::ir::Device;
+use crate::names::{camel, method};
 
 const RULE: &str = "indexed_names_are_unique";
 

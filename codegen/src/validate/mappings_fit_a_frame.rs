@@ -3,7 +3,7 @@
 //! frame, the rule of `drivebus::canopen::srdo::mapping`. An oversized mapping is rejected when
 //! the code is generated, not when the drive refuses it at run time.
 
-use drivebus::canopen::srdo::{mapping::check_mapping, SrdoError};
+use drivebus_model::canopen::srdo::{mapping::check_mapping, SrdoError};
 
 use crate::diagnostic::Diagnostic;
 use crate::ir::{pdo_bits, Device, Mapping, MappingKind};

@@ -4,8 +4,8 @@
 use std::collections::BTreeMap;
 
 use crate::diagnostic::{Diagnostic, Span};
-use crate::emit::ident;
 use crate::ir::Device;
+use crate::names as ident;
 
 const RULE: &str = "names_are_unique";
 

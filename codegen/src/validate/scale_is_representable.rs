@@ -10,7 +10,9 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
         .parameters
         .iter()
         .filter_map(|p| match (&p.scale, &p.spans.scale) {
-            (Some(Scale::Fixed(scale)), Some(span)) if scale.factor == drivebus::Ratio::ZERO => {
+            (Some(Scale::Fixed(scale)), Some(span))
+                if scale.factor == drivebus_model::Ratio::ZERO =>
+            {
                 Some(
                     Diagnostic::error(
                         "scale_is_representable",

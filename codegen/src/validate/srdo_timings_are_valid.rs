@@ -1,7 +1,7 @@
 //! Every declared SRDO has non-zero SCT and SRVT, SRVT below SCT (the runtime's
 //! `SrdoTiming` rule), and an SRVT of at most 255 ms, the one byte the safety signature takes.
 
-use drivebus::canopen::srdo::{SrdoError, SrdoTiming};
+use drivebus_model::canopen::srdo::{SrdoError, SrdoTiming};
 
 use crate::diagnostic::Diagnostic;
 use crate::ir::{Device, Mapping, SrdoDefaults};

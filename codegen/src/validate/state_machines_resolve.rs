@@ -5,7 +5,7 @@
 
 use std::collections::BTreeSet;
 
-use drivebus::control::machine::MAX_STATES;
+use drivebus_model::control::machine::MAX_STATES;
 
 use crate::diagnostic::{Diagnostic, Span};
 use crate::ir::{DataType, Device, StateMachine};

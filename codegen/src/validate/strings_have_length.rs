@@ -4,7 +4,7 @@ use crate::diagnostic::Diagnostic;
 use crate::ir::{DataType, Device};
 
 /// Most bytes a value may have (the runtime's fixed buffer).
-pub const MAX_TEXT_BYTES: u16 = drivebus::link::MAX_VALUE_BYTES as u16;
+pub const MAX_TEXT_BYTES: u16 = drivebus_model::MAX_VALUE_BYTES as u16;
 
 /// Reports strings without a usable `length`.
 pub fn check(device: &Device) -> Vec<Diagnostic> {

@@ -5,14 +5,14 @@ use crate::ir::Device;
 
 /// Reports unknown unit symbols, listing the known ones.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
-    let known: Vec<&str> = drivebus::units::ALL.iter().map(|(s, _)| *s).collect();
+    let known: Vec<&str> = drivebus_model::units::ALL.iter().map(|(s, _)| *s).collect();
     device
         .parameters
         .iter()
         .filter_map(|p| {
             let unit = p.unit.as_ref()?;
             let span = p.spans.unit.clone()?;
-            drivebus::units::type_name(unit).is_none().then(|| {
+            drivebus_model::units::type_name(unit).is_none().then(|| {
                 Diagnostic::error(
                     "units_are_known",
                     span,

@@ -5,8 +5,8 @@
 use std::collections::BTreeSet;
 
 use crate::diagnostic::{Diagnostic, Span};
-use crate::emit::ident as names;
 use crate::ir::{CommandKind, Device, GrantKey, Lock, Parameter, Unlock, UnlockEnd, Watchdog};
+use crate::names;
 
 const RULE: &str = "unlocks_resolve";
 
@@ -21,13 +21,13 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
     };
     command(device, lock, &mut report);
     scopes(device, lock, &mut report);
-    if lock.unlocks.len() > drivebus::write_lock::MAX_UNLOCKS {
+    if lock.unlocks.len() > drivebus_model::write_lock::MAX_UNLOCKS {
         report(
             &lock.span,
             format!(
                 "{} unlocks: a lock has at most {} (the drive handle follows them in one word)",
                 lock.unlocks.len(),
-                drivebus::write_lock::MAX_UNLOCKS
+                drivebus_model::write_lock::MAX_UNLOCKS
             ),
         );
     }
@@ -558,7 +558,7 @@ source = { doc = "m", line = 11 }
 
     #[test]
     fn a_lock_has_at_most_as_many_unlocks_as_the_handle_follows() {
-        let more: String = (0..drivebus::write_lock::MAX_UNLOCKS - 1)
+        let more: String = (0..drivebus_model::write_lock::MAX_UNLOCKS - 1)
             .map(|i| {
                 format!(
                     "[[unlock]]\nname = \"extra_{i}\"\ngrant = {{ parameter = \"unlock_word\", value = {i} }}\n\

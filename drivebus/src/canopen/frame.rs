@@ -3,7 +3,7 @@
 use crate::error::BusError;
 
 /// Highest 11-bit identifier.
-pub const MAX_ID: u16 = 0x7FF;
+pub const MAX_ID: u16 = drivebus_model::canopen::MAX_COB_ID;
 
 /// A classic CAN frame: 11-bit identifier, remote flag, up to 8 data bytes.
 ///

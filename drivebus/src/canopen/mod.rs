@@ -55,7 +55,7 @@
 //! # fn main() {}
 //! ```
 
-mod address;
+pub(crate) use drivebus_model::canopen as address;
 pub mod can;
 #[cfg(feature = "canopen")]
 pub mod client;

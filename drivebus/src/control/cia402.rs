@@ -136,7 +136,12 @@ const fn sw(mask: u16, value: u16) -> StatePattern {
     StatePattern { mask, value }
 }
 
-const fn hop(name: &'static str, from: State, to: State, kind: TransitionKind) -> TransitionDef {
+const fn hop(
+    name: &'static str,
+    from: State,
+    to: State,
+    kind: TransitionKind,
+) -> TransitionDef<'static> {
     TransitionDef {
         name,
         from: from as u8,
@@ -146,7 +151,7 @@ const fn hop(name: &'static str, from: State, to: State, kind: TransitionKind) -
     }
 }
 
-const fn cmd(name: &'static str, from: State, to: State, value: u16) -> TransitionDef {
+const fn cmd(name: &'static str, from: State, to: State, value: u16) -> TransitionDef<'static> {
     hop(name, from, to, TransitionKind::Command(value))
 }
 
@@ -269,7 +274,7 @@ pub const TABLE: Machine = Machine {
 };
 
 /// The transition called `name` (the first, for transition 13).
-pub fn transition(name: &str) -> Option<&'static TransitionDef> {
+pub fn transition(name: &str) -> Option<&'static TransitionDef<'static>> {
     TABLE.transitions.iter().find(|t| t.name == name)
 }
 
@@ -288,7 +293,7 @@ pub struct Observation {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Waiting {
     /// The drive leaves this state by itself (transition 1 or 14).
-    Automatic(&'static TransitionDef),
+    Automatic(&'static TransitionDef<'static>),
     /// Fault reset is held high for the drive's minimum time; this many milliseconds remain.
     FaultResetHold {
         /// Milliseconds until the bit may be dropped.
@@ -327,7 +332,7 @@ pub enum Blocker {
     /// The remote bit (statusword bit 9) is clear: the drive ignores the controlword.
     NotRemote,
     /// Only an outside event leads on.
-    NeedsExternal(&'static TransitionDef),
+    NeedsExternal(&'static TransitionDef<'static>),
     /// No sequence of commands reaches the target.
     Unreachable,
 }
@@ -378,7 +383,7 @@ pub enum Step {
         /// The value for 0x6040.
         controlword: u16,
         /// The transition it serves.
-        transition: &'static TransitionDef,
+        transition: &'static TransitionDef<'static>,
     },
     /// Send nothing and poll again.
     Wait(Waiting),
@@ -479,7 +484,7 @@ impl Cia402Planner {
         }
     }
 
-    fn command(&self, transition: &'static TransitionDef, statusword: u16) -> Step {
+    fn command(&self, transition: &'static TransitionDef<'static>, statusword: u16) -> Step {
         let TransitionKind::Command(value) = transition.kind else {
             return Step::Blocked(Blocker::Unreachable);
         };

@@ -209,7 +209,10 @@ impl Cia402Device {
 
     /// Receives a controlword and takes the transition it commands, if any; returns the last
     /// transition taken (for "switch on + enable operation", transition 4).
-    pub fn write_controlword(&mut self, controlword: u16) -> Option<&'static TransitionDef> {
+    pub fn write_controlword(
+        &mut self,
+        controlword: u16,
+    ) -> Option<&'static TransitionDef<'static>> {
         let rising_reset =
             controlword & FAULT_RESET_BIT != 0 && self.controlword & FAULT_RESET_BIT == 0;
         self.controlword = controlword;
@@ -247,13 +250,13 @@ impl Cia402Device {
     }
 
     /// A fault occurs (transition 13).
-    pub fn raise_fault(&mut self) -> Option<&'static TransitionDef> {
+    pub fn raise_fault(&mut self) -> Option<&'static TransitionDef<'static>> {
         self.take_kind(TransitionKind::External)
     }
 
     /// Time passes: the drive takes the transitions it takes by itself (1, 14, and 12 once a quick
     /// stop with [`QuickStopOption::StopThenSwitchOff`] has stopped the drive).
-    pub fn tick(&mut self) -> Option<&'static TransitionDef> {
+    pub fn tick(&mut self) -> Option<&'static TransitionDef<'static>> {
         match (self.state, self.quick_stop) {
             (State::QuickStopActive, QuickStopOption::StopThenSwitchOff) => {
                 self.take(command::DISABLE_VOLTAGE)
@@ -263,11 +266,11 @@ impl Cia402Device {
     }
 
     /// Takes the transition of [`TABLE`] that the command `value` causes from the present state.
-    fn take(&mut self, value: u16) -> Option<&'static TransitionDef> {
+    fn take(&mut self, value: u16) -> Option<&'static TransitionDef<'static>> {
         self.take_kind(TransitionKind::Command(value))
     }
 
-    fn take_kind(&mut self, kind: TransitionKind) -> Option<&'static TransitionDef> {
+    fn take_kind(&mut self, kind: TransitionKind) -> Option<&'static TransitionDef<'static>> {
         let from = self.state.index();
         let transition = TABLE
             .transitions

@@ -31,14 +31,14 @@ pub enum StuckReason {
     /// The command was written but the drive did not take the transition before the deadline.
     NoResponse {
         /// The transition asked for.
-        transition: &'static TransitionDef,
+        transition: &'static TransitionDef<'static>,
         /// The command value written.
         command: u16,
     },
     /// The drive did not take an automatic transition (initialisation) before the deadline.
-    Awaiting(&'static TransitionDef),
+    Awaiting(&'static TransitionDef<'static>),
     /// A vendor machine needs an outside event (reset input, safety input) to go on.
-    NeedsExternal(&'static TransitionDef),
+    NeedsExternal(&'static TransitionDef<'static>),
     /// No transition of the vendor machine leads to the target.
     Unreachable,
     /// The status register shows none of the vendor machine's states.

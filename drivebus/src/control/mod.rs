@@ -22,10 +22,10 @@ pub mod cia402;
 pub mod device;
 #[cfg(feature = "std")]
 pub mod driver;
-pub mod machine;
+pub use drivebus_model::control::machine;
 pub mod mode;
 pub mod objects;
-pub mod quirks;
+pub use drivebus_model::control::quirks;
 
 pub use cia402::{Blocker, Cia402Planner, State, Step, Target, Waiting};
 pub use machine::{Machine, Plan, StateDef, StatePattern, TransitionDef, TransitionKind};

@@ -40,5 +40,5 @@ pub trait VendorMachine {
     /// The register transitions are commanded through.
     type Command: Parameter<Raw = u16>;
     /// States and transitions.
-    const MACHINE: Machine;
+    const MACHINE: Machine<'static>;
 }

@@ -10,7 +10,7 @@ use super::bounds_check::{check, Breach};
 use super::shown::{bit_mask, show_number, unit_suffix};
 use super::{raw, Described, Model, RawValue, Symbols};
 use crate::scale::EXACT_INTEGERS;
-use crate::{DataType, ValueError};
+use crate::{DataType, ScaleError};
 
 /// Why a typed value was refused (nothing has been sent).
 #[derive(Debug, Clone, PartialEq)]
@@ -192,8 +192,8 @@ fn numeric(parameter: &impl Described, text: &str) -> Result<RawValue, InputErro
         }
     }
     // Otherwise converted as generated crates convert (`drivebus::Scale::to_raw`).
-    let refused = |error: ValueError| match error {
-        ValueError::NotRepresentable { .. } => InputError::NotRepresentable(format!(
+    let refused = |error: ScaleError| match error {
+        ScaleError::BetweenSteps { .. } => InputError::NotRepresentable(format!(
             "{text} is not a multiple of the parameter's step {}{}",
             scale.factor.to_f64(),
             unit_suffix(parameter)
@@ -202,16 +202,12 @@ fn numeric(parameter: &impl Described, text: &str) -> Result<RawValue, InputErro
     };
     let raw = match data_type {
         DataType::F32 => scale
-            .to_raw::<f32>("", value)
+            .to_raw::<f32>(value)
             .map(f64::from)
             .map(RawValue::Float),
-        DataType::F64 => scale.to_raw::<f64>("", value).map(RawValue::Float),
-        DataType::Signed(_) => scale
-            .to_raw::<i64>("", value)
-            .map(|r| RawValue::Int(r.into())),
-        _ => scale
-            .to_raw::<u64>("", value)
-            .map(|r| RawValue::Int(r.into())),
+        DataType::F64 => scale.to_raw::<f64>(value).map(RawValue::Float),
+        DataType::Signed(_) => scale.to_raw::<i64>(value).map(|r| RawValue::Int(r.into())),
+        _ => scale.to_raw::<u64>(value).map(|r| RawValue::Int(r.into())),
     }
     .map_err(refused)?;
     match raw {

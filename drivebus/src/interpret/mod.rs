@@ -11,14 +11,9 @@ mod bounds_check;
 #[cfg(feature = "std")]
 mod input;
 #[cfg(feature = "std")]
-mod model;
-mod number;
-#[cfg(feature = "std")]
 mod over_link;
-mod range;
 #[cfg(feature = "std")]
-pub mod raw;
-mod raw_value;
+pub use drivebus_model::raw;
 #[cfg(feature = "std")]
 pub mod registers;
 #[cfg(feature = "std")]
@@ -27,16 +22,16 @@ mod shown;
 #[cfg(feature = "std")]
 pub use bounds_check::{check, Breach};
 #[cfg(feature = "std")]
+pub use drivebus_model::model::{
+    Access, Addressed, BoundedBy, Described, Model, Symbols, Unreachable,
+};
+pub use drivebus_model::{Number, Range, RawValue};
+#[cfg(feature = "std")]
 pub use input::{parse, InputError};
 #[cfg(feature = "std")]
-pub use model::{BoundedBy, Described, Model, Symbols};
-pub use number::Number;
-#[cfg(feature = "std")]
 pub use over_link::{
-    check_bounds, read, read_raw, waive_for_stop, write, write_checked, write_raw, Access,
-    Addressed, InterpretError, Unreachable, Variant,
+    check_bounds, read, read_raw, waive_for_stop, write, write_checked, write_raw, InterpretError,
+    Variant,
 };
-pub use range::Range;
-pub use raw_value::RawValue;
 #[cfg(feature = "std")]
 pub use shown::{show, Engineering, Raw, Shown};

@@ -7,38 +7,10 @@ use std::vec;
 use std::vec::Vec;
 
 use super::registers;
-use super::{parse, show, Described, InputError, Model, Shown};
+use super::{parse, show, Access, Addressed, Described, InputError, Model, Shown, Unreachable};
 use crate::error::BusError;
 use crate::link::{Link, ReadRequest};
 use crate::{OutsideBound, Protocol};
-
-/// What is done to a parameter.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Access {
-    /// Reading its value.
-    Read,
-    /// Writing a value.
-    Write,
-}
-
-/// Where protocol `P` reaches a described parameter. A model's parameter implements it for each
-/// protocol it describes.
-pub trait Addressed<P: Protocol> {
-    /// The address for `access` in the variant called `variant`; with `None` (the drive's
-    /// variant is not known) only an address that is the same in every variant.
-    fn address(&self, access: Access, variant: Option<&str>) -> Result<P::Address, Unreachable>;
-}
-
-/// Why a parameter has no address for an access.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Unreachable {
-    /// It has no address on the protocol that allows the access.
-    NoAccess,
-    /// It does not exist in the variant.
-    NotInVariant,
-    /// Its address depends on the variant, which is not known.
-    DependsOnVariant,
-}
 
 /// What a session knows of the variant (firmware or configuration) of the drive it talks to,
 /// as the generated handle's `detect_variant` learns it: read from the description's

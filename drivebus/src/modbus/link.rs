@@ -11,16 +11,20 @@ use super::planner::{check_item, next_read, PlannedRead};
 use super::{Modbus, RegisterBus, RegisterRead};
 
 /// A [`RegisterBus`] bound to one unit: the [`Link`] generated Modbus drive handles use.
+///
+/// `L` is the device's [`ModbusLimits`]: `'static` constants in a generated crate (the default,
+/// so `ModbusLink<B>` is what handles name), a view of its own model in a tool that loads a
+/// description at run time.
 #[derive(Debug)]
-pub struct ModbusLink<B> {
+pub struct ModbusLink<B, L = ModbusLimits<'static>> {
     bus: B,
     unit: UnitId,
-    limits: ModbusLimits,
+    limits: L,
 }
 
-impl<B: RegisterBus> ModbusLink<B> {
+impl<'a, B: RegisterBus> ModbusLink<B, ModbusLimits<'a>> {
     /// Binds `bus` to `unit`, respecting the device's `limits`.
-    pub fn new(bus: B, unit: UnitId, limits: ModbusLimits) -> Self {
+    pub fn new(bus: B, unit: UnitId, limits: ModbusLimits<'a>) -> Self {
         Self { bus, unit, limits }
     }
     /// The unit this link talks to.
@@ -28,7 +32,7 @@ impl<B: RegisterBus> ModbusLink<B> {
         self.unit
     }
     /// The device limits this link respects.
-    pub fn limits(&self) -> ModbusLimits {
+    pub fn limits(&self) -> ModbusLimits<'a> {
         self.limits
     }
     /// The underlying bus.
@@ -49,7 +53,7 @@ fn value_words(address: &ModbusAddress) -> Result<usize, BusError> {
     Ok(words)
 }
 
-impl<B: RegisterBus> Link for ModbusLink<B> {
+impl<B: RegisterBus> Link for ModbusLink<B, ModbusLimits<'_>> {
     type Protocol = Modbus;
 
     fn read(&mut self, address: &ModbusAddress, out: &mut [u8]) -> Result<usize, BusError> {

@@ -17,14 +17,14 @@
 //! bytes of the value codec, honouring the parameter's word order. Batch reads go through the
 //! planner.
 
-mod address;
+pub(crate) use drivebus_model::modbus::address;
 #[cfg(feature = "modbus")]
 pub mod client;
 #[cfg(feature = "modbus-core")]
 pub mod crc;
 #[cfg(test)]
 mod damage;
-pub mod exception;
+pub use drivebus_model::modbus::exception;
 pub mod framing;
 mod link;
 pub mod pdu;
@@ -40,26 +40,27 @@ pub use address::{
     le_to_registers, registers_to_le, ModbusAddress, ModbusLimits, RegisterSpan, Table, UnitId,
     WordOrder, MAX_VALUE_WORDS,
 };
+pub use drivebus_model::modbus::Modbus;
 pub use exception::ExceptionCode;
 pub use link::ModbusLink;
 #[cfg(feature = "std")]
 pub use shared_bus::SharedBus;
 
 use crate::error::BusError;
-use crate::Protocol;
 
 /// Most reads in flight at once: as many MBAP read requests (12 bytes) as a pipelining client's
 /// transmit buffer holds, rounded down to a power of two. [`ModbusLink`]'s `read_many` hands the
 /// bus this many reads at a time.
 pub const MAX_IN_FLIGHT: usize = 16;
 
-/// The Modbus protocol marker.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Modbus;
-
-impl Protocol for Modbus {
-    type Address = ModbusAddress;
-    const NAME: &'static str = "Modbus";
+impl BusError {
+    /// The exception code, if this error is a Modbus exception response.
+    pub fn modbus_exception(&self) -> Option<ExceptionCode> {
+        match self {
+            Self::ModbusException { code, .. } => Some(*code),
+            _ => None,
+        }
+    }
 }
 /// A Modbus client able to read and write registers of one unit at a time.
 pub trait RegisterBus {
@@ -173,4 +174,22 @@ pub trait BitBus {
     fn write_coil(&mut self, unit: UnitId, address: u16, value: bool) -> Result<(), BusError>;
     /// Writes consecutive coils (FC 0x0F).
     fn write_coils(&mut self, unit: UnitId, start: u16, values: &[bool]) -> Result<(), BusError>;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bus_errors_tell_their_exception_code() {
+        let error = BusError::ModbusException {
+            function: 3,
+            code: ExceptionCode::from(2),
+        };
+        assert_eq!(
+            error.modbus_exception(),
+            Some(ExceptionCode::IllegalDataAddress)
+        );
+        assert_eq!(BusError::Timeout.modbus_exception(), None);
+    }
 }

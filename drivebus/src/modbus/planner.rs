@@ -237,7 +237,7 @@ mod tests {
         }
     }
 
-    fn limits(max: u16, read_gaps: bool) -> ModbusLimits {
+    fn limits(max: u16, read_gaps: bool) -> ModbusLimits<'static> {
         ModbusLimits {
             max_read_registers: max,
             read_gaps,
@@ -503,13 +503,13 @@ mod tests {
             listed in proptest::collection::vec(any_item(), 0..3),
             write_only in proptest::collection::vec(any_item(), 0..3),
         ) {
-            let spans = |items: &[ModbusAddress], scale: u16| -> &'static [RegisterSpan] {
-                let spans = items.iter().map(|a| RegisterSpan { table: a.table, start: a.address, count: a.words * scale });
-                Vec::leak(spans.collect())
+            let spans = |items: &[ModbusAddress], scale: u16| -> Vec<RegisterSpan> {
+                items.iter().map(|a| RegisterSpan { table: a.table, start: a.address, count: a.words * scale }).collect()
             };
+            let (listed, write_only) = (spans(&listed, 2), spans(&write_only, 1));
             let limits = ModbusLimits {
-                readable: spans(&listed, 2),
-                unreadable: spans(&write_only, 1),
+                readable: &listed,
+                unreadable: &write_only,
                 ..limits(max, read_gaps)
             };
             let plan = plan(&limits, &items).unwrap();

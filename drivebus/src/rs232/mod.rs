@@ -52,16 +52,7 @@ pub use crate::canopen::ObjectAddress;
 pub use error::Rs232Error;
 pub use link::{Rs232Link, TelegramBus};
 
-use crate::Protocol;
-
-/// The Kinco RS-232 protocol marker.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Rs232;
-
-impl Protocol for Rs232 {
-    type Address = ObjectAddress;
-    const NAME: &'static str = "Kinco RS-232";
-}
+pub use drivebus_model::rs232::Rs232;
 
 /// The station id in byte 0 of every telegram: the drive's node id (`ID_Com`, 100Bh, default 1,
 /// manual line 2387).

@@ -3,8 +3,8 @@
 //! `Writable::BOUNDS` the handle's every write checks (reading the bounds over the same link
 //! first). There is no second, bounded write method to remember.
 
-use drivebus::interpret::Described;
-use drivebus::Bound;
+use drivebus_model::model::Described;
+use drivebus_model::Bound;
 use proc_macro2::TokenStream;
 use quote::quote;
 

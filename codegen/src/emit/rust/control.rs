@@ -2,7 +2,7 @@
 //! `enable_operation` & co. on the handle) when the description has the CiA 402 objects, and a
 //! vendor state machine as data (`[state_machine]`) with its typed states.
 
-use drivebus::control::Quirk;
+use drivebus_model::control::Quirk;
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 
@@ -232,7 +232,7 @@ fn vendor(device: &Device, handle: &Ident) -> Option<TokenStream> {
             }
 
             /// States and transitions as data, walked by `drivebus::control::machine`'s planner.
-            pub const MACHINE: ::drivebus::control::Machine = #data;
+            pub const MACHINE: ::drivebus::control::Machine<'static> = #data;
 
             /// The machine's registers, for `drivebus::control::driver::goto_state`.
             #[derive(Debug, Clone, Copy)]
@@ -241,7 +241,7 @@ fn vendor(device: &Device, handle: &Ident) -> Option<TokenStream> {
             impl ::drivebus::control::VendorMachine for Registers {
                 type Status = super::params::#status;
                 type Command = super::params::#command;
-                const MACHINE: ::drivebus::control::Machine = MACHINE;
+                const MACHINE: ::drivebus::control::Machine<'static> = MACHINE;
             }
         }
 

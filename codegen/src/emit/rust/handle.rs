@@ -1,17 +1,19 @@
 //! The drive handle: constructors per protocol and one accessor method per parameter.
 
+use drivebus_model::modbus::RegisterSpan;
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::quote;
 
 use super::addresses::hex;
 use super::{doc_attrs, ident};
 use crate::emit::{doc, ident as names};
-use crate::ir::{Device, RegisterRun, Table};
+use crate::ir::{Device, Table};
 
 fn modbus_limits(device: &Device) -> TokenStream {
-    let Some(limits) = device.planner_limits() else {
+    if device.modbus.is_none() {
         return quote! { ::drivebus::modbus::ModbusLimits::SPEC };
-    };
+    }
+    let limits = device.modbus_limits();
     let (read, write) = (limits.max_read_registers, limits.max_write_registers);
     let (multiple, gaps) = (limits.write_multiple, limits.read_gaps);
     let readable = register_spans(limits.readable);
@@ -33,8 +35,8 @@ fn modbus_limits(device: &Device) -> TokenStream {
 }
 
 /// Register runs as a `&[RegisterSpan]` expression.
-fn register_spans(runs: Vec<RegisterRun>) -> TokenStream {
-    let runs = runs.into_iter().map(|run| {
+fn register_spans(runs: &[RegisterSpan]) -> TokenStream {
+    let runs = runs.iter().map(|run| {
         let table = match run.table {
             Table::Input => quote! { input },
             Table::Holding => quote! { holding },

@@ -59,7 +59,7 @@ fn codec(p: &Parameter) -> Ident {
 }
 
 /// A ratio's numerator and denominator as literals (a negative numerator keeps its sign).
-fn ratio_tokens(ratio: drivebus::Ratio) -> (TokenStream, Literal) {
+fn ratio_tokens(ratio: drivebus_model::Ratio) -> (TokenStream, Literal) {
     let numerator = int_literal(i128::from(ratio.numerator()), DataType::Signed(8));
     (numerator, Literal::i64_unsuffixed(ratio.denominator()))
 }
@@ -69,7 +69,7 @@ fn clauses(p: &Parameter) -> TokenStream {
     let scale = match &p.scale {
         Some(Scale::Fixed(scale)) => {
             let (n, d) = ratio_tokens(scale.factor);
-            let offset = (scale.offset != drivebus::Ratio::ZERO).then(|| {
+            let offset = (scale.offset != drivebus_model::Ratio::ZERO).then(|| {
                 let (on, od) = ratio_tokens(scale.offset);
                 quote! { , offset = #on / #od }
             });
@@ -93,12 +93,12 @@ fn clauses(p: &Parameter) -> TokenStream {
 }
 
 /// `always`, or `mask => value, ...` with the masks and values in hex, as a manual prints them.
-fn stops_tokens(stops: drivebus::Stops<'_>) -> TokenStream {
+fn stops_tokens(stops: drivebus_model::Stops<'_>) -> TokenStream {
     let hex = |v: u64| syn::LitInt::new(&format!("{v:#06x}"), proc_macro2::Span::call_site());
     match stops {
-        drivebus::Stops::Never => quote! {},
-        drivebus::Stops::Always => quote! { always },
-        drivebus::Stops::Matching(patterns) => {
+        drivebus_model::Stops::Never => quote! {},
+        drivebus_model::Stops::Always => quote! { always },
+        drivebus_model::Stops::Matching(patterns) => {
             let patterns = patterns.iter().map(|p| {
                 let (mask, value) = (hex(p.mask), hex(p.value));
                 quote! { #mask => #value }

@@ -130,7 +130,7 @@ pub fn text(p: &Parameter, device: &Device) -> String {
                 factor.numerator(),
                 factor.denominator()
             );
-            if offset != drivebus::Ratio::ZERO {
+            if offset != drivebus_model::Ratio::ZERO {
                 let _ = write!(
                     ty,
                     ", offset {}/{}",

@@ -1,7 +1,7 @@
 //! Lowering of drive control: `[cia402]` quirks and the vendor `[state_machine]` with its
 //! `[[state]]` and `[[transition]]` tables.
 
-use drivebus::control::Quirk;
+use drivebus_model::control::Quirk;
 use toml::Spanned;
 
 use super::{Lowering, VALUE_RULE};

@@ -27,7 +27,7 @@ use super::LoadedFile;
 use crate::diagnostic::{Diagnostic, FileId, Files, Span};
 use crate::eds::EdsModel;
 use crate::ir::{self, DataType, Expr, Number};
-use drivebus::Ratio;
+use drivebus_model::Ratio;
 use overlay::Overlay;
 
 /// Turns loaded files into one device model. Returns `None` if the root file has neither
@@ -414,6 +414,7 @@ impl Lowering<'_> {
                 .as_ref()
                 .and_then(|c| self.combined_commands(c)),
             source: raw.source.as_ref().and_then(|c| self.citation(c)),
+            register_lists: Default::default(),
         }
     }
 
@@ -690,7 +691,7 @@ impl Lowering<'_> {
         };
         match (factor, offset) {
             (Some(factor), Some(offset)) => {
-                Some(ir::Scale::Fixed(drivebus::Scale { factor, offset }))
+                Some(ir::Scale::Fixed(drivebus_model::Scale { factor, offset }))
             }
             _ => {
                 self.error_help(
@@ -792,7 +793,7 @@ impl Lowering<'_> {
         };
         let access = self.modbus_access(raw.access.as_deref(), span, default_access)?;
         Some(ir::ModbusAddress {
-            wire: drivebus::modbus::ModbusAddress {
+            wire: drivebus_model::modbus::ModbusAddress {
                 table,
                 address,
                 words,

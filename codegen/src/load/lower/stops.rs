@@ -29,7 +29,7 @@ impl Lowering<'_> {
                         );
                         return None;
                     };
-                    lowered.push(drivebus::StopPattern { mask, value });
+                    lowered.push(drivebus_model::StopPattern { mask, value });
                 }
                 Some(lowered)
             }

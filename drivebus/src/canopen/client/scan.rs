@@ -93,7 +93,7 @@ fn upload_answer(frame: &CanFrame, index: u16, sub: u8) -> Option<(u8, u32)> {
     let node = frame
         .id()
         .checked_sub(0x580)
-        .filter(|n| (1..=127).contains(n))?;
+        .filter(|n| (u16::from(NodeId::MIN)..=u16::from(NodeId::MAX)).contains(n))?;
     let data = frame.data();
     let expedited = data.len() == 8 && data[0] & 0xE2 == 0x42;
     let addressed = u16::from_le_bytes([data.get(1).copied()?, data.get(2).copied()?]) == index

@@ -7,7 +7,7 @@
 //! error, unexpected command) it queues an abort frame for the server before reporting failure,
 //! so the caller must drain [`Transfer::poll_transmit`] after a failure too.
 
-pub mod abort;
+pub use drivebus_model::canopen::abort;
 #[cfg(feature = "sdo-block")]
 pub mod block;
 pub mod client;

@@ -1,9 +1,9 @@
 //! An SRDO's configuration: its communication object (1301h..1340h) and mapping object
 //! (1381h..13C0h), as the safety signature and the safety write see them.
 
-use super::cob_ids::SrdoCobIds;
-use super::error::SrdoError;
-use super::timing::SrdoTiming;
+use super::SrdoCobIds;
+use super::SrdoError;
+use super::SrdoTiming;
 use crate::canopen::pdo::MappedObject;
 
 /// Information direction (communication sub-index 1; SWD manual lines 1685-1690).

@@ -13,10 +13,10 @@
 
 use core::time::Duration;
 
-use super::cob_ids::SrdoCobIds;
 use super::complement::is_complement;
-use super::error::SrdoError;
-use super::timing::SrdoTiming;
+use super::SrdoCobIds;
+use super::SrdoError;
+use super::SrdoTiming;
 use crate::canopen::frame::CanFrame;
 use crate::canopen::pdo::Payload;
 

@@ -30,24 +30,20 @@
 //! assert!(matches!(consumer.handle(&inverted, ms(40)), Some(Err(SrdoError::SrvtExpired { .. }))));
 //! ```
 
-mod cob_ids;
 mod complement;
 mod config;
 mod consumer;
-mod error;
-pub mod mapping;
+pub use drivebus_model::canopen::srdo::mapping;
 mod producer;
 pub mod safety_function;
 pub mod safety_write;
 pub mod signature;
 mod stored_signature;
-mod timing;
 
-pub use cob_ids::SrdoCobIds;
 pub use complement::is_complement;
 pub use config::{SrdoCommunication, SrdoConfig, SrdoDirection, MAX_SRDO};
 pub use consumer::SrdoConsumer;
-pub use error::SrdoError;
+pub use drivebus_model::canopen::srdo::{SrdoCobIds, SrdoError, SrdoTiming};
 pub use producer::SrdoProducer;
 pub use safety_function::{
     function_signature, write_safety_function, FunctionSignature, SafetyFunctionParameter,
@@ -56,4 +52,3 @@ pub use safety_function::{
 pub use safety_write::{write_safety_configuration, MappingWrite, SafetyPlan, SafetyWriteError};
 pub use signature::{signature, verify, SignatureMismatch, VerifyError};
 pub use stored_signature::{check_stored_signature, StoredSignatureError};
-pub use timing::SrdoTiming;

@@ -2,9 +2,9 @@
 
 use core::time::Duration;
 
-use super::cob_ids::SrdoCobIds;
 use super::complement::complement;
-use super::error::SrdoError;
+use super::SrdoCobIds;
+use super::SrdoError;
 use crate::canopen::frame::CanFrame;
 
 /// The transmitting end of one SRDO. Time is an input.

@@ -12,9 +12,9 @@
 use core::fmt;
 
 use super::config::{SrdoConfig, SrdoDirection};
-use super::error::SrdoError;
 use super::mapping::check_mapping;
 use super::signature::signature;
+use super::SrdoError;
 use crate::canopen::address::NodeId;
 use crate::canopen::link::SdoBus;
 use crate::canopen::nmt::NmtState;

@@ -49,7 +49,7 @@
 //!   50 ms; the printed 25 is wrong (SRDO16 is the only TX SRDO whose signature disagrees).
 
 use super::config::SrdoConfig;
-use super::error::SrdoError;
+use super::SrdoError;
 
 /// CRC-16/XMODEM from the `crc` catalogue, as the SDO block CRC (`sdo::block::crc16_xmodem`), with the
 /// slice-by-16 table: a signature is a hundred bytes or so, where byte-wise tables dominate.

@@ -9,7 +9,8 @@ use heck::{ToTitleCase, ToUpperCamelCase};
 pub enum Dependencies {
     /// The registry (crates.io), by version.
     Registry,
-    /// A checkout of the drivegen repository (its `drivebus/` and `codegen/`), by version and path.
+    /// A checkout of the drivegen repository (its `drivebus/` and `codegen/`, which take
+    /// `drivebus-model/` beside them), by version and path.
     Checkout(PathBuf),
 }
 

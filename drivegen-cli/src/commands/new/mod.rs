@@ -107,7 +107,7 @@ fn dependencies(given: Option<&Path>) -> Result<Dependencies, CliError> {
                 Ok(Dependencies::Checkout(root))
             } else {
                 Err(CliError::Usage(format!(
-                    "{} is no drivegen checkout (no drivebus/ and codegen/ crates)",
+                    "{} is no drivegen checkout (no drivebus-model/, drivebus/ and codegen/ crates)",
                     root.display()
                 )))
             }
@@ -127,7 +127,12 @@ fn built_from_checkout() -> Option<PathBuf> {
 }
 
 fn is_checkout(root: &Path) -> bool {
-    ["drivebus/Cargo.toml", "codegen/Cargo.toml"]
-        .iter()
-        .all(|manifest| root.join(manifest).is_file())
+    // drivebus and drivegen take drivebus-model from the checkout too.
+    [
+        "drivebus-model/Cargo.toml",
+        "drivebus/Cargo.toml",
+        "codegen/Cargo.toml",
+    ]
+    .iter()
+    .all(|manifest| root.join(manifest).is_file())
 }

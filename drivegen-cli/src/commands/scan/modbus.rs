@@ -19,14 +19,13 @@ use super::{names, verdict, Answer};
 use crate::codec;
 use crate::connect::read_modbus;
 use crate::error::CliError;
-use crate::modbus_limits;
 use drivebus::interpret::Variant;
 
 /// One candidate description's identity register.
 pub struct Probe<'a> {
     device: &'a Device,
     check: IdentityCheck<'a>,
-    limits: ModbusLimits,
+    limits: ModbusLimits<'a>,
 }
 
 /// What one probe found at one unit.
@@ -45,7 +44,7 @@ pub fn probes(devices: &[Device]) -> Result<Vec<Probe<'_>>, CliError> {
     let probes: Vec<Probe> = devices
         .iter()
         .flat_map(|device| {
-            let limits = modbus_limits::limits(device);
+            let limits = device.modbus_limits();
             device
                 .identity_checks()
                 .into_iter()

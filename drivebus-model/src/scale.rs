@@ -3,8 +3,9 @@
 //! A scale is `engineering = raw × factor + offset` with `factor` and `offset` exact rationals, so a
 //! description's `1/100` stays exact; conversion to `f64` happens once, at the edge.
 
-use crate::error::ValueError;
-use crate::value::Numeric;
+use core::fmt;
+
+use crate::scalable::{round, Scalable};
 
 /// Below this magnitude every integer is exact in `f64` (2^53).
 pub const EXACT_INTEGERS: f64 = 9_007_199_254_740_992.0;
@@ -103,7 +104,7 @@ impl Ratio {
     }
 
     /// An integer raw value as a ratio, `None` if it is not a whole number within `i64`.
-    pub fn from_raw<R: Numeric>(raw: R) -> Option<Ratio> {
+    pub fn from_raw<R: Scalable>(raw: R) -> Option<Ratio> {
         let value = raw.to_f64();
         let whole = i64::from_f64(value)?;
         // `to_f64` is exact only up to 2^53; refuse larger values rather than use a rounded one.
@@ -172,6 +173,33 @@ impl serde::Serialize for Scale {
     }
 }
 
+/// Why an engineering value has no raw value under a scale; nothing is rounded or truncated.
+/// The caller knows which value of which parameter it asked for (drivebus reports both).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ScaleError {
+    /// The value does not fit the raw type (or is not finite).
+    Overflow,
+    /// The value lies between two steps of the scale (`step` apart); writing it would round.
+    BetweenSteps {
+        /// The scale's step (its factor's magnitude).
+        step: f64,
+    },
+}
+
+impl fmt::Display for ScaleError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Overflow => f.write_str("the value does not fit the raw type"),
+            Self::BetweenSteps { step } => write!(
+                f,
+                "the value lies between two steps of {step}; it would be rounded"
+            ),
+        }
+    }
+}
+
+impl core::error::Error for ScaleError {}
+
 /// `engineering = raw × factor + offset`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Scale {
@@ -221,7 +249,7 @@ impl Scale {
     /// Engineering value of a raw value: `raw × factor + offset`. Where every term is an exact
     /// `f64` integer it is computed as one fraction, rounded once, so that decimal steps read back
     /// as written (3 × 1/10 is 0.3, not 0.30000000000000004).
-    pub fn to_engineering<R: Numeric>(self, raw: R) -> f64 {
+    pub fn to_engineering<R: Scalable>(self, raw: R) -> f64 {
         let raw = raw.to_f64();
         let int = |r: Ratio| (r.numerator() as f64, r.denominator() as f64);
         let ((num, den), (offset_num, offset_den)) = (int(self.factor), int(self.offset));
@@ -237,26 +265,22 @@ impl Scale {
 
     /// Raw value of an engineering value; refuses values that would have to be rounded or do not
     /// fit the raw type, so nothing is silently changed on its way to the drive.
-    pub fn to_raw<R: Numeric>(self, parameter: &'static str, value: f64) -> Result<R, ValueError> {
+    pub fn to_raw<R: Scalable>(self, value: f64) -> Result<R, ScaleError> {
         if !value.is_finite() {
-            return Err(ValueError::Overflow { parameter });
+            return Err(ScaleError::Overflow);
         }
         let exact = (value - self.offset.to_f64()) / self.factor.to_f64();
         if !R::IS_INTEGER {
-            return R::from_f64(exact).ok_or(ValueError::Overflow { parameter });
+            return R::from_f64(exact).ok_or(ScaleError::Overflow);
         }
-        let nearest = crate::value::round(exact);
+        let nearest = round(exact);
         // A relative tolerance absorbs decimal→binary noise (49.5 / 0.01) but no real rounding.
         let tolerance = 1e-9 * nearest.abs().max(1.0);
         if (exact - nearest).abs() > tolerance {
             let step = self.factor.to_f64().abs();
-            return Err(ValueError::NotRepresentable {
-                parameter,
-                value,
-                step,
-            });
+            return Err(ScaleError::BetweenSteps { step });
         }
-        R::from_f64(nearest).ok_or(ValueError::Overflow { parameter })
+        R::from_f64(nearest).ok_or(ScaleError::Overflow)
     }
 }
 
@@ -294,7 +318,7 @@ mod tests {
                 i128::from(den) * i128::from(offset_den),
             );
             proptest::prop_assert_eq!(value, n as f64 / d as f64);
-            proptest::prop_assert_eq!(scale.to_raw::<i32>("p", value), Ok(raw));
+            proptest::prop_assert_eq!(scale.to_raw::<i32>(value), Ok(raw));
         }
     }
 
@@ -341,22 +365,22 @@ mod tests {
             Ratio::int(1875).checked_div(Ratio::int(512).checked_mul(Ratio::int(10_000)).unwrap());
         assert_eq!(f, Ratio::new(3, 8192));
         let scale = Scale::factor(f.unwrap());
-        assert_eq!(scale.to_raw::<i32>("target_speed", 1500.0), Ok(4_096_000));
+        assert_eq!(scale.to_raw::<i32>(1500.0), Ok(4_096_000));
     }
 
     #[test]
     fn volts_round_trip_through_hundredths() {
         let scale = Scale::factor(Ratio::new(1, 100).unwrap());
         assert_eq!(scale.to_engineering(4950u16), 49.5);
-        assert_eq!(scale.to_raw::<u16>("bus_dc_link", 49.5), Ok(4950));
+        assert_eq!(scale.to_raw::<u16>(49.5), Ok(4950));
     }
 
     #[test]
     fn values_between_steps_are_refused_not_rounded() {
         let scale = Scale::factor(Ratio::new(1, 10).unwrap());
         assert!(matches!(
-            scale.to_raw::<i16>("motor_temperature", 35.55),
-            Err(ValueError::NotRepresentable { .. })
+            scale.to_raw::<i16>(35.55),
+            Err(ScaleError::BetweenSteps { .. })
         ));
     }
 
@@ -367,14 +391,14 @@ mod tests {
             offset: Ratio::int(-40),
         };
         assert_eq!(scale.to_engineering(400u16), 0.0);
-        assert_eq!(scale.to_raw::<u16>("t", -40.0), Ok(0));
+        assert_eq!(scale.to_raw::<u16>(-40.0), Ok(0));
     }
 
     #[test]
     fn raw_overflow_is_an_error() {
         assert_eq!(
-            Scale::IDENTITY.to_raw::<u8>("x", 300.0),
-            Err(ValueError::Overflow { parameter: "x" })
+            Scale::IDENTITY.to_raw::<u8>(300.0),
+            Err(ScaleError::Overflow)
         );
     }
 }

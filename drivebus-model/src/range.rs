@@ -1,6 +1,6 @@
 //! The inclusive raw range of a described value, and the one range check of described values.
 
-use super::Number;
+use crate::Number;
 
 /// An inclusive raw range.
 #[derive(Debug, Clone, PartialEq)]

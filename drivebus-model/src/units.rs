@@ -124,7 +124,6 @@ mod tests {
         assert_eq!(type_name("furlong"), None);
     }
 
-    #[cfg(feature = "std")]
     #[test]
     fn display_appends_the_symbol() {
         extern crate std;

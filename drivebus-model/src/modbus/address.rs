@@ -67,8 +67,11 @@ impl ModbusAddress {
 pub struct UnitId(pub u8);
 
 /// What a device accepts, from its description; the link and the request planner respect it.
+///
+/// Generated code holds `ModbusLimits<'static>` constants; a tool that loads a description at run
+/// time lends a view of its own register lists.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct ModbusLimits {
+pub struct ModbusLimits<'a> {
     /// Most registers one read request may ask for (Lenze smd: 1).
     pub max_read_registers: u16,
     /// Most registers one write request may carry.
@@ -80,19 +83,19 @@ pub struct ModbusLimits {
     /// Where `read_gaps` is false: the registers the description lists as readable, as runs
     /// sorted by table and address, which a read may cover besides the requested ones. Empty:
     /// a read covers requested registers only.
-    pub readable: &'static [RegisterSpan],
+    pub readable: &'a [RegisterSpan],
     /// The registers the description lists without read access (write-only ones), as runs: no
     /// read covers them besides the requested ones, even where `read_gaps` allows unlisted
     /// addresses — the device would refuse the whole request.
-    pub unreadable: &'static [RegisterSpan],
+    pub unreadable: &'a [RegisterSpan],
     /// Reads the device answers beyond `max_read_registers`, exactly as listed (the description's
     /// `[modbus] read_blocks`; Lenze smd: 6 words at #24). The planner reads a whole block where
     /// that takes fewer requests than reading its values one by one.
-    pub read_blocks: &'static [RegisterSpan],
+    pub read_blocks: &'a [RegisterSpan],
     /// Values wider than `max_read_registers` the device answers whole, each in one read of
     /// exactly its words at its address (a Modbus address whose `occupies` is less than its
     /// `words`; Lenze smd C99, 4 words at one register). Such a read covers that value only.
-    pub whole_values: &'static [RegisterSpan],
+    pub whole_values: &'a [RegisterSpan],
 }
 
 /// Consecutive registers of one table.
@@ -136,9 +139,9 @@ impl RegisterSpan {
     }
 }
 
-impl ModbusLimits {
+impl ModbusLimits<'static> {
     /// The limits of the Modbus specification itself.
-    pub const SPEC: ModbusLimits = ModbusLimits {
+    pub const SPEC: ModbusLimits<'static> = ModbusLimits {
         max_read_registers: 125,
         max_write_registers: 123,
         write_multiple: true,

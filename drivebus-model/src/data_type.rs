@@ -101,7 +101,7 @@ impl DataType {
     }
 
     /// The Rust type holding a scalar raw value (odd widths round up: `u24` is held in `u32`);
-    /// `None` for strings and octets, held in [`Text`](crate::value::Text) of their capacity.
+    /// `None` for strings and octets, held in `drivebus::value::Text` of their capacity.
     pub const fn rust_scalar(self) -> Option<&'static str> {
         Some(match self {
             DataType::Bool => "bool",

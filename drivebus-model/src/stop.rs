@@ -6,7 +6,7 @@
 //! locked, or not the drive its description covers, or in an unknown configuration, may be
 //! wrong; refusing a stop on such a belief could leave a motor running. So such a write always
 //! goes out and the drive's own answer is reported: [`Stops::waive`] is the one rule, applied by
-//! [`crate::Device::write_raw`] and by the run-time interpreter's write.
+//! `drivebus::Device::write_raw` and by the run-time interpreter's write.
 
 /// Raw values that stop the drive: those whose bits under `mask` equal `value`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

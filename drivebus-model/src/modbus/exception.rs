@@ -1,11 +1,9 @@
 //! Modbus exception responses as typed values.
 //!
 //! On the wire an exception is `function | 0x80, code`; the client reports it as
-//! [`BusError::ModbusException`], and [`ExceptionCode`] gives the code a name and a meaning.
+//! `drivebus::BusError::ModbusException`, and [`ExceptionCode`] gives the code a name and a meaning.
 
 use core::fmt;
-
-use crate::error::BusError;
 
 /// A Modbus exception code (Modbus Application Protocol v1.1b3, §7).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -90,16 +88,6 @@ impl fmt::Display for ExceptionCode {
     }
 }
 
-impl BusError {
-    /// The exception code, if this error is a Modbus exception response.
-    pub fn modbus_exception(&self) -> Option<ExceptionCode> {
-        match self {
-            Self::ModbusException { code, .. } => Some(*code),
-            _ => None,
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -111,14 +99,5 @@ mod tests {
         }
         assert_eq!(ExceptionCode::from(2), ExceptionCode::IllegalDataAddress);
         assert_eq!(ExceptionCode::from(3).meaning(), "illegal data value");
-        let error = BusError::ModbusException {
-            function: 3,
-            code: ExceptionCode::from(2),
-        };
-        assert_eq!(
-            error.modbus_exception(),
-            Some(ExceptionCode::IllegalDataAddress)
-        );
-        assert_eq!(BusError::Timeout.modbus_exception(), None);
     }
 }

@@ -38,12 +38,14 @@ impl ObjectAddress {
 pub struct NodeId(pub u8);
 
 impl NodeId {
+    /// Lowest node id CiA 301 allows (0 addresses every node in NMT commands).
+    pub const MIN: u8 = 1;
     /// Highest node id CiA 301 allows.
     pub const MAX: u8 = 127;
 
-    /// The id if it lies in 1..=127.
+    /// The id if it lies in [`MIN`](Self::MIN)`..=`[`MAX`](Self::MAX).
     pub const fn new(id: u8) -> Option<Self> {
-        if id >= 1 && id <= Self::MAX {
+        if id >= Self::MIN && id <= Self::MAX {
             Some(Self(id))
         } else {
             None

@@ -3,7 +3,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
+#[cfg(feature = "alloc")]
 use crate::DataType;
 
 /// A raw value: an exact integer, or a float for float parameters and scaled input.
@@ -24,13 +24,13 @@ impl RawValue {
         }
     }
 
-    #[cfg(feature = "std")]
+    #[cfg(feature = "alloc")]
     /// The value `bytes` hold as `data_type`: an integer exactly, a float as a float; `None`
     /// for text and octets, or too few bytes.
     pub fn of(data_type: DataType, bytes: &[u8]) -> Option<RawValue> {
-        match super::raw::to_int(data_type, bytes) {
+        match crate::raw::to_int(data_type, bytes) {
             Some(int) => Some(RawValue::Int(int)),
-            None => super::raw::to_f64(data_type, bytes).map(RawValue::Float),
+            None => crate::raw::to_f64(data_type, bytes).map(RawValue::Float),
         }
     }
 }
@@ -44,7 +44,7 @@ impl fmt::Display for RawValue {
     }
 }
 
-#[cfg(all(test, feature = "std"))]
+#[cfg(all(test, feature = "alloc"))]
 mod tests {
     use super::*;
 

@@ -1,7 +1,7 @@
 //! Raw values: the little-endian bytes a parameter holds, and the integers computed with them.
 
-use std::vec;
-use std::vec::Vec;
+use alloc::vec;
+use alloc::vec::Vec;
 
 use crate::DataType;
 

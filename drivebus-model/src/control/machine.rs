@@ -30,11 +30,11 @@ impl StatePattern {
 
 /// A state of the machine.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct StateDef {
+pub struct StateDef<'a> {
     /// Name as in the description or the standard.
-    pub name: &'static str,
+    pub name: &'a str,
     /// The state is recognised when any of these patterns matches.
-    pub patterns: &'static [StatePattern],
+    pub patterns: &'a [StatePattern],
 }
 
 /// What causes a transition.
@@ -50,9 +50,9 @@ pub enum TransitionKind {
 
 /// A transition between two states.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct TransitionDef {
+pub struct TransitionDef<'a> {
     /// Name as in the manual (`"T2"`, `"15"`).
-    pub name: &'static str,
+    pub name: &'a str,
     /// Index of the state it leaves.
     pub from: u8,
     /// Index of the state it enters.
@@ -60,36 +60,39 @@ pub struct TransitionDef {
     /// What causes it.
     pub kind: TransitionKind,
     /// What the manual says about it.
-    pub doc: &'static str,
+    pub doc: &'a str,
 }
 
 /// A state machine: states in recognition order, and transitions.
+///
+/// Generated code holds `Machine<'static>` constants; a tool that loads a description at run time
+/// lends a view of its own tables.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Machine {
+pub struct Machine<'a> {
     /// States; the first one whose pattern matches the status is the current state.
-    pub states: &'static [StateDef],
+    pub states: &'a [StateDef<'a>],
     /// Transitions.
-    pub transitions: &'static [TransitionDef],
+    pub transitions: &'a [TransitionDef<'a>],
 }
 
 /// The planner's answer for one status observation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Plan {
+pub enum Plan<'a> {
     /// The machine is in the target state.
     Done,
     /// Write the transition's command value.
-    Command(&'static TransitionDef),
+    Command(&'a TransitionDef<'a>),
     /// The drive leaves this state by itself; poll again.
-    Await(&'static TransitionDef),
+    Await(&'a TransitionDef<'a>),
     /// Only an outside event leads on (e.g. a reset input); the transition says which.
-    NeedsExternal(&'static TransitionDef),
+    NeedsExternal(&'a TransitionDef<'a>),
     /// No sequence of transitions reaches the target.
     Unreachable,
     /// The table has more than [`MAX_STATES`] states or a transition names a missing state.
     BadTable,
 }
 
-impl Machine {
+impl<'a> Machine<'a> {
     /// Index of the state called `name`.
     pub fn state_index(&self, name: &str) -> Option<u8> {
         let index = self.states.iter().position(|s| s.name == name)?;
@@ -115,7 +118,7 @@ impl Machine {
     }
 
     /// The states one command transition leads from straight into state `to`.
-    pub fn commanded_from(&self, to: u8) -> impl Iterator<Item = &StateDef> + '_ {
+    pub fn commanded_from(&self, to: u8) -> impl Iterator<Item = &'a StateDef<'a>> + '_ {
         self.transitions
             .iter()
             .filter(move |t| t.to == to && matches!(t.kind, TransitionKind::Command(_)))
@@ -123,15 +126,15 @@ impl Machine {
     }
 
     /// The next hop from state `from` towards state `to`, using only transitions `allowed` accepts.
-    pub fn next(&self, from: u8, to: u8, allowed: impl Fn(&TransitionDef) -> bool) -> Plan {
+    pub fn next(&self, from: u8, to: u8, allowed: impl Fn(&TransitionDef) -> bool) -> Plan<'a> {
         if from == to {
             return Plan::Done;
         }
         let Some(distance) = self.distances_to(to, &allowed) else {
             return Plan::BadTable;
         };
-        let best = self
-            .transitions
+        let transitions: &'a [TransitionDef<'a>] = self.transitions;
+        let best = transitions
             .iter()
             .filter(|t| t.from == from && allowed(t))
             .filter_map(|t| {
@@ -203,10 +206,15 @@ fn cost(transition: &TransitionDef) -> u32 {
 mod tests {
     use super::*;
 
-    const fn state(name: &'static str, patterns: &'static [StatePattern]) -> StateDef {
+    const fn state(name: &'static str, patterns: &'static [StatePattern]) -> StateDef<'static> {
         StateDef { name, patterns }
     }
-    const fn hop(name: &'static str, from: u8, to: u8, kind: TransitionKind) -> TransitionDef {
+    const fn hop(
+        name: &'static str,
+        from: u8,
+        to: u8,
+        kind: TransitionKind,
+    ) -> TransitionDef<'static> {
         TransitionDef {
             name,
             from,

@@ -2,10 +2,10 @@
 //! odd sub-indices, its inverted copy at the even ones (SWD manual lines 1745-1746, 1767-1782).
 //!
 //! The normal entries are packed into the normal frame exactly as a PDO is, so the normal data
-//! decodes with a [`PdoLayout`](crate::canopen::pdo::PdoLayout) of the normal entries.
+//! decodes with a `drivebus::canopen::pdo::PdoLayout` of the normal entries.
 
 use super::error::SrdoError;
-use crate::canopen::pdo::{mapping_bits, MappedObject};
+use crate::canopen::{mapping_bits, MappedObject};
 
 /// Checks a mapping as the mapping object holds it: an even number of entries, each 1..=64 bits,
 /// every inverted entry as wide as the normal entry before it, and the normal data within one

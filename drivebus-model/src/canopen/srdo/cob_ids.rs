@@ -1,7 +1,7 @@
 //! The two COB-IDs of an SRDO: normal data and inverted data.
 
 use super::error::SrdoError;
-use crate::canopen::frame::MAX_ID;
+use crate::canopen::MAX_COB_ID as MAX_ID;
 
 /// The CAN identifiers of an SRDO's two frames (communication sub-indices 5 and 6).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

@@ -5,7 +5,7 @@
 use core::cmp::Ordering;
 use core::fmt;
 
-use super::RawValue;
+use crate::RawValue;
 
 /// A raw value as written in a description.
 #[derive(Debug, Clone, Copy, PartialEq)]

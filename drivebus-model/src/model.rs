@@ -2,10 +2,10 @@
 //! the names a description gives to raw values. `drivegen`'s IR implements both, so a description
 //! loaded at run time is read and written through the same scale and checks as generated code.
 
-use std::vec::Vec;
+use alloc::vec::Vec;
 
-use super::{Number, Range};
 use crate::{Bound, DataType, Scale, Stops};
+use crate::{Number, Protocol, Range};
 
 /// A described parameter, as the interpreter sees it.
 pub trait Described {
@@ -86,4 +86,32 @@ pub enum Symbols<'a> {
         /// Its bits.
         bits: Vec<(&'a str, u32)>,
     },
+}
+
+/// What is done to a parameter.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Access {
+    /// Reading its value.
+    Read,
+    /// Writing a value.
+    Write,
+}
+
+/// Where protocol `P` reaches a described parameter. A model's parameter implements it for each
+/// protocol it describes.
+pub trait Addressed<P: Protocol> {
+    /// The address for `access` in the variant called `variant`; with `None` (the drive's
+    /// variant is not known) only an address that is the same in every variant.
+    fn address(&self, access: Access, variant: Option<&str>) -> Result<P::Address, Unreachable>;
+}
+
+/// Why a parameter has no address for an access.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Unreachable {
+    /// It has no address on the protocol that allows the access.
+    NoAccess,
+    /// It does not exist in the variant.
+    NotInVariant,
+    /// Its address depends on the variant, which is not known.
+    DependsOnVariant,
 }
