@@ -158,7 +158,7 @@ pub mod operation {
         }
     }
     /// States and transitions as data, walked by `drivebus::control::machine`'s planner.
-    pub const MACHINE: ::drivebus::control::Machine = ::drivebus::control::Machine {
+    pub const MACHINE: ::drivebus::control::Machine<'static> = ::drivebus::control::Machine {
         states: &[
             ::drivebus::control::StateDef {
                 name: "stopped",
@@ -208,7 +208,7 @@ pub mod operation {
     impl ::drivebus::control::VendorMachine for Registers {
         type Status = super::params::Status;
         type Command = super::params::Start;
-        const MACHINE: ::drivebus::control::Machine = MACHINE;
+        const MACHINE: ::drivebus::control::Machine<'static> = MACHINE;
     }
 }
 #[cfg(feature = "std")]
