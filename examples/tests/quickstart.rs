@@ -77,7 +77,12 @@ fn quickstart_serial_talks_rtu() {
     }
     let description = Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/lafert-smartris");
     let sim = drivesim::Simulator::load(description).unwrap();
-    sim.preset("operation_mode", 2).unwrap();
+    // As the TCP quickstart's drive: velocity mode, and an L motor's full scale (3000 rpm) that
+    // bounds the 1500 rpm set point (a drive at full scale 0 refuses it before anything is sent).
+    sim.preset("operation_mode", 2)
+        .unwrap()
+        .preset("full_scale_velocity", 3000)
+        .unwrap();
     let mut stream =
         SerialStream::open(server.to_str().unwrap(), &SerialConfig::new(19_200)).unwrap();
     // Ends with an I/O error once socat is stopped.
