@@ -116,7 +116,7 @@ fn dependencies(given: Option<&Path>) -> Result<Dependencies, CliError> {
     }
 }
 
-/// The drivegen checkout this binary was compiled in (`cargo install --path cli`), if it is
+/// The drivegen checkout this binary was compiled in (`cargo install --path drivegen-cli`), if it is
 /// still there; a binary built from the published crate has none.
 fn built_from_checkout() -> Option<PathBuf> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"))
