@@ -1,6 +1,6 @@
 //! Bounds set by other parameters (`bounds = { min, max, magnitude }` in a description): a
 //! value must not lie beyond another parameter's current value. One comparison and one refusal
-//! for the device handle's writes ([`crate::Writable::BOUNDS`]), the run-time interpreter and the
+//! for the device handle's writes (`drivebus::Writable::BOUNDS`), the run-time interpreter and the
 //! simulator.
 
 use core::fmt;
