@@ -4,8 +4,8 @@
 # For each tree, in alternating rounds so both see the same machine load:
 #   * the lines of each drive crate's generated source;
 #   * each drive crate's own debug and release build (its dependencies warm, the crate cleaned);
-#   * a drive crate built from nothing (an empty target directory), and how many times `drivebus`
-#     is compiled on the way (the generator used to compile the runtime for the host as well);
+#   * a drive crate built from nothing (an empty target directory): dependencies, generator and
+#     all (the generator used to compile the runtime for the host as well);
 #   * the generator's own time on all shipped descriptions (`cargo bench -p drivegen --bench
 #     generate`, the "check + emit" median).
 # Prints one Markdown table per measure; each tree's target directory is its own
@@ -39,15 +39,13 @@ crate_build() {  # tree, package, profile flag ("" or --release)
     (cd "$tree" && seconds cargo build $profile -p "$package")
 }
 
-from_nothing() {  # tree, package, result file for the drivebus compile count
+from_nothing() {  # tree, package
     local tree=$1 package=$2 fresh
     fresh=$(mktemp -d)
-    local log=$fresh/log
     local start end
     start=$(date +%s.%N)
-    (cd "$tree" && CARGO_TARGET_DIR=$fresh/target cargo build -p "$package" >"$log" 2>&1)
+    (cd "$tree" && CARGO_TARGET_DIR=$fresh/target cargo build -q -p "$package" >/dev/null 2>&1)
     end=$(date +%s.%N)
-    grep -c 'Compiling drivebus v' "$log" >"$3" || true
     rm -rf "$fresh"
     echo "$end - $start" | bc
 }
@@ -69,7 +67,7 @@ for round in $(seq "$rounds"); do
             generated_lines "$tree" "$package" >"$results/$key.$package.lines"
         done
         unset CARGO_TARGET_DIR
-        from_nothing "$tree" lafert-smartris "$results/$key.drivebus-builds" >>"$results/$key.cold"
+        from_nothing "$tree" lafert-smartris >>"$results/$key.cold"
         export CARGO_TARGET_DIR=$tree/target/build-times
         generator_ms "$tree" >>"$results/$key.generator"
         echo "round $round done: $tree" >&2
@@ -96,10 +94,10 @@ for measure in lines debug release; do
     done
 done
 echo
-echo "| tree | lafert-smartris from nothing (s, median) | drivebus compiled | generator, check + emit all (median) |"
-echo "|---|---|---|---|"
+echo "| tree | lafert-smartris from nothing (s, median) | generator, check + emit all (median) |"
+echo "|---|---|---|"
 for tree in "${trees[@]}"; do
     key=$(echo "$tree" | md5sum | cut -c1-8)
-    echo "| $tree | $(median <"$results/$key.cold") | $(cat "$results/$key.drivebus-builds") times | $(head -1 "$results/$key.generator") |"
+    echo "| $tree | $(median <"$results/$key.cold") | $(head -1 "$results/$key.generator") |"
 done
 rm -rf "$results"
