@@ -20,6 +20,8 @@
 //!   Modbus clients and the RS-232 host.
 //! * [`interpret`] — raw values, and (feature `std`) byte and register codecs, for tools that read
 //!   a description at run time (the CLI, the simulator).
+//! * `asynch` (feature `async`) — the async API: [`Link`]'s async twin, the handle marker
+//!   `Async<L>` and the timer the async clients take their time from.
 //! * [`prelude`] — the names an application uses most, in one `use drivebus::prelude::*;`.
 //!
 //! The crate is the client side. The device side (Modbus PDU server codec, SDO server, CiA 402
@@ -33,6 +35,8 @@
 #[cfg(any(feature = "std", test))]
 extern crate std;
 
+#[cfg(feature = "async")]
+pub mod asynch;
 pub mod bus_error_kind;
 pub mod canopen;
 #[doc(hidden)] // the checks generated parameters call before sending
