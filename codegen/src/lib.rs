@@ -13,6 +13,7 @@
 //! * [`Builder`] is the `build.rs` entry point of drive crates.
 
 mod builder;
+pub mod config_file;
 pub mod diagnostic;
 pub mod diff;
 pub mod eds;

@@ -328,6 +328,30 @@ impl<'d> Session<'d> {
         }
     }
 
+    /// Whether the bus reaches `parameter` for writing (it has a writable address on this
+    /// protocol).
+    pub fn can_write(&self, parameter: &Parameter) -> bool {
+        match self.link {
+            Link::Modbus { .. } => parameter.modbus.iter().any(|a| a.access.write),
+            Link::CanOpen { .. } => parameter.canopen.iter().any(|a| a.access.write),
+            Link::Rs232 { .. } => parameter.rs232.iter().any(|a| a.access.write),
+        }
+    }
+
+    /// The protocol the session speaks, for messages.
+    pub fn protocol(&self) -> &'static str {
+        match self.link {
+            Link::Modbus { .. } => "Modbus",
+            Link::CanOpen { .. } => "CANopen",
+            Link::Rs232 { .. } => "Kinco RS-232",
+        }
+    }
+
+    /// The variant the session reads and writes in.
+    pub fn variant(&self) -> &Variant {
+        &self.variant
+    }
+
     /// Where the drive is, for messages.
     pub fn target(&self) -> &str {
         &self.target

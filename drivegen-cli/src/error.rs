@@ -60,6 +60,27 @@ pub enum CliError {
     /// The drive's variant is not known (or the parameter is not in it) and the parameter's
     /// address depends on it; nothing was sent.
     Variant(String),
+    /// A configuration file refused before anything was sent: the file, the line, why.
+    ConfigFile {
+        /// The file.
+        file: String,
+        /// The line the reason is about, when it is about one.
+        line: Option<u32>,
+        /// Why.
+        reason: String,
+    },
+    /// The drive is not the one (or not in the firmware or variant) a configuration file was
+    /// read from; nothing was written.
+    ForeignDrive(String),
+    /// `config compare` found this many differences.
+    Differs(usize),
+    /// `config push` could not write (or verify) this many of the parameters it meant to.
+    PushIncomplete {
+        /// Parameters refused or not read back as written.
+        refused: usize,
+        /// Parameters the push meant to write.
+        planned: usize,
+    },
     /// A CAN interface or adapter could not be opened.
     CanOpen {
         /// The `--can` value.
@@ -123,6 +144,22 @@ impl fmt::Display for CliError {
             } => write!(
                 f,
                 "{parameter} reads {found}, the description covers {expected}: not written (--no-identity-check writes anyway)"
+            ),
+            CliError::ConfigFile {
+                file,
+                line: Some(line),
+                reason,
+            } => write!(f, "{file}:{line}: {reason} (nothing was sent)"),
+            CliError::ConfigFile {
+                file,
+                line: None,
+                reason,
+            } => write!(f, "{file}: {reason} (nothing was sent)"),
+            CliError::ForeignDrive(why) => write!(f, "{why}: nothing was written"),
+            CliError::Differs(count) => write!(f, "{count} difference(s)"),
+            CliError::PushIncomplete { refused, planned } => write!(
+                f,
+                "{refused} of {planned} parameter(s) not written as the file holds them (see the report above)"
             ),
             CliError::Breaking(count) => write!(
                 f,

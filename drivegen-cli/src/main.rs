@@ -51,10 +51,19 @@ enum Command {
     Scan(commands::scan::Args),
     /// CANopen Safety: the safety configuration signature of an SRDO.
     Safety(commands::safety::Args),
+    /// Save a drive's configuration to a file, write it back, or compare it (exit code 0: done
+    /// or equal, 1: different, 2: error).
+    Config(commands::config::Args),
 }
 
 fn main() -> ExitCode {
-    let result = match Cli::parse().command {
+    let command = Cli::parse().command;
+    // `config` tells a difference (1) from a failure (2), as diff(1) does.
+    let failure = match command {
+        Command::Config(_) => ExitCode::from(2),
+        _ => ExitCode::FAILURE,
+    };
+    let result = match command {
         Command::Check(args) => commands::check::run(args),
         Command::Dump(args) => commands::dump::run(args),
         Command::Diff(args) => commands::diff::run(args),
@@ -68,12 +77,17 @@ fn main() -> ExitCode {
         Command::Eds(args) => commands::eds::run(args),
         Command::Safety(args) => commands::safety::run(args),
         Command::Scan(args) => commands::scan::run(args),
+        Command::Config(args) => commands::config::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
+        Err(error::CliError::Differs(count)) => {
+            eprintln!("{count} difference(s)");
+            ExitCode::FAILURE
+        }
         Err(e) => {
             eprintln!("error: {e}");
-            ExitCode::FAILURE
+            failure
         }
     }
 }

@@ -1,6 +1,7 @@
 //! One file per subcommand, and what they share: loading a description, finding parameters.
 
 pub mod check;
+pub mod config;
 pub mod decode;
 pub mod diff;
 pub mod dump;

@@ -1,0 +1,25 @@
+//! Reading many parameters from a live drive so that one that fails does not hide the others:
+//! all in one batch, and where that fails, one by one with each failure's reason.
+
+use drivegen::ir::Parameter;
+
+use crate::connect::Session;
+
+/// The raw bytes of each parameter, or why it could not be read.
+pub fn read_each(session: &mut Session, parameters: &[&Parameter]) -> Vec<Result<Vec<u8>, String>> {
+    if parameters.is_empty() {
+        return Vec::new();
+    }
+    if let Ok(values) = session.read_many(parameters) {
+        return values.into_iter().map(Ok).collect();
+    }
+    parameters
+        .iter()
+        .map(|p| {
+            session
+                .read_many(&[p])
+                .map(|mut v| v.pop().unwrap_or_default())
+                .map_err(|e| e.to_string())
+        })
+        .collect()
+}

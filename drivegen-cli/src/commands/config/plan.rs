@@ -1,0 +1,59 @@
+//! The order a push writes in: modes first, then every parameter after those that bound it or
+//! scale it, otherwise the description's order.
+
+use drivegen::ir::{Device, Parameter};
+
+use super::selection;
+
+/// One parameter whose value on the drive differs from the file's.
+pub struct Change<'d> {
+    /// The parameter.
+    pub parameter: &'d Parameter,
+    /// What the drive holds now.
+    pub current: Vec<u8>,
+    /// What the file holds.
+    pub wanted: Vec<u8>,
+    /// The file line.
+    pub line: u32,
+    /// Why the file's value is not one the description allows, if it is not (refused before
+    /// anything is written).
+    pub invalid: Option<String>,
+}
+
+/// `changes` in an order that works: each after the modes and after the parameters its value
+/// is checked against ([`selection::depends_on`]); a cycle falls back to the description's order.
+pub fn order<'d>(device: &Device, mut changes: Vec<Change<'d>>) -> Vec<Change<'d>> {
+    let position = |p: &Parameter| device.parameters.iter().position(|q| q.name == p.name);
+    changes.sort_by_key(|c| position(c.parameter));
+    let names: Vec<&str> = changes.iter().map(|c| c.parameter.name.as_str()).collect();
+    let modes: Vec<&str> = changes
+        .iter()
+        .filter(|c| selection::is_mode(device, c.parameter))
+        .map(|c| c.parameter.name.as_str())
+        .collect();
+    let before: Vec<Vec<String>> = changes
+        .iter()
+        .map(|c| {
+            let mut after: Vec<&str> = selection::depends_on(c.parameter);
+            if !modes.contains(&c.parameter.name.as_str()) {
+                after.extend(&modes);
+            }
+            after.retain(|n| names.contains(n) && *n != c.parameter.name);
+            after.into_iter().map(str::to_owned).collect()
+        })
+        .collect();
+    let mut pending: Vec<(Change<'d>, Vec<String>)> = changes.into_iter().zip(before).collect();
+    let mut ordered: Vec<Change<'d>> = Vec::new();
+    while !pending.is_empty() {
+        let ready = pending
+            .iter()
+            .position(|(_, after)| {
+                after
+                    .iter()
+                    .all(|n| ordered.iter().any(|o| &o.parameter.name == n))
+            })
+            .unwrap_or(0);
+        ordered.push(pending.remove(ready).0);
+    }
+    ordered
+}

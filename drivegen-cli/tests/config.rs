@@ -1,0 +1,243 @@
+//! `drivegen config pull / push / compare` end to end against the simulator, one test per
+//! family over its protocol: Lafert and Lenze over Modbus TCP, the Kinco FD over Modbus TCP, the
+//! ez-Wheel SWD over CANopen. Each pulls, changes values on the simulated drive, compares
+//! (different), pushes (dry run first, which writes nothing), and compares again (equal), with
+//! the simulated drive holding the pulled values. The Lenze smd is locked: the push unlocks it
+//! as its description says and locks it again. Bad files are refused with the line.
+
+use std::net::TcpListener;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::thread;
+
+use drivebus::canopen::can::candump::CandumpBus;
+use drivebus::canopen::NodeId;
+use drivebus::modbus::UnitId;
+use drivesim::canopen::{nodes, Node, NodeConfig};
+use drivesim::modbus::tcp::TcpServer;
+use drivesim::Simulator;
+
+const BIN: &str = env!("CARGO_BIN_EXE_drivegen");
+
+fn description(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../descriptions")
+        .join(name)
+}
+
+fn drivegen(args: &[&str]) -> Output {
+    Command::new(BIN).args(args).output().unwrap()
+}
+
+fn text(output: &Output) -> String {
+    format!(
+        "stdout:\n{}\nstderr:\n{}",
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr)
+    )
+}
+
+fn raw(sim: &Simulator, name: &str) -> i128 {
+    sim.with(|drive| {
+        let store = drive.store();
+        store.int(store.id(name).unwrap()).unwrap()
+    })
+}
+
+/// A file in a fresh folder for this test.
+fn scratch(test: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("drivegen-config-{}-{test}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join("drive.toml")
+}
+
+fn modbus(sim: &Simulator) -> (TcpServer, Vec<String>) {
+    let server = sim.serve_modbus_tcp("127.0.0.1:0", UnitId(1)).unwrap();
+    let addr = server.local_addr().to_string();
+    (server, vec!["--modbus-tcp".into(), addr])
+}
+
+/// Serves `sim` as CANopen node `node` to one CLI run after another: candump lines over TCP,
+/// reached through `socat` as a `candump:exec:` backend, so the simulated drive (and what is
+/// written to it) outlives each run.
+fn canopen(sim: &Simulator, node: u8) -> Vec<String> {
+    let listener = TcpListener::bind("127.0.0.1:0").unwrap();
+    let addr = listener.local_addr().unwrap();
+    let sim = sim.clone();
+    thread::spawn(move || {
+        for stream in listener.incoming() {
+            let Ok(stream) = stream else { return };
+            let config = NodeConfig {
+                node: NodeId(node),
+                heartbeat: None,
+            };
+            let mut node = Node::new(sim.clone(), config, sim.variant());
+            let mut bus = CandumpBus::new(stream.try_clone().unwrap(), stream);
+            // The run ends when the CLI closes the connection.
+            let _ = nodes::run(std::slice::from_mut(&mut node), &mut bus);
+        }
+    });
+    vec![
+        "--can".into(),
+        format!("candump:exec:socat - TCP:{addr}"),
+        "--node-id".into(),
+        node.to_string(),
+    ]
+}
+
+/// The line of the push report that says `name` was written.
+fn written_at(report: &str, name: &str) -> usize {
+    report
+        .lines()
+        .position(|l| l.starts_with(&format!("{name} ")) && l.ends_with("written"))
+        .unwrap_or_else(|| panic!("{name} not written: {report}"))
+}
+
+fn run(command: &[&str], bus: &[String]) -> Output {
+    let mut args: Vec<&str> = command.to_vec();
+    args.extend(bus.iter().map(String::as_str));
+    drivegen(&args)
+}
+
+/// Pull, change `changes` on the drive, compare, dry run, push, compare: the drive ends as
+/// pulled. Returns the push's output.
+fn round_trip(
+    test: &str,
+    sim: &Simulator,
+    description: &Path,
+    bus: &[String],
+    changes: &[(&str, i128)],
+) -> Output {
+    let file = scratch(test);
+    let (file_s, description_s) = (file.to_str().unwrap(), description.to_str().unwrap());
+    let pull = run(&["config", "pull", description_s, "-o", file_s], bus);
+    assert!(pull.status.success(), "{}", text(&pull));
+    let pulled: Vec<i128> = changes.iter().map(|(name, _)| raw(sim, name)).collect();
+    for ((name, value), was) in changes.iter().zip(&pulled) {
+        assert_ne!(value, was, "{name}: the change changes it");
+        sim.preset(name, *value).unwrap();
+    }
+    let differs = run(&["config", "compare", file_s], bus);
+    assert_eq!(differs.status.code(), Some(1), "{}", text(&differs));
+    for (name, _) in changes {
+        assert!(text(&differs).contains(name), "{name}: {}", text(&differs));
+    }
+    let dry = run(&["config", "push", file_s, "--dry-run"], bus);
+    assert!(dry.status.success(), "{}", text(&dry));
+    for (name, value) in changes {
+        assert!(text(&dry).contains(name), "{name}: {}", text(&dry));
+        assert_eq!(raw(sim, name), *value, "{name}: a dry run writes nothing");
+    }
+    let push = run(&["config", "push", file_s], bus);
+    assert!(push.status.success(), "{}", text(&push));
+    for ((name, _), was) in changes.iter().zip(&pulled) {
+        assert_eq!(raw(sim, name), *was, "{name} written back");
+        assert!(
+            text(&push).contains(&format!("{name}  ")),
+            "{name}: {}",
+            text(&push)
+        );
+    }
+    let equal = run(&["config", "compare", file_s], bus);
+    assert_eq!(equal.status.code(), Some(0), "{}", text(&equal));
+    assert!(text(&equal).contains("no differences"), "{}", text(&equal));
+    push
+}
+
+#[test]
+fn lafert_round_trip_over_modbus() {
+    let lafert = description("lafert-smartris");
+    let sim = Simulator::load(&lafert).unwrap();
+    sim.preset("operation_mode", 2).unwrap();
+    let (_server, bus) = modbus(&sim);
+    let push = round_trip(
+        "lafert",
+        &sim,
+        &lafert,
+        &bus,
+        &[
+            ("speed_ramp_up", 1500),
+            ("limit_torque_positive", 50),
+            ("operation_mode", 1),
+        ],
+    );
+    let out = text(&push);
+    // The mode goes first, whatever the description's order.
+    assert!(
+        written_at(&out, "operation_mode") < written_at(&out, "speed_ramp_up"),
+        "{out}"
+    );
+    assert!(out.contains("3 written, 54 unchanged, 0 refused"), "{out}");
+}
+
+#[test]
+fn kinco_round_trip_over_modbus() {
+    let kinco = description("kinco-fd");
+    let sim = Simulator::load(&kinco).unwrap();
+    // Gains within their ranges, as a commissioned drive holds them.
+    sim.preset("kvp", 100).unwrap();
+    sim.preset("kpp", 200).unwrap();
+    let (_server, bus) = modbus(&sim);
+    round_trip(
+        "kinco",
+        &sim,
+        &kinco,
+        &bus,
+        &[("kvp", 123), ("kpp", 456), ("din_position3", -20_000)],
+    );
+}
+
+#[test]
+fn swd_round_trip_over_canopen() {
+    let swd = description("ezwheel-swd");
+    let sim = Simulator::load(&swd).unwrap();
+    let bus = canopen(&sim, 16);
+    round_trip(
+        "swd",
+        &sim,
+        &swd,
+        &bus,
+        &[("rpdo1_event_timer", 250), ("rpdo1_transmission_type", 254)],
+    );
+}
+
+#[test]
+fn a_locked_lenze_is_unlocked_as_described_and_locked_again() {
+    let lenze = description("lenze-smd");
+    let sim = Simulator::load(&lenze).unwrap();
+    let (_server, bus) = modbus(&sim);
+    let locked = |sim: &Simulator| {
+        let write = run(
+            &[
+                "write",
+                lenze.to_str().unwrap(),
+                "acceleration_time",
+                "raw:70",
+                "--no-identity-check",
+            ],
+            &bus,
+        );
+        let refused = !write.status.success();
+        assert!(
+            refused || raw(sim, "acceleration_time") == 70,
+            "{}",
+            text(&write)
+        );
+        refused
+    };
+    assert!(locked(&sim), "the simulated smd powers up locked");
+    let push = round_trip(
+        "lenze",
+        &sim,
+        &lenze,
+        &bus,
+        &[("acceleration_time", 120), ("current_limit", 90)],
+    );
+    let out = text(&push);
+    let unlock = written_at(&out, "unlock parameter_writing (unlock_parameters)");
+    let relock = written_at(&out, "lock (lock_security)");
+    for name in ["acceleration_time", "current_limit"] {
+        assert!((unlock..relock).contains(&written_at(&out, name)), "{out}");
+    }
+    assert!(locked(&sim), "locked again after the push");
+}
