@@ -241,3 +241,199 @@ fn a_locked_lenze_is_unlocked_as_described_and_locked_again() {
     }
     assert!(locked(&sim), "locked again after the push");
 }
+
+/// A Lafert file pulled from a simulated drive, the drive (its speed ramp changed since), and
+/// the bus.
+fn pulled_lafert(test: &str) -> (PathBuf, Simulator, TcpServer, Vec<String>) {
+    let lafert = description("lafert-smartris");
+    let sim = Simulator::load(&lafert).unwrap();
+    sim.preset("operation_mode", 2).unwrap();
+    let (server, bus) = modbus(&sim);
+    let file = scratch(test);
+    let pull = run(
+        &[
+            "config",
+            "pull",
+            lafert.to_str().unwrap(),
+            "-o",
+            file.to_str().unwrap(),
+        ],
+        &bus,
+    );
+    assert!(pull.status.success(), "{}", text(&pull));
+    sim.preset("speed_ramp_up", 1500).unwrap();
+    (file, sim, server, bus)
+}
+
+/// `file` with `from` replaced by `to` (which must change it), as a new file.
+fn edited(file: &Path, from: &str, to: &str) -> (PathBuf, String) {
+    let original = std::fs::read_to_string(file).unwrap();
+    let changed = original.replacen(from, to, 1);
+    assert_ne!(changed, original, "{from} is in the file");
+    let path = file.with_file_name(format!("edited-{}.toml", to.len()));
+    std::fs::write(&path, &changed).unwrap();
+    (path, changed)
+}
+
+/// The 1-based line of `text` that starts with `start`.
+fn line_of(text: &str, start: &str) -> usize {
+    text.lines().position(|l| l.starts_with(start)).unwrap() + 1
+}
+
+/// Pushes `file`: refused (exit code 2) with `expected` in the error, and nothing written.
+fn refused(file: &Path, sim: &Simulator, bus: &[String], expected: &str) {
+    let push = run(&["config", "push", file.to_str().unwrap()], bus);
+    assert_eq!(push.status.code(), Some(2), "{}", text(&push));
+    assert!(
+        text(&push).contains(expected),
+        "{expected}: {}",
+        text(&push)
+    );
+    assert_eq!(raw(sim, "speed_ramp_up"), 1500, "nothing written");
+}
+
+#[test]
+fn an_edited_value_out_of_range_is_refused_with_its_line() {
+    let (file, sim, _server, bus) = pulled_lafert("range");
+    let (edited, changed) = edited(
+        &file,
+        "speed_ramp_up = { value = \"2000 ms\"",
+        "speed_ramp_up = { value = \"70000 ms\"",
+    );
+    let line = line_of(&changed, "speed_ramp_up");
+    refused(
+        &edited,
+        &sim,
+        &bus,
+        &format!(
+            "{}:{line}: speed_ramp_up: 70000 ms does not fit u16",
+            edited.display()
+        ),
+    );
+    // An edit within the range is written, as edited.
+    let (within, _) = edited_within(&file);
+    let push = run(&["config", "push", within.to_str().unwrap()], &bus);
+    assert!(push.status.success(), "{}", text(&push));
+    assert_eq!(raw(&sim, "speed_ramp_up"), 2500);
+}
+
+fn edited_within(file: &Path) -> (PathBuf, String) {
+    edited(
+        file,
+        "speed_ramp_up = { value = \"2000 ms\"",
+        "speed_ramp_up = { value = \"2500ms\"",
+    )
+}
+
+#[test]
+fn a_parameter_the_description_does_not_have_is_refused_with_its_line() {
+    let (file, sim, _server, bus) = pulled_lafert("unknown");
+    let (edited, changed) = edited(&file, "\nspeed_ramp_up = ", "\nspeed_ramp_upp = ");
+    let line = line_of(&changed, "speed_ramp_upp");
+    refused(
+        &edited,
+        &sim,
+        &bus,
+        &format!(
+            "{}:{line}: `speed_ramp_upp` is not a parameter of Lafert Smartris; did you mean `speed_ramp_up`?",
+            edited.display()
+        ),
+    );
+}
+
+#[test]
+fn a_truncated_file_is_refused_with_its_line() {
+    let (file, sim, _server, bus) = pulled_lafert("truncated");
+    let whole = std::fs::read_to_string(&file).unwrap();
+    let cut = &whole[..whole.find("speed_ramp_down = {").unwrap() + 30];
+    let truncated = file.with_file_name("truncated.toml");
+    std::fs::write(&truncated, cut).unwrap();
+    let line = line_of(cut, "speed_ramp_down");
+    refused(
+        &truncated,
+        &sim,
+        &bus,
+        &format!("{}:{line}: not a configuration file", truncated.display()),
+    );
+}
+
+#[test]
+fn a_file_of_another_drive_or_firmware_is_refused() {
+    let (file, sim, _server, bus) = pulled_lafert("foreign");
+    // Another description: the file names the Lafert.
+    let lenze = description("lenze-smd");
+    let push = run(
+        &[
+            "config",
+            "push",
+            file.to_str().unwrap(),
+            "--description",
+            lenze.to_str().unwrap(),
+        ],
+        &bus,
+    );
+    assert_eq!(push.status.code(), Some(2), "{}", text(&push));
+    assert!(
+        text(&push).contains(
+            "the file was read from a Lafert Smartris drive, the description is of Lenze smd"
+        ),
+        "{}",
+        text(&push)
+    );
+    // Another firmware on the drive: the description does not cover it, and the file was read
+    // from 242.
+    sim.preset("fw_release", 226).unwrap();
+    refused(
+        &file,
+        &sim,
+        &bus,
+        "fw_release reads 226, the description covers [242]",
+    );
+    let forced = run(
+        &[
+            "config",
+            "push",
+            file.to_str().unwrap(),
+            "--no-identity-check",
+        ],
+        &bus,
+    );
+    assert_eq!(forced.status.code(), Some(2), "{}", text(&forced));
+    let whole = std::fs::read_to_string(&file).unwrap();
+    let line = line_of(&whole, "fw_release");
+    assert!(
+        text(&forced).contains(&format!(
+            "{}:{line}: fw_release was 242 when the file was read",
+            file.display()
+        )),
+        "{}",
+        text(&forced)
+    );
+    assert_eq!(raw(&sim, "speed_ramp_up"), 1500, "nothing written");
+}
+
+#[test]
+fn two_files_compare_by_value() {
+    let (file, _sim, _server, _bus) = pulled_lafert("files");
+    let same = drivegen(&[
+        "config",
+        "compare",
+        file.to_str().unwrap(),
+        file.to_str().unwrap(),
+    ]);
+    assert_eq!(same.status.code(), Some(0), "{}", text(&same));
+    let (within, _) = edited_within(&file);
+    let differs = drivegen(&[
+        "config",
+        "diff",
+        file.to_str().unwrap(),
+        within.to_str().unwrap(),
+    ]);
+    assert_eq!(differs.status.code(), Some(1), "{}", text(&differs));
+    assert!(
+        text(&differs).contains("speed_ramp_up  2000 ms"),
+        "{}",
+        text(&differs)
+    );
+    assert!(text(&differs).contains("2500 ms"), "{}", text(&differs));
+}
