@@ -168,6 +168,41 @@ def description_seeds():
 KEPT_PREFIXES = ("finding_", "hand_")
 
 
+CONFIG_FILE = """# A drive's configuration, read by `drivegen config pull` (docs/config-file.md).
+format = 1
+
+[description]
+name = "Lafert Smartris"
+firmware = "2.4.2"
+path = "/work/descriptions/lafert-smartris"
+
+[drive]
+target = "Modbus TCP 127.0.0.1:5020 unit 1"
+pulled_at = "2026-11-27T21:40:00Z"
+
+[identity]
+fw_release = 242
+
+[parameters]
+speed_ramp_up = { value = "2000 ms", raw = 2000, unit = "ms" }
+brake_mode = { value = "manual", raw = 1 }
+"huge one" = { value = "18446744073709551615", raw = "18446744073709551615" }
+label = { value = "ab", raw = [97, 98, 0] }
+ratio = { value = "0.5", raw = 0.5 }
+
+[unread]
+dac_config = "not both readable and writable over Modbus"
+"""
+
+
+def config_file_seeds():
+    """`drivegen config pull` files (docs/config-file.md): whole, cut short, another format."""
+    text = CONFIG_FILE.encode()
+    write("config_file", "pulled.toml", text)
+    write("config_file", "truncated.toml", text[: text.index(b"brake_mode") + 20])
+    write("config_file", "format2.toml", text.replace(b"format = 1", b"format = 2"))
+
+
 def clear_generated_seeds():
     """Removes the seeds this script writes; the others (`KEPT_PREFIXES`) stay."""
     for target in SEEDS.iterdir():
@@ -186,3 +221,4 @@ if __name__ == "__main__":
     rs232_seeds()
     srdo_seeds()
     description_seeds()
+    config_file_seeds()

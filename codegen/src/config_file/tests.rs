@@ -124,3 +124,25 @@ fn a_parameter_both_saved_and_unread_is_refused() {
         ConfigFileErrorKind::Duplicate("speed_ramp_up".into())
     );
 }
+
+/// The fuzz target's property (fuzz/fuzz_targets/config_file.rs) over every prefix of a file:
+/// no panic, and a file read renders to text that reads back to the same rendering.
+#[test]
+fn every_prefix_of_a_file_is_read_or_refused_without_panic() {
+    let text = render(&sample());
+    for end in (0..=text.len()).filter(|i| text.is_char_boundary(*i)) {
+        if let Ok(file) = parse(&text[..end]) {
+            let rendered = render(&file);
+            assert_eq!(render(&parse(&rendered).unwrap()), rendered, "prefix {end}");
+        }
+    }
+}
+
+#[test]
+fn names_that_are_not_bare_keys_are_quoted() {
+    let mut file = sample();
+    file.parameters[0].name = "two words".into();
+    let text = render(&file);
+    assert!(text.contains("\"two words\" = { value"), "{text}");
+    assert_eq!(parse(&text).unwrap().parameters[0].name, "two words");
+}
