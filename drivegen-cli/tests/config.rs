@@ -192,12 +192,35 @@ fn swd_round_trip_over_canopen() {
     let swd = description("ezwheel-swd");
     let sim = Simulator::load(&swd).unwrap();
     let bus = canopen(&sim, 16);
-    round_trip(
+    let push = round_trip(
         "swd",
         &sim,
         &swd,
         &bus,
-        &[("rpdo1_event_timer", 250), ("rpdo1_transmission_type", 254)],
+        &[
+            ("rpdo1_event_timer", 250),
+            ("rpdo1_transmission_type", 254),
+            ("tpdo1_mapping_entry_2", 0x6041_0010),
+        ],
+    );
+    // The mapping changes in the CiA 301 sequence: PDO invalid, mapping disabled, the entry,
+    // mapping enabled, PDO valid.
+    let out = text(&push);
+    let written: Vec<&str> = out
+        .lines()
+        .filter(|l| l.starts_with("tpdo1_") && l.ends_with("written"))
+        .map(|l| l.split_whitespace().next().unwrap())
+        .collect();
+    assert_eq!(
+        written,
+        [
+            "tpdo1_cob_id",
+            "tpdo1_mapping_count",
+            "tpdo1_mapping_entry_2",
+            "tpdo1_mapping_count",
+            "tpdo1_cob_id"
+        ],
+        "{out}"
     );
 }
 

@@ -6,6 +6,7 @@ mod clock;
 mod compare;
 mod live;
 mod loaded;
+mod pdo_mapping;
 mod plan;
 mod pull;
 mod push;

@@ -9,7 +9,7 @@ use super::selection;
 pub struct Change<'d> {
     /// The parameter.
     pub parameter: &'d Parameter,
-    /// What the drive holds now.
+    /// What the drive holds now (empty for a step of a sequence, such as a PDO mapping's).
     pub current: Vec<u8>,
     /// What the file holds.
     pub wanted: Vec<u8>,

@@ -10,7 +10,7 @@ use drivegen::ir::{CommandKind, Device, Parameter};
 use super::loaded::{Desired, Loaded};
 use super::plan::{self, Change};
 use super::unlock::{self, Step};
-use super::{live, PushArgs};
+use super::{live, pdo_mapping, PushArgs};
 use crate::connect::Session;
 use crate::error::CliError;
 use crate::table;
@@ -29,9 +29,9 @@ pub fn run(args: PushArgs) -> Result<(), CliError> {
     let device = &loaded.device;
     let mut session = Session::open(&args.bus, device)?;
     check_drive(&loaded, &mut session, args.no_identity_check)?;
-    let (changes, mut outcomes) = compare_with_drive(&mut session, desired);
+    let (changes, mut outcomes) = compare_with_drive(&mut session, &desired);
     refuse_invalid(&loaded, &changes)?;
-    let changes = plan::order(device, changes);
+    let changes = pdo_mapping::sequence(plan::order(device, changes), &desired);
     let changed: Vec<&Parameter> = changes.iter().map(|c| c.parameter).collect();
     let grants = unlock::unlocks(device, &mut session, &changed, args.password.as_deref())?;
     let relock = (!grants.is_empty())
@@ -148,11 +148,11 @@ type Outcomes = Vec<(String, u32, Outcome)>;
 /// The values that differ from the drive's, and the outcome of those that need no write.
 fn compare_with_drive<'d>(
     session: &mut Session,
-    desired: Vec<Desired<'d>>,
+    desired: &[Desired<'d>],
 ) -> (Vec<Change<'d>>, Outcomes) {
     let mut outcomes = Vec::new();
-    let (reachable, unreachable): (Vec<Desired<'d>>, Vec<Desired<'d>>) = desired
-        .into_iter()
+    let (reachable, unreachable): (Vec<&Desired<'d>>, Vec<&Desired<'d>>) = desired
+        .iter()
         .partition(|d| session.can_read(d.parameter) && session.can_write(d.parameter));
     for d in unreachable {
         let why = format!("not both readable and writable over {}", session.protocol());
@@ -171,9 +171,9 @@ fn compare_with_drive<'d>(
             Ok(current) => changes.push(Change {
                 parameter: d.parameter,
                 current,
-                wanted: d.bytes,
+                wanted: d.bytes.clone(),
                 line: d.line,
-                invalid: d.invalid,
+                invalid: d.invalid.clone(),
             }),
             Err(why) => outcomes.push((
                 d.parameter.name.clone(),
@@ -286,7 +286,10 @@ fn print_plan(
         vec![
             "write".into(),
             c.parameter.name.clone(),
-            interpret::show(device, c.parameter, &c.current).text,
+            match c.current.is_empty() {
+                true => String::new(),
+                false => interpret::show(device, c.parameter, &c.current).text,
+            },
             interpret::show(device, c.parameter, &c.wanted).text,
         ]
     }));
