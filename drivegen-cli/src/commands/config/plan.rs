@@ -57,3 +57,50 @@ pub fn order<'d>(device: &Device, mut changes: Vec<Change<'d>>) -> Vec<Change<'d
     }
     ordered
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::commands::config::selection::tests::shipped;
+
+    fn change<'d>(device: &'d Device, name: &str) -> Change<'d> {
+        Change {
+            parameter: device.parameter(name).unwrap(),
+            current: Vec::new(),
+            wanted: Vec::new(),
+            line: 0,
+            invalid: None,
+        }
+    }
+
+    fn ordered(device: &Device, names: &[&str]) -> Vec<String> {
+        let changes = names.iter().map(|n| change(device, n)).collect();
+        order(device, changes)
+            .iter()
+            .map(|c| c.parameter.name.clone())
+            .collect()
+    }
+
+    #[test]
+    fn modes_first_then_bounds_before_what_they_bound() {
+        let lenze = shipped("lenze-smd");
+        // pi_setpoint lies within pi_min_feedback ... pi_max_feedback (declared after it).
+        assert_eq!(
+            ordered(
+                &lenze,
+                &[
+                    "pi_setpoint",
+                    "acceleration_time",
+                    "pi_max_feedback",
+                    "control_source"
+                ]
+            ),
+            [
+                "control_source",
+                "acceleration_time",
+                "pi_max_feedback",
+                "pi_setpoint"
+            ]
+        );
+    }
+}

@@ -38,7 +38,7 @@ pub fn pull(
     device: &Device,
     description: &Path,
 ) -> Result<ConfigFile, CliError> {
-    let identity = read_identity(session, device)?;
+    let identity = read_identity(session, device);
     let (parameters, unread) = read_configuration(session, device);
     Ok(ConfigFile {
         description: DescriptionRef {
@@ -111,7 +111,7 @@ pub fn saved_parameter(device: &Device, parameter: &Parameter, bytes: &[u8]) -> 
 
 /// The identity parameters the bus reaches, read raw; one that cannot be read is left out
 /// (and said so), as `drivegen write`'s check leaves it unchecked.
-fn read_identity(session: &mut Session, device: &Device) -> Result<Vec<IdentityEntry>, CliError> {
+fn read_identity(session: &mut Session, device: &Device) -> Vec<IdentityEntry> {
     let mut checks = device.identity_checks();
     checks.retain(|c| session.can_read(c.parameter));
     let parameters: Vec<&Parameter> = checks.iter().map(|c| c.parameter).collect();
@@ -132,7 +132,7 @@ fn read_identity(session: &mut Session, device: &Device) -> Result<Vec<IdentityE
             ),
         }
     }
-    Ok(entries)
+    entries
 }
 
 /// The description's path made absolute, so `push` finds it from anywhere.

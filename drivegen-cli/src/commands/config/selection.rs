@@ -75,3 +75,59 @@ pub fn depends_on(parameter: &Parameter) -> Vec<&str> {
     }
     names
 }
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+
+    /// A shipped description, loaded.
+    pub fn shipped(name: &str) -> Device {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../descriptions")
+            .join(name);
+        drivegen::check(&path)
+            .device
+            .expect("a shipped description is valid")
+    }
+
+    fn names(device: &Device) -> Vec<&str> {
+        configuration(device)
+            .iter()
+            .map(|p| p.name.as_str())
+            .collect()
+    }
+
+    #[test]
+    fn commands_stops_grants_and_setpoints_are_not_configuration() {
+        let lafert = shipped("lafert-smartris");
+        let saved = names(&lafert);
+        assert!(saved.contains(&"speed_ramp_up"));
+        for acting in ["control_word", "speed_setpoint", "store_all_parameters"] {
+            assert!(!saved.contains(&acting), "{acting}");
+        }
+        let lenze = shipped("lenze-smd");
+        let saved = names(&lenze);
+        assert!(saved.contains(&"user_password"));
+        for acting in [
+            "unlock_parameters",
+            "unlock_commands",
+            "lock_security",
+            "stop",
+        ] {
+            assert!(!saved.contains(&acting), "{acting}");
+        }
+    }
+
+    #[test]
+    fn modes_are_what_others_depend_on() {
+        let lenze = shipped("lenze-smd");
+        let mode = |name: &str| is_mode(&lenze, lenze.parameter(name).unwrap());
+        assert!(mode("control_source"), "an unlock requires it");
+        assert!(!mode("acceleration_time"));
+        let kinco = shipped("kinco-fd");
+        assert!(is_mode(
+            &kinco,
+            kinco.parameter("modes_of_operation").unwrap()
+        ));
+    }
+}
