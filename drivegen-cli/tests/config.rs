@@ -459,4 +459,27 @@ fn two_files_compare_by_value() {
         text(&differs)
     );
     assert!(text(&differs).contains("2500 ms"), "{}", text(&differs));
+    // The simulated drive started from the description's defaults.
+    let defaults =
+        |file: &Path| drivegen(&["config", "compare", file.to_str().unwrap(), "--defaults"]);
+    let as_shipped = defaults(&file);
+    assert_eq!(as_shipped.status.code(), Some(0), "{}", text(&as_shipped));
+    let edited = defaults(&within);
+    assert_eq!(edited.status.code(), Some(1), "{}", text(&edited));
+    let edited_text = text(&edited);
+    let row = edited_text
+        .lines()
+        .find(|l| l.starts_with("speed_ramp_up"))
+        .map(|l| {
+            l.split("  ")
+                .filter(|c| !c.is_empty())
+                .map(str::trim)
+                .collect::<Vec<_>>()
+        });
+    assert_eq!(
+        row,
+        Some(vec!["speed_ramp_up", "2500 ms", "2000 ms"]),
+        "{}",
+        text(&edited)
+    );
 }

@@ -2,7 +2,7 @@
 //! of the values that differ, in engineering units, and an exit code that says whether any do.
 
 use drivebus::interpret;
-use drivegen::ir::{Device, Parameter};
+use drivegen::ir::{DataType, Device, Number, Parameter};
 
 use super::loaded::{Desired, Loaded};
 use super::push::same;
@@ -19,6 +19,10 @@ pub fn run(args: CompareArgs) -> Result<(), CliError> {
     let loaded = Loaded::open(&args.file, args.description.as_deref())?;
     let left = loaded.desired()?;
     let (right_name, rows) = match &args.other {
+        None if args.defaults => (
+            "description default".to_owned(),
+            with_defaults(&loaded.device, &left),
+        ),
         Some(other) => {
             let path = args
                 .description
@@ -90,6 +94,36 @@ fn with_file(device: &Device, left: &[Desired<'_>], right: &[Desired<'_>]) -> Ve
         }
     }
     rows
+}
+
+/// The file's values against the description's defaults, where it gives one for any node.
+fn with_defaults(device: &Device, left: &[Desired<'_>]) -> Vec<Row> {
+    left.iter()
+        .filter_map(|d| {
+            let default = default_bytes(d.parameter)?;
+            (!same(d.parameter, &d.bytes, &default)).then(|| {
+                [
+                    d.parameter.name.clone(),
+                    shown(device, d.parameter, &d.bytes),
+                    shown(device, d.parameter, &default),
+                ]
+            })
+        })
+        .collect()
+}
+
+/// The raw bytes of a parameter's default; none for a node-relative one.
+fn default_bytes(parameter: &Parameter) -> Option<Vec<u8>> {
+    if parameter.default_plus_node_id {
+        return None;
+    }
+    let data_type = parameter.data_type;
+    Some(match (parameter.default?, data_type) {
+        (Number::Int(int), _) => interpret::raw::from_int(data_type, i128::from(int)),
+        (Number::Float(float), DataType::F32) => (float as f32).to_le_bytes().to_vec(),
+        (Number::Float(float), DataType::F64) => float.to_le_bytes().to_vec(),
+        (Number::Float(_), _) => return None,
+    })
 }
 
 /// The file's values against the drive's; one the drive does not give is a difference.

@@ -19,7 +19,8 @@ pub fn read_each(session: &mut Session, parameters: &[&Parameter]) -> Vec<Result
             session
                 .read_many(&[p])
                 .map(|mut v| v.pop().unwrap_or_default())
-                .map_err(|e| e.to_string())
+                // The reason stands in a file or a report: what was sent is said there.
+                .map_err(|e| e.to_string().replace(" (nothing was sent)", ""))
         })
         .collect()
 }

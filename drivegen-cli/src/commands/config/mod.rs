@@ -83,6 +83,10 @@ pub struct CompareArgs {
     file: PathBuf,
     /// A second file to compare with, instead of the live drive.
     other: Option<PathBuf>,
+    /// Compare with the description's defaults instead of the live drive (parameters without
+    /// one, or with a node-relative one, are left out).
+    #[arg(long, conflicts_with = "other")]
+    defaults: bool,
     #[command(flatten)]
     bus: BusArgs,
     /// The description to use instead of the one the file names.
