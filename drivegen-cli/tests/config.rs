@@ -483,3 +483,32 @@ fn two_files_compare_by_value() {
         text(&edited)
     );
 }
+
+/// A wrong password: the unlock does not take, every write is refused by the drive and reported
+/// with its reason, the lock still goes out, and the push fails naming how many were not written.
+#[test]
+fn a_push_the_drive_refuses_is_reported_parameter_by_parameter() {
+    let lenze = description("lenze-smd");
+    let sim = Simulator::load(&lenze).unwrap();
+    let (_server, bus) = modbus(&sim);
+    let file = scratch("refused");
+    let (file_s, lenze_s) = (file.to_str().unwrap(), lenze.to_str().unwrap());
+    let pull = run(&["config", "pull", lenze_s, "-o", file_s], &bus);
+    assert!(pull.status.success(), "{}", text(&pull));
+    sim.preset("acceleration_time", 120).unwrap();
+    sim.preset("current_limit", 90).unwrap();
+    let push = run(&["config", "push", file_s, "--password", "5"], &bus);
+    let out = text(&push);
+    assert_eq!(push.status.code(), Some(2), "{out}");
+    for name in ["acceleration_time", "current_limit"] {
+        let line = out.lines().find(|l| l.starts_with(name)).unwrap();
+        assert!(line.contains("refused: "), "{out}");
+    }
+    assert!(out.contains("lock (lock_security)"), "{out}");
+    assert!(
+        out.contains("2 of 2 parameter(s) not written as the file holds them"),
+        "{out}"
+    );
+    assert_eq!(raw(&sim, "acceleration_time"), 120);
+    assert_eq!(raw(&sim, "current_limit"), 90);
+}

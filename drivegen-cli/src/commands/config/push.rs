@@ -252,6 +252,7 @@ fn store_steps<'d>(device: &'d Device, session: &Session) -> Vec<Step<'d>> {
                 what: "store".into(),
                 parameter: p,
                 bytes: interpret::raw::from_int(p.data_type, i128::from(store.value?)),
+                secret: false,
             })
         })
         .collect()
@@ -275,10 +276,14 @@ fn print_plan(
             step.what.clone(),
             step.parameter.name.clone(),
             String::new(),
-            format!(
-                "raw {}",
-                interpret::raw::to_int(step.parameter.data_type, &step.bytes).unwrap_or_default()
-            ),
+            match step.secret {
+                true => "(the password)".into(),
+                false => format!(
+                    "raw {}",
+                    interpret::raw::to_int(step.parameter.data_type, &step.bytes)
+                        .unwrap_or_default()
+                ),
+            },
         ]
     };
     rows.extend(grants.iter().map(step_row));

@@ -16,6 +16,8 @@ pub struct Step<'d> {
     pub parameter: &'d Parameter,
     /// The raw bytes written.
     pub bytes: Vec<u8>,
+    /// The bytes are a password, not to be printed.
+    pub secret: bool,
 }
 
 /// The grants that open every scope `parameters` need, in the order to write them.
@@ -75,6 +77,7 @@ pub fn relock(device: &Device) -> Option<Step<'_>> {
         what: "lock".into(),
         parameter,
         bytes: interpret::raw::from_int(parameter.data_type, value.into()),
+        secret: false,
     })
 }
 
@@ -138,5 +141,6 @@ fn grant<'d>(
         what: format!("unlock {}", unlock.name),
         parameter,
         bytes,
+        secret: matches!(unlock.grant.key, GrantKey::Password(_)),
     })
 }
