@@ -1,9 +1,10 @@
 //! `drivegen config pull / push / compare` end to end against the simulator, one test per
-//! family over its protocol: Lafert and Lenze over Modbus TCP, the Kinco FD over Modbus TCP, the
-//! ez-Wheel SWD over CANopen. Each pulls, changes values on the simulated drive, compares
-//! (different), pushes (dry run first, which writes nothing), and compares again (equal), with
-//! the simulated drive holding the pulled values. The Lenze smd is locked: the push unlocks it
-//! as its description says and locks it again. Bad files are refused with the line.
+//! family over its protocol: Lafert and Lenze over Modbus TCP, the Kinco FD over Modbus TCP and
+//! RS-232 (a socat pty pair to `drivegen sim`), the ez-Wheel SWD over CANopen (candump lines over
+//! TCP through socat). Each pulls, changes values on the simulated drive, compares (different),
+//! pushes, and compares again (equal), with the simulated drive holding the pulled values. The
+//! Lenze smd is locked: the push unlocks it as its description says and locks it again. Bad
+//! files are refused with the line, and nothing is written.
 
 use std::net::TcpListener;
 use std::path::{Path, PathBuf};
@@ -511,4 +512,53 @@ fn a_push_the_drive_refuses_is_reported_parameter_by_parameter() {
     );
     assert_eq!(raw(&sim, "acceleration_time"), 120);
     assert_eq!(raw(&sim, "current_limit"), 90);
+}
+
+/// The Kinco FD over its RS-232 protocol, through a socat pty pair to `drivegen sim`: the values
+/// are changed with `drivegen write` on the same line, and the push restores them.
+#[test]
+fn kinco_round_trip_over_rs232() {
+    use peer_support::{pty_pair, Process};
+    use std::io::{BufRead, BufReader};
+    use std::process::Stdio;
+
+    let kinco = description("kinco-fd");
+    let kinco_s = kinco.to_str().unwrap();
+    let pty = pty_pair();
+    let child = Command::new(BIN)
+        .args(["sim", kinco_s, "--kinco-rs232"])
+        .arg(&pty.server)
+        .args(["--set", "kvp=100", "--set", "kpp=200"])
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut sim = Process::new(child);
+    let mut line = String::new();
+    BufReader::new(sim.child_mut().stdout.take().unwrap())
+        .read_line(&mut line)
+        .unwrap();
+    assert!(line.starts_with("listening on kinco-rs232"), "{line}");
+    let bus: Vec<String> = vec![
+        "--kinco-rs232".into(),
+        pty.client.display().to_string(),
+        "--timeout-ms".into(),
+        "300".into(),
+    ];
+    let file = scratch("kinco-rs232");
+    let file_s = file.to_str().unwrap();
+    let pull = run(&["config", "pull", kinco_s, "-o", file_s], &bus);
+    assert!(pull.status.success(), "{}", text(&pull));
+    for (name, value) in [("kvp", "150"), ("din_position3", "-20000")] {
+        let write = run(&["write", kinco_s, name, value], &bus);
+        assert!(write.status.success(), "{}", text(&write));
+    }
+    let differs = run(&["config", "compare", file_s], &bus);
+    assert_eq!(differs.status.code(), Some(1), "{}", text(&differs));
+    let push = run(&["config", "push", file_s], &bus);
+    assert!(push.status.success(), "{}", text(&push));
+    for name in ["kvp", "din_position3"] {
+        written_at(&text(&push), name);
+    }
+    let equal = run(&["config", "compare", file_s], &bus);
+    assert_eq!(equal.status.code(), Some(0), "{}", text(&equal));
 }
