@@ -155,10 +155,9 @@ fn identity_rows(loaded: &Loaded, session: &mut Session) -> Vec<Row> {
         .iter()
         .filter_map(|entry| {
             let parameter = loaded.device.parameter(&entry.name)?;
-            let found = session
-                .read_many(&[parameter])
+            let found = live::read_one(session, parameter)
                 .ok()
-                .and_then(|v| interpret::raw::to_int(parameter.data_type, &v[0]));
+                .and_then(|bytes| interpret::raw::to_int(parameter.data_type, &bytes));
             (found != Some(entry.raw)).then(|| {
                 [
                     format!("identity {}", entry.name),

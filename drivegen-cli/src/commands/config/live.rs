@@ -4,6 +4,12 @@
 use drivegen::ir::Parameter;
 
 use crate::connect::Session;
+use crate::error::CliError;
+
+/// The raw bytes of one parameter.
+pub fn read_one(session: &mut Session, parameter: &Parameter) -> Result<Vec<u8>, CliError> {
+    Ok(session.read_many(&[parameter])?.pop().unwrap_or_default())
+}
 
 /// The raw bytes of each parameter, or why it could not be read.
 pub fn read_each(session: &mut Session, parameters: &[&Parameter]) -> Vec<Result<Vec<u8>, String>> {
@@ -16,9 +22,7 @@ pub fn read_each(session: &mut Session, parameters: &[&Parameter]) -> Vec<Result
     parameters
         .iter()
         .map(|p| {
-            session
-                .read_many(&[p])
-                .map(|mut v| v.pop().unwrap_or_default())
+            read_one(session, p)
                 // The reason stands in a file or a report: what was sent is said there.
                 .map_err(|e| e.to_string().replace(" (nothing was sent)", ""))
         })

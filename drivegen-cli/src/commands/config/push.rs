@@ -116,8 +116,8 @@ pub fn check_drive(
                 ),
             )
         })?;
-        let read = session.read_many(&[parameter])?;
-        let found = interpret::raw::to_int(parameter.data_type, &read[0]);
+        let read = live::read_one(session, parameter)?;
+        let found = interpret::raw::to_int(parameter.data_type, &read);
         if found != Some(entry.raw) {
             return Err(CliError::ForeignDrive(format!(
                 "{}:{}: {} was {} when the file was read, {} reads {}",
@@ -206,11 +206,11 @@ fn write_verified(device: &Device, session: &mut Session, change: &Change<'_>) -
     if let Err(e) = session.write(device, change.parameter, &change.wanted) {
         return Outcome::Refused(e.to_string());
     }
-    match session.read_many(&[change.parameter]) {
-        Ok(back) if same(change.parameter, &back[0], &change.wanted) => Outcome::Written,
+    match live::read_one(session, change.parameter) {
+        Ok(back) if same(change.parameter, &back, &change.wanted) => Outcome::Written,
         Ok(back) => Outcome::Refused(format!(
             "written, but reads back {}",
-            interpret::show(device, change.parameter, &back[0]).text
+            interpret::show(device, change.parameter, &back).text
         )),
         Err(e) => Outcome::Refused(format!("written, but not read back: {e}")),
     }

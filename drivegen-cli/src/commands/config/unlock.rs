@@ -102,10 +102,8 @@ fn requirement_holds(
     let Some(parameter) = device.parameter(&requirement.parameter) else {
         return false;
     };
-    let value = session
-        .read_many(&[parameter])
+    let value = super::live::read_one(session, parameter)
         .ok()
-        .and_then(|mut v| v.pop())
         .and_then(|bytes| interpret::raw::to_int(parameter.data_type, &bytes));
     value.is_some_and(|v| requirement.values.iter().any(|r| i128::from(*r) == v))
 }
@@ -127,13 +125,13 @@ fn grant<'d>(
             .map_err(|cause| CliError::Usage(format!("--password: {cause}")))?,
         (GrantKey::Password(name), None) => {
             let source = crate::commands::parameter(device, name)?;
-            let read = session.read_many(&[source]).map_err(|e| {
+            let read = super::live::read_one(session, source).map_err(|e| {
                 CliError::Usage(format!(
                     "unlock {} needs the password {name}, which could not be read ({e}): give --password",
                     unlock.name
                 ))
             })?;
-            let raw = interpret::raw::to_int(source.data_type, &read[0]).unwrap_or_default();
+            let raw = interpret::raw::to_int(source.data_type, &read).unwrap_or_default();
             interpret::raw::from_int(parameter.data_type, raw)
         }
     };
