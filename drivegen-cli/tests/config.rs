@@ -100,6 +100,13 @@ fn run(command: &[&str], bus: &[String]) -> Output {
     drivegen(&args)
 }
 
+/// `config pull` of `description` into `file`, which must succeed.
+fn pull(description: &Path, file: &Path, bus: &[String]) {
+    let (description, file) = (description.to_str().unwrap(), file.to_str().unwrap());
+    let pull = run(&["config", "pull", description, "-o", file], bus);
+    assert!(pull.status.success(), "{}", text(&pull));
+}
+
 /// Pull, change `changes` on the drive, compare, dry run, push, compare: the drive ends as
 /// pulled. Returns the push's output.
 fn round_trip(
@@ -110,9 +117,8 @@ fn round_trip(
     changes: &[(&str, i128)],
 ) -> Output {
     let file = scratch(test);
-    let (file_s, description_s) = (file.to_str().unwrap(), description.to_str().unwrap());
-    let pull = run(&["config", "pull", description_s, "-o", file_s], bus);
-    assert!(pull.status.success(), "{}", text(&pull));
+    let file_s = file.to_str().unwrap();
+    pull(description, &file, bus);
     let pulled: Vec<i128> = changes.iter().map(|(name, _)| raw(sim, name)).collect();
     for ((name, value), was) in changes.iter().zip(&pulled) {
         assert_ne!(value, was, "{name}: the change changes it");
@@ -274,17 +280,7 @@ fn pulled_lafert(test: &str) -> (PathBuf, Simulator, TcpServer, Vec<String>) {
     sim.preset("operation_mode", 2).unwrap();
     let (server, bus) = modbus(&sim);
     let file = scratch(test);
-    let pull = run(
-        &[
-            "config",
-            "pull",
-            lafert.to_str().unwrap(),
-            "-o",
-            file.to_str().unwrap(),
-        ],
-        &bus,
-    );
-    assert!(pull.status.success(), "{}", text(&pull));
+    pull(&lafert, &file, &bus);
     sim.preset("speed_ramp_up", 1500).unwrap();
     (file, sim, server, bus)
 }
@@ -493,9 +489,8 @@ fn a_push_the_drive_refuses_is_reported_parameter_by_parameter() {
     let sim = Simulator::load(&lenze).unwrap();
     let (_server, bus) = modbus(&sim);
     let file = scratch("refused");
-    let (file_s, lenze_s) = (file.to_str().unwrap(), lenze.to_str().unwrap());
-    let pull = run(&["config", "pull", lenze_s, "-o", file_s], &bus);
-    assert!(pull.status.success(), "{}", text(&pull));
+    let file_s = file.to_str().unwrap();
+    pull(&lenze, &file, &bus);
     sim.preset("acceleration_time", 120).unwrap();
     sim.preset("current_limit", 90).unwrap();
     let push = run(&["config", "push", file_s, "--password", "5"], &bus);
@@ -546,8 +541,7 @@ fn kinco_round_trip_over_rs232() {
     ];
     let file = scratch("kinco-rs232");
     let file_s = file.to_str().unwrap();
-    let pull = run(&["config", "pull", kinco_s, "-o", file_s], &bus);
-    assert!(pull.status.success(), "{}", text(&pull));
+    pull(&kinco, &file, &bus);
     for (name, value) in [("kvp", "150"), ("din_position3", "-20000")] {
         let write = run(&["write", kinco_s, name, value], &bus);
         assert!(write.status.success(), "{}", text(&write));
