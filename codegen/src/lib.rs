@@ -8,6 +8,8 @@
 //! * [`emit`] turns a valid IR into Rust source;
 //! * [`diff`] compares two descriptions and classifies each change by its impact on user code;
 //! * [`eds`] reads CiA 306 EDS / DCF files (alone or under a TOML overlay) and writes EDS files;
+//! * [`config_file`] reads and writes the configuration backups of `drivegen config`, each entry
+//!   with its line;
 //! * [`names`] is the naming policy (description names to Rust identifiers) that validation,
 //!   the EDS reader and writer and the emitter share;
 //! * [`Builder`] is the `build.rs` entry point of drive crates.

@@ -31,9 +31,10 @@ enum Command {
     /// raw value and unit, the identity read, the description, the time.
     Pull(PullArgs),
     /// Write a file's values back to a drive, in an order that works (unlocks, modes, bounds),
-    /// each verified by reading it back; `--dry-run` prints the plan only.
+    /// each verified by reading it back, then stored; `--dry-run` prints the plan only.
     Push(PushArgs),
-    /// The differences between a file and a drive, or between two files (exit code 1 if any).
+    /// The differences between a file and a drive, another file or the description's defaults
+    /// (exit code 1 if any).
     #[command(visible_alias = "diff")]
     Compare(CompareArgs),
 }
