@@ -90,7 +90,10 @@ fn canopen(sim: &Simulator, node: u8) -> Vec<String> {
 fn written_at(report: &str, name: &str) -> usize {
     report
         .lines()
-        .position(|l| l.starts_with(&format!("{name} ")) && l.ends_with("written"))
+        .position(|l| {
+            l.starts_with(&format!("{name} "))
+                && (l.ends_with("  written") || l.contains("  written (takes effect"))
+        })
         .unwrap_or_else(|| panic!("{name} not written: {report}"))
 }
 
@@ -166,6 +169,7 @@ fn lafert_round_trip_over_modbus() {
             ("speed_ramp_up", 1500),
             ("limit_torque_positive", 50),
             ("operation_mode", 1),
+            ("communication_loss_time", 500),
         ],
     );
     let out = text(&push);
@@ -174,7 +178,12 @@ fn lafert_round_trip_over_modbus() {
         written_at(&out, "operation_mode") < written_at(&out, "speed_ramp_up"),
         "{out}"
     );
-    assert!(out.contains("3 written, 54 unchanged, 0 refused"), "{out}");
+    assert!(out.contains("4 written, 53 unchanged, 0 refused"), "{out}");
+    assert!(
+        out.contains("written (takes effect after the store and a reset)"),
+        "{out}"
+    );
+    assert!(out.contains("store (store_eeprom)"), "{out}");
 }
 
 #[test]
@@ -215,7 +224,7 @@ fn swd_round_trip_over_canopen() {
     let out = text(&push);
     let written: Vec<&str> = out
         .lines()
-        .filter(|l| l.starts_with("tpdo1_") && l.ends_with("written"))
+        .filter(|l| l.starts_with("tpdo1_") && l.contains("  written"))
         .map(|l| l.split_whitespace().next().unwrap())
         .collect();
     assert_eq!(

@@ -5,7 +5,7 @@
 //! read back; every parameter is reported written, unchanged or refused with the reason.
 
 use drivebus::interpret;
-use drivegen::ir::{CommandKind, Device, Parameter};
+use drivegen::ir::{CommandKind, Device, Effect, Parameter};
 
 use super::loaded::{Desired, Loaded};
 use super::plan::{self, Change};
@@ -18,6 +18,8 @@ use crate::table;
 /// What became of one parameter.
 enum Outcome {
     Written,
+    /// Written to a parameter that takes effect after a reset, which still reads back this.
+    WrittenPending(String),
     Unchanged,
     Refused(String),
 }
@@ -61,7 +63,11 @@ pub fn run(args: PushArgs) -> Result<(), CliError> {
         };
         refused += usize::from(matches!(outcome, Outcome::Refused(_)));
         let entry = (change.parameter.name.clone(), change.line, outcome);
-        log.push(row(&entry));
+        let mut logged = row(&entry);
+        if matches!(entry.2, Outcome::Written | Outcome::WrittenPending(_)) {
+            logged[2].push_str(takes_effect(change.parameter));
+        }
+        log.push(logged);
         outcomes.push(entry);
     }
     // The lock goes out whatever happened before it: a push never leaves a drive unlocked.
@@ -208,6 +214,10 @@ fn write_verified(device: &Device, session: &mut Session, change: &Change<'_>) -
     }
     match live::read_one(session, change.parameter) {
         Ok(back) if same(change.parameter, &back, &change.wanted) => Outcome::Written,
+        // Such a drive may answer the old value until it restarts.
+        Ok(back) if change.parameter.effect != Effect::Immediate => {
+            Outcome::WrittenPending(interpret::show(device, change.parameter, &back).text)
+        }
         Ok(back) => Outcome::Refused(format!(
             "written, but reads back {}",
             interpret::show(device, change.parameter, &back).text
@@ -307,12 +317,22 @@ fn print_plan(
     );
 }
 
+/// When a written value takes effect, where that is not at once.
+fn takes_effect(parameter: &Parameter) -> &'static str {
+    match parameter.effect {
+        Effect::Immediate => "",
+        Effect::AfterReset => " (takes effect after a reset)",
+        Effect::AfterStoreReset => " (takes effect after the store and a reset)",
+    }
+}
+
 /// A line of the report: parameter (or step), file line, outcome.
 type Row = [String; 3];
 
 fn row((name, line, outcome): &(String, u32, Outcome)) -> Row {
     let text = match outcome {
         Outcome::Written => "written".to_owned(),
+        Outcome::WrittenPending(reads) => format!("written, reads {reads} meanwhile"),
         Outcome::Unchanged => "unchanged".to_owned(),
         Outcome::Refused(why) => format!("refused: {why}"),
     };
@@ -326,7 +346,7 @@ fn report(file: &str, outcomes: &Outcomes, log: &[Row], target: &str) {
     let count = |f: fn(&Outcome) -> bool| outcomes.iter().filter(|(_, _, o)| f(o)).count();
     println!(
         "{file} → {target}: {} written, {} unchanged, {} refused",
-        count(|o| matches!(o, Outcome::Written)),
+        count(|o| matches!(o, Outcome::Written | Outcome::WrittenPending(_))),
         count(|o| matches!(o, Outcome::Unchanged)),
         count(|o| matches!(o, Outcome::Refused(_)))
     );
