@@ -24,6 +24,14 @@ enum Outcome {
     Refused(String),
 }
 
+/// What a push writes, in order: the grants, the values, the lock, the store commands.
+struct Plan<'d> {
+    grants: Vec<Step<'d>>,
+    changes: Vec<Change<'d>>,
+    relock: Option<Step<'d>>,
+    stores: Vec<Step<'d>>,
+}
+
 /// Checks the file, then the drive, then writes (or prints the plan).
 pub fn run(args: PushArgs) -> Result<(), CliError> {
     let loaded = Loaded::open(&args.file, args.description.as_deref())?;
@@ -31,23 +39,37 @@ pub fn run(args: PushArgs) -> Result<(), CliError> {
     let device = &loaded.device;
     let mut session = Session::open(&args.bus, device)?;
     check_drive(&loaded, &mut session, args.no_identity_check)?;
-    let (changes, mut outcomes) = compare_with_drive(&mut session, &desired);
+    let (changes, outcomes) = compare_with_drive(&mut session, &desired);
     refuse_invalid(&loaded, &changes)?;
     let changes = pdo_mapping::sequence(plan::order(device, changes), &desired);
     let changed: Vec<&Parameter> = changes.iter().map(|c| c.parameter).collect();
     let grants = unlock::unlocks(device, &mut session, &changed, args.password.as_deref())?;
-    let relock = (!grants.is_empty())
-        .then(|| unlock::relock(device))
-        .flatten();
-    let stores = match args.no_store || changes.is_empty() {
-        true => Vec::new(),
-        false => store_steps(device, &session),
+    let plan = Plan {
+        relock: (!grants.is_empty())
+            .then(|| unlock::relock(device))
+            .flatten(),
+        stores: match args.no_store || changes.is_empty() {
+            true => Vec::new(),
+            false => store_steps(device, &session),
+        },
+        grants,
+        changes,
     };
     if args.dry_run {
-        print_plan(device, &grants, &changes, relock.as_ref(), &stores);
+        print_plan(device, &plan);
         return Ok(());
     }
-    let planned = changes.len();
+    execute(&loaded, &mut session, &plan, outcomes)
+}
+
+/// Writes the plan, reports each parameter, and fails if any was refused.
+fn execute(
+    loaded: &Loaded,
+    session: &mut Session,
+    plan: &Plan<'_>,
+    mut outcomes: Outcomes,
+) -> Result<(), CliError> {
+    let device = &loaded.device;
     // The report follows the push: what needed no write (by line), then each write in turn.
     outcomes.sort_by_key(|(_, line, _)| *line);
     let mut log: Vec<Row> = outcomes.iter().map(row).collect();
@@ -55,10 +77,10 @@ pub fn run(args: PushArgs) -> Result<(), CliError> {
         .iter()
         .filter(|(_, _, o)| matches!(o, Outcome::Refused(_)))
         .count();
-    let unlocked = write_steps(device, &mut session, &grants, &mut log);
-    for change in &changes {
+    let unlocked = write_steps(device, session, &plan.grants, &mut log);
+    for change in &plan.changes {
         let outcome = match unlocked {
-            true => write_verified(device, &mut session, change),
+            true => write_verified(device, session, change),
             false => Outcome::Refused("not written: the unlock before it failed".into()),
         };
         refused += usize::from(matches!(outcome, Outcome::Refused(_)));
@@ -71,16 +93,16 @@ pub fn run(args: PushArgs) -> Result<(), CliError> {
         outcomes.push(entry);
     }
     // The lock goes out whatever happened before it: a push never leaves a drive unlocked.
-    write_steps(device, &mut session, relock.as_slice(), &mut log);
+    write_steps(device, session, plan.relock.as_slice(), &mut log);
     if refused == 0 {
-        write_steps(device, &mut session, &stores, &mut log);
+        write_steps(device, session, &plan.stores, &mut log);
     }
     report(&loaded.path, &outcomes, &log, session.target());
     match refused {
         0 => Ok(()),
         refused => Err(CliError::PushIncomplete {
             refused,
-            planned: planned.max(refused),
+            planned: plan.changes.len().max(refused),
         }),
     }
 }
@@ -268,13 +290,7 @@ fn store_steps<'d>(device: &'d Device, session: &Session) -> Vec<Step<'d>> {
         .collect()
 }
 
-fn print_plan(
-    device: &Device,
-    grants: &[Step<'_>],
-    changes: &[Change<'_>],
-    relock: Option<&Step<'_>>,
-    stores: &[Step<'_>],
-) {
+fn print_plan(device: &Device, plan: &Plan<'_>) {
     let mut rows = vec![vec![
         "step".into(),
         "parameter".into(),
@@ -296,8 +312,8 @@ fn print_plan(
             },
         ]
     };
-    rows.extend(grants.iter().map(step_row));
-    rows.extend(changes.iter().map(|c| {
+    rows.extend(plan.grants.iter().map(step_row));
+    rows.extend(plan.changes.iter().map(|c| {
         vec![
             "write".into(),
             c.parameter.name.clone(),
@@ -308,12 +324,12 @@ fn print_plan(
             interpret::show(device, c.parameter, &c.wanted).text,
         ]
     }));
-    rows.extend(relock.into_iter().map(step_row));
-    rows.extend(stores.iter().map(step_row));
+    rows.extend(plan.relock.iter().map(step_row));
+    rows.extend(plan.stores.iter().map(step_row));
     print!("{}", table::render(&rows));
     println!(
         "dry run: {} value(s) to write, nothing written",
-        changes.len()
+        plan.changes.len()
     );
 }
 
