@@ -5,8 +5,8 @@
 use std::collections::HashMap;
 
 use crate::diagnostic::Diagnostic;
-use crate::emit::ident::camel;
 use crate::ir::{Device, Mapping, MappingKind};
+use crate::names::camel;
 
 const RULE: &str = "mapping_numbers_are_unique";
 

@@ -7,8 +7,9 @@ use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 
 use super::{doc_attrs, ident};
-use crate::emit::{doc, ident as names};
+use crate::emit::doc;
 use crate::ir::{DataType, Device, Parameter};
+use crate::names;
 
 /// The parameter at CANopen object `index`, subindex 0, of type `data_type`.
 fn object(device: &Device, index: u16, data_type: DataType) -> Option<&Parameter> {

@@ -10,7 +10,8 @@ use proc_macro2::{Ident, TokenStream};
 use quote::quote;
 
 use super::{doc_attrs, enums::int_literal, ident};
-use crate::emit::{doc, ident as names};
+use crate::emit::doc;
+use crate::names;
 use drivebus_model::write_lock::WriteLock;
 
 use crate::ir::{Device, GrantKey, Lock, LockScope, Parameter, Unlock};
