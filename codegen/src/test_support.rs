@@ -56,3 +56,14 @@ pub fn messages(rule: &str, body: &str) -> Vec<String> {
         .map(|d| d.message)
         .collect()
 }
+
+/// The device model of the description in `descriptions/<name>/device.toml`.
+pub fn shipped(name: &str) -> crate::ir::Device {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../descriptions")
+        .join(name)
+        .join("device.toml");
+    crate::check(&path)
+        .device
+        .unwrap_or_else(|| panic!("{name} is valid"))
+}

@@ -32,7 +32,7 @@ fn number(n: Number) -> String {
 /// A name as the generated code spells it. An EDS keeps a name's words, not every character:
 /// `a__b` reads back as `a_b`, the same Rust identifier (names that collide there are refused).
 fn rust(name: &str) -> String {
-    drivegen::emit::ident::snake(name)
+    drivegen::names::snake(name)
 }
 
 /// The CANopen view of a device, default variant only, keyed by (index, subindex).

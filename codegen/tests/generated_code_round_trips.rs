@@ -12,8 +12,8 @@ mod support;
 use std::fmt::Write as _;
 use std::path::Path;
 
-use drivegen::emit::ident;
 use drivegen::ir::{pdo_bits, DataType, Device, Parameter, Scale, ValueType};
+use drivegen::names;
 use support::crate_build::{build_and_test, generated, no_std_lib};
 use support::random_description::{modbus_integer, telling_integer, valid_descriptions};
 use support::{short_name, Scratch};
@@ -53,14 +53,14 @@ fn typed_value(module: &str, device: &Device, p: &Parameter) -> Option<(i128, Op
     let types = format!("random_round_trips::{module}::types");
     if let Some(e) = p.enumeration.as_deref().and_then(|e| device.enumeration(e)) {
         let last = e.values.last()?;
-        let constant = ident::constant(&last.name);
-        let typed = format!("{types}::{}::{constant}", ident::camel(&e.name));
+        let constant = names::constant(&last.name);
+        let typed = format!("{types}::{}::{constant}", names::camel(&e.name));
         return Some((i128::from(last.value), Some(typed)));
     }
     if let Some(f) = p.flags.as_deref().and_then(|f| device.flags_type(f)) {
         let first = f.bits.first()?;
-        let constant = ident::constant(&first.name);
-        let typed = format!("{types}::{}::{constant}", ident::camel(&f.name));
+        let constant = names::constant(&first.name);
+        let typed = format!("{types}::{}::{constant}", names::camel(&f.name));
         return Some((1 << first.bit, Some(typed)));
     }
     let telling = telling_integer(p)?;
@@ -91,7 +91,7 @@ fn round_trip_test(module: &str, path: &Path, device: &Device) -> (String, usize
         let name = &p.name;
         let marker = format!(
             "random_round_trips::{module}::params::{}",
-            ident::camel(name)
+            names::camel(name)
         );
         let Some((value, typed)) = typed_value(module, device, p) else {
             continue;
@@ -148,7 +148,7 @@ fn pdo_test(module: &str, device: &Device) -> Option<(String, usize)> {
         let bytes = &packed.to_le_bytes()[..(bits as usize).div_ceil(8)];
         let ty = format!(
             "random_round_trips::{module}::pdo::{}",
-            ident::camel(&pdo.name)
+            names::camel(&pdo.name)
         );
         let _ = write!(
             test,
@@ -175,7 +175,7 @@ fn pdo_fields(
             let p = device.parameter(entry)?;
             let (raw, typed) = typed_value(module, device, p)?;
             let typed = typed.unwrap_or_else(|| literal(p.data_type, raw));
-            Some((ident::snake(entry), raw, typed, pdo_bits(p.data_type)))
+            Some((names::snake(entry), raw, typed, pdo_bits(p.data_type)))
         })
         .collect()
 }

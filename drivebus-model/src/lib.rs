@@ -36,6 +36,7 @@ pub mod modbus;
 #[cfg(feature = "alloc")]
 pub mod model;
 mod number;
+mod outside_range;
 mod range;
 #[cfg(feature = "alloc")]
 pub mod raw;
@@ -51,6 +52,7 @@ pub use bound::{Bound, OutsideBound};
 pub use data_type::DataType;
 pub use error_class::ErrorClass;
 pub use number::Number;
+pub use outside_range::OutsideRange;
 pub use range::Range;
 pub use raw_value::RawValue;
 pub use scalable::Scalable;

@@ -3,6 +3,7 @@
 //! through an `f64`.
 
 use crate::error::ValueError;
+use crate::interpret::OutsideRange;
 use crate::value::Numeric;
 
 /// Fails unless `min <= raw <= max`.
@@ -15,9 +16,7 @@ pub fn in_range<R: Numeric>(
     if raw < min || raw > max {
         return Err(ValueError::OutOfRange {
             parameter,
-            raw: raw.to_raw_value(),
-            min: min.to_raw_value(),
-            max: max.to_raw_value(),
+            value: OutsideRange::new(raw.to_raw_value(), min.to_raw_value(), max.to_raw_value()),
         });
     }
     Ok(())
@@ -68,9 +67,11 @@ mod tests {
             in_range("c", false, true, true),
             Err(ValueError::OutOfRange {
                 parameter: "c",
-                raw: RawValue::Int(0),
-                min: RawValue::Int(1),
-                max: RawValue::Int(1)
+                value: OutsideRange::Int {
+                    raw: 0,
+                    min: 1,
+                    max: 1
+                }
             })
         );
         assert!(one_of("c", false, &[false]).is_ok());
@@ -86,9 +87,11 @@ mod tests {
             in_range("d", raw, 0, 1 << 53),
             Err(ValueError::OutOfRange {
                 parameter: "d",
-                raw: RawValue::Int(9_007_199_254_740_993),
-                min: RawValue::Int(0),
-                max: RawValue::Int(9_007_199_254_740_992)
+                value: OutsideRange::Int {
+                    raw: 9_007_199_254_740_993,
+                    min: 0,
+                    max: 9_007_199_254_740_992
+                }
             })
         );
         assert_eq!(
@@ -106,9 +109,11 @@ mod tests {
             in_range("e", 1.5f32, 0.0, 1.0),
             Err(ValueError::OutOfRange {
                 parameter: "e",
-                raw: RawValue::Float(1.5),
-                min: RawValue::Float(0.0),
-                max: RawValue::Float(1.0)
+                value: OutsideRange::Float {
+                    raw: 1.5,
+                    min: 0.0,
+                    max: 1.0
+                }
             })
         );
     }

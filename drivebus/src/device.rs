@@ -6,7 +6,7 @@ use crate::bound::OutsideBound;
 use crate::error::{BusError, Error, ValueError, WriteRefusal};
 use crate::given::Given;
 use crate::link::{Link, MAX_VALUE_BYTES};
-use crate::parameter::{Parameter, Placement, RawInteger, Readable, ValueOf, Writable};
+use crate::parameter::{Parameter, RawInteger, Readable, ValueOf, Writable};
 use crate::read_set::ReadSet;
 use crate::value::WireValue;
 use crate::write_lock::{LockAccount, WriteLock};
@@ -136,7 +136,7 @@ impl<L: Link> Device<L> {
         let mut buf = [0u8; MAX_VALUE_BYTES];
         // `read_address`, not `READ_AT`: a run's member moves its run's placement.
         let address = P::read_address(self.variant).map(at);
-        let len = self.read_bytes(name, &P::READ_AT, address, &mut buf)?;
+        let len = self.read_bytes(name, P::READ_AT.depends_on_variant(), address, &mut buf)?;
         P::Raw::decode_le(&buf[..len]).map_err(|e| Error::Value(e.named(name)))
     }
 
@@ -148,21 +148,26 @@ impl<L: Link> Device<L> {
     ) -> Result<i128, Error> {
         let mut buf = [0u8; MAX_VALUE_BYTES];
         let address = parameter.read_at.get(self.variant);
-        let len = self.read_bytes(parameter.name, &parameter.read_at, address, &mut buf)?;
+        let len = self.read_bytes(
+            parameter.name,
+            parameter.read_at.depends_on_variant(),
+            address,
+            &mut buf,
+        )?;
         (parameter.decode)(&buf[..len]).map_err(|e| Error::Value(e.named(parameter.name)))
     }
 
-    /// Reads the bytes of parameter `name` from `address` (its address in the current variant,
-    /// placed at `read_at`) into `buf`; returns how many.
+    /// Reads the bytes of parameter `name` from `address` (its address in the current variant;
+    /// `by_variant`: whether that address depends on the variant) into `buf`; returns how many.
     fn read_bytes(
         &mut self,
         name: &'static str,
-        read_at: &Placement<ProtocolAddress<L>>,
+        by_variant: bool,
         address: Option<ProtocolAddress<L>>,
         buf: &mut [u8; MAX_VALUE_BYTES],
     ) -> Result<usize, Error> {
         if let Some(WriteRefusal::UnknownVariant { selector, value }) = self.refusal {
-            if read_at.depends_on_variant() {
+            if by_variant {
                 return Err(Error::VariantUnknown {
                     parameter: name,
                     selector,

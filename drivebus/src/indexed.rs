@@ -13,7 +13,7 @@ use core::marker::PhantomData;
 use crate::canopen::ObjectAddress;
 use crate::device::Device;
 use crate::error::{Error, ValueError};
-use crate::interpret::RawValue;
+use crate::interpret::OutsideRange;
 use crate::link::Link;
 use crate::parameter::{Parameter, Readable, ValueOf, Writable};
 use crate::scale::Scale;
@@ -48,9 +48,11 @@ fn member_of<R: Run>(subindex: u8) -> Result<u8, Error> {
     }
     Err(Error::Value(ValueError::OutOfRange {
         parameter: R::NAME,
-        raw: RawValue::Int(subindex.into()),
-        min: RawValue::Int(R::FIRST.into()),
-        max: RawValue::Int(R::LAST.into()),
+        value: OutsideRange::Int {
+            raw: subindex.into(),
+            min: R::FIRST.into(),
+            max: R::LAST.into(),
+        },
     }))
 }
 
@@ -321,9 +323,11 @@ mod tests {
                 err,
                 Error::Value(ValueError::OutOfRange {
                     parameter: "limit",
-                    raw: RawValue::Int(outside.into()),
-                    min: RawValue::Int(2),
-                    max: RawValue::Int(4)
+                    value: OutsideRange::Int {
+                        raw: outside.into(),
+                        min: 2,
+                        max: 4
+                    },
                 })
             );
             assert!(Indexed::<_, Limit>::new(&mut device, outside)

@@ -16,7 +16,7 @@ pub fn check(device: &Device) {
     }
     let mut methods = BTreeSet::new();
     for p in &device.parameters {
-        let method = emit::ident::method(&p.name);
+        let method = drivegen::names::method(&p.name);
         assert!(
             methods.insert(method.clone()),
             "two parameters named `{method}`"

@@ -10,6 +10,8 @@ mod expr;
 mod identity_checks;
 mod indexed;
 mod lock;
+mod lock_view;
+mod machine_view;
 mod mapping;
 mod mapping_json;
 mod model;

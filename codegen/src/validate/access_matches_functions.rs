@@ -4,6 +4,8 @@
 use crate::diagnostic::Diagnostic;
 use crate::ir::{Device, Table};
 
+const RULE: &str = super::rule_name(module_path!());
+
 /// Reports accesses the device's function codes cannot perform.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
     let Some(caps) = &device.modbus else {
@@ -28,7 +30,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
                     p.name, a.address
                 );
                 out.push(
-                    Diagnostic::error("access_matches_functions", a.span.clone(), message)
+                    Diagnostic::error(RULE, a.span.clone(), message)
                         .help("fix the access or `[modbus] functions`"),
                 );
             }
@@ -39,6 +41,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     #[test]
@@ -53,7 +56,7 @@ modbus = { table = "holding", address = 1, access = "rw" }
 source = { doc = "m", line = 1 }
 "#;
         assert_eq!(
-            messages("access_matches_functions", body),
+            messages(RULE, body),
             ["`x` at 0x0001: writing needs FC 0x06 or 0x10, which the device does not implement"]
         );
     }

@@ -5,7 +5,7 @@ use super::commands_share_a_register::commands_share_a_register;
 use crate::diagnostic::Diagnostic;
 use crate::ir::{Device, Parameter};
 
-const RULE: &str = "addresses_do_not_overlap";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Whether two addresses can be active in the same variant.
 fn variants_meet(a: &Option<String>, b: &Option<String>, pa: &Parameter, pb: &Parameter) -> bool {
@@ -64,6 +64,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     #[test]
@@ -86,7 +87,7 @@ modbus = { table = "holding", address = 0x6C }
 source = { doc = "m", line = 1 }
 "#;
         assert_eq!(
-            messages("addresses_do_not_overlap", body),
+            messages(RULE, body),
             ["input register 0x006c of `impulses` overlaps `position` at 0x006b"]
         );
     }
@@ -109,6 +110,6 @@ type = "u16"
 modbus = [{ table = "holding", address = 10, variant = "pc507" }]
 source = { doc = "m", line = 1 }
 "#;
-        assert!(messages("addresses_do_not_overlap", body).is_empty());
+        assert!(messages(RULE, body).is_empty());
     }
 }

@@ -5,7 +5,7 @@
 use crate::diagnostic::Diagnostic;
 use crate::ir::Device;
 
-const RULE: &str = "bit_codes_are_enum_values";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Reports an unknown codes enum, codes that are not its values, and codes without an enum.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
@@ -55,6 +55,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::{device, messages};
 
     fn flags(code: &str) -> String {
@@ -92,7 +93,7 @@ source = {{ doc = "m", line = 1 }}
     #[test]
     fn an_unknown_code_is_reported() {
         assert_eq!(
-            messages("bit_codes_are_enum_values", &flags("0x3211")),
+            messages(RULE, &flags("0x3211")),
             ["bit `overvoltage` reports code 0x3211, which is not a value of `error_code`"]
         );
     }

@@ -4,7 +4,7 @@
 use crate::diagnostic::{Diagnostic, Span};
 use crate::ir::{DataType, Device};
 
-const RULE: &str = "bit_fields_fit";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Reports bits outside the word, empty fields and overlaps.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
@@ -50,6 +50,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     #[test]
@@ -63,7 +64,7 @@ fields = [{ name = "mode", lsb = 0, width = 2 }]
 source = { doc = "m", line = 1 }
 "#;
         assert_eq!(
-            messages("bit_fields_fit", body),
+            messages(RULE, body),
             [
                 "`alarm` (bits 8..9) does not fit the 8-bit `status`",
                 "`mode` overlaps `run` in `status`"

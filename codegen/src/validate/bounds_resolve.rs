@@ -7,7 +7,7 @@
 use crate::diagnostic::Diagnostic;
 use crate::ir::{Device, Parameter};
 
-const RULE: &str = "bounds_resolve";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Reports bounds that are empty, unknown, self-referring, unreadable or of another kind.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
@@ -101,6 +101,7 @@ fn unread_where_written(p: &Parameter, bound: &Parameter) -> Option<&'static str
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::{device, messages};
 
     fn body(bounds: &str, bound_type: &str) -> String {
@@ -142,11 +143,11 @@ source = {{ doc = "m", line = 3 }}
     #[test]
     fn a_magnitude_of_another_integer_type_bounds_a_value() {
         let source = body(r#"{ magnitude = "minimum" }"#, "i16");
-        assert!(messages("bounds_resolve", &source).is_empty());
+        assert!(messages(RULE, &source).is_empty());
         let bounds = device(&source).parameters[0].bounds.clone().unwrap();
         assert_eq!(bounds.names().collect::<Vec<_>>(), ["minimum"]);
         assert_eq!(
-            messages("bounds_resolve", &body(r#"{ min = "minimum" }"#, "i16")),
+            messages(RULE, &body(r#"{ min = "minimum" }"#, "i16")),
             ["bound `minimum` of `speed` cannot bound it: its type differs"]
         );
     }
@@ -155,7 +156,7 @@ source = {{ doc = "m", line = 3 }}
     fn unknown_self_and_mismatched_bounds_are_reported() {
         assert_eq!(
             messages(
-                "bounds_resolve",
+                RULE,
                 &body(r#"{ min = "minimum", max = "nothing" }"#, "i16")
             ),
             [
@@ -164,11 +165,11 @@ source = {{ doc = "m", line = 3 }}
             ]
         );
         assert_eq!(
-            messages("bounds_resolve", &body(r#"{ max = "speed" }"#, "u16")),
+            messages(RULE, &body(r#"{ max = "speed" }"#, "u16")),
             ["bound `speed` of `speed` cannot bound it: it is the parameter itself"]
         );
         assert_eq!(
-            messages("bounds_resolve", &body("{}", "u16")),
+            messages(RULE, &body("{}", "u16")),
             ["`speed` has `bounds` without `min`, `max` or `magnitude`"]
         );
     }
@@ -180,7 +181,7 @@ source = {{ doc = "m", line = 3 }}
             "modbus = { table = \"holding\", address = 40 }\ncanopen = { index = 0x2000, subindex = 0 }",
         );
         assert_eq!(
-            messages("bounds_resolve", &canopen_too),
+            messages(RULE, &canopen_too),
             ["bound `maximum` of `speed` cannot bound it: it is not readable over CANopen, where \
               `speed` is written"]
         );

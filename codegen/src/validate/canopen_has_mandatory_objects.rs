@@ -10,7 +10,7 @@ use crate::diagnostic::Diagnostic;
 use crate::ir::Device;
 use crate::mandatory_objects::MANDATORY_OBJECTS;
 
-const RULE: &str = "canopen_has_mandatory_objects";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Reports each mandatory object a CANopen description leaves out.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
@@ -48,6 +48,7 @@ fn describes(device: &Device, index: u16, subindex: u8) -> bool {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     const CANOPEN: &str = r#"
@@ -76,7 +77,7 @@ source = {{ doc = "m", line = 1 }}
             parameter("error_register", 0x1001, 0)
         );
         assert_eq!(
-            messages("canopen_has_mandatory_objects", &body),
+            messages(RULE, &body),
             [
                 "a CANopen device must describe the mandatory object 1018h sub 0",
                 "a CANopen device must describe the mandatory object 1018h sub 1",
@@ -93,11 +94,11 @@ source = {{ doc = "m", line = 1 }}
             parameter("identity_count", 0x1018, 0),
             parameter("vendor_id", 0x1018, 1)
         );
-        assert!(messages("canopen_has_mandatory_objects", &body).is_empty());
+        assert!(messages(RULE, &body).is_empty());
     }
 
     #[test]
     fn description_without_canopen_section_is_not_checked() {
-        assert!(messages("canopen_has_mandatory_objects", &parameter("x", 0x2000, 0)).is_empty());
+        assert!(messages(RULE, &parameter("x", 0x2000, 0)).is_empty());
     }
 }

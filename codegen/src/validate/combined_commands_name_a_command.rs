@@ -4,7 +4,7 @@
 use crate::diagnostic::Diagnostic;
 use crate::ir::{Device, Table};
 
-const RULE: &str = "combined_commands_name_a_command";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Reports a `combined_commands` whose register holds fewer than two commands or whose `obeys`
 /// is not one of them.

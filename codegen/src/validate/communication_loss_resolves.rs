@@ -4,7 +4,7 @@
 use crate::diagnostic::Diagnostic;
 use crate::ir::{per_second, Device};
 
-const RULE: &str = "communication_loss_resolves";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Reports a communication loss supervision the simulator could not run.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
@@ -44,6 +44,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     fn body(loss: &str, fault_state: bool) -> String {
@@ -94,21 +95,21 @@ source = {{ doc = "m", line = 4 }}
     #[test]
     fn a_timeout_in_ms_with_a_fault_state_resolves() {
         let text = body(r#"{ timeout = "loss_time", fault = 0x7521 }"#, true);
-        assert!(messages("communication_loss_resolves", &text).is_empty());
+        assert!(messages(RULE, &text).is_empty());
     }
 
     #[test]
     fn the_timeout_must_be_a_time_and_the_fault_a_state() {
         assert_eq!(
             messages(
-                "communication_loss_resolves",
+                RULE,
                 &body(r#"{ timeout = "status", fault = 1 }"#, true)
             ),
             ["the communication loss timeout `status` is not in `ms` or `s`"]
         );
         assert_eq!(
             messages(
-                "communication_loss_resolves",
+                RULE,
                 &body(r#"{ timeout = "missing", fault = 1 }"#, false)
             ),
             [

@@ -14,7 +14,7 @@ use crate::ir::{DefaultCheck, Device, NodeIds, Number, Parameter};
 
 use super::ranges_fit_type::fits;
 
-const RULE: &str = "defaults_within_range";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Reports defaults the parameter itself would refuse, and node-relative defaults it accepts on
 /// some node IDs only.
@@ -174,6 +174,7 @@ fn enum_name(p: &Parameter) -> &str {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::diagnostic::Severity;
     use crate::validate::test_support::messages;
 
@@ -189,7 +190,7 @@ modbus = { table = "holding", address = 0x28 }
 source = { doc = "m", line = 1 }
 "#;
         assert_eq!(
-            messages("defaults_within_range", body),
+            messages(RULE, body),
             ["default of `address` 0 is outside its range 1..=247"]
         );
     }

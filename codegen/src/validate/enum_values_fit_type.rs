@@ -3,7 +3,7 @@
 use crate::diagnostic::Diagnostic;
 use crate::ir::Device;
 
-const RULE: &str = "enum_values_fit_type";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Reports enum values outside the type or repeated.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
@@ -40,6 +40,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     #[test]
@@ -52,7 +53,7 @@ values = [{ name = "a", value = 200 }, { name = "b", value = 1 }, { name = "c", 
 source = { doc = "m", line = 1 }
 "#;
         assert_eq!(
-            messages("enum_values_fit_type", body),
+            messages(RULE, body),
             [
                 "value 200 of `mode` does not fit i8",
                 "`b` and `c` of `mode` are both 1"

@@ -4,7 +4,7 @@
 use crate::diagnostic::Diagnostic;
 use crate::ir::Device;
 
-const RULE: &str = "identity_names_a_parameter";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Reports an identity parameter that does not resolve, or one without values (and vice versa).
 pub fn check(device: &Device) -> Vec<Diagnostic> {
@@ -28,6 +28,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::{device, messages};
 
     const FIRMWARE: &str = r#"
@@ -42,7 +43,7 @@ source = { doc = "m", line = 1 }
     fn unknown_identity_parameter_is_reported() {
         let body = format!("[identity]\nparameter = \"fw\"\nvalues = [1]\n{FIRMWARE}");
         assert_eq!(
-            messages("identity_names_a_parameter", &body),
+            messages(RULE, &body),
             ["`[identity]` names parameter `fw`, which is not described"]
         );
     }
@@ -51,7 +52,7 @@ source = { doc = "m", line = 1 }
     fn identity_without_values_is_reported() {
         let body = format!("[identity]\nparameter = \"firmware\"\n{FIRMWARE}");
         assert_eq!(
-            messages("identity_names_a_parameter", &body),
+            messages(RULE, &body),
             ["`[identity]` names parameter `firmware` but gives no `values` it covers"]
         );
     }

@@ -5,7 +5,7 @@
 use crate::diagnostic::Diagnostic;
 use crate::ir::{Device, ExpectedIdentity, Parameter};
 
-const RULE: &str = "identity_values_fit";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Reports identity values a drive could never report, and entries nothing can read.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
@@ -109,6 +109,7 @@ fn unreadable_entries(identity: &ExpectedIdentity, device: &Device) -> Vec<Diagn
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     const FIRMWARE: &str = r#"
@@ -124,7 +125,7 @@ source = { doc = "m", line = 1 }
         let body =
             format!("[identity]\nparameter = \"firmware\"\nvalues = [242, 300, -1]\n{FIRMWARE}");
         assert_eq!(
-            messages("identity_values_fit", &body),
+            messages(RULE, &body),
             [
                 "`[identity]` value 300 does not fit `firmware` (u8): the drive can never report it",
                 "`[identity]` value -1 does not fit `firmware` (u8): the drive can never report it",
@@ -135,7 +136,7 @@ source = { doc = "m", line = 1 }
     #[test]
     fn values_that_fit_pass() {
         let body = format!("[identity]\nparameter = \"firmware\"\nvalues = [0, 255]\n{FIRMWARE}");
-        assert!(messages("identity_values_fit", &body).is_empty());
+        assert!(messages(RULE, &body).is_empty());
     }
 
     #[test]
@@ -145,7 +146,7 @@ source = { doc = "m", line = 1 }
             FIRMWARE.replace("access = \"r\"", "access = \"w\"")
         );
         assert_eq!(
-            messages("identity_values_fit", &body),
+            messages(RULE, &body),
             [
                 "`[identity]` parameter `firmware` cannot be read over any protocol",
                 "`[identity]` revisions 0x5..=0x2 cover nothing: min is above max",
@@ -170,7 +171,7 @@ canopen = { index = 0x1018, subindex = 1, access = "ro" }
 source = { doc = "m", line = 1 }
 "#;
         assert_eq!(
-            messages("identity_values_fit", body),
+            messages(RULE, body),
             ["`[identity]` gives `product_code` but no readable object 0x1018:2 is described to check it"]
         );
     }

@@ -8,7 +8,7 @@ use crate::diagnostic::Diagnostic;
 use crate::ir::Device;
 use crate::names::{camel, method};
 
-const RULE: &str = "indexed_names_are_unique";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Reports a run whose accessor name is already a parameter's or another run's.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
@@ -48,6 +48,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     #[test]
@@ -65,10 +66,10 @@ type = "u32"
 canopen = { index = 0x6693, subindex = "1..=2", access = "rw" }
 source = { doc = "m", line = 2 }
 "#;
-        let found = messages("indexed_names_are_unique", body);
+        let found = messages(RULE, body);
         assert_eq!(found.len(), 1, "{found:?}");
         assert!(messages(
-            "indexed_names_are_unique",
+            RULE,
             &body.replace(
                 "name = \"limit\"\ntype = \"u8\"",
                 "name = \"other\"\ntype = \"u8\""
@@ -92,6 +93,6 @@ type = "u32"
 canopen = { index = 0x6693, subindex = "1..=2", access = "rw" }
 source = { doc = "m", line = 2 }
 "#;
-        assert_eq!(messages("indexed_names_are_unique", body).len(), 1);
+        assert_eq!(messages(RULE, body).len(), 1);
     }
 }

@@ -5,7 +5,7 @@
 use crate::diagnostic::Diagnostic;
 use crate::ir::{Device, Table};
 
-const RULE: &str = "input_reads_alias_holding";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Reports input-table addresses and a missing FC 04 when FC 04 reads the holding table.
 pub fn check(device: &Device) -> Vec<Diagnostic> {

@@ -5,6 +5,8 @@
 use crate::diagnostic::Diagnostic;
 use crate::ir::Device;
 
+const RULE: &str = super::rule_name(module_path!());
+
 /// Why rustdoc would refuse `alias` on an item called `item`, if it would.
 fn unfit_alias(alias: &str, item: &str) -> Option<&'static str> {
     if alias.trim().is_empty() {
@@ -34,7 +36,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
             let why = unfit_alias(name, &p.name)?;
             Some(
                 Diagnostic::error(
-                    "manual_names_are_search_aliases",
+                    RULE,
                     citation.span.clone(),
                     format!("the manual name {name:?} of `{}` {why}", p.name),
                 )

@@ -4,7 +4,7 @@
 use crate::diagnostic::Diagnostic;
 use crate::ir::{DataType, Device, Direction, Mapping, MappingKind, Parameter, Pdo};
 
-const RULE: &str = "mapping_entries_are_mappable";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Reports entries that name nothing, have no CANopen object, are strings, or may not be mapped.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
@@ -82,6 +82,7 @@ fn wrong_direction(mapping: &Mapping, p: &Parameter, entry: &str) -> Option<Diag
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     const PARAMETERS: &str = r#"
@@ -106,7 +107,7 @@ source = { doc = "m", line = 2 }
     #[test]
     fn a_transmit_object_maps_into_a_tpdo() {
         assert!(messages(
-            "mapping_entries_are_mappable",
+            RULE,
             &pdo("tx", "[\"statusword\"]")
         )
         .is_empty());
@@ -116,7 +117,7 @@ source = { doc = "m", line = 2 }
     fn unknown_names_strings_and_wrong_directions_are_reported() {
         assert_eq!(
             messages(
-                "mapping_entries_are_mappable",
+                RULE,
                 &pdo("rx", "[\"statusword\", \"name\", \"speed\"]")
             ),
             [
@@ -131,7 +132,7 @@ source = { doc = "m", line = 2 }
     fn srdo_entries_need_no_pdo_direction_but_a_number() {
         let srdo = format!("{PARAMETERS}[[srdo]]\nname = \"bad\"\nnumber = 1\ndirection = \"rx\"\nsct_ms = 50\nsrvt_ms = 20\ncob_ids = [0x101, 0x102]\nentries = [\"statusword\", \"name\", \"nothing\"]\n");
         assert_eq!(
-            messages("mapping_entries_are_mappable", &srdo),
+            messages(RULE, &srdo),
             [
                 "`name` in SRDO `bad` is a string, which SRDOs do not carry",
                 "SRDO `bad` maps `nothing`, which is not a parameter",

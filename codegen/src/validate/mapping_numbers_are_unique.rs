@@ -5,10 +5,10 @@
 use std::collections::HashMap;
 
 use crate::diagnostic::Diagnostic;
-use crate::emit::ident::camel;
 use crate::ir::{Device, Mapping, MappingKind};
+use crate::names::camel;
 
-const RULE: &str = "mapping_numbers_are_unique";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Reports a repeated communication object and a repeated struct name.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
@@ -47,6 +47,7 @@ fn numbering(m: &Mapping) -> &'static str {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     fn pdo(name: &str, direction: &str, number: u16) -> String {
@@ -69,7 +70,7 @@ mod tests {
             pdo("rpdo1", "rx", 1),
             srdo("tpdo1", 1)
         );
-        assert!(messages("mapping_numbers_are_unique", &body).is_empty());
+        assert!(messages(RULE, &body).is_empty());
     }
 
     #[test]
@@ -81,7 +82,7 @@ mod tests {
             pdo("A", "rx", 2)
         );
         assert_eq!(
-            messages("mapping_numbers_are_unique", &body),
+            messages(RULE, &body),
             [
                 "PDO `b` has the number of `a`",
                 "PDO `A` has the same generated name as `a`",
@@ -93,7 +94,7 @@ mod tests {
     fn repeated_srdo_numbers_and_names_are_reported() {
         let body = format!("{WORD}{}{}{}", srdo("a", 1), srdo("b", 1), srdo("A", 2));
         assert_eq!(
-            messages("mapping_numbers_are_unique", &body),
+            messages(RULE, &body),
             [
                 "SRDO `b` has the number of `a`",
                 "SRDO `A` has the same generated name as `a`",

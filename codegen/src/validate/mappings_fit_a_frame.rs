@@ -8,7 +8,7 @@ use drivebus_model::canopen::srdo::{mapping::check_mapping, SrdoError};
 use crate::diagnostic::Diagnostic;
 use crate::ir::{pdo_bits, Device, Mapping, MappingKind};
 
-const RULE: &str = "mappings_fit_a_frame";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Reports empty PDOs, PDOs over 64 bits and SRDO mappings the runtime would refuse (entries
 /// that name nothing are left to `mapping_entries_are_mappable`).
@@ -67,6 +67,7 @@ fn srdo_problem(device: &Device, mapping: &Mapping) -> Option<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     fn pdo(entries: &str) -> String {
@@ -80,17 +81,17 @@ mod tests {
 
     #[test]
     fn sixty_four_bits_fit() {
-        assert!(messages("mappings_fit_a_frame", &pdo("[\"a\", \"b\"]")).is_empty());
+        assert!(messages(RULE, &pdo("[\"a\", \"b\"]")).is_empty());
     }
 
     #[test]
     fn ninety_six_bits_and_nothing_are_reported() {
         assert_eq!(
-            messages("mappings_fit_a_frame", &pdo("[\"a\", \"b\", \"c\"]")),
+            messages(RULE, &pdo("[\"a\", \"b\", \"c\"]")),
             ["PDO `p` maps 96 bits; a CAN frame carries 64"]
         );
         assert_eq!(
-            messages("mappings_fit_a_frame", &pdo("[]")),
+            messages(RULE, &pdo("[]")),
             ["PDO `p` maps nothing"]
         );
     }
@@ -120,7 +121,7 @@ source = { doc = "m", line = 3 }
     #[test]
     fn an_srdo_pair_of_equal_widths_is_fine() {
         assert!(messages(
-            "mappings_fit_a_frame",
+            RULE,
             &srdo(r#"["word", "word_inverted"]"#)
         )
         .is_empty());
@@ -129,12 +130,12 @@ source = { doc = "m", line = 3 }
     #[test]
     fn odd_srdo_counts_and_unequal_widths_are_reported() {
         assert_eq!(
-            messages("mappings_fit_a_frame", &srdo(r#"["word"]"#)),
+            messages(RULE, &srdo(r#"["word"]"#)),
             ["SRDO `s`: an SRDO maps pairs of entries: normal data, then its inverted copy"]
         );
         assert_eq!(
             messages(
-                "mappings_fit_a_frame",
+                RULE,
                 &srdo(r#"["word", "wide_inverted"]"#)
             ),
             ["SRDO `s`: an inverted SRDO entry must be as wide as its normal entry"]

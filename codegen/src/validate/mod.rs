@@ -3,140 +3,80 @@
 use crate::diagnostic::Diagnostic;
 use crate::ir::Device;
 
-mod access_matches_functions;
-mod addresses_do_not_overlap;
-mod bit_codes_are_enum_values;
-mod bit_fields_fit;
-mod bounds_resolve;
-pub(crate) mod canopen_has_mandatory_objects;
-mod combined_commands_name_a_command;
+// A helper of `addresses_do_not_overlap`, not a rule.
 mod commands_share_a_register;
-mod communication_loss_resolves;
-mod defaults_within_range;
-mod enum_values_fit_type;
-mod identity_names_a_parameter;
-mod identity_values_fit;
-mod indexed_names_are_unique;
-mod input_reads_alias_holding;
-mod manual_names_are_search_aliases;
-mod mapping_entries_are_mappable;
-mod mapping_numbers_are_unique;
-mod mappings_fit_a_frame;
-mod models_give_constants;
-mod names_are_unique;
-mod parameters_have_addresses;
-mod ramps_resolve;
-mod ranges_fit_type;
-mod read_blocks_are_described;
-mod records_hold_their_members;
-mod references_resolve;
-mod rs232_values_fit_a_telegram;
-pub(crate) mod scale_inputs_exist;
-mod scale_is_representable;
-mod srdo_timings_are_valid;
-mod state_machines_resolve;
-mod stops_are_always_sendable;
-mod strings_have_length;
-mod units_are_known;
-mod unlocks_resolve;
-mod value_types_are_consistent;
-mod values_cite_sources;
-mod variant_selectors_resolve;
-mod words_fit_type;
 
 /// A validation pass: reads the IR, returns what is wrong.
 pub type Pass = fn(&Device) -> Vec<Diagnostic>;
 
-/// Every pass, by rule name, in the order they run.
-pub const PASSES: &[(&str, Pass)] = &[
-    ("references_resolve", references_resolve::check),
-    ("names_are_unique", names_are_unique::check),
-    (
-        "parameters_have_addresses",
-        parameters_have_addresses::check,
-    ),
-    ("values_cite_sources", values_cite_sources::check),
-    ("units_are_known", units_are_known::check),
-    ("strings_have_length", strings_have_length::check),
-    (
-        "value_types_are_consistent",
-        value_types_are_consistent::check,
-    ),
-    ("ranges_fit_type", ranges_fit_type::check),
-    ("defaults_within_range", defaults_within_range::check),
-    ("bounds_resolve", bounds_resolve::check),
-    ("enum_values_fit_type", enum_values_fit_type::check),
-    ("bit_fields_fit", bit_fields_fit::check),
-    (
-        "bit_codes_are_enum_values",
-        bit_codes_are_enum_values::check,
-    ),
-    ("scale_is_representable", scale_is_representable::check),
-    ("models_give_constants", models_give_constants::check),
-    ("scale_inputs_exist", scale_inputs_exist::check),
-    ("words_fit_type", words_fit_type::check),
-    (
-        "rs232_values_fit_a_telegram",
-        rs232_values_fit_a_telegram::check,
-    ),
-    ("addresses_do_not_overlap", addresses_do_not_overlap::check),
-    ("access_matches_functions", access_matches_functions::check),
-    (
-        "read_blocks_are_described",
-        read_blocks_are_described::check,
-    ),
-    (
-        "records_hold_their_members",
-        records_hold_their_members::check,
-    ),
-    ("state_machines_resolve", state_machines_resolve::check),
-    (
-        "mapping_entries_are_mappable",
-        mapping_entries_are_mappable::check,
-    ),
-    ("mappings_fit_a_frame", mappings_fit_a_frame::check),
-    ("srdo_timings_are_valid", srdo_timings_are_valid::check),
-    (
-        "mapping_numbers_are_unique",
-        mapping_numbers_are_unique::check,
-    ),
-    ("indexed_names_are_unique", indexed_names_are_unique::check),
-    (
-        "identity_names_a_parameter",
-        identity_names_a_parameter::check,
-    ),
-    ("identity_values_fit", identity_values_fit::check),
-    (
-        "canopen_has_mandatory_objects",
-        canopen_has_mandatory_objects::check,
-    ),
-    (
-        "variant_selectors_resolve",
-        variant_selectors_resolve::check,
-    ),
-    (
-        "manual_names_are_search_aliases",
-        manual_names_are_search_aliases::check,
-    ),
-    ("unlocks_resolve", unlocks_resolve::check),
-    ("ramps_resolve", ramps_resolve::check),
-    (
-        "stops_are_always_sendable",
-        stops_are_always_sendable::check,
-    ),
-    (
-        "communication_loss_resolves",
-        communication_loss_resolves::check,
-    ),
-    (
-        "input_reads_alias_holding",
-        input_reads_alias_holding::check,
-    ),
-    (
-        "combined_commands_name_a_command",
-        combined_commands_name_a_command::check,
-    ),
+/// Declares each rule's module and lists its pass under the module's name, so that a rule is
+/// named once, by its file: `PASSES`, the UI test's table and the rule's own diagnostics
+/// ([`rule_name`]) all read that name.
+macro_rules! passes {
+    ($($vis:vis $rule:ident,)*) => {
+        $( $vis mod $rule; )*
+
+        /// Every pass, by rule name, in the order they run.
+        pub const PASSES: &[(&str, Pass)] = &[ $( (stringify!($rule), $rule::check) ),* ];
+    };
+}
+
+passes![
+    references_resolve,
+    names_are_unique,
+    parameters_have_addresses,
+    values_cite_sources,
+    units_are_known,
+    strings_have_length,
+    value_types_are_consistent,
+    ranges_fit_type,
+    defaults_within_range,
+    bounds_resolve,
+    enum_values_fit_type,
+    bit_fields_fit,
+    bit_codes_are_enum_values,
+    scale_is_representable,
+    models_give_constants,
+    pub(crate) scale_inputs_exist,
+    words_fit_type,
+    rs232_values_fit_a_telegram,
+    addresses_do_not_overlap,
+    access_matches_functions,
+    read_blocks_are_described,
+    records_hold_their_members,
+    state_machines_resolve,
+    mapping_entries_are_mappable,
+    mappings_fit_a_frame,
+    srdo_timings_are_valid,
+    mapping_numbers_are_unique,
+    indexed_names_are_unique,
+    identity_names_a_parameter,
+    identity_values_fit,
+    pub(crate) canopen_has_mandatory_objects,
+    variant_selectors_resolve,
+    manual_names_are_search_aliases,
+    unlocks_resolve,
+    ramps_resolve,
+    stops_are_always_sendable,
+    communication_loss_resolves,
+    input_reads_alias_holding,
+    combined_commands_name_a_command,
 ];
+
+/// The rule a validation module enforces: the last segment of its `module_path!()`, which is its
+/// file's name (`const RULE: &str = super::rule_name(module_path!());`).
+pub(crate) const fn rule_name(module_path: &'static str) -> &'static str {
+    let bytes = module_path.as_bytes();
+    let mut start = bytes.len();
+    while start > 0 && bytes[start - 1] != b':' {
+        start -= 1;
+    }
+    let (_, name) = bytes.split_at(start);
+    match core::str::from_utf8(name) {
+        Ok(name) => name,
+        Err(_) => module_path,
+    }
+}
 
 /// Runs every pass.
 pub fn validate(device: &Device) -> Vec<Diagnostic> {
@@ -146,3 +86,27 @@ pub fn validate(device: &Device) -> Vec<Diagnostic> {
 /// Inline descriptions through the whole pipeline, for the tests of every pass.
 #[cfg(test)]
 pub(crate) use crate::test_support;
+
+#[cfg(test)]
+mod tests {
+    use super::{rule_name, test_support, PASSES};
+
+    #[test]
+    fn a_rule_is_named_by_its_module() {
+        assert_eq!(
+            rule_name("drivegen::validate::units_are_known"),
+            "units_are_known"
+        );
+        assert_eq!(rule_name("bare"), "bare");
+        let (first, _) = PASSES[0];
+        assert_eq!(first, "references_resolve");
+        let unknown_unit = test_support::messages(
+            "units_are_known",
+            "[[parameter]]\nname = \"x\"\ntype = \"u16\"\nunit = \"parsec\"\nmodbus = { table = \"holding\", address = 0, access = \"r\" }\n",
+        );
+        assert!(
+            !unknown_unit.is_empty(),
+            "the rule reports under its file's name"
+        );
+    }
+}

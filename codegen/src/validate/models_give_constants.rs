@@ -8,7 +8,7 @@ use std::collections::BTreeSet;
 use crate::diagnostic::Diagnostic;
 use crate::ir::Device;
 
-const RULE: &str = "models_give_constants";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Reports incomplete, unknown, repeated or uncited constants and models.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
@@ -77,6 +77,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::{device, messages};
 
     const PEAK: &str = r#"
@@ -100,7 +101,7 @@ source = { doc = "m", line = 227 }
     fn a_missing_or_unknown_constant_is_reported() {
         let body = format!("{PEAK}[[model]]\nname = \"fd123\"\nconstants = {{ gear = \"1/2\" }}\nsource = {{ doc = \"m\", line = 227 }}\n");
         assert_eq!(
-            messages("models_give_constants", &body),
+            messages(RULE, &body),
             [
                 "model `fd123` does not give constant `peak_current`",
                 "model `fd123` gives `gear`, which is not a `[[constant]]`"
@@ -111,7 +112,7 @@ source = { doc = "m", line = 227 }
     #[test]
     fn constants_without_models_are_reported() {
         assert_eq!(
-            messages("models_give_constants", PEAK),
+            messages(RULE, PEAK),
             ["constants need `[[model]]`s to give them"]
         );
     }

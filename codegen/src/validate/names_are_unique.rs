@@ -7,7 +7,7 @@ use crate::diagnostic::{Diagnostic, Span};
 use crate::ir::Device;
 use crate::names as ident;
 
-const RULE: &str = "names_are_unique";
+const RULE: &str = super::rule_name(module_path!());
 
 fn duplicates<'a>(
     what: &str,
@@ -87,6 +87,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     #[test]
@@ -104,7 +105,7 @@ modbus = { table = "holding", address = 2 }
 source = { doc = "m", line = 1 }
 "#;
         assert_eq!(
-            messages("names_are_unique", body),
+            messages(RULE, body),
             ["parameter `speed` has the same Rust name `speed` as `Speed`"]
         );
     }

@@ -3,6 +3,8 @@
 use crate::diagnostic::Diagnostic;
 use crate::ir::Device;
 
+const RULE: &str = super::rule_name(module_path!());
+
 /// Reports parameters without any address.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
     device
@@ -11,7 +13,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
         .filter(|p| p.modbus.is_empty() && p.canopen.is_empty() && p.rs232.is_empty())
         .map(|p| {
             Diagnostic::error(
-                "parameters_have_addresses",
+                RULE,
                 p.spans.name.clone(),
                 format!("parameter `{}` has no address", p.name),
             )
@@ -22,6 +24,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     #[test]
@@ -29,7 +32,7 @@ mod tests {
         let body =
             "[[parameter]]\nname = \"x\"\ntype = \"u8\"\nsource = { doc = \"m\", line = 1 }\n";
         assert_eq!(
-            messages("parameters_have_addresses", body),
+            messages(RULE, body),
             ["parameter `x` has no address"]
         );
     }

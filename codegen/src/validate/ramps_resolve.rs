@@ -7,7 +7,7 @@ use std::collections::BTreeSet;
 use crate::diagnostic::Diagnostic;
 use crate::ir::{per_second, Device, Ramp};
 
-const RULE: &str = "ramps_resolve";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Reports ramps that name nothing usable.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
@@ -97,6 +97,7 @@ fn time_unit(device: &Device, name: &str, report: &mut impl FnMut(String)) {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::{device, messages};
 
     /// A Lafert-style drive: a setpoint, ramp times in ms, a full scale and a ramp enable.
@@ -162,7 +163,7 @@ source = { doc = "m", line = 7 }
         let device = device(&body(RAMP));
         assert_eq!(device.ramps.len(), 1);
         assert!(device.ramps[0].needs_full_scale());
-        assert!(messages("ramps_resolve", &body(RAMP)).is_empty());
+        assert!(messages(RULE, &body(RAMP)).is_empty());
     }
 
     #[test]
@@ -174,7 +175,7 @@ source = { doc = "m", line = 7 }
                 r#"full_scale = "label""#,
             );
         assert_eq!(
-            messages("ramps_resolve", &body(&ramp)),
+            messages(RULE, &body(&ramp)),
             [
                 "the ramp's full scale `label` is not an integer",
                 "the ramp's enable `ramp_on` is not a parameter",
@@ -188,7 +189,7 @@ source = { doc = "m", line = 7 }
             RAMP.replace("enable = ", &format!("polarity = {polarity}\nenable = "))
         };
         let fits = with(r#"{ parameter = "ramp_enable", bit = 0 }"#);
-        assert!(messages("ramps_resolve", &body(&fits)).is_empty());
+        assert!(messages(RULE, &body(&fits)).is_empty());
         assert_eq!(
             device(&body(&fits)).ramps[0]
                 .polarity
@@ -198,14 +199,14 @@ source = { doc = "m", line = 7 }
         );
         assert_eq!(
             messages(
-                "ramps_resolve",
+                RULE,
                 &body(&with(r#"{ parameter = "ramp_enable", bit = 16 }"#))
             ),
             ["polarity bit 16 does not fit `ramp_enable`"]
         );
         assert_eq!(
             messages(
-                "ramps_resolve",
+                RULE,
                 &body(&with(r#"{ parameter = "label", bit = 0 }"#))
             ),
             ["the ramp's polarity `label` is not an integer"]
@@ -219,7 +220,7 @@ source = { doc = "m", line = 7 }
             r#"down = { speed = "speed_ramp_down", time = "full_scale_velocity" }"#,
         );
         assert_eq!(
-            messages("ramps_resolve", &body(&ramp)),
+            messages(RULE, &body(&ramp)),
             ["the ramp time `full_scale_velocity` has unit `rpm`; a ramp time is in `ms` or `s`"]
         );
     }
@@ -228,7 +229,7 @@ source = { doc = "m", line = 7 }
     fn full_scale_goes_with_time_slopes_and_a_setpoint_has_one_ramp() {
         let without = RAMP.replace("full_scale = \"full_scale_velocity\"\n", "");
         assert_eq!(
-            messages("ramps_resolve", &body(&without)),
+            messages(RULE, &body(&without)),
             ["the ramp of `speed_setpoint` gives a time from 0 to full scale but no `full_scale`"]
         );
         let rates = RAMP
@@ -241,11 +242,11 @@ source = { doc = "m", line = 7 }
                 r#"{ rate = "speed_ramp_down" }"#,
             );
         assert_eq!(
-            messages("ramps_resolve", &body(&rates)),
+            messages(RULE, &body(&rates)),
             ["`full_scale = \"full_scale_velocity\"` is used by `{ time }` slopes only"]
         );
         assert_eq!(
-            messages("ramps_resolve", &body(&format!("{RAMP}{RAMP}"))),
+            messages(RULE, &body(&format!("{RAMP}{RAMP}"))),
             ["setpoint `speed_setpoint` has two ramps"]
         );
     }

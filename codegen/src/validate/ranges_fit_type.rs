@@ -3,7 +3,7 @@
 use crate::diagnostic::{Diagnostic, Span};
 use crate::ir::{Device, Number, Parameter};
 
-const RULE: &str = "ranges_fit_type";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Whether a raw value fits the parameter's data type. A float type takes finite values its own
 /// width can hold (TOML allows `inf` and `nan`, and a value beyond `f32` would be infinite on the
@@ -67,6 +67,7 @@ fn allowed_outside_range(p: &Parameter, span: &Span) -> Vec<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     #[test]
@@ -80,7 +81,7 @@ modbus = { table = "holding", address = 1 }
 source = { doc = "m", line = 1 }
 "#;
         assert_eq!(
-            messages("ranges_fit_type", body),
+            messages(RULE, body),
             ["-3000 does not fit `speed`, a u16"]
         );
     }
@@ -97,7 +98,7 @@ modbus = { table = "holding", address = 1 }
 source = { doc = "m", line = 1 }
 "#;
         assert_eq!(
-            messages("ranges_fit_type", body),
+            messages(RULE, body),
             ["allowed value 7 of `mode` is outside its range 1..=5"]
         );
     }
@@ -115,7 +116,7 @@ modbus = { table = "holding", address = 1, words = 4 }
 source = { doc = "m", line = 1 }
 "#;
         assert_eq!(
-            messages("ranges_fit_type", body),
+            messages(RULE, body),
             ["allowed value 9223372036854775807 of `big` is outside its range 0..=9223372036854775806"]
         );
     }
@@ -139,7 +140,7 @@ modbus = { table = "holding", address = 3, words = 4 }
 source = { doc = "m", line = 1 }
 "#;
         assert_eq!(
-            messages("ranges_fit_type", body),
+            messages(RULE, body),
             [
                 "-1e39 does not fit `gain`, a f32",
                 "NaN does not fit `gain`, a f32",

@@ -5,7 +5,7 @@
 use crate::diagnostic::Diagnostic;
 use crate::ir::{Device, ModbusAddress, Parameter, ReadBlock};
 
-const RULE: &str = "read_blocks_are_described";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Whether `a` of `p` is readable in every variant and occupies `register` of its table.
 fn covers(p: &Parameter, a: &ModbusAddress, block: &ReadBlock, register: u32) -> bool {
@@ -58,6 +58,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::{device, messages};
 
     fn body(words: u16) -> String {
@@ -82,7 +83,7 @@ mod tests {
     #[test]
     fn a_block_past_the_described_registers_is_reported() {
         assert_eq!(
-            messages("read_blocks_are_described", &body(4)),
+            messages(RULE, &body(4)),
             ["the read block at 0x0018 covers register 0x001b, which no parameter readable in every variant occupies"]
         );
     }
@@ -90,7 +91,7 @@ mod tests {
     #[test]
     fn a_zero_fill_block_may_cover_unoccupied_registers() {
         let zero_fill = body(4).replace("words = 4 }", "words = 4, zero_fill = true }");
-        assert!(messages("read_blocks_are_described", &zero_fill).is_empty());
+        assert!(messages(RULE, &zero_fill).is_empty());
     }
 
     #[test]
@@ -98,7 +99,7 @@ mod tests {
         let zero_fill = body(4).replace("words = 4 }", "words = 4, zero_fill = true }")
             + "[[parameter]]\nname = \"w27\"\ntype = \"u16\"\nmodbus = { table = \"holding\", address = 27, access = \"w\" }\nsource = { doc = \"m\", line = 1 }\n";
         assert_eq!(
-            messages("read_blocks_are_described", &zero_fill),
+            messages(RULE, &zero_fill),
             ["the read block at 0x0018 covers register 0x001b, which no parameter readable in every variant occupies"]
         );
     }

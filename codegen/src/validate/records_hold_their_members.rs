@@ -3,6 +3,8 @@
 use crate::diagnostic::Diagnostic;
 use crate::ir::Device;
 
+const RULE: &str = super::rule_name(module_path!());
+
 /// Reports members addressed outside their record.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
     let mut out = Vec::new();
@@ -21,7 +23,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
                 .clone()
                 .unwrap_or_else(|| p.spans.name.clone());
             out.push(Diagnostic::error(
-                "records_hold_their_members",
+                RULE,
                 span,
                 format!("record member `{}` has no CANopen address", p.name),
             ));
@@ -32,7 +34,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
                 p.name, record.name, record.index, a.index
             );
             out.push(Diagnostic::error(
-                "records_hold_their_members",
+                RULE,
                 a.span.clone(),
                 message,
             ));
@@ -43,6 +45,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     #[test]
@@ -61,7 +64,7 @@ canopen = { index = 0x1019, subindex = 1, access = "ro" }
 source = { doc = "m", line = 1 }
 "#;
         assert_eq!(
-            messages("records_hold_their_members", body),
+            messages(RULE, body),
             ["`vendor_id` is a member of `identity` (0x1018) but is addressed at 0x1019"]
         );
     }

@@ -3,7 +3,7 @@
 use crate::diagnostic::{Diagnostic, Span};
 use crate::ir::Device;
 
-const RULE: &str = "references_resolve";
+const RULE: &str = super::rule_name(module_path!());
 
 fn missing(kind: &str, name: &str, span: Span, known: Vec<&str>) -> Diagnostic {
     let help = if known.is_empty() {
@@ -64,6 +64,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     #[test]
@@ -77,7 +78,7 @@ modbus = { table = "holding", address = 1 }
 source = { doc = "m", line = 1 }
 "#;
         assert_eq!(
-            messages("references_resolve", body),
+            messages(RULE, body),
             ["enum `modes` is not declared"]
         );
     }
@@ -94,7 +95,7 @@ modbus = [{ table = "holding", address = 1, variant = "pc500" }]
 source = { doc = "m", line = 1 }
 "#;
         assert_eq!(
-            messages("references_resolve", body),
+            messages(RULE, body),
             ["variant `pc500` is not declared"]
         );
     }

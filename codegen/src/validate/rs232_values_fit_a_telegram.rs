@@ -4,7 +4,7 @@
 use crate::diagnostic::Diagnostic;
 use crate::ir::Device;
 
-const RULE: &str = "rs232_values_fit_a_telegram";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Reports RS-232 addresses of values whose width the protocol cannot carry.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
@@ -29,13 +29,14 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     fn with_type(data_type: &str) -> Vec<String> {
         let body = format!(
             "[[parameter]]\nname = \"x\"\ntype = \"{data_type}\"\nrs232 = {{ index = 0x2000, subindex = 1, access = \"rw\" }}\nsource = {{ doc = \"m\", line = 1 }}\n"
         );
-        messages("rs232_values_fit_a_telegram", &body)
+        messages(RULE, &body)
     }
 
     #[test]

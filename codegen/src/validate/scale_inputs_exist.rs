@@ -7,7 +7,7 @@
 use crate::diagnostic::Diagnostic;
 use crate::ir::{Device, Scale};
 
-const RULE: &str = "scale_inputs_exist";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Reports run-time scale inputs that are neither parameters nor constants, or not plain integers.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
@@ -44,6 +44,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     const SPEED: &str = r#"
@@ -60,7 +61,7 @@ source = { doc = "m", line = 1 }
     #[test]
     fn unknown_input_is_reported() {
         assert_eq!(
-            messages("scale_inputs_exist", SPEED),
+            messages(RULE, SPEED),
             ["scale of `target_speed` reads `encoder_resolution`, which is neither a parameter nor a constant"]
         );
     }
@@ -68,7 +69,7 @@ source = { doc = "m", line = 1 }
     #[test]
     fn an_input_missing_on_a_protocol_is_given_not_reported() {
         let body = format!("{SPEED}\n[[parameter]]\nname = \"encoder_resolution\"\ntype = \"u32\"\ncanopen = {{ index = 0x6410, subindex = 3, access = \"rw\" }}\nsource = {{ doc = \"m\", line = 1 }}\n");
-        let found = crate::validate::test_support::diagnostics("scale_inputs_exist", &body);
+        let found = crate::validate::test_support::diagnostics(RULE, &body);
         assert!(found.is_empty(), "{found:?}");
     }
 
@@ -76,6 +77,6 @@ source = { doc = "m", line = 1 }
     fn a_constant_is_an_input() {
         let body = SPEED.replace("encoder_resolution", "peak_current")
             + "[[constant]]\nname = \"peak_current\"\nsource = { doc = \"m\", line = 1 }\n[[model]]\nname = \"a\"\nconstants = { peak_current = 45 }\nsource = { doc = \"m\", line = 1 }\n";
-        assert!(messages("scale_inputs_exist", &body).is_empty());
+        assert!(messages(RULE, &body).is_empty());
     }
 }

@@ -4,6 +4,8 @@
 use crate::diagnostic::Diagnostic;
 use crate::ir::{Device, Scale};
 
+const RULE: &str = super::rule_name(module_path!());
+
 /// Reports zero factors.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
     device
@@ -15,7 +17,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
             {
                 Some(
                     Diagnostic::error(
-                        "scale_is_representable",
+                        RULE,
                         span.clone(),
                         format!("scale of `{}` is zero", p.name),
                     )
@@ -29,6 +31,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     #[test]
@@ -42,7 +45,7 @@ modbus = { table = "holding", address = 1 }
 source = { doc = "m", line = 1 }
 "#;
         assert_eq!(
-            messages("scale_is_representable", body),
+            messages(RULE, body),
             ["scale of `x` is zero"]
         );
     }

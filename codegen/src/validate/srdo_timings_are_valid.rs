@@ -6,7 +6,7 @@ use drivebus_model::canopen::srdo::{SrdoError, SrdoTiming};
 use crate::diagnostic::Diagnostic;
 use crate::ir::{Device, Mapping, SrdoDefaults};
 
-const RULE: &str = "srdo_timings_are_valid";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Reports times the runtime would refuse or the signature could not hold.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
@@ -27,6 +27,7 @@ fn problem(m: &Mapping, s: &SrdoDefaults) -> Option<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     fn srdo(sct: u32, srvt: u32) -> String {
@@ -35,17 +36,17 @@ mod tests {
 
     #[test]
     fn the_manual_defaults_are_fine() {
-        assert!(messages("srdo_timings_are_valid", &srdo(50, 20)).is_empty());
+        assert!(messages(RULE, &srdo(50, 20)).is_empty());
     }
 
     #[test]
     fn bad_times_are_reported() {
         assert_eq!(
-            messages("srdo_timings_are_valid", &srdo(20, 20)),
+            messages(RULE, &srdo(20, 20)),
             ["SRDO `s`: SRVT must be lower than SCT"]
         );
         assert_eq!(
-            messages("srdo_timings_are_valid", &srdo(1000, 300)),
+            messages(RULE, &srdo(1000, 300)),
             ["SRDO `s`: SRVT above 255 ms does not fit the signature's byte"]
         );
     }

@@ -10,7 +10,7 @@ use drivebus_model::control::machine::MAX_STATES;
 use crate::diagnostic::{Diagnostic, Span};
 use crate::ir::{DataType, Device, StateMachine};
 
-const RULE: &str = "state_machines_resolve";
+const RULE: &str = super::rule_name(module_path!());
 
 fn word_parameter(device: &Device, name: &str, role: &str, span: &Span) -> Option<Diagnostic> {
     let message = match device.parameter(name) {
@@ -237,6 +237,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     const STATUS: &str = r#"
@@ -268,7 +269,7 @@ source = {{ doc = "m", line = 3 }}
 "#
         );
         assert_eq!(
-            messages("state_machines_resolve", &body),
+            messages(RULE, &body),
             [
                 "command register `control` is not a parameter of this description",
                 "transition `T2` names state `running`, which is not declared",
@@ -296,7 +297,7 @@ source = {{ doc = "m", line = 2 }}
 "#
         );
         assert_eq!(
-            messages("state_machines_resolve", &body),
+            messages(RULE, &body),
             [
                 "`initial` names state `boot`, which is not declared",
                 "`fault` names state `alarm`, which is not declared",
@@ -347,7 +348,7 @@ modbus = {{ table = "input", address = 0x0068, access = "r" }}
 source = {{ doc = "m", line = 6 }}
 "#
             );
-            messages("state_machines_resolve", &machine_showing(name, &extra))
+            messages(RULE, &machine_showing(name, &extra))
         };
         assert!(shown("average", "i16", "rpm", "").is_empty());
         assert_eq!(
@@ -425,7 +426,7 @@ source = {{ doc = "m", line = 9 }}
         );
         assert_eq!(machine.states[2].motion, crate::ir::Motion::RampStop);
         assert_eq!(
-            messages("state_machines_resolve", &register_machine(3, "stopped")),
+            messages(RULE, &register_machine(3, "stopped")),
             ["transition `start` writes 0x0003, which is no command of the register of `start`"]
         );
     }
@@ -433,7 +434,7 @@ source = {{ doc = "m", line = 9 }}
     #[test]
     fn coast_and_quick_stop_name_declared_states() {
         assert_eq!(
-            messages("state_machines_resolve", &register_machine(8, "inhibit")),
+            messages(RULE, &register_machine(8, "inhibit")),
             ["`coast` names state `inhibit`, which is not declared"]
         );
     }
@@ -460,7 +461,7 @@ source = { doc = "m", line = 6 }
         let body = machine_showing("speed", extra)
             .replace("actual = \"speed\"", "commanded = \"command_hz\"");
         assert_eq!(
-            messages("state_machines_resolve", &body),
+            messages(RULE, &body),
             ["commanded `command_hz` and setpoint `speed` differ in unit or scale"]
         );
     }
@@ -471,7 +472,7 @@ source = { doc = "m", line = 6 }
             "{STATUS}\n[cia402]\nsto_bit = {{ parameter = \"status\", bit = 16 }}\nsource = {{ doc = \"m\", line = 4 }}\n"
         );
         assert_eq!(
-            messages("state_machines_resolve", &body),
+            messages(RULE, &body),
             ["`sto_bit` bit 16 does not fit a 16-bit word"]
         );
     }

@@ -5,7 +5,7 @@
 use crate::diagnostic::Diagnostic;
 use crate::ir::{Device, Parameter, StopWrites};
 
-const RULE: &str = "stops_are_always_sendable";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Reports stop writes that could not always be sent.
 pub fn check(device: &Device) -> Vec<Diagnostic> {

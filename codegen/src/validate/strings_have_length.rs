@@ -3,6 +3,8 @@
 use crate::diagnostic::Diagnostic;
 use crate::ir::{DataType, Device};
 
+const RULE: &str = super::rule_name(module_path!());
+
 /// Most bytes a value may have (the runtime's fixed buffer).
 pub const MAX_TEXT_BYTES: u16 = drivebus_model::MAX_VALUE_BYTES as u16;
 
@@ -14,7 +16,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
         .filter_map(|p| match p.data_type {
             DataType::String(n) | DataType::Octets(n) if n == 0 || n > MAX_TEXT_BYTES => Some(
                 Diagnostic::error(
-                    "strings_have_length",
+                    RULE,
                     p.spans.data_type.clone(),
                     format!(
                         "`{}` needs a `length` of 1..={MAX_TEXT_BYTES} bytes",
@@ -30,6 +32,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     #[test]
@@ -42,7 +45,7 @@ canopen = { index = 0x1008, access = "ro" }
 source = { doc = "m", line = 1 }
 "#;
         assert_eq!(
-            messages("strings_have_length", body),
+            messages(RULE, body),
             ["`device_name` needs a `length` of 1..=64 bytes"]
         );
     }

@@ -3,6 +3,8 @@
 use crate::diagnostic::Diagnostic;
 use crate::ir::Device;
 
+const RULE: &str = super::rule_name(module_path!());
+
 /// Reports unknown unit symbols, listing the known ones.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
     let known: Vec<&str> = drivebus_model::units::ALL.iter().map(|(s, _)| *s).collect();
@@ -14,7 +16,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
             let span = p.spans.unit.clone()?;
             drivebus_model::units::type_name(unit).is_none().then(|| {
                 Diagnostic::error(
-                    "units_are_known",
+                    RULE,
                     span,
                     format!("unknown unit `{unit}` on `{}`", p.name),
                 )
@@ -26,6 +28,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     #[test]
@@ -39,7 +42,7 @@ modbus = { table = "holding", address = 1 }
 source = { doc = "m", line = 1 }
 "#;
         assert_eq!(
-            messages("units_are_known", body),
+            messages(RULE, body),
             ["unknown unit `furlong` on `x`"]
         );
     }

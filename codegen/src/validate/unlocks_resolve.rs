@@ -8,7 +8,7 @@ use crate::diagnostic::{Diagnostic, Span};
 use crate::ir::{CommandKind, Device, GrantKey, Lock, Parameter, Unlock, UnlockEnd, Watchdog};
 use crate::names;
 
-const RULE: &str = "unlocks_resolve";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Reports lock data that names nothing usable.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
@@ -352,6 +352,7 @@ fn fits(p: &Parameter, value: i64) -> bool {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::{device, messages};
 
     /// A drive with a lock command, two grants, a password, a requirement and a watchdog.
@@ -457,7 +458,7 @@ source = { doc = "m", line = 11 }
         assert_eq!(scope("lock_command"), None, "the lock command is exempt");
         assert_eq!(scope("unlock_word"), None, "a grant is exempt");
         assert_eq!(lock.unlocks_opening("parameters").count(), 1);
-        assert!(messages("unlocks_resolve", &body(LOCK)).is_empty());
+        assert!(messages(RULE, &body(LOCK)).is_empty());
     }
 
     #[test]
@@ -467,7 +468,7 @@ source = { doc = "m", line = 11 }
             r#"values = [10, 11], scopes = ["parameters"] }"#,
         );
         assert_eq!(
-            messages("unlocks_resolve", &body(&guarded)),
+            messages(RULE, &body(&guarded)),
             ["the requirement of `controls` guards scope `parameters`, which the unlock does not allow"]
         );
         let device = device(&body(LOCK));
@@ -486,7 +487,7 @@ source = { doc = "m", line = 11 }
             .replace(r#"password = "password""#, r#"password = "secret""#)
             .replace(r#"allows = ["controls"]"#, r#"allows = ["drive"]"#);
         assert_eq!(
-            messages("unlocks_resolve", &body(&lock)),
+            messages(RULE, &body(&lock)),
             [
                 "the lock command `lock_it` is not a parameter",
                 "unlock `controls` allows `drive`, which is not a scope",
@@ -507,7 +508,7 @@ source = { doc = "m", line = 11 }
                 r#"parameters = ["start", "unlock_word"]"#,
             );
         assert_eq!(
-            messages("unlocks_resolve", &body(&lock)),
+            messages(RULE, &body(&lock)),
             [
                 "`unlock_word` is the lock command or a grant: it is written without an unlock",
                 "no unlock allows scope `parameters`",
@@ -521,7 +522,7 @@ source = { doc = "m", line = 11 }
             .replace("values = [10, 11]", "values = [10, 70000]")
             .replace(r#", { value = 1, does = "quick_stop" }"#, "");
         assert_eq!(
-            messages("unlocks_resolve", &body(&lock)),
+            messages(RULE, &body(&lock)),
             [
                 "70000 does not fit `control_source`",
                 "`action` value 1 (stop) has no watchdog action",
@@ -536,7 +537,7 @@ source = { doc = "m", line = 11 }
             "",
         );
         assert_eq!(
-            messages("unlocks_resolve", &body(&lock)),
+            messages(RULE, &body(&lock)),
             ["unlock `controls` ends on `requirement_lost` but has no `requires`"]
         );
     }
@@ -545,13 +546,13 @@ source = { doc = "m", line = 11 }
     fn generated_names_do_not_collide() {
         let lock = LOCK.replace(r#"name = "all""#, r#"name = "opens_controls""#);
         assert_eq!(
-            messages("unlocks_resolve", &body(&lock)),
+            messages(RULE, &body(&lock)),
             ["the generated name `unlock::OpensControls` is taken twice"]
         );
         let parameters = PARAMETERS.replace(r#"name = "control_source""#, r#"name = "drive""#);
         let lock = LOCK.replace(r#"parameter = "control_source""#, r#"parameter = "drive""#);
         assert_eq!(
-            messages("unlocks_resolve", &format!("{lock}\n{parameters}")),
+            messages(RULE, &format!("{lock}\n{parameters}")),
             ["the setter `drive` of `drive` would shadow the unlock guard's own method"]
         );
     }
@@ -567,7 +568,7 @@ source = { doc = "m", line = 11 }
             })
             .collect();
         assert_eq!(
-            messages("unlocks_resolve", &body(&format!("{LOCK}\n{more}"))),
+            messages(RULE, &body(&format!("{LOCK}\n{more}"))),
             ["33 unlocks: a lock has at most 32 (the drive handle follows them in one word)"]
         );
     }
@@ -576,7 +577,7 @@ source = { doc = "m", line = 11 }
     fn an_unlock_method_may_not_shadow_an_accessor() {
         let lock = LOCK.replace(r#"name = "all""#, r#"name = "word""#);
         assert_eq!(
-            messages("unlocks_resolve", &body(&lock)),
+            messages(RULE, &body(&lock)),
             ["`unlock_word` would collide with the accessor of parameter `unlock_word`"]
         );
     }

@@ -4,7 +4,7 @@
 use crate::diagnostic::Diagnostic;
 use crate::ir::{DataType, Device, Parameter};
 
-const RULE: &str = "value_types_are_consistent";
+const RULE: &str = super::rule_name(module_path!());
 
 fn conflict(p: &Parameter, message: String, help: &str) -> Diagnostic {
     Diagnostic::error(RULE, p.spans.name.clone(), message).help(help.to_owned())
@@ -70,6 +70,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     #[test]
@@ -88,7 +89,7 @@ modbus = { table = "holding", address = 1 }
 source = { doc = "m", line = 1 }
 "#;
         assert_eq!(
-            messages("value_types_are_consistent", body),
+            messages(RULE, body),
             ["`mode` is u16 but its enum `mode` is u8"]
         );
     }

@@ -4,7 +4,7 @@
 use crate::diagnostic::{Diagnostic, Span};
 use crate::ir::{Citation, Device};
 
-const RULE: &str = "values_cite_sources";
+const RULE: &str = super::rule_name(module_path!());
 
 fn uncited(kind: &str, name: &str, span: &Span, source: &Option<Citation>) -> Option<Diagnostic> {
     let message = match source {
@@ -98,6 +98,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     #[test]
@@ -114,7 +115,7 @@ modbus = { table = "holding", address = 2 }
 source = { doc = "m", section = "2" }
 "#;
         assert_eq!(
-            messages("values_cite_sources", body),
+            messages(RULE, body),
             [
                 "parameter `a` cites no source",
                 "parameter `b` cites no line of `m`"

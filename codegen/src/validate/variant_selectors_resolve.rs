@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 use crate::diagnostic::Diagnostic;
 use crate::ir::{Device, Parameter, Variant};
 
-const RULE: &str = "variant_selectors_resolve";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Reports selectors that are partial, mixed, unresolvable, unreadable or ambiguous.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
@@ -111,6 +111,7 @@ fn value_problems<'a>(
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::{device, messages};
 
     const SELECTOR: &str = r#"
@@ -146,7 +147,7 @@ source = { doc = "m", line = 1 }
             r#"{ parameter = "configuration", value = 400 }"#,
         );
         assert_eq!(
-            messages("variant_selectors_resolve", &body),
+            messages(RULE, &body),
             ["variants `pc400` and `pc507` are both selected by 400"]
         );
         let body = variants(
@@ -154,7 +155,7 @@ source = { doc = "m", line = 1 }
             r#"{ parameter = "configuration", value = 70000 }"#,
         );
         assert_eq!(
-            messages("variant_selectors_resolve", &body),
+            messages(RULE, &body),
             ["70000 does not fit `configuration` (u16)"]
         );
     }
@@ -165,7 +166,7 @@ source = { doc = "m", line = 1 }
             "[[variant]]\nname = \"a\"\nselected_by = {{ parameter = \"configuration\", value = 1 }}\n[[variant]]\nname = \"b\"\n{SELECTOR}"
         );
         assert_eq!(
-            messages("variant_selectors_resolve", &body),
+            messages(RULE, &body),
             ["variant `b` has no `selected_by`"]
         );
         let body = variants(
@@ -173,7 +174,7 @@ source = { doc = "m", line = 1 }
             r#"{ parameter = "other", value = 507 }"#,
         );
         assert_eq!(
-            messages("variant_selectors_resolve", &body),
+            messages(RULE, &body),
             ["variant `pc507` is selected by `other`, the others by `configuration`"]
         );
     }
@@ -186,7 +187,7 @@ source = { doc = "m", line = 1 }
         )
         .replace(r#"access = "r""#, r#"access = "rw", variant = "pc400""#);
         assert_eq!(
-            messages("variant_selectors_resolve", &body),
+            messages(RULE, &body),
             ["`configuration` cannot select the variant: its address depends on the variant"]
         );
         let body = variants(
@@ -194,7 +195,7 @@ source = { doc = "m", line = 1 }
             r#"{ parameter = "missing", value = 507 }"#,
         );
         assert_eq!(
-            messages("variant_selectors_resolve", &body),
+            messages(RULE, &body),
             ["`selected_by` names `missing`, which is not a parameter"]
         );
     }

@@ -4,7 +4,7 @@
 use crate::diagnostic::Diagnostic;
 use crate::ir::{Device, Table};
 
-const RULE: &str = "words_fit_type";
+const RULE: &str = super::rule_name(module_path!());
 
 /// Reports register counts that cannot hold the value and writable input registers.
 pub fn check(device: &Device) -> Vec<Diagnostic> {
@@ -43,6 +43,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
 
 #[cfg(test)]
 mod tests {
+    use super::RULE;
     use crate::validate::test_support::messages;
 
     #[test]
@@ -55,7 +56,7 @@ modbus = { table = "input", address = 0x6B, words = 1 }
 source = { doc = "m", line = 1 }
 "#;
         assert_eq!(
-            messages("words_fit_type", body),
+            messages(RULE, body),
             ["`position` is i32 (4 bytes) but its register at 0x006b spans 1 words"]
         );
     }

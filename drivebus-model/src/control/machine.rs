@@ -125,6 +125,16 @@ impl<'a> Machine<'a> {
             .filter_map(|t| self.states.get(usize::from(t.from)))
     }
 
+    /// The transition a drive in state `from` takes on `cause` (a command value written, or
+    /// nothing: `Automatic`): the first in table order that leaves `from` with that cause. A
+    /// simulated drive walks the table with it.
+    pub fn taken(&self, from: u8, cause: TransitionKind) -> Option<&'a TransitionDef<'a>> {
+        let transitions: &'a [TransitionDef<'a>] = self.transitions;
+        transitions
+            .iter()
+            .find(|t| t.from == from && t.kind == cause)
+    }
+
     /// The next hop from state `from` towards state `to`, using only transitions `allowed` accepts.
     pub fn next(&self, from: u8, to: u8, allowed: impl Fn(&TransitionDef) -> bool) -> Plan<'a> {
         if from == to {
@@ -299,6 +309,28 @@ mod tests {
         assert_eq!(TOY.command_between(0, 2), None, "two hops");
         let into_idle: std::vec::Vec<&str> = TOY.commanded_from(0).map(|s| s.name).collect();
         assert_eq!(into_idle, ["done"], "stuck leaves by an external hop only");
+    }
+
+    #[test]
+    fn a_drive_takes_the_first_transition_with_the_cause() {
+        assert_eq!(
+            TOY.taken(0, TransitionKind::Command(1)).map(|t| t.name),
+            Some("a")
+        );
+        assert_eq!(
+            TOY.taken(0, TransitionKind::Command(2)),
+            None,
+            "no such command"
+        );
+        assert_eq!(
+            TOY.taken(1, TransitionKind::Automatic).map(|t| t.to),
+            Some(2)
+        );
+        assert_eq!(TOY.taken(0, TransitionKind::Automatic), None);
+        assert_eq!(
+            TOY.taken(3, TransitionKind::External).map(|t| t.to),
+            Some(0)
+        );
     }
 
     #[test]

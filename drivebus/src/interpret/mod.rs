@@ -25,7 +25,7 @@ pub use bounds_check::{check, Breach};
 pub use drivebus_model::model::{
     Access, Addressed, BoundedBy, Described, Model, Symbols, Unreachable,
 };
-pub use drivebus_model::{Number, Range, RawValue};
+pub use drivebus_model::{Number, OutsideRange, Range, RawValue};
 #[cfg(feature = "std")]
 pub use input::{parse, InputError};
 #[cfg(feature = "std")]

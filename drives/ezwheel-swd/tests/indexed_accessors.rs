@@ -6,7 +6,7 @@
 mod support;
 
 use drivebus::canopen::NodeId;
-use drivebus::interpret::RawValue;
+use drivebus::interpret::OutsideRange;
 use drivebus::testing::MemoryBus;
 use drivebus::units::Rpm;
 use drivebus::{Error, ValueError};
@@ -63,9 +63,11 @@ fn a_sub_index_outside_the_run_is_a_typed_error_and_nothing_is_sent() {
             err,
             Error::Value(ValueError::OutOfRange {
                 parameter: "safety_controlword_2_command",
-                raw: RawValue::Int(i128::from(outside)),
-                min: RawValue::Int(1),
-                max: RawValue::Int(8),
+                value: OutsideRange::Int {
+                    raw: i128::from(outside),
+                    min: 1,
+                    max: 8
+                },
             })
         );
     }

@@ -49,9 +49,6 @@ impl fmt::Display for StoreResetError {
 
 impl core::error::Error for StoreResetError {}
 
-// `drivebus::Error` carries raw values exactly (`i128`, 16-byte aligned), so the reset's wait
-// beside it reaches clippy's 128 bytes; boxing it would need an allocator in a `no_std` crate.
-#[allow(clippy::result_large_err)]
 impl<L: Link<Protocol = Modbus>> Smartris<L> {
     /// Writes `value` to `P`, stores it in E2PROM, resets the drive and waits until it answers
     /// again; for parameters that take effect only after a store and a reset (operation mode,

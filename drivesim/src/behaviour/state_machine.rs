@@ -12,13 +12,17 @@
 //! command) stands for the register: writing any of those commands is writing its trigger value.
 //! A stop the drive makes on its own (the watchdog's coast or quick stop) enters the `coast` or
 //! `quick_stop` state when the machine names one.
+//!
+//! States and transitions are walked on the model's table (`Machine::state_index`,
+//! `Machine::taken`) as the IR lends it (`StateMachine::with_view`): the same table a drive
+//! crate holds as `MACHINE` and its handle plans with. What this file adds is the drive's side
+//! the table leaves out: which pattern it shows, what the motor does, faults and resets.
 
 use std::collections::HashMap;
 use std::time::Duration;
 
-use drivegen::ir::{
-    self, Effect, Motion as StateMotion, SpeedPhase, StatusPattern, Table, TransitionKind,
-};
+use drivebus::control::TransitionKind as Cause;
+use drivegen::ir::{self, Effect, Motion as StateMotion, SpeedPhase, StatusPattern, Table};
 
 use super::{Behaviour, Halt, Motion, Shared};
 use crate::store::{ParamId, Store};
@@ -106,8 +110,19 @@ impl DescribedMachine {
             .map(|&(_, value)| value)
     }
 
+    /// The index of state `name`, from the model's table.
     fn index(&self, name: &str) -> Option<usize> {
-        self.machine.states.iter().position(|s| s.name == name)
+        self.machine
+            .with_view(|m| m.state_index(name))
+            .map(usize::from)
+    }
+
+    /// The state the current state leads to on `cause`, by the model's table.
+    fn taken(&self, cause: Cause) -> Option<usize> {
+        let from = u8::try_from(self.state).ok()?;
+        self.machine
+            .with_view(|m| m.taken(from, cause).map(|t| t.to))
+            .map(usize::from)
     }
 
     fn current(&self) -> &ir::MachineState {
@@ -135,24 +150,12 @@ impl DescribedMachine {
     fn enter(&mut self, store: &mut Store, state: usize) {
         self.state = state;
         for _ in 0..MAX_AUTOMATIC_HOPS {
-            let next = self
-                .leaving(|t| t.kind == TransitionKind::Automatic)
-                .and_then(|t| self.index(&t.to));
-            match next {
+            match self.taken(Cause::Automatic) {
                 Some(next) => self.state = next,
                 None => break,
             }
         }
         self.show(store);
-    }
-
-    /// The first transition out of the current state that `wanted` accepts.
-    fn leaving(&self, wanted: impl Fn(&ir::Transition) -> bool) -> Option<&ir::Transition> {
-        let name = &self.current().name;
-        self.machine
-            .transitions
-            .iter()
-            .find(|t| t.from.contains(name) && wanted(t))
     }
 
     fn shown_pattern(&self, store: &Store) -> Option<&StatusPattern> {
@@ -209,10 +212,10 @@ impl Behaviour for DescribedMachine {
         let Some(word) = self.command_value(store, id) else {
             return;
         };
-        let commanded = |t: &ir::Transition| {
-            t.kind == TransitionKind::Command && t.command.map(i128::from) == Some(word)
-        };
-        if let Some(next) = self.leaving(commanded).and_then(|t| self.index(&t.to)) {
+        let next = u16::try_from(word)
+            .ok()
+            .and_then(|word| self.taken(Cause::Command(word)));
+        if let Some(next) = next {
             self.enter(store, next);
         }
         shared.motion = self.motion();

@@ -8,6 +8,7 @@
 
 use std::time::Duration;
 
+use drivebus::write_lock::UnlockRule;
 use drivegen::ir::{GrantKey, Lock, TimeoutEffect, Unlock, UnlockEnd};
 
 use super::{Behaviour, Halt, Motion, Shared};
@@ -15,6 +16,13 @@ use crate::refusal::Refusal;
 use crate::store::{ParamId, Store};
 
 /// The lock state of a simulated drive.
+///
+/// Which scope a parameter is in, which scopes an unlock opens, which write grants it and which
+/// loses its requirement are the model's rules (`WriteLock::scope_of`, `UnlockRule::opens`,
+/// `granted_by`, `requirement_lost_by`) over the table the IR lends (`Device::with_write_lock`),
+/// the same table a drive crate holds as `WRITE_LOCK` and its handle follows. What this file
+/// adds is what only the drive knows: its password's value, whether a requirement holds when the
+/// grant arrives, and the events that end an unlock.
 #[derive(Debug)]
 pub struct WriteLock {
     lock: Lock,
@@ -35,14 +43,13 @@ impl WriteLock {
         let device = store.device();
         let lock = device.lock.clone()?;
         let command = store.id(&lock.command)?;
-        let gated = device
-            .parameters
-            .iter()
-            .filter_map(|p| {
-                let scope = lock.scope_of(p)?;
-                Some((store.id(&p.name)?, scope.name.clone()))
-            })
-            .collect();
+        let gated = device.with_write_lock(|view| {
+            let gated = device.parameters.iter().filter_map(|p| {
+                let scope = view.scope_of(&p.name)?;
+                Some((store.id(&p.name)?, scope.name.to_owned()))
+            });
+            gated.collect()
+        })?;
         Some(Self {
             lock,
             command,
@@ -53,37 +60,38 @@ impl WriteLock {
         })
     }
 
+    /// Runs `f` with the rules of the unlocks, in the order of `lock.unlocks`.
+    fn with_rules<R>(store: &Store, f: impl FnOnce(&[UnlockRule<'_>]) -> R) -> Option<R> {
+        store.device().with_write_lock(|view| f(view.unlocks))
+    }
+
     /// Whether an unlock in force opens `scope`.
-    fn open(&self, scope: &str) -> bool {
-        self.active.iter().any(|&u| {
-            let unlock = &self.lock.unlocks[u];
-            let closed = self.requirement_lost.contains(&u)
-                && unlock
-                    .requires
-                    .as_ref()
-                    .is_some_and(|r| r.scopes.iter().any(|s| s == scope));
-            unlock.allows.iter().any(|a| a == scope) && !closed
+    fn open(&self, store: &Store, scope: &str) -> bool {
+        Self::with_rules(store, |rules| {
+            self.active.iter().any(|&u| {
+                let lost = self.requirement_lost.contains(&u);
+                rules.get(u).is_some_and(|rule| rule.opens(scope, lost))
+            })
         })
+        .unwrap_or(false)
     }
 
     fn value_of(store: &Store, name: &str) -> Option<i128> {
         store.int(store.id(name)?)
     }
 
-    /// Whether writing `written` to `id` grants `unlock` now.
-    fn grants(store: &Store, unlock: &Unlock, id: ParamId, written: Option<i128>) -> bool {
-        if store.id(&unlock.grant.parameter) != Some(id) {
-            return false;
-        }
-        let key = match &unlock.grant.key {
-            GrantKey::Value(v) => Some(i128::from(*v)),
-            GrantKey::Password(p) => Self::value_of(store, p),
+    /// Whether the drive takes a grant of `unlock` now, beyond what the model's rule tells a
+    /// client: the value written is its password's current value, and its requirement holds.
+    fn drive_accepts(store: &Store, unlock: &Unlock, written: i128) -> bool {
+        let password = match &unlock.grant.key {
+            GrantKey::Value(_) => true,
+            GrantKey::Password(p) => Self::value_of(store, p) == Some(written),
         };
         let required = unlock.requires.as_ref().is_none_or(|r| {
             Self::value_of(store, &r.parameter)
                 .is_some_and(|v| r.values.iter().any(|a| i128::from(*a) == v))
         });
-        key.is_some() && key == written && required
+        password && required
     }
 
     /// Ends every unlock in force that lists `event`.
@@ -94,25 +102,38 @@ impl WriteLock {
         self.requirement_lost.retain(|u| active.contains(u));
     }
 
-    /// Closes the scopes guarded by the requirements `id` held and no longer holds.
-    fn check_requirements(&mut self, store: &Store, id: ParamId) {
-        let unlocks = &self.lock.unlocks;
-        let lost = self.active.iter().copied().filter(|&u| {
-            let unlock = &unlocks[u];
-            let lost = unlock.requires.as_ref().is_some_and(|r| {
-                store.id(&r.parameter) == Some(id)
-                    && !store
-                        .int(id)
-                        .is_some_and(|v| r.values.iter().any(|a| i128::from(*a) == v))
+    /// Closes the scopes guarded by the requirements the write of `written` to `id` lost.
+    fn check_requirements(&mut self, store: &Store, id: ParamId, written: &[u8]) {
+        let name = &store.parameter(id).name;
+        let lost: Vec<usize> = Self::with_rules(store, |rules| {
+            let lost = self.active.iter().copied().filter(|&u| {
+                rules
+                    .get(u)
+                    .is_some_and(|rule| rule.requirement_lost_by(name, written))
             });
-            lost && unlock.ends.contains(&UnlockEnd::RequirementLost)
-        });
-        let lost: Vec<usize> = lost.collect();
+            lost.collect()
+        })
+        .unwrap_or_default();
         for u in lost {
             if !self.requirement_lost.contains(&u) {
                 self.requirement_lost.push(u);
             }
         }
+    }
+
+    /// The unlocks a write of `written` (`value`, little-endian) to `id` grants.
+    fn granted(&self, store: &Store, id: ParamId, value: i128, written: &[u8]) -> Vec<usize> {
+        let name = &store.parameter(id).name;
+        Self::with_rules(store, |rules| {
+            let granted = rules.iter().zip(&self.lock.unlocks).enumerate();
+            granted
+                .filter(|(_, (rule, unlock))| {
+                    rule.granted_by(name, written) && Self::drive_accepts(store, unlock, value)
+                })
+                .map(|(u, _)| u)
+                .collect()
+        })
+        .unwrap_or_default()
     }
 
     /// The watchdog's timeout and what it does now, if it is armed.
@@ -129,9 +150,9 @@ impl WriteLock {
     }
 
     /// The timeout: the unlocks end, and the action applies if an unlock of its scopes was on.
-    fn time_out(&mut self, shared: &mut Shared, effect: TimeoutEffect) {
+    fn time_out(&mut self, store: &Store, shared: &mut Shared, effect: TimeoutEffect) {
         let acts = self.lock.watchdog.as_ref().is_some_and(|w| {
-            w.acts_with.is_empty() || w.acts_with.iter().any(|scope| self.open(scope))
+            w.acts_with.is_empty() || w.acts_with.iter().any(|scope| self.open(store, scope))
         });
         self.end(UnlockEnd::SerialTimeout);
         if !acts {
@@ -154,9 +175,9 @@ impl WriteLock {
 
 impl Behaviour for WriteLock {
     /// A gated parameter is written only while an unlock opens its scope.
-    fn accept(&self, _store: &Store, id: ParamId, _bytes: &[u8]) -> Result<(), Refusal> {
+    fn accept(&self, store: &Store, id: ParamId, _bytes: &[u8]) -> Result<(), Refusal> {
         match self.gated.iter().find(|(g, _)| *g == id) {
-            Some((_, scope)) if !self.open(scope) => Err(Refusal::Locked {
+            Some((_, scope)) if !self.open(store, scope) => Err(Refusal::Locked {
                 exception: self.lock.refusal,
             }),
             _ => Ok(()),
@@ -168,12 +189,14 @@ impl Behaviour for WriteLock {
             self.end(UnlockEnd::Lock);
             return;
         }
-        self.check_requirements(store, id);
-        let written = store.int(id);
-        for (u, unlock) in self.lock.unlocks.iter().enumerate() {
-            if !Self::grants(store, unlock, id, written) {
-                continue;
-            }
+        // The value as the rules compare it: all of its bits, so that equal means equal.
+        let Some(value) = store.int(id) else {
+            self.silent = Duration::ZERO;
+            return;
+        };
+        let written = value.to_le_bytes();
+        self.check_requirements(store, id, &written);
+        for u in self.granted(store, id, value, &written) {
             self.requirement_lost.retain(|&lost| lost != u);
             if !self.active.contains(&u) {
                 self.active.push(u);
@@ -198,7 +221,7 @@ impl Behaviour for WriteLock {
         self.silent += dt;
         if self.silent > timeout {
             self.silent = Duration::ZERO;
-            self.time_out(shared, effect);
+            self.time_out(store, shared, effect);
         }
     }
 

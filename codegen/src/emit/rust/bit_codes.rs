@@ -6,8 +6,8 @@ use proc_macro2::TokenStream;
 use quote::quote;
 
 use super::ident;
-use crate::emit::ident as names;
 use crate::ir::{Device, Flags};
+use crate::names;
 
 pub fn emit(f: &Flags, device: &Device) -> TokenStream {
     let Some(e) = f.codes.as_deref().and_then(|n| device.enumeration(n)) else {

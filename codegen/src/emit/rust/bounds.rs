@@ -9,8 +9,8 @@ use proc_macro2::TokenStream;
 use quote::quote;
 
 use super::ident;
-use crate::emit::ident as names;
 use crate::ir::Parameter;
+use crate::names;
 
 /// The bounds clause of a write capability of `p`, or nothing when no parameter bounds it.
 pub(super) fn clause(p: &Parameter) -> TokenStream {

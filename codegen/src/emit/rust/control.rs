@@ -2,13 +2,14 @@
 //! `enable_operation` & co. on the handle) when the description has the CiA 402 objects, and a
 //! vendor state machine as data (`[state_machine]`) with its typed states.
 
-use drivebus_model::control::Quirk;
+use drivebus_model::control::{Machine, Quirk, TransitionKind as Cause};
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 
 use super::{doc_attrs, ident};
-use crate::emit::{doc, ident as names};
-use crate::ir::{DataType, Device, Parameter, StateMachine, TransitionKind};
+use crate::emit::doc;
+use crate::ir::{DataType, Device, Parameter};
+use crate::names;
 
 /// The parameter at CANopen object `index`, subindex 0, of type `data_type`.
 fn object(device: &Device, index: u16, data_type: DataType) -> Option<&Parameter> {
@@ -139,11 +140,12 @@ fn modes(device: &Device, handle: &Ident, control: &Ident) -> Option<TokenStream
     })
 }
 
-fn machine_data(m: &StateMachine) -> TokenStream {
+/// The machine's table as a `Machine<'static>` literal, written from the IR's view of it.
+fn machine_data(m: &Machine<'_>) -> TokenStream {
     let states = m.states.iter().map(|s| {
-        let name = s.name.as_str();
+        let name = s.name;
         let (masks, values): (Vec<TokenStream>, Vec<TokenStream>) = s
-            .status
+            .patterns
             .iter()
             .map(|p| (super::hex(p.mask.into()), super::hex(p.value.into())))
             .unzip();
@@ -154,31 +156,21 @@ fn machine_data(m: &StateMachine) -> TokenStream {
             }
         }
     });
-    let index = |name: &str| {
-        let i = m
-            .states
-            .iter()
-            .position(|s| s.name == name)
-            .unwrap_or_default();
-        proc_macro2::Literal::u8_unsuffixed(u8::try_from(i).unwrap_or(u8::MAX))
-    };
-    let transitions = m.transitions.iter().flat_map(|t| {
-        let kind = match (t.kind, t.command) {
-            (TransitionKind::Command, Some(value)) => {
+    let transitions = m.transitions.iter().map(|t| {
+        let kind = match t.kind {
+            Cause::Command(value) => {
                 let value = super::unsuffixed(value.into());
                 quote! { ::drivebus::control::TransitionKind::Command(#value) }
             }
-            (TransitionKind::Automatic, _) => quote! { ::drivebus::control::TransitionKind::Automatic },
-            _ => quote! { ::drivebus::control::TransitionKind::External },
+            Cause::Automatic => quote! { ::drivebus::control::TransitionKind::Automatic },
+            Cause::External => quote! { ::drivebus::control::TransitionKind::External },
         };
-        let (name, to) = (t.name.as_str(), index(&t.to));
-        let text = t.doc.clone().unwrap_or_default();
-        t.from.iter().map(move |from| {
-            let from = index(from);
-            quote! {
-                ::drivebus::control::TransitionDef { name: #name, from: #from, to: #to, kind: #kind, doc: #text }
-            }
-        })
+        let (name, text) = (t.name, t.doc);
+        let from = proc_macro2::Literal::u8_unsuffixed(t.from);
+        let to = proc_macro2::Literal::u8_unsuffixed(t.to);
+        quote! {
+            ::drivebus::control::TransitionDef { name: #name, from: #from, to: #to, kind: #kind, doc: #text }
+        }
     });
     quote! {
         ::drivebus::control::Machine {
@@ -204,7 +196,7 @@ fn vendor(device: &Device, handle: &Ident) -> Option<TokenStream> {
         .iter()
         .map(|s| doc_attrs(&doc::escape(s.doc.as_deref().unwrap_or(&s.name))));
     let module_doc = doc_attrs(&doc::escape(m.doc.as_deref().unwrap_or(&m.name)));
-    let data = machine_data(m);
+    let data = m.with_view(machine_data);
     let goto = format_ident!("goto_{}", module);
     let current = format_ident!("{}_state", module);
     Some(quote! {

@@ -6,8 +6,9 @@ use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
 use super::{doc_attrs, ident, layout, raw_type};
-use crate::emit::{doc, ident as names};
+use crate::emit::doc;
 use crate::ir::{DataType, Enum, EnumValue, ValueClass};
+use crate::names;
 
 /// An integer literal of the given type, so negative and wide values print exactly.
 pub fn int_literal(value: i128, ty: DataType) -> TokenStream {

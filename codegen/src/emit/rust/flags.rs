@@ -5,8 +5,9 @@ use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
 use super::{doc_attrs, ident, layout, raw_type};
-use crate::emit::{doc, ident as names};
+use crate::emit::doc;
 use crate::ir::{Device, Flags};
+use crate::names;
 
 pub fn emit(f: &Flags, device: &Device) -> TokenStream {
     let name = ident(&names::camel(&f.name));

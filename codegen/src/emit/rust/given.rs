@@ -9,8 +9,9 @@ use quote::quote;
 
 use super::read_protocols::read_protocols;
 use super::{doc_attrs, ident, raw_type};
-use crate::emit::{doc, ident as names};
+use crate::emit::doc;
 use crate::ir::{Device, Parameter, Scale};
+use crate::names;
 
 /// The parameters read by some run-time scale, each once, in first-use order.
 fn parameter_inputs(device: &Device) -> Vec<&Parameter> {

@@ -6,8 +6,9 @@ use quote::quote;
 
 use super::addresses::hex;
 use super::{doc_attrs, ident};
-use crate::emit::{doc, ident as names};
+use crate::emit::doc;
 use crate::ir::{Device, Table};
+use crate::names;
 
 fn modbus_limits(device: &Device) -> TokenStream {
     if device.modbus.is_none() {

@@ -17,8 +17,8 @@ use quote::quote;
 use super::read_protocols::read_protocols;
 
 use super::{doc_attrs, ident};
-use crate::emit::ident as names;
 use crate::ir::{Covered, Device, IdentityCheck};
+use crate::names;
 
 pub fn emit(device: &Device) -> TokenStream {
     let checks: Vec<IdentityCheck> = device.identity_checks();

@@ -9,8 +9,9 @@ use proc_macro2::{Ident, Literal, TokenStream};
 use quote::quote;
 
 use super::{concat, doc_attrs, ident, parameter};
-use crate::emit::{doc, ident as names};
+use crate::emit::doc;
 use crate::ir::{Device, IndexedParameter, Parameter};
+use crate::names;
 
 /// Whether `p` is a member of a run, reached through its run's marker and indexed accessor.
 pub(super) fn is_member(p: &Parameter, device: &Device) -> bool {

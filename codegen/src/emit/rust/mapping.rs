@@ -9,8 +9,9 @@ use quote::quote;
 use super::addresses::hex;
 use super::parameter::value_type;
 use super::{doc_attrs, ident, raw_type};
-use crate::emit::{doc, ident as names};
+use crate::emit::doc;
 use crate::ir::{pdo_bits, Device, Mapping, Parameter, Scale};
+use crate::names;
 
 /// `pub mod pdo { ... }` and `pub mod srdo { ... }`, each left out when the description
 /// declares no mapping of its kind.

@@ -122,12 +122,8 @@ pub fn tokens(device: &Device) -> TokenStream {
         )
         .chain(std::iter::once(given::scale_inputs(device))),
     );
-    let control = (!device.device.is_profile).then(|| {
-        control::emit(
-            device,
-            &ident(&crate::emit::ident::camel(&device.device.handle)),
-        )
-    });
+    let control = (!device.device.is_profile)
+        .then(|| control::emit(device, &ident(&crate::names::camel(&device.device.handle))));
     concat([
         variants::emit(device),
         quote! {
@@ -145,10 +141,7 @@ pub fn tokens(device: &Device) -> TokenStream {
         ]),
         braced(params),
         handle::emit(device),
-        indexed::emit(
-            device,
-            &ident(&crate::emit::ident::camel(&device.device.handle)),
-        ),
+        indexed::emit(device, &ident(&crate::names::camel(&device.device.handle))),
         read_blocks::emit(device),
         triggers::emit(device),
         unlock::emit(device),

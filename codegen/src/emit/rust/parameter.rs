@@ -10,8 +10,8 @@ use quote::quote;
 use super::addresses::{self, Direction};
 use super::enums::int_literal;
 use super::{concat, doc_attrs, ident, layout, parameter_doc, raw_type};
-use crate::emit::ident as names;
 use crate::ir::{DataType, Device, Expr, Number, Op, Parameter, Scale, ValueType};
+use crate::names;
 
 /// A raw value as a literal of the parameter's raw type (validation keeps floats finite and
 /// within that type's width).

@@ -6,10 +6,11 @@ use std::fmt::Write as _;
 use proc_macro2::TokenStream;
 use quote::quote;
 
-use crate::emit::{doc, ident as names};
+use crate::emit::doc;
 use crate::ir::{
     Access, Citation, Command, CommandKind, Device, Effect, Parameter, Scale, Table, WordOrder,
 };
+use crate::names;
 
 fn access(a: Access) -> &'static str {
     match (a.read, a.write) {

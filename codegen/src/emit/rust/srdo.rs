@@ -16,7 +16,7 @@ use crate::ir::{Device, Direction, Mapping, SrdoCobId, SrdoDefaults};
 pub(super) fn emit(m: &Mapping, defaults: &SrdoDefaults, device: &Device) -> TokenStream {
     let parameters = mapping::parameters(m, device);
     let fields: Vec<Field> = parameters.iter().step_by(2).map(|p| Field::of(p)).collect();
-    let name = ident(&crate::emit::ident::camel(&m.name));
+    let name = ident(&crate::names::camel(&m.name));
     let entries = parameters.iter().map(|p| mapping::mapped_object(p));
     let total = Literal::usize_unsuffixed(parameters.len());
     let count = Literal::usize_unsuffixed(fields.len());

@@ -7,8 +7,8 @@ use proc_macro2::TokenStream;
 use quote::quote;
 
 use super::{doc_attrs, enums::int_literal, ident, raw_type};
-use crate::emit::ident as names;
 use crate::ir::{CommandKind, Device, Parameter};
+use crate::names;
 
 /// The action commands with a trigger value and a writable address.
 fn triggered(device: &Device) -> impl Iterator<Item = (&Parameter, i64)> {

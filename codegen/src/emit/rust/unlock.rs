@@ -10,8 +10,11 @@ use proc_macro2::{Ident, TokenStream};
 use quote::quote;
 
 use super::{doc_attrs, enums::int_literal, ident};
-use crate::emit::{doc, ident as names};
-use crate::ir::{Device, GrantKey, Lock, LockScope, Parameter, Unlock, UnlockEnd};
+use crate::emit::doc;
+use crate::names;
+use drivebus_model::write_lock::WriteLock;
+
+use crate::ir::{Device, GrantKey, Lock, LockScope, Parameter, Unlock};
 
 /// The trait an unlock marker implements for each scope it opens: `OpensControls`.
 fn opens_trait(scope: &str) -> Ident {
@@ -51,7 +54,7 @@ pub fn emit(device: &Device) -> TokenStream {
             #refusal_doc
             pub const LOCKED_EXCEPTION: u8 = #refusal;
         },
-        write_lock_table(device, lock),
+        device.with_write_lock(write_lock_table).unwrap_or_default(),
         error_type(),
         read_view(),
         guard(&handle, &lock_marker, &lock_bound),
@@ -100,14 +103,13 @@ fn markers(lock: &Lock) -> TokenStream {
 }
 
 /// `WRITE_LOCK`: the lock as the runtime device follows it, so that a write to a locked
-/// parameter through any path (`drive.device().write_raw(..)` too) is refused before sending.
-fn write_lock_table(device: &Device, lock: &Lock) -> TokenStream {
-    let command = &lock.command;
-    let literal = |v: &i64| proc_macro2::Literal::i128_unsuffixed(i128::from(*v));
+/// parameter through any path (`drive.device().write_raw(..)` too) is refused before sending;
+/// written from the IR's view of the lock.
+fn write_lock_table(lock: &WriteLock<'_>) -> TokenStream {
+    let command = lock.command;
+    let literal = |v: &i128| proc_macro2::Literal::i128_unsuffixed(*v);
     let scopes = lock.scopes.iter().map(|scope| {
-        let name = &scope.name;
-        let parameters = scope_parameters(device, scope).map(|p| &p.name);
-        let opened_by = lock.unlocks_opening(&scope.name).map(|u| &u.name);
+        let (name, parameters, opened_by) = (scope.name, scope.parameters, scope.opened_by);
         quote! {
             ::drivebus::write_lock::LockScope {
                 name: #name,
@@ -117,21 +119,19 @@ fn write_lock_table(device: &Device, lock: &Lock) -> TokenStream {
         }
     });
     let unlocks = lock.unlocks.iter().map(|unlock| {
-        let name = &unlock.name;
-        let grant = &unlock.grant.parameter;
-        let key = match &unlock.grant.key {
-            GrantKey::Value(v) => {
+        let (name, grant, opens) = (unlock.name, unlock.grant, unlock.opens);
+        let key = match &unlock.key {
+            Some(v) => {
                 let v = literal(v);
                 quote! { Some(#v) }
             }
-            GrantKey::Password(_) => quote! { None },
+            None => quote! { None },
         };
-        let opens = &unlock.allows;
-        let lost_without = match &unlock.requires {
-            Some(r) if unlock.ends.contains(&UnlockEnd::RequirementLost) => {
-                let parameter = &r.parameter;
+        let lost_without = match &unlock.lost_without {
+            Some(r) => {
+                let parameter = r.parameter;
                 let values = r.values.iter().map(literal);
-                let scopes = &r.scopes;
+                let scopes = r.scopes;
                 quote! {
                     Some(::drivebus::write_lock::Requirement {
                         parameter: #parameter,
@@ -140,7 +140,7 @@ fn write_lock_table(device: &Device, lock: &Lock) -> TokenStream {
                     })
                 }
             }
-            _ => quote! { None },
+            None => quote! { None },
         };
         quote! {
             ::drivebus::write_lock::UnlockRule {
@@ -166,22 +166,11 @@ fn write_lock_table(device: &Device, lock: &Lock) -> TokenStream {
     }
 }
 
-/// The parameters in `scope` of the lock.
-fn scope_parameters<'a>(
-    device: &'a Device,
-    scope: &'a LockScope,
-) -> impl Iterator<Item = &'a Parameter> {
-    device.parameters.iter().filter(move |p| {
-        device
-            .lock_scope_of(p)
-            .is_some_and(|s| s.name == scope.name)
-    })
-}
-
 /// The guard's setters of one scope: one accessor per parameter of the scope.
 fn scope_setters(device: &Device, scope: &LockScope, lock_bound: &TokenStream) -> TokenStream {
     let opens = opens_trait(&scope.name);
-    let setters = scope_parameters(device, scope)
+    let setters = device
+        .scope_members(&scope.name)
         .filter(|p| !super::indexed::is_member(p, device))
         .map(setter);
     quote! {

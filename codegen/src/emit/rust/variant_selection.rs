@@ -6,8 +6,8 @@ use proc_macro2::TokenStream;
 use quote::quote;
 
 use super::{doc_attrs, enums::int_literal, ident, raw_type};
-use crate::emit::ident as names;
 use crate::ir::Device;
+use crate::names;
 
 pub fn emit(device: &Device) -> TokenStream {
     let Some((parameter, values)) = device.variant_selection() else {

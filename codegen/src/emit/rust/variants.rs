@@ -4,8 +4,9 @@ use proc_macro2::TokenStream;
 use quote::quote;
 
 use super::{doc_attrs, ident};
-use crate::emit::{doc, ident as names};
+use crate::emit::doc;
 use crate::ir::Device;
+use crate::names;
 
 pub fn emit(device: &Device) -> TokenStream {
     if device.variants.is_empty() {

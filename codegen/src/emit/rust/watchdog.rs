@@ -6,8 +6,8 @@ use proc_macro2::TokenStream;
 use quote::quote;
 
 use super::{doc_attrs, ident};
-use crate::emit::ident as names;
 use crate::ir::{Device, TimeoutEffect};
+use crate::names;
 
 pub fn emit(device: &Device) -> TokenStream {
     let Some(watchdog) = device.lock.as_ref().and_then(|l| l.watchdog.as_ref()) else {
