@@ -18,6 +18,7 @@ mod identity_names_a_parameter;
 mod identity_values_fit;
 mod indexed_names_are_unique;
 mod input_reads_alias_holding;
+mod lss_has_an_lss_address;
 mod manual_names_are_search_aliases;
 mod mapping_entries_are_mappable;
 mod mapping_numbers_are_unique;
@@ -110,6 +111,7 @@ pub const PASSES: &[(&str, Pass)] = &[
         "canopen_has_mandatory_objects",
         canopen_has_mandatory_objects::check,
     ),
+    ("lss_has_an_lss_address", lss_has_an_lss_address::check),
     (
         "variant_selectors_resolve",
         variant_selectors_resolve::check,
