@@ -44,10 +44,12 @@ fn serve(bus: &InProcessBus, mut nodes: Vec<Node>, stop: &Arc<AtomicBool>) -> Jo
     })
 }
 
+/// Fastscan steps of 20 ms: silence is an answer, so a step must outlast the simulator's
+/// slowest turn on a loaded machine (5 ms steps lost the node under a parallel build).
 fn master(bus: &InProcessBus) -> BlockingLss<InProcessEndpoint> {
     BlockingLss::new(bus.endpoint())
-        .with_timeout(100 * MS)
-        .with_fastscan_step(5 * MS)
+        .with_timeout(500 * MS)
+        .with_fastscan_step(20 * MS)
 }
 
 fn lss(node: &mut Node, command: Command) -> Vec<CanFrame> {
@@ -152,4 +154,22 @@ fn a_drive_whose_manual_names_no_lss_ignores_it() {
     );
     assert!(lss(&mut lafert, Command::SwitchGlobal(LssMode::Configuration)).is_empty());
     assert!(lss(&mut lafert, Command::InquireNodeId).is_empty());
+}
+
+#[test]
+fn the_swd_refuses_a_bit_rate_its_manual_does_not_list() {
+    let mut swd = node(swd(7), 16);
+    lss(&mut swd, Command::SwitchGlobal(LssMode::Configuration));
+    let k100 = Command::ConfigureBitTiming { table: 0, index: 5 };
+    assert_eq!(
+        lss(&mut swd, k100)[0].data()[..2],
+        [0x13, 1],
+        "100k: code 1"
+    );
+    let k250 = Command::ConfigureBitTiming { table: 0, index: 3 };
+    assert_eq!(
+        lss(&mut swd, k250)[0].data()[..2],
+        [0x13, 0],
+        "250k: line 1054"
+    );
 }

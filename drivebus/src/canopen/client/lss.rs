@@ -192,9 +192,11 @@ impl<B: CanBus> BlockingLss<B> {
     }
 
     /// Fastscan: the LSS address of one non-configured slave, now in configuration state, or
-    /// `None` if there is none.
+    /// `None` if there is none. The first step waits the command timeout, the others the
+    /// Fastscan step.
     pub fn fastscan(&mut self) -> Result<Option<LssAddress>, LssError> {
-        let mut scan = Fastscan::new(self.step, self.now());
+        let now = self.now();
+        let mut scan = Fastscan::new(self.step, now).with_reset_wait(self.timeout, now);
         loop {
             while let Some(frame) = scan.poll_transmit() {
                 self.bus.send(&frame)?;

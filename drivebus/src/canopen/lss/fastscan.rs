@@ -6,7 +6,8 @@
 //! whose word matches the bits found so far have a 0 here?" Answered: the bit is 0; silence: it
 //! is 1. A last step per word (BitChecked 0, LSSNext the next word) confirms the whole word and
 //! moves the matching slaves on; after the serial number the one node left enters configuration
-//! state. That is 1 + 4 × 33 steps, each as long as the timeout, because silence is an answer:
+//! state. That is 1 + 4 × 33 steps, each as long as the timeout (the first may wait longer,
+//! [`Fastscan::with_reset_wait`]), because silence is an answer:
 //! choose the timeout from how fast the slaves answer, not from how long a user waits.
 //!
 //! Slaves with smaller addresses win each step, so repeated scans find the nodes in ascending
@@ -48,6 +49,7 @@ pub struct Fastscan {
     sub: u8,
     step: Step,
     timeout: Duration,
+    reset_wait: Duration,
     deadline: Duration,
     outbox: Option<CanFrame>,
     answered: bool,
@@ -62,6 +64,7 @@ impl Fastscan {
             sub: 0,
             step: Step::Reset,
             timeout,
+            reset_wait: timeout,
             deadline: now,
             outbox: None,
             answered: false,
@@ -69,6 +72,17 @@ impl Fastscan {
         };
         scan.queue(now);
         scan
+    }
+
+    /// Lets the first step (does any non-configured node answer?) wait `wait` instead of one
+    /// step: a node that just took another node id, or one still starting, answers in time,
+    /// and answers to earlier commands are over before the bits are asked. Call before sending.
+    pub fn with_reset_wait(mut self, wait: Duration, now: Duration) -> Self {
+        self.reset_wait = wait;
+        if self.step == Step::Reset {
+            self.deadline = now + wait;
+        }
+        self
     }
 
     /// The next frame to send.
@@ -161,7 +175,12 @@ impl Fastscan {
             },
         };
         self.outbox = Some(command.encode());
-        self.deadline = now + self.timeout;
+        let wait = if self.step == Step::Reset {
+            self.reset_wait
+        } else {
+            self.timeout
+        };
+        self.deadline = now + wait;
     }
 
     fn finish(&mut self, end: FastscanProgress) -> FastscanProgress {
