@@ -73,7 +73,12 @@ impl<B: CanBus> BlockingLss<B> {
             let progress = match exchange.deadline() {
                 None => exchange.progress(),
                 Some(deadline) => match self.bus.recv(deadline.saturating_sub(self.now()))? {
-                    Some(frame) => exchange.handle(&frame, self.now()),
+                    // The deadline is checked after every frame too: a bus busy with other
+                    // traffic must not keep the exchange waiting past it.
+                    Some(frame) => match exchange.handle(&frame, self.now()) {
+                        Progress::Pending => exchange.handle_timeout(self.now()),
+                        ended => ended,
+                    },
                     None => exchange.handle_timeout(self.now()),
                 },
             };
@@ -204,10 +209,10 @@ impl<B: CanBus> BlockingLss<B> {
             let Some(deadline) = scan.deadline() else {
                 break;
             };
-            match self.bus.recv(deadline.saturating_sub(self.now()))? {
-                Some(frame) => scan.handle(&frame, self.now()),
-                None => scan.handle_timeout(self.now()),
-            };
+            if let Some(frame) = self.bus.recv(deadline.saturating_sub(self.now()))? {
+                scan.handle(&frame, self.now());
+            }
+            scan.handle_timeout(self.now());
         }
         match scan.progress() {
             FastscanProgress::Found(address) => Ok(Some(address)),

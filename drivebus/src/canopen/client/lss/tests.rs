@@ -183,3 +183,25 @@ fn fastscan_finds_each_non_configured_node_in_turn_and_then_none() {
         Ok(2)
     );
 }
+
+/// A bus that never stops delivering heartbeats and never answers LSS.
+struct Chatter;
+
+impl CanBus for Chatter {
+    fn send(&mut self, _: &CanFrame) -> Result<(), BusError> {
+        Ok(())
+    }
+    fn recv(&mut self, _: Duration) -> Result<Option<CanFrame>, BusError> {
+        Ok(Some(CanFrame::new(0x705, &[0x05]).unwrap()))
+    }
+}
+
+#[test]
+fn other_traffic_does_not_hold_a_command_past_its_timeout() {
+    let mut lss = BlockingLss::new(Chatter).with_timeout(Duration::from_millis(20));
+    let started = std::time::Instant::now();
+    assert_eq!(lss.inquire_node_id(), Err(LssError::NoAnswer));
+    assert_eq!(lss.identify_non_configured(), Ok(0));
+    assert_eq!(lss.fastscan(), Ok(None));
+    assert!(started.elapsed() < Duration::from_secs(2));
+}
