@@ -14,15 +14,13 @@ otherwise. The simulator child is stopped by its PID on exit.
 
 import logging
 import os
-import subprocess
 import sys
 import threading
 
-import can
 import canopen
 from canopen import lss as cs
 
-from canopen_relay import relay_process
+from canopen_relay import master_of_simulator
 
 SERIAL = 0x5A5A0001
 
@@ -72,28 +70,18 @@ def scenario(network):
 def main():
     logging.basicConfig(level=logging.ERROR)
     binary, description = sys.argv[1], sys.argv[2]
-    channel = f"drivegen-lss-{os.getpid()}"
-    bus = can.Bus(interface="virtual", channel=channel)
-    network = canopen.Network()
-    network.connect(interface="virtual", channel=channel)
-    booted = boot_up_waiter(network, 16)
-    sim = subprocess.Popen(
-        [binary, "sim", description, "--can", "candump:stdio",
-         "--set", "vendor_id=0x515", "--set", f"serial_number={SERIAL:#x}"],
-        stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, bufsize=1)
-    try:
-        relay_process(sim, bus)
-        assert booted.wait(20.0), "the simulated SWD did not boot up on 710h"
+    booted = {}
+
+    def prepare(network):
+        booted["16"] = boot_up_waiter(network, 16)
+
+    def run(network):
+        assert booted["16"].wait(20.0), "the simulated SWD did not boot up on 710h"
         scenario(network)
-    except (AssertionError, canopen.lss.LssError, canopen.SdoCommunicationError,
-            canopen.SdoAbortedError) as failed:
-        print(f"FAILED: {failed!r}", flush=True)
-        sys.exit(1)
-    finally:
-        sim.kill()
-        sim.wait()
-        network.disconnect()
-        bus.shutdown()
+
+    sim_args = [description, "--set", "vendor_id=0x515", "--set", f"serial_number={SERIAL:#x}"]
+    errors = (canopen.lss.LssError, canopen.SdoCommunicationError, canopen.SdoAbortedError)
+    master_of_simulator(binary, sim_args, f"drivegen-lss-{os.getpid()}", run, prepare, errors)
     print("ok", flush=True)
 
 
