@@ -173,3 +173,25 @@ fn the_swd_refuses_a_bit_rate_its_manual_does_not_list() {
         "250k: line 1054"
     );
 }
+
+#[test]
+fn two_drives_with_one_lss_address_make_a_selective_switch_fail() {
+    let bus = InProcessBus::new();
+    let stop = Arc::new(AtomicBool::new(false));
+    let twins = vec![node(swd(9), 16), node(swd(9), 17)];
+    let address = twins[0].lss().unwrap().address();
+    let server = serve(&bus, twins, &stop);
+    let mut lss = master(&bus);
+    let result = lss.switch_selective(address);
+    let missing = lss.switch_selective(LssAddress {
+        serial: 10,
+        ..address
+    });
+    stop.store(true, Ordering::Relaxed);
+    server.join().unwrap();
+    assert_eq!(
+        result,
+        Err(drivebus::canopen::lss::LssError::SeveralAnswers)
+    );
+    assert_eq!(missing, Err(drivebus::canopen::lss::LssError::NoAnswer));
+}
