@@ -49,6 +49,8 @@ enum Command {
     Eds(commands::eds::Args),
     /// Find the CANopen nodes or Modbus units on a bus and match their identity against descriptions.
     Scan(commands::scan::Args),
+    /// LSS (CiA 305): find CANopen nodes without a node id (Fastscan), set node ids and bit rates.
+    Lss(commands::lss::Args),
     /// CANopen Safety: the safety configuration signature of an SRDO.
     Safety(commands::safety::Args),
     /// Save a drive's configuration to a file, write it back, or compare it (exit code 0: done
@@ -78,6 +80,7 @@ fn main() -> ExitCode {
         Command::Safety(args) => commands::safety::run(args),
         Command::Scan(args) => commands::scan::run(args),
         Command::Config(args) => commands::config::run(args),
+        Command::Lss(args) => commands::lss::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

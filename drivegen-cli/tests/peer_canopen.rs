@@ -58,6 +58,22 @@ fn python_canopen_drives_the_simulated_lafert_to_operation_enabled() {
     passed("python canopen master", &output);
 }
 
+/// Issue 34: python canopen's `LssMaster` inquires the simulated SWD's node id and identity,
+/// selects it by its LSS address, configures node id 5, stores and resets it; the node boots up
+/// as 5 and answers an SDO upload there.
+#[test]
+fn python_canopen_lss_master_gives_the_simulated_swd_node_id_5() {
+    let swd = workspace_root().join("descriptions/ezwheel-swd");
+    let output = peer("lss_master.py", &[Path::new(BIN), &swd]);
+    let shown = passed("python canopen LSS master", &output);
+    assert_eq!(shown, "ok");
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        stdout.contains("booted as node 5, 1018h sub 1 = 0x515"),
+        "{stdout}"
+    );
+}
+
 /// The shipped descriptions with a CANopen side.
 fn canopen_descriptions() -> Vec<PathBuf> {
     let mut found: Vec<PathBuf> = std::fs::read_dir(workspace_root().join("descriptions"))

@@ -17,12 +17,11 @@ import subprocess
 import sys
 import time
 
-import can
 import canopen
 from canopen import objectdictionary as od
 from canopen.sdo.exceptions import SdoAbortedError
 
-from canopen_relay import relay_process
+from canopen_relay import master_of_simulator
 
 TYPES = {
     "bool": od.BOOLEAN, "u8": od.UNSIGNED8, "u16": od.UNSIGNED16, "u24": od.UNSIGNED24,
@@ -102,27 +101,15 @@ def main():
     logging.basicConfig(level=logging.ERROR)  # python canopen warns on every SDO statusword read
     binary, description, node_id = sys.argv[1], sys.argv[2], int(sys.argv[3], 0)
     ir = json.loads(subprocess.check_output([binary, "dump", description, "--json"]))
-    channel = f"drivegen-master-{os.getpid()}"
-    bus = can.Bus(interface="virtual", channel=channel)
-    network = canopen.Network()
-    network.connect(interface="virtual", channel=channel)
-    sim = subprocess.Popen(
-        [binary, "sim", description, "--can", "candump:stdio", "--node-id", str(node_id)],
-        stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, bufsize=1)
-    try:
-        relay_process(sim, bus)
+
+    def run(network):
         node = canopen.BaseNode402(node_id, dictionary(ir))
         network.add_node(node)
         time.sleep(0.2)
         scenario(node)
-    except AssertionError as failed:
-        print(f"FAILED: {failed}", flush=True)
-        sys.exit(1)
-    finally:
-        sim.kill()
-        sim.wait()
-        network.disconnect()
-        bus.shutdown()
+
+    sim_args = [description, "--node-id", str(node_id)]
+    master_of_simulator(binary, sim_args, f"drivegen-master-{os.getpid()}", run, errors=())
     print("ok", flush=True)
 
 

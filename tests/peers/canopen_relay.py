@@ -8,6 +8,7 @@ write to 0x2000 sends an EMCY with the written code (register 0x01, manufacturer
 It exits when stdin closes.
 """
 import os
+import subprocess
 import sys
 import threading
 
@@ -49,6 +50,34 @@ def relay_process(process, bus):
 
     for target in (from_process, to_process):
         threading.Thread(target=target, daemon=True).start()
+
+
+def master_of_simulator(binary, sim_args, channel, scenario, prepare=None,
+                        errors=(canopen.SdoAbortedError, canopen.SdoCommunicationError)):
+    """Runs `scenario(network)` as a master of `binary sim SIM_ARGS --can candump:stdio`, relayed
+    to python-can's virtual bus `channel`, and returns its result. `prepare(network)` runs before
+    the simulator starts (to subscribe to its first frames). An AssertionError or one of `errors`
+    prints "FAILED: ..." and exits 1. The simulator child is stopped by its PID, the buses shut
+    down."""
+    bus = can.Bus(interface="virtual", channel=channel)
+    network = canopen.Network()
+    network.connect(interface="virtual", channel=channel)
+    if prepare is not None:
+        prepare(network)
+    sim = subprocess.Popen(
+        [binary, "sim", *sim_args, "--can", "candump:stdio"],
+        stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, bufsize=1)
+    try:
+        relay_process(sim, bus)
+        return scenario(network)
+    except (AssertionError, *errors) as failed:
+        print(f"FAILED: {failed}", flush=True)
+        sys.exit(1)
+    finally:
+        sim.kill()
+        sim.wait()
+        network.disconnect()
+        bus.shutdown()
 
 
 def relay_stdio(bus):

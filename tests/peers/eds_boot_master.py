@@ -16,14 +16,12 @@ or prints the failed check and exits 1.
 
 import logging
 import os
-import subprocess
 import sys
 import time
 
-import can
 import canopen
 
-from canopen_relay import relay_process
+from canopen_relay import master_of_simulator
 
 
 HEARTBEAT_MS = 50
@@ -82,31 +80,18 @@ def drive_402(node):
 def main():
     logging.basicConfig(level=logging.ERROR)  # python canopen warns on every SDO statusword read
     binary, description, eds, node_id = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4], 0)
-    channel = f"drivegen-boot-{os.getpid()}"
-    bus = can.Bus(interface="virtual", channel=channel)
-    network = canopen.Network()
-    network.connect(interface="virtual", channel=channel)
-    sim = subprocess.Popen(
-        [binary, "sim", description, "--can", "candump:stdio", "--node-id", str(node_id),
-         "--heartbeat-ms", str(HEARTBEAT_MS)],
-        stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, bufsize=1)
-    try:
-        relay_process(sim, bus)
+
+    def run(network):
         node = canopen.BaseNode402(node_id, eds)
         network.add_node(node)
         node.sdo.RESPONSE_TIMEOUT = 2.0
         time.sleep(0.2)
         found = identity(node)
         boot(node)
-        states = drive_402(node)
-    except (AssertionError, canopen.SdoAbortedError, canopen.SdoCommunicationError) as failed:
-        print(f"FAILED: {failed}", flush=True)
-        sys.exit(1)
-    finally:
-        sim.kill()
-        sim.wait()
-        network.disconnect()
-        bus.shutdown()
+        return found, drive_402(node)
+
+    sim_args = [description, "--node-id", str(node_id), "--heartbeat-ms", str(HEARTBEAT_MS)]
+    found, states = master_of_simulator(binary, sim_args, f"drivegen-boot-{os.getpid()}", run)
     shown = ", ".join(f"{name} {value:#010x}" for name, value in found.items())
     print(f"ok: {shown}; NMT OPERATIONAL; {states}", flush=True)
 

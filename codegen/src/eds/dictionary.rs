@@ -118,6 +118,8 @@ pub struct DeviceInfo {
     pub product_name: Option<String>,
     /// `NodeID` of a DCF.
     pub node_id: Option<u8>,
+    /// `LSS_Supported=1`: the device is an LSS slave (CiA 305).
+    pub lss_supported: bool,
     /// `[Comments]` lines.
     pub comments: Vec<String>,
 }
@@ -299,6 +301,8 @@ pub fn read(ini: &Ini, diagnostics: &mut Vec<Diagnostic>) -> Dictionary {
                 let text = |k: &str| section.get(k).map(|e| e.value.to_owned());
                 dictionary.device.vendor_name = text("vendorname");
                 dictionary.device.product_name = text("productname");
+                dictionary.device.lss_supported = text("lss_supported")
+                    .is_some_and(|v| v.trim() == "1" || v.trim().eq_ignore_ascii_case("true"));
             }
             SectionKind::Commissioning => {
                 dictionary.device.node_id = commissioning(section, diagnostics)

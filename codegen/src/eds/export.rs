@@ -77,6 +77,10 @@ fn header(out: &mut String, device: &Device) {
         clean(id.vendor.as_deref().unwrap_or(""))
     );
     let _ = writeln!(out, "ProductName={}", clean(&id.name));
+    // CiA 306 [DeviceInfo] LSS_Supported: the device is an LSS slave (CiA 305).
+    if device.canopen.as_ref().is_some_and(|c| c.lss.is_some()) {
+        let _ = writeln!(out, "LSS_Supported=1");
+    }
     if let Some(doc) = &id.doc {
         let lines: Vec<&str> = doc.lines().collect();
         let _ = writeln!(out, "\n[Comments]\nLines={}", lines.len());

@@ -146,6 +146,7 @@ pub fn empty_device(name: &str, model: &EdsModel) -> ir::Device {
         modbus: None,
         canopen: Some(ir::CanOpenCaps {
             default_node_id: model.device.node_id.unwrap_or(1),
+            lss: lss(&model.device),
             source: None,
         }),
         identity: None,
@@ -180,4 +181,12 @@ pub fn typed_parameters(
         parameters.push(e.take_parameter(cited, ty, diagnostics));
     }
     parameters
+}
+
+/// LSS support as `[DeviceInfo] LSS_Supported` states it (CiA 306); the EDS is the citation.
+pub(crate) fn lss(device: &DeviceInfo) -> Option<crate::ir::Lss> {
+    device.lss_supported.then(|| crate::ir::Lss {
+        source: None,
+        span: crate::diagnostic::Span::default(),
+    })
 }

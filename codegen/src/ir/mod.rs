@@ -493,8 +493,21 @@ impl ModbusCaps {
 pub struct CanOpenCaps {
     /// Node id out of the box.
     pub default_node_id: u8,
+    /// The device is an LSS slave (CiA 305): node id and bit rate can be set over LSS.
+    /// `None` when the manual does not say so.
+    pub lss: Option<Lss>,
     /// Citation.
     pub source: Option<Citation>,
+}
+
+/// LSS (CiA 305) support, as the manual states it.
+#[derive(Debug, Clone, Serialize)]
+pub struct Lss {
+    /// Citation of the manual's statement.
+    pub source: Option<Citation>,
+    /// Where it is declared.
+    #[serde(skip)]
+    pub span: Span,
 }
 
 /// A firmware or parameter-configuration variant.

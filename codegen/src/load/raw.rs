@@ -153,6 +153,14 @@ pub struct RawReadBlock {
 #[serde(deny_unknown_fields)]
 pub struct RawCanOpenCaps {
     pub default_node_id: Option<Spanned<i64>>,
+    pub lss: Option<Spanned<RawLss>>,
+    pub source: Option<Spanned<RawCitation>>,
+}
+
+/// `lss = { source }`: the device is an LSS slave (CiA 305), as the cited manual line says.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawLss {
     pub source: Option<Spanned<RawCitation>>,
 }
 

@@ -53,6 +53,7 @@ passes![
     identity_names_a_parameter,
     identity_values_fit,
     pub(crate) canopen_has_mandatory_objects,
+    lss_has_an_lss_address,
     variant_selectors_resolve,
     manual_names_are_search_aliases,
     unlocks_resolve,

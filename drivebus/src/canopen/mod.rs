@@ -11,6 +11,7 @@
 //!   `server`, with `canopen`) the SDO server.
 //! * [`nmt`], [`heartbeat`], [`emcy`], [`sync`], [`pdo`] — the other CiA 301 services.
 //! * `srdo` — (`srdo`, in `canopen`) CANopen Safety SRDOs: consumer, producer, signature, safety writes.
+//! * [`lss`] — LSS (CiA 305) master: node ids and bit rates, Fastscan; with `server`, a slave.
 //! * [`message`] — classifies any frame of the predefined connection set into typed values.
 //! * [`can`] — the [`CanBus`] trait; with `canopen`: the CAN interfaces SocketCAN, SLCAN, candump
 //!   streams and an in-process bus.
@@ -63,6 +64,7 @@ pub mod emcy;
 pub mod frame;
 pub mod heartbeat;
 mod link;
+pub mod lss;
 pub mod message;
 pub mod nmt;
 pub mod pdo;

@@ -7,6 +7,7 @@ pub mod diff;
 pub mod dump;
 pub mod eds;
 pub mod generate;
+pub mod lss;
 pub mod new;
 pub mod read;
 pub mod safety;

@@ -64,6 +64,11 @@ pub struct Args {
     /// else 1 on RS-232); repeat it to put several nodes on one CAN bus.
     #[arg(long)]
     node_id: Vec<u8>,
+    /// --can: start every node without a node id (LSS "not configured"), silent until an LSS
+    /// master (`drivegen lss scan --assign`) gives it one; the drives must be LSS slaves. The
+    /// --node-id values then only tell the drives apart (for --set, e.g. a serial_number each).
+    #[arg(long)]
+    lss_unconfigured: bool,
     /// Heartbeat period in ms when the description has no 1017h (0: none).
     #[arg(long, default_value_t = 0)]
     heartbeat_ms: u64,
@@ -110,6 +115,11 @@ pub fn run(args: Args) -> Result<(), CliError> {
             .map_err(|e| CliError::Io(format!("{path}: {e}")));
     }
     if let Some(backend) = &args.can {
+        let devices: Vec<&Device> = drives.iter().map(|d| &d.device).collect();
+        let settings = CanSettings {
+            bitrate: can::bitrate(args.bitrate, &devices),
+            baud: args.baud.unwrap_or(can::DEFAULT_SLCAN_BAUD),
+        };
         let mut nodes = drives
             .iter()
             .map(|d| {
@@ -122,14 +132,20 @@ pub fn run(args: Args) -> Result<(), CliError> {
                     heartbeat: (args.heartbeat_ms > 0)
                         .then(|| Duration::from_millis(args.heartbeat_ms)),
                 };
-                Ok(Node::new(d.sim.clone(), config, d.sim.variant()))
+                let node = Node::new(d.sim.clone(), config, d.sim.variant())
+                    .lss_bit_rate(settings.bitrate);
+                if !args.lss_unconfigured {
+                    return Ok(node);
+                }
+                if node.lss().is_none() {
+                    return Err(CliError::Usage(format!(
+                        "--lss-unconfigured: {} is not an LSS slave (its description has no `[canopen] lss`)",
+                        d.device.device.name
+                    )));
+                }
+                Ok(node.lss_unconfigured())
             })
             .collect::<Result<Vec<_>, CliError>>()?;
-        let devices: Vec<&Device> = drives.iter().map(|d| &d.device).collect();
-        let settings = CanSettings {
-            bitrate: can::bitrate(args.bitrate, &devices),
-            baud: args.baud.unwrap_or(can::DEFAULT_SLCAN_BAUD),
-        };
         return run_can(&mut nodes, backend, settings, &ids(&drives));
     }
     if let Some(path) = &args.kinco_rs232 {

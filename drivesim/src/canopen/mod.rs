@@ -1,7 +1,8 @@
 //! The CANopen side of the simulator: the object dictionary view of the drive, and a node with
-//! NMT, heartbeat, an SDO server and SRDOs, run over any [`CanBus`](drivebus::canopen::CanBus).
+//! NMT, heartbeat, an SDO server, SRDOs and (for LSS slaves) LSS, run over any [`CanBus`](drivebus::canopen::CanBus).
 
 pub mod dictionary;
+pub mod lss;
 pub mod node;
 pub mod nodes;
 pub mod srdo;

@@ -1,10 +1,17 @@
-//! A CANopen node: boot-up, NMT state, heartbeat producer, the SDO server and the SRDOs, sans-I/O,
-//! plus a blocking loop over any CAN backend.
+//! A CANopen node: boot-up, NMT state, heartbeat producer, the SDO server, the SRDOs and, when
+//! the description makes the drive an LSS slave, LSS (CiA 305), sans-I/O, plus a blocking loop
+//! over any CAN backend.
+//!
+//! A node LSS gave no node id (FFh) is silent but for LSS: no boot-up, heartbeat, SDO or EMCY
+//! until a master configures one. A new node id takes effect at the next NMT reset (or at once
+//! for a node that had none, when the master switches it back to LSS waiting state); the node
+//! then boots up at it. Only a stored one survives [`Node::power_cycle`].
 
 use std::time::Duration;
 
 use drivebus::canopen::emcy::{Emcy, ErrorRegister};
 use drivebus::canopen::frame::cob;
+use drivebus::canopen::lss::{LssSlave, SlaveEvent, UNCONFIGURED};
 use drivebus::canopen::nmt::{heartbeat_frame, NmtCommand, NmtState};
 use drivebus::canopen::sdo::server::SdoServer;
 use drivebus::canopen::{CanBus, CanFrame, NodeId};
@@ -34,6 +41,10 @@ pub struct Node {
     next_heartbeat: Duration,
     reported_fault: Option<u16>,
     srdos: Srdos,
+    variant: Option<String>,
+    lss: Option<LssSlave>,
+    /// LSS left the node without a node id: it is silent but for LSS.
+    silent: bool,
 }
 
 impl Node {
@@ -44,6 +55,7 @@ impl Node {
         let dictionary =
             sim.with(|drive| Dictionary::new(sim.clone(), drive.store().device(), variant));
         let srdos = sim.with(|drive| Srdos::new(drive.store(), config.node));
+        let lss = sim.with(|drive| super::lss::slave(drive.store(), config.node.0, 1_000_000));
         Self {
             config,
             sim,
@@ -52,7 +64,71 @@ impl Node {
             next_heartbeat: Duration::ZERO,
             reported_fault: None,
             srdos,
+            variant: variant.map(str::to_owned),
+            lss,
+            silent: false,
         }
+    }
+
+    /// Starts at bit rate `bits` (bit/s) as far as LSS tells (inquiries and configuration);
+    /// 1 Mbit/s otherwise.
+    pub fn lss_bit_rate(mut self, bits: u32) -> Self {
+        let node = self.config.node.0;
+        let sim = &self.sim;
+        self.lss = sim.with(|drive| super::lss::slave(drive.store(), node, bits));
+        self
+    }
+
+    /// Starts without a node id (LSS "not configured", FFh), as a drive out of the box may:
+    /// silent until an LSS master gives it one. No effect unless the drive is an LSS slave.
+    pub fn lss_unconfigured(mut self) -> Self {
+        if let Some(lss) = &self.lss {
+            let (address, timing) = (lss.address(), lss.bit_timing());
+            self.lss = Some(LssSlave::new(address, UNCONFIGURED, timing));
+            self.silent = true;
+        }
+        self
+    }
+
+    /// The node's LSS slave, if the drive is one.
+    pub fn lss(&self) -> Option<&LssSlave> {
+        self.lss.as_ref()
+    }
+
+    /// The node id it communicates at; `None` while LSS left it without one.
+    pub fn node_id(&self) -> Option<NodeId> {
+        (!self.silent).then_some(self.config.node)
+    }
+
+    /// Power off and on: the drive restarts from its stored values and LSS from its stored node
+    /// id; returns the boot-up, if the node has a node id.
+    pub fn power_cycle(&mut self, now: Duration) -> Option<CanFrame> {
+        self.sim.with(|drive| drive.reboot());
+        if let Some(id) = self.lss.as_mut().map(LssSlave::power_cycle) {
+            self.renumber(id);
+        }
+        self.boot(now)
+    }
+
+    /// Takes node id `id` (FFh: none): the SDO server and SRDOs move to it.
+    fn renumber(&mut self, id: u8) {
+        let Some(node) = NodeId::new(id) else {
+            self.silent = true;
+            self.state = NmtState::Initializing;
+            return;
+        };
+        self.silent = false;
+        if node == self.config.node {
+            return;
+        }
+        self.config.node = node;
+        let sim = self.sim.clone();
+        sim.with(|drive| drive.at_node(node.0));
+        let dictionary = sim.with(|drive| {
+            Dictionary::new(sim.clone(), drive.store().device(), self.variant.as_deref())
+        });
+        self.sdo = SdoServer::new(node, dictionary);
+        self.srdos = sim.with(|drive| Srdos::new(drive.store(), node));
     }
 
     /// The NMT state.
@@ -60,15 +136,33 @@ impl Node {
         self.state
     }
 
-    /// Ends initialisation: the boot-up message, then PRE-OPERATIONAL.
-    pub fn boot(&mut self, now: Duration) -> CanFrame {
+    /// Ends initialisation: the boot-up message, then PRE-OPERATIONAL. A node without a node id
+    /// stays silent (`None`).
+    pub fn boot(&mut self, now: Duration) -> Option<CanFrame> {
+        if self.silent {
+            return None;
+        }
         self.state = NmtState::PreOperational;
         self.next_heartbeat = now;
-        heartbeat_frame(self.config.node, NmtState::Initializing)
+        Some(heartbeat_frame(self.config.node, NmtState::Initializing))
     }
 
     /// Handles a received frame at time `now`; returns the frames to send.
     pub fn handle(&mut self, frame: &CanFrame, now: Duration) -> Vec<CanFrame> {
+        if let Some(lss) = &mut self.lss {
+            if frame.id() == drivebus::canopen::lss::MASTER_COB {
+                let (answer, event) = lss.handle(frame);
+                let mut out: Vec<CanFrame> = answer.into_iter().collect();
+                if let Some(SlaveEvent::NodeIdAssigned(id)) = event {
+                    self.renumber(id);
+                    out.extend(self.boot(now));
+                }
+                return out;
+            }
+        }
+        if self.silent {
+            return Vec::new();
+        }
         if let Some((command, target)) = NmtCommand::decode(frame) {
             if target.is_none_or(|t| t == self.config.node) {
                 return self.nmt(command, now);
@@ -93,9 +187,13 @@ impl Node {
         match command {
             NmtCommand::ResetNode => {
                 self.sim.with(|drive| drive.reboot());
-                vec![self.boot(now)]
+                self.lss_reset();
+                self.boot(now).into_iter().collect()
             }
-            NmtCommand::ResetCommunication => vec![self.boot(now)],
+            NmtCommand::ResetCommunication => {
+                self.lss_reset();
+                self.boot(now).into_iter().collect()
+            }
             other => {
                 let target = other.target_state();
                 if target == NmtState::Operational && self.state != NmtState::Operational {
@@ -107,6 +205,13 @@ impl Node {
                 self.state = target;
                 Vec::new()
             }
+        }
+    }
+
+    /// An NMT reset activates the node id LSS configured (CiA 305).
+    fn lss_reset(&mut self) {
+        if let Some(id) = self.lss.as_mut().map(LssSlave::reset_communication) {
+            self.renumber(id);
         }
     }
 
@@ -128,6 +233,7 @@ impl Node {
     pub fn poll_emcy(&mut self) -> Option<CanFrame> {
         let fault = self.sim.with(|drive| drive.fault());
         if fault == self.reported_fault
+            || self.silent
             || matches!(self.state, NmtState::Stopped | NmtState::Initializing)
         {
             return None;
@@ -150,7 +256,7 @@ impl Node {
     /// Frames due at time `now` (heartbeats).
     pub fn poll(&mut self, now: Duration) -> Option<CanFrame> {
         let period = self.heartbeat_period()?;
-        if self.state == NmtState::Initializing || now < self.next_heartbeat {
+        if self.silent || self.state == NmtState::Initializing || now < self.next_heartbeat {
             return None;
         }
         self.next_heartbeat = now + period;

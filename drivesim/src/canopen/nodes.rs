@@ -25,7 +25,10 @@ pub fn run_while<B: CanBus>(
     keep_running: impl Fn() -> bool,
 ) -> Result<(), BusError> {
     let epoch = Instant::now();
-    let boot_ups: Vec<CanFrame> = nodes.iter_mut().map(|n| n.boot(epoch.elapsed())).collect();
+    let boot_ups: Vec<CanFrame> = nodes
+        .iter_mut()
+        .filter_map(|n| n.boot(epoch.elapsed()))
+        .collect();
     send_all(nodes, bus, boot_ups, epoch)?;
     while keep_running() {
         let received = bus.recv(TURN)?;

@@ -66,8 +66,13 @@ fn constructors(device: &Device, handle: &proc_macro2::Ident) -> TokenStream {
             }
         }
     });
+    let lss = device.canopen.as_ref().is_some_and(|c| c.lss.is_some());
     let canopen = has_canopen.then(|| {
         quote! {
+            /// Whether the drive is an LSS slave (CiA 305), so its node id and bit rate can be
+            /// set over LSS (`drivebus::canopen::lss`); from its description.
+            pub const LSS_SUPPORTED: bool = #lss;
+
             impl<B: ::drivebus::canopen::SdoBus> #handle<::drivebus::canopen::CanOpenLink<B>> {
                 /// A drive reached over CANopen at `node`.
                 pub fn canopen(bus: B, node: ::drivebus::canopen::NodeId) -> Self {

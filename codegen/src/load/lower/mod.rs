@@ -442,6 +442,10 @@ impl Lowering<'_> {
             .unwrap_or(1);
         ir::CanOpenCaps {
             default_node_id,
+            lss: raw.lss.as_ref().map(|lss| ir::Lss {
+                source: lss.get_ref().source.as_ref().and_then(|c| self.citation(c)),
+                span: self.span(lss),
+            }),
             source: raw.source.as_ref().and_then(|c| self.citation(c)),
         }
     }

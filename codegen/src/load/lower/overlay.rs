@@ -105,6 +105,7 @@ impl<'m> Overlay<'m> {
         if device.canopen.is_none() {
             device.canopen = Some(ir::CanOpenCaps {
                 default_node_id: self.model.device.node_id.unwrap_or(1),
+                lss: crate::eds::lss(&self.model.device),
                 source: None,
             });
         }

@@ -82,6 +82,9 @@ pub mod params {
 pub struct Case<L> {
     device: ::drivebus::Device<L>,
 }
+/// Whether the drive is an LSS slave (CiA 305), so its node id and bit rate can be
+/// set over LSS (`drivebus::canopen::lss`); from its description.
+pub const LSS_SUPPORTED: bool = false;
 impl<B: ::drivebus::canopen::SdoBus> Case<::drivebus::canopen::CanOpenLink<B>> {
     /// A drive reached over CANopen at `node`.
     pub fn canopen(bus: B, node: ::drivebus::canopen::NodeId) -> Self {

@@ -1,5 +1,6 @@
 //! A blocking SDO client over any [`CanBus`]: the sans-I/O transfers driven with a real clock.
 
+pub mod lss;
 pub mod scan;
 
 use core::time::Duration;

@@ -56,12 +56,23 @@ fn answer(node: &NodeIdentity, devices: &[Device]) -> Answer {
 
 /// The descriptions whose known CANopen identity the node reports.
 fn matching<'a>(devices: &'a [Device], node: &NodeIdentity) -> Vec<&'a Device> {
+    matching_identity(devices, node.vendor_id, node.product_code, node.revision)
+}
+
+/// The descriptions whose `[identity]` covers a node reporting these 1018h entries (also the
+/// LSS address `drivegen lss` finds).
+pub(crate) fn matching_identity(
+    devices: &[Device],
+    vendor_id: Option<u32>,
+    product_code: Option<u32>,
+    revision: Option<u32>,
+) -> Vec<&Device> {
     devices
         .iter()
         .filter(|d| {
             d.identity
                 .as_ref()
-                .is_some_and(|id| id.covers_node(node.vendor_id, node.product_code, node.revision))
+                .is_some_and(|id| id.covers_node(vendor_id, product_code, revision))
         })
         .collect()
 }

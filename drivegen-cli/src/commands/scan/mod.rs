@@ -4,7 +4,7 @@
 //! identity register of each candidate description ([`modbus`]). A drive no description covers
 //! gets a "no match" line; nothing is ever written.
 
-mod canopen;
+pub(crate) mod canopen;
 mod modbus;
 
 use std::path::{Path, PathBuf};
@@ -115,7 +115,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
 }
 
 /// The names of the descriptions that cover a drive, or `no match`.
-fn verdict(matches: &[&Device]) -> String {
+pub(crate) fn verdict(matches: &[&Device]) -> String {
     if matches.is_empty() {
         return "no match".into();
     }
@@ -124,13 +124,13 @@ fn verdict(matches: &[&Device]) -> String {
 }
 
 /// The names of the descriptions that cover a drive, for JSON.
-fn names(matches: &[&Device]) -> Vec<String> {
+pub(crate) fn names(matches: &[&Device]) -> Vec<String> {
     matches.iter().map(|d| d.device.name.clone()).collect()
 }
 
 /// The shipped descriptions: every folder with a device.toml under the source tree's
 /// `descriptions/` (profiles are included by them, not drives).
-fn shipped() -> Result<Vec<PathBuf>, CliError> {
+pub(crate) fn shipped() -> Result<Vec<PathBuf>, CliError> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions");
     let entries = std::fs::read_dir(&root).map_err(|e| {
         CliError::Usage(format!(
