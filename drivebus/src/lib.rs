@@ -35,6 +35,7 @@
 #[cfg(any(feature = "std", test))]
 extern crate std;
 
+mod async_handle_macro;
 #[cfg(feature = "async")]
 pub mod asynch;
 pub mod bus_error_kind;

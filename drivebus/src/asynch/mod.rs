@@ -6,10 +6,15 @@
 //! an executor: time comes from a [`Timer`] the application supplies (tokio's behind feature
 //! `tokio`, an embassy timer, a test clock), so the async API builds for `no_std` targets.
 
+mod accessor;
+mod device;
 mod link;
+mod read_set;
+mod replay;
 mod timer;
 
 pub use link::{Async, AsyncLink};
+pub use read_set::AsyncReadSet;
 #[cfg(feature = "tokio")]
 pub use timer::TokioTimer;
 pub use timer::{within, Elapsed, Timer};

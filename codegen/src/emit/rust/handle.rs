@@ -88,6 +88,15 @@ fn constructors(device: &Device, handle: &proc_macro2::Ident) -> TokenStream {
     quote! { #modbus #canopen #rs232 }
 }
 
+/// The protocols of the async constructors, as `async_handle!` takes them: `, modbus(LIMITS)`.
+fn async_protocols(device: &Device) -> TokenStream {
+    let has = |on: fn(&crate::ir::Parameter) -> bool| device.parameters.iter().any(on);
+    let modbus = has(|p| !p.modbus.is_empty()).then(|| quote! { , modbus(MODBUS_LIMITS) });
+    let canopen = has(|p| !p.canopen.is_empty()).then(|| quote! { , canopen });
+    let rs232 = has(|p| !p.rs232.is_empty()).then(|| quote! { , rs232 });
+    quote! { #modbus #canopen #rs232 }
+}
+
 /// Whether any address of `p` allows reading.
 fn readable(p: &crate::ir::Parameter) -> bool {
     p.modbus.iter().any(|a| a.access.read)
@@ -162,6 +171,7 @@ pub fn emit(device: &Device) -> TokenStream {
         }
     });
     let constructors = constructors(device, &handle);
+    let async_protocols = async_protocols(device);
     let lock_items = device
         .lock
         .is_some()
@@ -180,8 +190,8 @@ pub fn emit(device: &Device) -> TokenStream {
 
         #constructors
 
-        impl<L: ::drivebus::Link> #handle<L> {
-            /// A drive reached over any link.
+        impl<L> #handle<L> {
+            /// A drive reached over any link (an async one as `Async(link)`, see `new_async`).
             pub fn new(link: L) -> Self {
                 Self { device: ::drivebus::Device::new(link, ::drivebus::VariantId::default())#write_lock }
             }
@@ -196,14 +206,19 @@ pub fn emit(device: &Device) -> TokenStream {
                 self.device.into_link()
             }
 
+            #variant_setter
+        }
+
+        impl<L: ::drivebus::Link> #handle<L> {
             /// Reads several parameters at once, e.g. `drive.read_many((params::A, params::B))`,
             /// in as few requests as the link allows.
             pub fn read_many<S: ::drivebus::read_set::ReadSet<L>>(&mut self, set: S) -> Result<S::Values, ::drivebus::Error> {
                 self.device.read_many(set)
             }
-
-            #variant_setter
         }
+
+        // With drivebus's `async`: `new_async`, `read_many_async` and the async constructors.
+        ::drivebus::async_handle!(#handle #async_protocols);
 
         /// The handle's accessors, one per parameter: in a module of their own so that their
         /// signatures name `Accessor` and the markers without a path.
@@ -213,7 +228,7 @@ pub fn emit(device: &Device) -> TokenStream {
             use super::{params, #handle #lock_items};
             use ::drivebus::Accessor;
 
-            impl<L: ::drivebus::Link> #handle<L> {
+            impl<L> #handle<L> {
                 #( #accessors )*
             }
         }
