@@ -224,3 +224,18 @@ fn a_sub_index_run_is_reached_and_checked_as_the_blocking_one() {
     let beyond = now(Indexed::<_, Limit>::new(&mut device, 1).write_raw(1001));
     assert!(matches!(beyond, Some(Err(Error::Value(_)))));
 }
+
+#[test]
+fn a_parameter_behind_an_unlock_is_read_as_the_blocking_one_reads_it() {
+    let mut d = pair();
+    let value = same(
+        &mut d,
+        |b| drivebus::LockedAccessor::new(b.parameter::<Setpoint>()).read(),
+        async |a| {
+            drivebus::LockedAccessor::new(a.parameter::<Setpoint>())
+                .read()
+                .await
+        },
+    );
+    assert_eq!(value, Ok(Rpm(-1200.0)));
+}

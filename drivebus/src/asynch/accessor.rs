@@ -1,10 +1,11 @@
-//! The accessors of an async handle: [`Accessor`] and [`Indexed`] over [`Async<L>`], with the
-//! methods of their blocking twins, awaited.
+//! The accessors of an async handle: [`Accessor`], [`Indexed`] and [`LockedAccessor`] over
+//! [`Async<L>`], with the methods of their blocking twins, awaited.
 
 use super::link::{Async, AsyncLink};
 use crate::device::{named, Accessor};
 use crate::error::Error;
 use crate::indexed::{at, member_of, Indexed, Run, SubIndexed};
+use crate::locked_accessor::{LockedAccessor, WritableWithoutUnlock};
 use crate::parameter::{Parameter, Readable, ValueOf, Writable};
 use crate::Protocol;
 
@@ -94,5 +95,33 @@ where
     {
         let sub = member_of::<R>(self.subindex)?;
         self.device.write_raw_at::<R>(R::NAME, raw, at(sub)).await
+    }
+}
+
+impl<L: AsyncLink, P: Readable<L::Protocol>> LockedAccessor<'_, Async<L>, P> {
+    /// Reads the value in engineering units.
+    pub async fn read(self) -> Result<P::Value, Error> {
+        self.0.read().await
+    }
+
+    /// Reads the raw value.
+    pub async fn read_raw(self) -> Result<P::Raw, Error> {
+        self.0.read_raw().await
+    }
+
+    /// Does not compile: the parameter is written only while the drive is unlocked.
+    pub async fn write(self, value: impl ValueOf<P>) -> Result<(), Error>
+    where
+        P: WritableWithoutUnlock + Writable<L::Protocol>,
+    {
+        self.0.write(value).await
+    }
+
+    /// Does not compile: the parameter is written only while the drive is unlocked.
+    pub async fn write_raw(self, raw: P::Raw) -> Result<(), Error>
+    where
+        P: WritableWithoutUnlock + Writable<L::Protocol>,
+    {
+        self.0.write_raw(raw).await
     }
 }

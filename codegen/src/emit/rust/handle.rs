@@ -150,7 +150,7 @@ pub fn emit(device: &Device) -> TokenStream {
                     #docs
                     #aliases
                     pub fn #method(&mut self) -> LockedAccessor<'_, L, #marker_path> {
-                        LockedAccessor(self.device.parameter())
+                        LockedAccessor::new(self.device.parameter())
                     }
                 };
             }
@@ -172,10 +172,8 @@ pub fn emit(device: &Device) -> TokenStream {
     });
     let constructors = constructors(device, &handle);
     let async_protocols = async_protocols(device);
-    let lock_items = device
-        .lock
-        .is_some()
-        .then(|| quote! { , LockedAccessor, Unlocked });
+    let lock_items = device.lock.is_some().then(|| quote! { , Unlocked });
+    let locked_accessor = device.lock.is_some().then(|| quote! { , LockedAccessor });
     // A drive with a write lock: the device follows it (`unlock.rs` emits `WRITE_LOCK`).
     let write_lock = device
         .lock
@@ -226,7 +224,7 @@ pub fn emit(device: &Device) -> TokenStream {
             use super::params::*;
             #[allow(unused_imports)]
             use super::{params, #handle #lock_items};
-            use ::drivebus::Accessor;
+            use ::drivebus::{Accessor #locked_accessor};
 
             impl<L> #handle<L> {
                 #( #accessors )*
