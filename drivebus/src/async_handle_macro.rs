@@ -35,10 +35,12 @@ macro_rules! async_handle {
         $($crate::async_handle!(@protocol $handle $protocol $(($limits))?);)*
     };
     (@protocol $handle:ident modbus($limits:expr)) => {
-        impl<B: $crate::modbus::AsyncRegisterBus> $handle<$crate::asynch::Async<$crate::modbus::ModbusLink<B>>> {
+        impl<B: $crate::modbus::AsyncRegisterBus>
+            $handle<$crate::asynch::Async<$crate::modbus::ModbusLink<B, $crate::modbus::StaticLimits>>>
+        {
             /// A drive reached over an async Modbus client at `unit`.
             pub fn modbus_async(bus: B, unit: $crate::modbus::UnitId) -> Self {
-                Self::new_async($crate::modbus::ModbusLink::new(bus, unit, $limits))
+                Self::new_async($crate::modbus::ModbusLink::new_static(bus, unit, $limits))
             }
         }
     };

@@ -6,8 +6,8 @@ use crate::asynch::AsyncLink;
 use crate::error::BusError;
 use crate::link::ReadRequest;
 
-use super::address::{ModbusAddress, ModbusLimits, Table, UnitId, MAX_VALUE_WORDS};
-use super::link::{value_from, Rounds, WritePlan, MAX_BATCH};
+use super::address::{ModbusAddress, Table, UnitId, MAX_VALUE_WORDS};
+use super::link::{value_from, Rounds, StaticLimits, WritePlan, MAX_BATCH};
 use super::pdu::MAX_READ_REGISTERS;
 use super::{Modbus, ModbusLink, RegisterRead};
 
@@ -93,7 +93,8 @@ impl<B: AsyncRegisterBus + ?Sized> AsyncRegisterBus for &mut B {
     }
 }
 
-impl<B: AsyncRegisterBus> AsyncLink for ModbusLink<B, ModbusLimits<'_>> {
+// Over `StaticLimits`, not `ModbusLimits<'a>`: see `StaticLimits` for why no lifetime.
+impl<B: AsyncRegisterBus> AsyncLink for ModbusLink<B, StaticLimits> {
     type Protocol = Modbus;
 
     async fn read(&mut self, address: &ModbusAddress, out: &mut [u8]) -> Result<usize, BusError> {
@@ -138,7 +139,7 @@ impl<B: AsyncRegisterBus> AsyncLink for ModbusLink<B, ModbusLimits<'_>> {
         &mut self,
         requests: &mut [ReadRequest<'_, ModbusAddress>],
     ) -> Result<(), BusError> {
-        let (unit, limits) = (self.unit(), self.limits());
+        let (unit, limits) = (self.unit(), *self.static_limits());
         let mut rounds = Rounds::new(requests);
         let mut registers = [[0u16; MAX_READ_REGISTERS as usize]; MAX_BATCH];
         while let Some((mut reads, count)) = rounds.next(&limits, &mut registers)? {

@@ -28,13 +28,58 @@ impl<'a, B> ModbusLink<B, ModbusLimits<'a>> {
     pub fn new(bus: B, unit: UnitId, limits: ModbusLimits<'a>) -> Self {
         Self { bus, unit, limits }
     }
-    /// The unit this link talks to.
-    pub fn unit(&self) -> UnitId {
-        self.unit
-    }
     /// The device limits this link respects.
     pub fn limits(&self) -> ModbusLimits<'a> {
         self.limits
+    }
+}
+
+impl<B> ModbusLink<B, StaticLimits> {
+    /// Binds async `bus` to `unit`, respecting the device's `limits` (a generated crate's
+    /// `MODBUS_LIMITS`): the link a generated async handle holds.
+    pub fn new_static(bus: B, unit: UnitId, limits: ModbusLimits<'static>) -> Self {
+        Self {
+            bus,
+            unit,
+            limits: StaticLimits(limits),
+        }
+    }
+
+    /// The device limits this link respects.
+    pub fn static_limits(&self) -> &ModbusLimits<'static> {
+        &self.limits.0
+    }
+}
+
+/// `'static` [`ModbusLimits`] in a type without a lifetime parameter: what the async link
+/// holds. A lifetime in the link's type, even `'static`, keeps rustc from proving the async
+/// API's futures `Send` ("implementation of `AsyncLink` is not general enough"), and
+/// `tokio::spawn` would refuse them.
+#[derive(Debug, Clone, Copy)]
+pub struct StaticLimits(pub ModbusLimits<'static>);
+
+/// The limits a [`ModbusLink`] holds, as it reads them.
+pub trait LimitsSource {
+    /// The limits.
+    fn get(&self) -> &ModbusLimits<'_>;
+}
+
+impl LimitsSource for ModbusLimits<'_> {
+    fn get(&self) -> &ModbusLimits<'_> {
+        self
+    }
+}
+
+impl LimitsSource for StaticLimits {
+    fn get(&self) -> &ModbusLimits<'_> {
+        &self.0
+    }
+}
+
+impl<B, L: LimitsSource> ModbusLink<B, L> {
+    /// The unit this link talks to.
+    pub fn unit(&self) -> UnitId {
+        self.unit
     }
     /// The underlying bus.
     pub fn bus_mut(&mut self) -> &mut B {
@@ -47,7 +92,7 @@ impl<'a, B> ModbusLink<B, ModbusLimits<'a>> {
 
     /// How many registers a read of `address` fills: checked against the limits before the I/O.
     pub(crate) fn read_words(&self, address: &ModbusAddress) -> Result<usize, BusError> {
-        check_item(&self.limits, address)?;
+        check_item(self.limits.get(), address)?;
         Ok(address.words as usize)
     }
 
@@ -70,9 +115,10 @@ impl<'a, B> ModbusLink<B, ModbusLimits<'a>> {
             ));
         }
         le_to_registers(data, address.word_order, &mut registers[..words]);
+        let limits = self.limits.get();
         Ok(if words == 1 {
             WritePlan::Single
-        } else if self.limits.write_multiple && words <= self.limits.max_write_registers as usize {
+        } else if limits.write_multiple && words <= limits.max_write_registers as usize {
             WritePlan::Multiple(words)
         } else {
             // Without FC 0x10 the words go one by one, lowest address first; the device sees
@@ -86,7 +132,7 @@ impl<'a, B> ModbusLink<B, ModbusLimits<'a>> {
     pub(crate) fn failed_in(&self, requests: &[ReadRequest<'_, ModbusAddress>]) -> Option<usize> {
         let refused = requests
             .iter()
-            .position(|request| check_item(&self.limits, &request.address).is_err());
+            .position(|request| check_item(self.limits.get(), &request.address).is_err());
         let unread = (0..requests.len()).filter(|&i| requests[i].len == 0);
         refused.or_else(|| {
             unread.min_by_key(|&i| (requests[i].address.table, requests[i].address.address))

@@ -50,7 +50,7 @@ pub use address::{
 pub use async_bus::AsyncRegisterBus;
 pub use drivebus_model::modbus::Modbus;
 pub use exception::ExceptionCode;
-pub use link::ModbusLink;
+pub use link::{LimitsSource, ModbusLink, StaticLimits};
 #[cfg(feature = "std")]
 pub use shared_bus::SharedBus;
 

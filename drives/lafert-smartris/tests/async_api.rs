@@ -60,6 +60,9 @@ async fn typed_async_reads_writes_and_read_many_against_the_simulator() {
         }))
     );
     assert_eq!(drive.speed_setpoint().read().await, Ok(Rpm(1500.0)));
+    // The handle's futures are `Send`: a multi-threaded runtime can run them on any worker.
+    let task = tokio::spawn(async move { drive.bus_dc_link().read().await });
+    assert_eq!(task.await.unwrap(), Ok(Volts(49.5)));
 }
 
 #[path = "support/pymodbus_server.rs"]
