@@ -168,3 +168,41 @@ async fn a_connection_closed_under_a_pending_request_is_a_typed_error_not_a_hang
     );
     server.await.unwrap();
 }
+
+#[tokio::test]
+async fn a_batch_is_in_flight_at_once_and_answers_are_matched_by_transaction_id() {
+    let (listener, address) = listener().await;
+    let server = tokio::spawn(async move {
+        let mut stream = accept(&listener).await;
+        // Both requests must be in before either is answered: a client waiting for the first
+        // answer would time out here.
+        let first = mbap_request(&mut stream).await.unwrap();
+        let second = mbap_request(&mut stream).await.unwrap();
+        stream.write_all(&mbap_answer(second, 222)).await.unwrap();
+        stream.write_all(&mbap_answer(first, 111)).await.unwrap();
+        stream
+    });
+    let cfg = AsyncClientConfig {
+        max_in_flight: 2,
+        ..config(Duration::from_secs(2))
+    };
+    let mut client = AsyncClient::tcp(connect(&address, &cfg).await.unwrap(), TokioTimer, cfg);
+    let (mut a, mut b) = ([0u16], [0u16]);
+    let mut reads = [
+        drivebus::modbus::RegisterRead::new(Table::Holding, 0x10, &mut a),
+        drivebus::modbus::RegisterRead::new(Table::Holding, 0x20, &mut b),
+    ];
+    let outcome = timeout(
+        Duration::from_secs(1),
+        client.read_register_batch(UNIT, &mut reads),
+    )
+    .await;
+    assert_eq!(outcome, Ok(Ok(())), "well before the 2 s timeout");
+    assert!(reads.iter().all(|read| read.done));
+    assert_eq!(
+        (a, b),
+        ([111], [222]),
+        "answers in reverse order, each to its request"
+    );
+    drop(server.await.unwrap());
+}

@@ -5,7 +5,7 @@
 
 use std::time::Duration;
 
-use drivebus::modbus::async_client::{AsyncClientConfig, AsyncTcpClient};
+use drivebus::modbus::async_client::{AsyncClientConfig, AsyncRtuClient, AsyncTcpClient};
 use drivebus::modbus::UnitId;
 use drivebus::units::{Rpm, Volts};
 use drivebus::{Error, OutsideBound};
@@ -100,4 +100,22 @@ async fn typed_async_api_against_pymodbus() {
     drive.control_word().write(run).await.unwrap();
     assert_eq!(drive.control_word().read().await, Ok(run));
     drive.speed_setpoint().write(Rpm(3000.0)).await.unwrap();
+}
+
+#[tokio::test]
+async fn typed_async_api_over_rtu_over_tcp_against_pymodbus() {
+    let server = pymodbus_server::start_mode("rtu-over-tcp", &[]);
+    let client = AsyncRtuClient::connect(&server.address, config())
+        .await
+        .expect("connect to pymodbus");
+    let mut drive = Smartris::modbus_async(client, UnitId(1));
+    assert_eq!(drive.bus_dc_link().read().await, Ok(Volts(41.96)));
+    assert_eq!(drive.axis_position().read_raw().await, Ok(0x1234_5678));
+    drive.modbus_address().write(2).await.unwrap();
+    assert_eq!(drive.modbus_address().read().await, Ok(2));
+    let (status, volts) = drive
+        .read_many_async((params::DriveStatus, params::BusDcLink))
+        .await
+        .unwrap();
+    assert_eq!((status.bits(), volts), (0x1060, Volts(41.96)));
 }

@@ -32,10 +32,15 @@ pub fn start_server() -> Server {
 
 /// Starts `modbus_server.py tcp` with extra options (e.g. `--firmware 226`).
 pub fn start_server_with(options: &[&str]) -> Server {
+    start_mode("tcp", options)
+}
+
+/// Starts `modbus_server.py <mode>` (`tcp`, `rtu-over-tcp`) with extra options.
+pub fn start_mode(mode: &str, options: &[&str]) -> Server {
     let python = python();
     let mut child = Command::new(&python)
         .arg(workspace_root().join("tests/peers/modbus_server.py"))
-        .arg("tcp")
+        .arg(mode)
         .args(options)
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())
