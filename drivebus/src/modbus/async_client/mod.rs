@@ -47,7 +47,8 @@ pub struct AsyncClientConfig {
     /// Which failed requests are repeated.
     pub retry: RetryPolicy,
     /// Silence kept before every request (t3.5 and the device's turnaround on RTU; usually
-    /// zero on TCP).
+    /// zero on TCP). A `Timer` tells no time, so the whole gap is waited before each request,
+    /// however long the line has been idle (the blocking client waits only what is left).
     pub idle_gap: Duration,
     /// How many reads of a batch may await their answers at once (at most
     /// [`MAX_IN_FLIGHT`]); above 1, Modbus TCP sends them together. Default 1, as the blocking
