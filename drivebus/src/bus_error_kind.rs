@@ -36,6 +36,7 @@ impl BusError {
             Self::Rs232Exchange { error, .. } => rs232_kind(error),
             Self::Unsupported(_) => BusErrorKind::Unsupported,
             Self::CanBusOff | Self::CanQueueFull => BusErrorKind::Bus,
+            Self::Closed => BusErrorKind::Io,
             #[cfg(feature = "std")]
             Self::Io(_) => BusErrorKind::Io,
         }

@@ -6,7 +6,7 @@ use crate::bound::OutsideBound;
 use crate::error::{BusError, Error, ValueError, WriteRefusal};
 use crate::given::Given;
 use crate::link::{Link, MAX_VALUE_BYTES};
-use crate::parameter::{Parameter, RawInteger, Readable, ValueOf, Writable};
+use crate::parameter::{BoundBy, Parameter, RawInteger, Readable, ValueOf, Writable};
 use crate::read_set::ReadSet;
 use crate::value::WireValue;
 use crate::write_lock::{LockAccount, WriteLock};
@@ -15,15 +15,15 @@ use crate::VariantId;
 /// A link plus the device's selected variant; generated drive handles wrap one.
 #[derive(Debug)]
 pub struct Device<L> {
-    link: L,
-    variant: VariantId,
+    pub(crate) link: L,
+    pub(crate) variant: VariantId,
     /// Set while the drive is not one the description covers: every write fails before sending.
-    refusal: Option<WriteRefusal>,
+    pub(crate) refusal: Option<WriteRefusal>,
     /// The drive's write lock and the unlocks sent through this handle, if it has a lock: a
     /// write to a locked parameter fails before sending.
     lock: Option<LockAccount>,
     /// Values given when the handle was opened (model constants, unreadable scale inputs).
-    given: Given,
+    pub(crate) given: Given,
 }
 
 /// The address type of `L`'s protocol.
@@ -33,7 +33,8 @@ pub(crate) fn bus_error(parameter: &'static str) -> impl Fn(BusError) -> Error {
     move |cause| Error::Bus { parameter, cause }
 }
 
-impl<L: Link> Device<L> {
+// What needs no I/O: one impl for the blocking and the async device.
+impl<L> Device<L> {
     /// A device reached over `link`, in configuration `variant`.
     pub fn new(link: L, variant: VariantId) -> Self {
         Self {
@@ -112,6 +113,124 @@ impl<L: Link> Device<L> {
         self.link
     }
 
+    /// A typed accessor for parameter `P`.
+    pub fn parameter<P: Parameter>(&mut self) -> Accessor<'_, L, P> {
+        Accessor {
+            device: self,
+            parameter: PhantomData,
+        }
+    }
+
+    /// Where a read of parameter `name` goes: `address`, its address in the current variant
+    /// (`by_variant`: whether that address depends on the variant), unless the parameter cannot
+    /// be read now. Before the I/O of every read, blocking or async.
+    pub(crate) fn read_target<A>(
+        &self,
+        name: &'static str,
+        by_variant: bool,
+        address: Option<A>,
+    ) -> Result<A, Error> {
+        if let Some(WriteRefusal::UnknownVariant { selector, value }) = self.refusal {
+            if by_variant {
+                return Err(Error::VariantUnknown {
+                    parameter: name,
+                    selector,
+                    value,
+                });
+            }
+        }
+        address.ok_or(Error::NotInVariant { parameter: name })
+    }
+
+    /// The checks of a write of `raw` to `P` (errors naming `name`) that need no I/O: the range
+    /// and allowed values, then the refusal of writes and the lock. Returns whether the write
+    /// is bounded (its bounds are read next): a stop is neither refused nor bounded.
+    pub(crate) fn write_checks<P: Parameter>(
+        &self,
+        name: &'static str,
+        raw: &P::Raw,
+    ) -> Result<bool, Error> {
+        P::check(raw).map_err(|e| Error::Value(e.named(name)))?;
+        let stops = P::stops(raw);
+        let refusal = self.refusal.or_else(|| self.lock.as_ref()?.refusal(name));
+        if let Some(reason) = refusal.filter(|_| !stops) {
+            return Err(Error::WritesRefused {
+                parameter: name,
+                reason,
+            });
+        }
+        Ok(!stops)
+    }
+
+    /// After a write's I/O: the lock's account follows what was sent and how it ended.
+    pub(crate) fn written(
+        &mut self,
+        name: &'static str,
+        bytes: &[u8],
+        outcome: Result<(), BusError>,
+    ) -> Result<(), Error> {
+        if let Some(lock) = &mut self.lock {
+            lock.follow(name, bytes, &outcome);
+        }
+        outcome.map_err(bus_error(name))
+    }
+}
+
+/// The raw value of parameter `name` from the bytes read: after the I/O of every read.
+pub(crate) fn raw_from<R: WireValue>(name: &'static str, bytes: &[u8]) -> Result<R, Error> {
+    R::decode_le(bytes).map_err(|e| Error::Value(e.named(name)))
+}
+
+/// The integer value of `parameter` from the bytes read (a bound, an identity parameter).
+pub(crate) fn integer_from<Pr: crate::Protocol>(
+    parameter: &RawInteger<Pr>,
+    bytes: &[u8],
+) -> Result<i128, Error> {
+    (parameter.decode)(bytes).map_err(|e| Error::Value(e.named(parameter.name)))
+}
+
+/// Refuses a write of `raw` to `P` that lies beyond `limit`, the current value of `bound`'s
+/// parameter.
+pub(crate) fn within_bound<P: Parameter, Pr: crate::Protocol>(
+    bound: &BoundBy<Pr>,
+    raw: i128,
+    limit: i128,
+) -> Result<(), Error> {
+    if bound.bound.breached(raw, limit) {
+        return Err(Error::OutsideBound(OutsideBound {
+            parameter: P::NAME,
+            bound: bound.by.name,
+            raw,
+            limit,
+        }));
+    }
+    Ok(())
+}
+
+/// The little-endian bytes of a write of `raw` (errors naming `name`), `wire_bytes` long (0:
+/// the raw type's own length), in `buf`: before the I/O of every write.
+pub(crate) fn write_bytes<'b, R: WireValue>(
+    name: &'static str,
+    raw: &R,
+    wire_bytes: usize,
+    buf: &'b mut [u8; MAX_VALUE_BYTES],
+) -> Result<&'b [u8], Error> {
+    let len = match wire_bytes {
+        0 => R::WIRE_BYTES,
+        n => n,
+    };
+    let bytes = buf
+        .get_mut(..len)
+        .ok_or(Error::Value(ValueError::WrongLength {
+            expected: MAX_VALUE_BYTES,
+            actual: len,
+        }))?;
+    raw.encode_le(bytes)
+        .map_err(|e| Error::Value(e.named(name)))?;
+    Ok(bytes)
+}
+
+impl<L: Link> Device<L> {
     /// Reads a parameter in engineering units.
     pub fn read<P: Readable<L::Protocol>>(&mut self) -> Result<P::Value, Error> {
         let raw = self.read_raw::<P>()?;
@@ -135,9 +254,16 @@ impl<L: Link> Device<L> {
     ) -> Result<P::Raw, Error> {
         let mut buf = [0u8; MAX_VALUE_BYTES];
         // `read_address`, not `READ_AT`: a run's member moves its run's placement.
-        let address = P::read_address(self.variant).map(at);
-        let len = self.read_bytes(name, P::READ_AT.depends_on_variant(), address, &mut buf)?;
-        P::Raw::decode_le(&buf[..len]).map_err(|e| Error::Value(e.named(name)))
+        let address = self.read_target(
+            name,
+            P::READ_AT.depends_on_variant(),
+            P::read_address(self.variant).map(at),
+        )?;
+        let len = self
+            .link
+            .read(&address, &mut buf)
+            .map_err(bus_error(name))?;
+        raw_from(name, &buf[..len])
     }
 
     /// Reads another parameter's raw integer value: a bound before a write, an identity
@@ -148,35 +274,13 @@ impl<L: Link> Device<L> {
     ) -> Result<i128, Error> {
         let mut buf = [0u8; MAX_VALUE_BYTES];
         let address = parameter.read_at.get(self.variant);
-        let len = self.read_bytes(
+        let address = self.read_target(
             parameter.name,
             parameter.read_at.depends_on_variant(),
             address,
-            &mut buf,
         )?;
-        (parameter.decode)(&buf[..len]).map_err(|e| Error::Value(e.named(parameter.name)))
-    }
-
-    /// Reads the bytes of parameter `name` from `address` (its address in the current variant;
-    /// `by_variant`: whether that address depends on the variant) into `buf`; returns how many.
-    fn read_bytes(
-        &mut self,
-        name: &'static str,
-        by_variant: bool,
-        address: Option<ProtocolAddress<L>>,
-        buf: &mut [u8; MAX_VALUE_BYTES],
-    ) -> Result<usize, Error> {
-        if let Some(WriteRefusal::UnknownVariant { selector, value }) = self.refusal {
-            if by_variant {
-                return Err(Error::VariantUnknown {
-                    parameter: name,
-                    selector,
-                    value,
-                });
-            }
-        }
-        let address = address.ok_or(Error::NotInVariant { parameter: name })?;
-        self.link.read(&address, buf).map_err(bus_error(name))
+        let len = (self.link.read(&address, &mut buf)).map_err(bus_error(parameter.name))?;
+        integer_from(parameter, &buf[..len])
     }
 
     /// Writes a parameter in engineering units; range-checked before anything is sent.
@@ -203,39 +307,16 @@ impl<L: Link> Device<L> {
         raw: P::Raw,
         at: impl FnOnce(ProtocolAddress<L>) -> ProtocolAddress<L>,
     ) -> Result<(), Error> {
-        let named = |e: ValueError| Error::Value(e.named(name));
-        P::check(&raw).map_err(named)?;
-        let stops = P::stops(&raw);
-        let refusal = self.refusal.or_else(|| self.lock.as_ref()?.refusal(name));
-        if let Some(reason) = refusal.filter(|_| !stops) {
-            return Err(Error::WritesRefused {
-                parameter: name,
-                reason,
-            });
-        }
-        if !stops {
+        if self.write_checks::<P>(name, &raw)? {
             self.check_bounds::<P>(&raw)?;
         }
         let address = P::write_address(self.variant)
             .map(at)
             .ok_or(Error::NotInVariant { parameter: name })?;
-        let len = match self.link.wire_bytes(&address) {
-            0 => P::Raw::WIRE_BYTES,
-            n => n,
-        };
         let mut buf = [0u8; MAX_VALUE_BYTES];
-        let bytes = buf
-            .get_mut(..len)
-            .ok_or(Error::Value(ValueError::WrongLength {
-                expected: MAX_VALUE_BYTES,
-                actual: len,
-            }))?;
-        raw.encode_le(bytes).map_err(named)?;
+        let bytes = write_bytes(name, &raw, self.link.wire_bytes(&address), &mut buf)?;
         let outcome = self.link.write(&address, bytes);
-        if let Some(lock) = &mut self.lock {
-            lock.follow(name, bytes, &outcome);
-        }
-        outcome.map_err(bus_error(name))
+        self.written(name, bytes, outcome)
     }
 
     /// Reads the parameters that bound `P` and refuses `raw` if it lies beyond one's current
@@ -247,14 +328,7 @@ impl<L: Link> Device<L> {
         };
         for bound in P::BOUNDS {
             let limit = self.read_integer(&bound.by)?;
-            if bound.bound.breached(raw, limit) {
-                return Err(Error::OutsideBound(OutsideBound {
-                    parameter: P::NAME,
-                    bound: bound.by.name,
-                    raw,
-                    limit,
-                }));
-            }
+            within_bound::<P, _>(bound, raw, limit)?;
         }
         Ok(())
     }
@@ -262,14 +336,6 @@ impl<L: Link> Device<L> {
     /// Reads several parameters at once, in as few requests as the link can manage.
     pub fn read_many<S: ReadSet<L>>(&mut self, set: S) -> Result<S::Values, Error> {
         set.read_from(self)
-    }
-
-    /// A typed accessor for parameter `P`.
-    pub fn parameter<P: Parameter>(&mut self) -> Accessor<'_, L, P> {
-        Accessor {
-            device: self,
-            parameter: PhantomData,
-        }
     }
 }
 
@@ -281,7 +347,7 @@ pub(crate) fn named<P: Parameter>(error: ValueError) -> Error {
 /// A borrowed handle on one parameter of a device: `drive.bus_dc_link().read()`.
 #[must_use = "an accessor does nothing until read or written"]
 pub struct Accessor<'d, L, P> {
-    device: &'d mut Device<L>,
+    pub(crate) device: &'d mut Device<L>,
     parameter: PhantomData<P>,
 }
 

@@ -129,6 +129,9 @@ pub enum BusError {
     CanBusOff,
     /// The CAN transmit queue stayed full (`ENOBUFS`) through every bounded retry.
     CanQueueFull,
+    /// The byte stream ended (the peer closed the connection) under a pending request, or a
+    /// request dropped mid-send left a torn frame on it: open a new connection.
+    Closed,
     /// The underlying I/O channel failed.
     #[cfg(feature = "std")]
     Io(std::io::ErrorKind),
@@ -163,6 +166,10 @@ impl fmt::Display for BusError {
             Self::Unsupported(what) => write!(f, "not supported by the device: {what}"),
             Self::CanBusOff => write!(f, "the CAN controller went bus-off"),
             Self::CanQueueFull => write!(f, "the CAN transmit queue stayed full (ENOBUFS)"),
+            Self::Closed => write!(
+                f,
+                "the connection closed, or a dropped request tore a frame"
+            ),
             #[cfg(feature = "std")]
             Self::Io(kind) => write!(f, "I/O error: {kind}"),
         }

@@ -42,7 +42,7 @@ impl SubIndexed for ObjectAddress {
 }
 
 /// Sub-index `subindex` of run `R`, or the typed error for one outside it (nothing is sent).
-fn member_of<R: Run>(subindex: u8) -> Result<u8, Error> {
+pub(crate) fn member_of<R: Run>(subindex: u8) -> Result<u8, Error> {
     if (R::FIRST..=R::LAST).contains(&subindex) {
         return Ok(subindex);
     }
@@ -61,8 +61,8 @@ fn member_of<R: Run>(subindex: u8) -> Result<u8, Error> {
 /// sent); errors after that name the run too.
 #[must_use = "an accessor does nothing until read or written"]
 pub struct Indexed<'d, L, R> {
-    device: &'d mut Device<L>,
-    subindex: u8,
+    pub(crate) device: &'d mut Device<L>,
+    pub(crate) subindex: u8,
     run: PhantomData<R>,
 }
 
@@ -137,7 +137,7 @@ where
 }
 
 /// The placement of a member at `subindex`, from the run's.
-fn at<A: SubIndexed>(subindex: u8) -> impl FnOnce(A) -> A {
+pub(crate) fn at<A: SubIndexed>(subindex: u8) -> impl FnOnce(A) -> A {
     move |address| address.at_subindex(subindex)
 }
 

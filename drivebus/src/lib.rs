@@ -35,6 +35,7 @@
 #[cfg(any(feature = "std", test))]
 extern crate std;
 
+mod async_handle_macro;
 #[cfg(feature = "async")]
 pub mod asynch;
 pub mod bus_error_kind;
@@ -52,6 +53,7 @@ pub mod identity;
 pub mod indexed;
 pub mod interpret;
 pub mod link;
+pub mod locked_accessor;
 pub mod modbus;
 mod open_enum_macro;
 pub mod parameter;
@@ -78,6 +80,7 @@ pub use error::{BusError, Error, ValueError, WriteRefusal};
 pub use error_class::ErrorClass;
 pub use identity::{Covered, IdentityCheck, IdentityChecks};
 pub use link::Link;
+pub use locked_accessor::{LockedAccessor, WritableWithoutUnlock};
 pub use parameter::{BoundBy, Parameter, Placement, RawInteger, Readable, ValueOf, Writable};
 pub use scale::{Ratio, Scale, ScaleError};
 pub use stop::{StopPattern, Stops};

@@ -1,10 +1,10 @@
 //! Batch reads: a tuple of parameter markers read in as few requests as the link allows.
 
-use crate::device::{bus_error, named, Device};
+use crate::device::{bus_error, named, raw_from, Device};
 use crate::error::Error;
 use crate::link::{Link, ReadRequest, MAX_VALUE_BYTES};
 use crate::parameter::{Parameter, Readable};
-use crate::value::WireValue;
+use crate::{Protocol, VariantId};
 
 /// A set of parameters that can be read together: tuples of up to twelve markers.
 pub trait ReadSet<L: Link> {
@@ -14,17 +14,18 @@ pub trait ReadSet<L: Link> {
     fn read_from(self, device: &mut Device<L>) -> Result<Self::Values, Error>;
 }
 
-fn address_of<L: Link, P: Readable<L::Protocol>>(
-    device: &Device<L>,
-) -> Result<<L::Protocol as crate::Protocol>::Address, Error> {
-    P::read_address(device.variant()).ok_or(Error::NotInVariant { parameter: P::NAME })
+/// Where member `P` is read in `variant`: before the I/O of a batch read, blocking or async.
+pub(crate) fn address_of<Pr: Protocol, P: Readable<Pr>>(
+    variant: VariantId,
+) -> Result<Pr::Address, Error> {
+    P::read_address(variant).ok_or(Error::NotInVariant { parameter: P::NAME })
 }
 
 fn decode_member<L: Link, P: Readable<L::Protocol>>(
     device: &mut Device<L>,
     bytes: &[u8],
 ) -> Result<P::Value, Error> {
-    let raw = P::Raw::decode_le(bytes).map_err(named::<P>)?;
+    let raw = raw_from::<P::Raw>(P::NAME, bytes)?;
     let scale = P::read_scale(device)?;
     P::decode(raw, scale).map_err(named::<P>)
 }
@@ -38,7 +39,7 @@ macro_rules! read_set_for_tuples {
                 let mut bufs = [[0u8; MAX_VALUE_BYTES]; [$($i),+].len()];
                 let [$($p),+] = &mut bufs;
                 let mut requests = [$(ReadRequest {
-                    address: address_of::<L, $p>(device)?,
+                    address: address_of::<L::Protocol, $p>(device.variant())?,
                     buf: &mut $p[..],
                     len: 0,
                 }),+];

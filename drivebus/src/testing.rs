@@ -336,3 +336,72 @@ impl RegisterBus for RtuRecorder {
         self.memory.write_registers(unit, start, values)
     }
 }
+
+#[cfg(feature = "async")]
+pub use immediate::{now, Immediate};
+
+/// An async link over a blocking one, for testing the async API without an executor.
+#[cfg(feature = "async")]
+mod immediate {
+    use core::future::Future;
+    use core::pin::pin;
+    use core::task::{Context, Poll, Waker};
+
+    use crate::asynch::AsyncLink;
+    use crate::error::BusError;
+    use crate::link::{Link, ReadRequest};
+    use crate::Protocol;
+
+    /// An [`AsyncLink`] whose futures complete at their first poll, over the blocking link `L`
+    /// (a link over a [`MemoryBus`](super::MemoryBus)): the typed async API tested against the
+    /// very state the blocking one is, polled by [`now`]. Not a transport: it blocks in `poll`.
+    #[derive(Debug)]
+    pub struct Immediate<L>(pub L);
+
+    impl<L: Link> AsyncLink for Immediate<L> {
+        type Protocol = L::Protocol;
+
+        async fn read(
+            &mut self,
+            address: &<L::Protocol as Protocol>::Address,
+            out: &mut [u8],
+        ) -> Result<usize, BusError> {
+            self.0.read(address, out)
+        }
+
+        async fn write(
+            &mut self,
+            address: &<L::Protocol as Protocol>::Address,
+            data: &[u8],
+        ) -> Result<(), BusError> {
+            self.0.write(address, data)
+        }
+
+        fn wire_bytes(&self, address: &<L::Protocol as Protocol>::Address) -> usize {
+            self.0.wire_bytes(address)
+        }
+
+        async fn read_many(
+            &mut self,
+            requests: &mut [ReadRequest<'_, <L::Protocol as Protocol>::Address>],
+        ) -> Result<(), BusError> {
+            self.0.read_many(requests)
+        }
+
+        fn failed_request(
+            &self,
+            requests: &[ReadRequest<'_, <L::Protocol as Protocol>::Address>],
+        ) -> Option<usize> {
+            self.0.failed_request(requests)
+        }
+    }
+
+    /// Polls `future` once: its output if it completed, `None` if it waits on something.
+    pub fn now<F: Future>(future: F) -> Option<F::Output> {
+        let mut cx = Context::from_waker(Waker::noop());
+        match pin!(future).poll(&mut cx) {
+            Poll::Ready(output) => Some(output),
+            Poll::Pending => None,
+        }
+    }
+}

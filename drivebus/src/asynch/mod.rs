@@ -5,11 +5,24 @@
 //! are the sans-I/O ones the blocking clients drive; only the I/O differs. Nothing here names
 //! an executor: time comes from a [`Timer`] the application supplies (tokio's behind feature
 //! `tokio`, an embassy timer, a test clock), so the async API builds for `no_std` targets.
+//!
+//! [`Device<Async<L>>`](crate::Device) has `read`, `read_raw`, `write`, `write_raw` and
+//! `read_many` ([`AsyncReadSet`]); the accessors ([`Accessor`](crate::Accessor),
+//! [`Indexed`](crate::indexed::Indexed), [`LockedAccessor`](crate::LockedAccessor)) have their
+//! blocking twins' methods, awaited. Everything but the I/O is the blocking device's code: the
+//! checks before a request and the decoding after it are functions both call, and a run-time
+//! scale (generated as blocking code over a `Device`) is replayed over the answers of async
+//! reads, one more run per input it reads, rather than generated twice.
 
+mod accessor;
+mod device;
 mod link;
+mod read_set;
+mod replay;
 mod timer;
 
 pub use link::{Async, AsyncLink};
+pub use read_set::AsyncReadSet;
 #[cfg(feature = "tokio")]
 pub use timer::TokioTimer;
 pub use timer::{within, Elapsed, Timer};

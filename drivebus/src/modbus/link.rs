@@ -22,18 +22,64 @@ pub struct ModbusLink<B, L = ModbusLimits<'static>> {
     limits: L,
 }
 
-impl<'a, B: RegisterBus> ModbusLink<B, ModbusLimits<'a>> {
-    /// Binds `bus` to `unit`, respecting the device's `limits`.
+impl<'a, B> ModbusLink<B, ModbusLimits<'a>> {
+    /// Binds `bus` (a [`RegisterBus`], or an async one) to `unit`, respecting the device's
+    /// `limits`.
     pub fn new(bus: B, unit: UnitId, limits: ModbusLimits<'a>) -> Self {
         Self { bus, unit, limits }
-    }
-    /// The unit this link talks to.
-    pub fn unit(&self) -> UnitId {
-        self.unit
     }
     /// The device limits this link respects.
     pub fn limits(&self) -> ModbusLimits<'a> {
         self.limits
+    }
+}
+
+impl<B> ModbusLink<B, StaticLimits> {
+    /// Binds async `bus` to `unit`, respecting the device's `limits` (a generated crate's
+    /// `MODBUS_LIMITS`): the link a generated async handle holds.
+    pub fn new_static(bus: B, unit: UnitId, limits: ModbusLimits<'static>) -> Self {
+        Self {
+            bus,
+            unit,
+            limits: StaticLimits(limits),
+        }
+    }
+
+    /// The device limits this link respects.
+    pub fn static_limits(&self) -> &ModbusLimits<'static> {
+        &self.limits.0
+    }
+}
+
+/// `'static` [`ModbusLimits`] in a type without a lifetime parameter: what the async link
+/// holds. A lifetime in the link's type, even `'static`, keeps rustc from proving the async
+/// API's futures `Send` ("implementation of `AsyncLink` is not general enough"), and
+/// `tokio::spawn` would refuse them.
+#[derive(Debug, Clone, Copy)]
+pub struct StaticLimits(pub ModbusLimits<'static>);
+
+/// The limits a [`ModbusLink`] holds, as it reads them.
+pub trait LimitsSource {
+    /// The limits.
+    fn get(&self) -> &ModbusLimits<'_>;
+}
+
+impl LimitsSource for ModbusLimits<'_> {
+    fn get(&self) -> &ModbusLimits<'_> {
+        self
+    }
+}
+
+impl LimitsSource for StaticLimits {
+    fn get(&self) -> &ModbusLimits<'_> {
+        &self.0
+    }
+}
+
+impl<B, L: LimitsSource> ModbusLink<B, L> {
+    /// The unit this link talks to.
+    pub fn unit(&self) -> UnitId {
+        self.unit
     }
     /// The underlying bus.
     pub fn bus_mut(&mut self) -> &mut B {
@@ -43,6 +89,80 @@ impl<'a, B: RegisterBus> ModbusLink<B, ModbusLimits<'a>> {
     pub fn into_bus(self) -> B {
         self.bus
     }
+
+    /// How many registers a read of `address` fills: checked against the limits before the I/O.
+    pub(crate) fn read_words(&self, address: &ModbusAddress) -> Result<usize, BusError> {
+        check_item(self.limits.get(), address)?;
+        Ok(address.words as usize)
+    }
+
+    /// How a write of `data` to `address` goes out, with its registers put in `registers`.
+    pub(crate) fn write_plan(
+        &self,
+        address: &ModbusAddress,
+        data: &[u8],
+        registers: &mut [u16; MAX_VALUE_WORDS],
+    ) -> Result<WritePlan, BusError> {
+        if address.table != Table::Holding {
+            return Err(BusError::Unsupported(
+                "only holding registers can be written",
+            ));
+        }
+        let words = value_words(address)?;
+        if data.len() != words * 2 {
+            return Err(BusError::Frame(
+                "value length does not match its register count",
+            ));
+        }
+        le_to_registers(data, address.word_order, &mut registers[..words]);
+        let limits = self.limits.get();
+        Ok(if words == 1 {
+            WritePlan::Single
+        } else if limits.write_multiple && words <= limits.max_write_registers as usize {
+            WritePlan::Multiple(words)
+        } else {
+            // Without FC 0x10 the words go one by one, lowest address first; the device sees
+            // the value torn for a moment, which the description's word order makes explicit.
+            WritePlan::OneByOne(words)
+        })
+    }
+
+    /// A request the device's limits refuse, else the unread request of the lowest address: the
+    /// planner reads in (table, address) order, not in the order values were asked for.
+    pub(crate) fn failed_in(&self, requests: &[ReadRequest<'_, ModbusAddress>]) -> Option<usize> {
+        let refused = requests
+            .iter()
+            .position(|request| check_item(self.limits.get(), &request.address).is_err());
+        let unread = (0..requests.len()).filter(|&i| requests[i].len == 0);
+        refused.or_else(|| {
+            unread.min_by_key(|&i| (requests[i].address.table, requests[i].address.address))
+        })
+    }
+}
+
+/// How a value's registers are written: one FC 0x06, one FC 0x10 of that many, or that many FC
+/// 0x06 (a device without FC 0x10).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum WritePlan {
+    /// One register, FC 0x06.
+    Single,
+    /// That many registers in one FC 0x10.
+    Multiple(usize),
+    /// That many registers, each with FC 0x06, lowest address first.
+    OneByOne(usize),
+}
+
+/// The value's little-endian bytes in `out` from the registers read: after a read's I/O.
+pub(crate) fn value_from(
+    registers: &[u16],
+    address: &ModbusAddress,
+    out: &mut [u8],
+) -> Result<usize, BusError> {
+    let bytes = out
+        .get_mut(..registers.len() * 2)
+        .ok_or(BusError::Frame("value buffer too small"))?;
+    registers_to_le(registers, address.word_order, bytes);
+    Ok(registers.len() * 2)
 }
 
 fn value_words(address: &ModbusAddress) -> Result<usize, BusError> {
@@ -57,48 +177,25 @@ impl<B: RegisterBus> Link for ModbusLink<B, ModbusLimits<'_>> {
     type Protocol = Modbus;
 
     fn read(&mut self, address: &ModbusAddress, out: &mut [u8]) -> Result<usize, BusError> {
-        check_item(&self.limits, address)?;
-        let words = address.words as usize;
         let mut registers = [0u16; MAX_VALUE_WORDS];
-        let registers = &mut registers[..words];
+        let registers = &mut registers[..self.read_words(address)?];
         self.bus
             .read_registers(self.unit, address.table, address.address, registers)?;
-        let bytes = out
-            .get_mut(..words * 2)
-            .ok_or(BusError::Frame("value buffer too small"))?;
-        registers_to_le(registers, address.word_order, bytes);
-        Ok(words * 2)
+        value_from(registers, address, out)
     }
 
     fn write(&mut self, address: &ModbusAddress, data: &[u8]) -> Result<(), BusError> {
-        if address.table != Table::Holding {
-            return Err(BusError::Unsupported(
-                "only holding registers can be written",
-            ));
-        }
-        let words = value_words(address)?;
-        if data.len() != words * 2 {
-            return Err(BusError::Frame(
-                "value length does not match its register count",
-            ));
-        }
         let mut registers = [0u16; MAX_VALUE_WORDS];
-        let registers = &mut registers[..words];
-        le_to_registers(data, address.word_order, registers);
-        if words == 1 {
-            self.bus
-                .write_register(self.unit, address.address, registers[0])
-        } else if self.limits.write_multiple && words <= self.limits.max_write_registers as usize {
-            self.bus
-                .write_registers(self.unit, address.address, registers)
-        } else {
-            // Without FC 0x10 the words go one by one, lowest address first; the device sees the
-            // value torn for a moment, which the description's word order makes explicit.
-            for (i, word) in registers.iter().enumerate() {
-                self.bus
-                    .write_register(self.unit, address.address + i as u16, *word)?;
+        let (unit, start) = (self.unit, address.address);
+        match self.write_plan(address, data, &mut registers)? {
+            WritePlan::Single => self.bus.write_register(unit, start, registers[0]),
+            WritePlan::Multiple(n) => self.bus.write_registers(unit, start, &registers[..n]),
+            WritePlan::OneByOne(n) => {
+                for (i, word) in registers[..n].iter().enumerate() {
+                    self.bus.write_register(unit, start + i as u16, *word)?;
+                }
+                Ok(())
             }
-            Ok(())
         }
     }
 
@@ -106,62 +203,95 @@ impl<B: RegisterBus> Link for ModbusLink<B, ModbusLimits<'_>> {
         address.words as usize * 2
     }
 
-    /// A request the device's limits refuse, else the unread request of the lowest address: the
-    /// planner reads in (table, address) order, not in the order values were asked for.
     fn failed_request(&self, requests: &[ReadRequest<'_, ModbusAddress>]) -> Option<usize> {
-        let refused = requests
-            .iter()
-            .position(|request| check_item(&self.limits, &request.address).is_err());
-        let unread = (0..requests.len()).filter(|&i| requests[i].len == 0);
-        refused.or_else(|| {
-            unread.min_by_key(|&i| (requests[i].address.table, requests[i].address.address))
-        })
+        self.failed_in(requests)
     }
 
     /// Reads the batch with the fewest requests the device's limits allow (see
-    /// [`planner`](super::planner)), handed to the bus [`MAX_IN_FLIGHT`](super::MAX_IN_FLIGHT) reads at a time
-    /// ([`RegisterBus::read_register_batch`]) so a client that pipelines sends them together. On an error, the values already read keep their `len`;
-    /// the others have `len == 0`.
+    /// [`planner`](super::planner)), handed to the bus [`MAX_IN_FLIGHT`](super::MAX_IN_FLIGHT)
+    /// reads at a time ([`RegisterBus::read_register_batch`]) so a client that pipelines sends
+    /// them together. On an error, the values already read keep their `len`; the others have
+    /// `len == 0`.
     fn read_many(
         &mut self,
         requests: &mut [ReadRequest<'_, ModbusAddress>],
     ) -> Result<(), BusError> {
+        let mut rounds = Rounds::new(requests);
+        let mut registers = [[0u16; MAX_READ_REGISTERS as usize]; MAX_BATCH];
+        while let Some((mut reads, count)) = rounds.next(&self.limits, &mut registers)? {
+            let outcome = self.bus.read_register_batch(self.unit, &mut reads[..count]);
+            rounds.delivered(&reads[..count], outcome)?;
+        }
+        Ok(())
+    }
+}
+
+/// A batch read as rounds of at most [`MAX_BATCH`] planned reads, each handed to the bus at
+/// once: the I/O-free part of `read_many`, blocking or async.
+pub(crate) struct Rounds<'r, 'b> {
+    requests: &'r mut [ReadRequest<'b, ModbusAddress>],
+    planned: [Option<PlannedRead>; MAX_BATCH],
+}
+
+/// One round's reads (the first `count` of them), over a batch's register buffers.
+type Round<'g> = ([RegisterRead<'g>; MAX_BATCH], usize);
+
+impl<'r, 'b> Rounds<'r, 'b> {
+    /// The rounds of `requests`; every value starts unread.
+    pub(crate) fn new(requests: &'r mut [ReadRequest<'b, ModbusAddress>]) -> Self {
         for request in requests.iter_mut() {
             request.len = 0;
         }
-        let mut registers = [[0u16; MAX_READ_REGISTERS as usize]; MAX_BATCH];
-        loop {
-            let mut planned = [None; MAX_BATCH];
-            let count = plan_batch(&self.limits, requests, &mut planned)?;
-            if count == 0 {
-                return Ok(());
-            }
-            let planned = &planned[..count];
-            let mut reads = registers
-                .each_mut()
-                .map(|out| RegisterRead::new(Table::Input, 0, out));
-            for (read, plan) in reads.iter_mut().zip(planned.iter().flatten()) {
-                read.table = plan.table;
-                read.start = plan.start;
-                read.out = &mut core::mem::take(&mut read.out)[..plan.count as usize];
-            }
-            let mut outcome = self.bus.read_register_batch(self.unit, &mut reads[..count]);
-            for (read, plan) in reads.iter().zip(planned.iter().flatten()) {
-                outcome = outcome.and(deliver(requests, plan, read));
-            }
-            if outcome.is_err() {
-                for request in requests.iter_mut().filter(|r| r.len == PLANNED) {
-                    request.len = 0;
-                }
-                return outcome;
+        Self {
+            requests,
+            planned: [None; MAX_BATCH],
+        }
+    }
+
+    /// Plans the next round into `registers`: its reads, or `None` once every value is read.
+    pub(crate) fn next<'g>(
+        &mut self,
+        limits: &ModbusLimits,
+        registers: &'g mut [[u16; MAX_READ_REGISTERS as usize]; MAX_BATCH],
+    ) -> Result<Option<Round<'g>>, BusError> {
+        self.planned = [None; MAX_BATCH];
+        let count = plan_batch(limits, self.requests, &mut self.planned)?;
+        if count == 0 {
+            return Ok(None);
+        }
+        let mut reads = registers
+            .each_mut()
+            .map(|out| RegisterRead::new(Table::Input, 0, out));
+        for (read, plan) in reads.iter_mut().zip(self.planned.iter().flatten()) {
+            read.table = plan.table;
+            read.start = plan.start;
+            read.out = &mut core::mem::take(&mut read.out)[..plan.count as usize];
+        }
+        Ok(Some((reads, count)))
+    }
+
+    /// Takes the values of the round's finished reads; on an error, leaves the values the round
+    /// did not read unread and returns it.
+    pub(crate) fn delivered(
+        &mut self,
+        reads: &[RegisterRead<'_>],
+        mut outcome: Result<(), BusError>,
+    ) -> Result<(), BusError> {
+        for (read, plan) in reads.iter().zip(self.planned.iter().flatten()) {
+            outcome = outcome.and(deliver(self.requests, plan, read));
+        }
+        if outcome.is_err() {
+            for request in self.requests.iter_mut().filter(|r| r.len == PLANNED) {
+                request.len = 0;
             }
         }
+        outcome
     }
 }
 
 /// Reads handed to the bus at once by [`ModbusLink::read_many`]: as many as a pipelining client
 /// keeps in flight, so that a larger window is never cut into round trips here.
-const MAX_BATCH: usize = super::MAX_IN_FLIGHT;
+pub(crate) const MAX_BATCH: usize = super::MAX_IN_FLIGHT;
 
 /// Marks a value planned but not read yet; `len == 0` means "not planned", any other length
 /// "read" — a value is never zero bytes long.

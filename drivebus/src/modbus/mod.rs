@@ -18,6 +18,10 @@
 //! planner.
 
 pub(crate) use drivebus_model::modbus::address;
+#[cfg(feature = "async")]
+mod async_bus;
+#[cfg(feature = "async")]
+pub mod async_client;
 #[cfg(feature = "modbus")]
 pub mod client;
 #[cfg(feature = "modbus-core")]
@@ -26,6 +30,8 @@ pub mod crc;
 mod damage;
 pub use drivebus_model::modbus::exception;
 pub mod framing;
+#[cfg(any(feature = "modbus", feature = "async"))]
+mod in_flight;
 mod link;
 pub mod pdu;
 pub mod planner;
@@ -40,9 +46,11 @@ pub use address::{
     le_to_registers, registers_to_le, ModbusAddress, ModbusLimits, RegisterSpan, Table, UnitId,
     WordOrder, MAX_VALUE_WORDS,
 };
+#[cfg(feature = "async")]
+pub use async_bus::AsyncRegisterBus;
 pub use drivebus_model::modbus::Modbus;
 pub use exception::ExceptionCode;
-pub use link::ModbusLink;
+pub use link::{LimitsSource, ModbusLink, StaticLimits};
 #[cfg(feature = "std")]
 pub use shared_bus::SharedBus;
 

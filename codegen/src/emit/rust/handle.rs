@@ -94,6 +94,15 @@ fn constructors(device: &Device, handle: &proc_macro2::Ident) -> TokenStream {
     quote! { #modbus #canopen #rs232 }
 }
 
+/// The protocols of the async constructors, as `async_handle!` takes them: `, modbus(LIMITS)`.
+fn async_protocols(device: &Device) -> TokenStream {
+    let has = |on: fn(&crate::ir::Parameter) -> bool| device.parameters.iter().any(on);
+    let modbus = has(|p| !p.modbus.is_empty()).then(|| quote! { , modbus(MODBUS_LIMITS) });
+    let canopen = has(|p| !p.canopen.is_empty()).then(|| quote! { , canopen });
+    let rs232 = has(|p| !p.rs232.is_empty()).then(|| quote! { , rs232 });
+    quote! { #modbus #canopen #rs232 }
+}
+
 /// Whether any address of `p` allows reading.
 fn readable(p: &crate::ir::Parameter) -> bool {
     p.modbus.iter().any(|a| a.access.read)
@@ -147,7 +156,7 @@ pub fn emit(device: &Device) -> TokenStream {
                     #docs
                     #aliases
                     pub fn #method(&mut self) -> LockedAccessor<'_, L, #marker_path> {
-                        LockedAccessor(self.device.parameter())
+                        LockedAccessor::new(self.device.parameter())
                     }
                 };
             }
@@ -168,10 +177,9 @@ pub fn emit(device: &Device) -> TokenStream {
         }
     });
     let constructors = constructors(device, &handle);
-    let lock_items = device
-        .lock
-        .is_some()
-        .then(|| quote! { , LockedAccessor, Unlocked });
+    let async_protocols = async_protocols(device);
+    let lock_items = device.lock.is_some().then(|| quote! { , Unlocked });
+    let locked_accessor = device.lock.is_some().then(|| quote! { , LockedAccessor });
     // A drive with a write lock: the device follows it (`unlock.rs` emits `WRITE_LOCK`).
     let write_lock = device
         .lock
@@ -186,8 +194,8 @@ pub fn emit(device: &Device) -> TokenStream {
 
         #constructors
 
-        impl<L: ::drivebus::Link> #handle<L> {
-            /// A drive reached over any link.
+        impl<L> #handle<L> {
+            /// A drive reached over any link (an async one as `Async(link)`, see `new_async`).
             pub fn new(link: L) -> Self {
                 Self { device: ::drivebus::Device::new(link, ::drivebus::VariantId::default())#write_lock }
             }
@@ -202,14 +210,19 @@ pub fn emit(device: &Device) -> TokenStream {
                 self.device.into_link()
             }
 
+            #variant_setter
+        }
+
+        impl<L: ::drivebus::Link> #handle<L> {
             /// Reads several parameters at once, e.g. `drive.read_many((params::A, params::B))`,
             /// in as few requests as the link allows.
             pub fn read_many<S: ::drivebus::read_set::ReadSet<L>>(&mut self, set: S) -> Result<S::Values, ::drivebus::Error> {
                 self.device.read_many(set)
             }
-
-            #variant_setter
         }
+
+        // With drivebus's `async`: `new_async`, `read_many_async` and the async constructors.
+        ::drivebus::async_handle!(#handle #async_protocols);
 
         /// The handle's accessors, one per parameter: in a module of their own so that their
         /// signatures name `Accessor` and the markers without a path.
@@ -217,9 +230,9 @@ pub fn emit(device: &Device) -> TokenStream {
             use super::params::*;
             #[allow(unused_imports)]
             use super::{params, #handle #lock_items};
-            use ::drivebus::Accessor;
+            use ::drivebus::{Accessor #locked_accessor};
 
-            impl<L: ::drivebus::Link> #handle<L> {
+            impl<L> #handle<L> {
                 #( #accessors )*
             }
         }

@@ -1,5 +1,5 @@
 //! The write lock as a typed session (`[lock]`, `[[unlock]]`): a parameter that needs an unlock
-//! has no setter on the handle (its handle accessor is a [`LockedAccessor`]-style read view, or
+//! has no setter on the handle (its handle accessor is drivebus's `LockedAccessor` read view, or
 //! absent when it cannot be read); `drive.unlock_<name>(..)` checks the unlock's requirement,
 //! writes the grant and returns an `Unlocked` guard borrowing the handle, whose methods are the
 //! setters of the scopes the unlock opens. `lock()` or dropping the guard writes the lock
@@ -56,7 +56,6 @@ pub fn emit(device: &Device) -> TokenStream {
         },
         device.with_write_lock(write_lock_table).unwrap_or_default(),
         error_type(),
-        read_view(),
         guard(&handle, &lock_marker, &lock_bound),
     ];
     quote! {
@@ -340,56 +339,6 @@ fn guard(handle: &Ident, lock_marker: &Ident, lock_bound: &TokenStream) -> Token
                     // Best effort: a failure shows as `Locked` or a bus error at the next write.
                     let _ = self.write_lock();
                 }
-            }
-        }
-    }
-}
-
-/// The handle's view of a parameter that needs an unlock: reads, and a `write` that does not
-/// compile.
-fn read_view() -> TokenStream {
-    quote! {
-        /// The bound no parameter meets: a parameter that needs an unlock is written through the
-        /// guard `drive.unlock_<name>(..)` returns, never through the handle.
-        #[diagnostic::on_unimplemented(
-            message = "`{Self}` is written only while the drive is unlocked",
-            label = "needs an unlock",
-            note = "unlock first (`let mut unlocked = drive.unlock_<name>(..)?;`) and write through the guard: `unlocked.<parameter>().write(..)`"
-        )]
-        pub trait WritableWithoutUnlock {}
-
-        /// A parameter that needs an unlock, seen from the handle: it can be read; writing it
-        /// does not compile (see [`WritableWithoutUnlock`]).
-        #[must_use = "an accessor does nothing until read"]
-        pub struct LockedAccessor<'d, L, P>(::drivebus::Accessor<'d, L, P>);
-
-        impl<L: ::drivebus::Link, P: ::drivebus::Readable<L::Protocol>> LockedAccessor<'_, L, P> {
-            /// Reads the value in engineering units.
-            #[inline]
-            pub fn read(self) -> Result<P::Value, ::drivebus::Error> {
-                self.0.read()
-            }
-
-            /// Reads the raw value.
-            #[inline]
-            pub fn read_raw(self) -> Result<P::Raw, ::drivebus::Error> {
-                self.0.read_raw()
-            }
-
-            /// Does not compile: the parameter is written only while the drive is unlocked.
-            pub fn write(self, value: impl ::drivebus::ValueOf<P>) -> Result<(), ::drivebus::Error>
-            where
-                P: WritableWithoutUnlock + ::drivebus::Writable<L::Protocol>,
-            {
-                self.0.write(value)
-            }
-
-            /// Does not compile: the parameter is written only while the drive is unlocked.
-            pub fn write_raw(self, raw: P::Raw) -> Result<(), ::drivebus::Error>
-            where
-                P: WritableWithoutUnlock + ::drivebus::Writable<L::Protocol>,
-            {
-                self.0.write_raw(raw)
             }
         }
     }

@@ -287,8 +287,8 @@ impl<B: ::drivebus::canopen::SdoBus> Case<::drivebus::canopen::CanOpenLink<B>> {
         Self::new(::drivebus::canopen::CanOpenLink::new(bus, node))
     }
 }
-impl<L: ::drivebus::Link> Case<L> {
-    /// A drive reached over any link.
+impl<L> Case<L> {
+    /// A drive reached over any link (an async one as `Async(link)`, see `new_async`).
     pub fn new(link: L) -> Self {
         Self {
             device: ::drivebus::Device::new(link, ::drivebus::VariantId::default()),
@@ -302,6 +302,8 @@ impl<L: ::drivebus::Link> Case<L> {
     pub fn into_link(self) -> L {
         self.device.into_link()
     }
+}
+impl<L: ::drivebus::Link> Case<L> {
     /// Reads several parameters at once, e.g. `drive.read_many((params::A, params::B))`,
     /// in as few requests as the link allows.
     pub fn read_many<S: ::drivebus::read_set::ReadSet<L>>(
@@ -311,6 +313,7 @@ impl<L: ::drivebus::Link> Case<L> {
         self.device.read_many(set)
     }
 }
+::drivebus::async_handle!(Case, canopen);
 /// The handle's accessors, one per parameter: in a module of their own so that their
 /// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
@@ -318,7 +321,7 @@ mod parameter_accessors {
     #[allow(unused_imports)]
     use super::{params, Case};
     use ::drivebus::Accessor;
-    impl<L: ::drivebus::Link> Case<L> {
+    impl<L> Case<L> {
         /// device_type Details: [`params::DeviceType`].
         #[doc(alias("0x1000", "1000h"))]
         pub fn device_type(&mut self) -> Accessor<'_, L, DeviceType> {

@@ -46,8 +46,8 @@ impl<B: ::drivebus::modbus::RegisterBus> Case<::drivebus::modbus::ModbusLink<B>>
         Self::new(::drivebus::modbus::ModbusLink::new(bus, unit, MODBUS_LIMITS))
     }
 }
-impl<L: ::drivebus::Link> Case<L> {
-    /// A drive reached over any link.
+impl<L> Case<L> {
+    /// A drive reached over any link (an async one as `Async(link)`, see `new_async`).
     pub fn new(link: L) -> Self {
         Self {
             device: ::drivebus::Device::new(link, ::drivebus::VariantId::default()),
@@ -61,6 +61,8 @@ impl<L: ::drivebus::Link> Case<L> {
     pub fn into_link(self) -> L {
         self.device.into_link()
     }
+}
+impl<L: ::drivebus::Link> Case<L> {
     /// Reads several parameters at once, e.g. `drive.read_many((params::A, params::B))`,
     /// in as few requests as the link allows.
     pub fn read_many<S: ::drivebus::read_set::ReadSet<L>>(
@@ -70,6 +72,7 @@ impl<L: ::drivebus::Link> Case<L> {
         self.device.read_many(set)
     }
 }
+::drivebus::async_handle!(Case, modbus(MODBUS_LIMITS));
 /// The handle's accessors, one per parameter: in a module of their own so that their
 /// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
@@ -77,7 +80,7 @@ mod parameter_accessors {
     #[allow(unused_imports)]
     use super::{params, Case};
     use ::drivebus::Accessor;
-    impl<L: ::drivebus::Link> Case<L> {
+    impl<L> Case<L> {
         /// Stores the parameters. Details: [`params::StoreEeprom`].
         #[doc(alias("0x0000"))]
         pub fn store_eeprom(&mut self) -> Accessor<'_, L, StoreEeprom> {

@@ -128,8 +128,8 @@ impl<B: ::drivebus::modbus::RegisterBus> Case<::drivebus::modbus::ModbusLink<B>>
         Self::new(::drivebus::modbus::ModbusLink::new(bus, unit, MODBUS_LIMITS))
     }
 }
-impl<L: ::drivebus::Link> Case<L> {
-    /// A drive reached over any link.
+impl<L> Case<L> {
+    /// A drive reached over any link (an async one as `Async(link)`, see `new_async`).
     pub fn new(link: L) -> Self {
         Self {
             device: ::drivebus::Device::new(link, ::drivebus::VariantId::default())
@@ -144,6 +144,8 @@ impl<L: ::drivebus::Link> Case<L> {
     pub fn into_link(self) -> L {
         self.device.into_link()
     }
+}
+impl<L: ::drivebus::Link> Case<L> {
     /// Reads several parameters at once, e.g. `drive.read_many((params::A, params::B))`,
     /// in as few requests as the link allows.
     pub fn read_many<S: ::drivebus::read_set::ReadSet<L>>(
@@ -153,14 +155,15 @@ impl<L: ::drivebus::Link> Case<L> {
         self.device.read_many(set)
     }
 }
+::drivebus::async_handle!(Case, modbus(MODBUS_LIMITS));
 /// The handle's accessors, one per parameter: in a module of their own so that their
 /// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
     use super::params::*;
     #[allow(unused_imports)]
-    use super::{params, Case, LockedAccessor, Unlocked};
-    use ::drivebus::Accessor;
-    impl<L: ::drivebus::Link> Case<L> {
+    use super::{params, Case, Unlocked};
+    use ::drivebus::{Accessor, LockedAccessor};
+    impl<L> Case<L> {
         /// lock_command Details: [`params::LockCommand`].
         #[doc(alias("0x0001"))]
         pub fn lock_command(&mut self) -> Accessor<'_, L, LockCommand> {
@@ -175,25 +178,25 @@ mod parameter_accessors {
         /// Details: [`params::Password`].
         #[doc(alias("0x005E"))]
         pub fn password(&mut self) -> LockedAccessor<'_, L, Password> {
-            LockedAccessor(self.device.parameter())
+            LockedAccessor::new(self.device.parameter())
         }
         /// control_source Read here; written only while unlocked (scope `parameters`, see
         /// [`Unlocked`]). Details: [`params::ControlSource`].
         #[doc(alias("0x0033"))]
         pub fn control_source(&mut self) -> LockedAccessor<'_, L, ControlSource> {
-            LockedAccessor(self.device.parameter())
+            LockedAccessor::new(self.device.parameter())
         }
         /// timeout Read here; written only while unlocked (scope `parameters`, see [`Unlocked`]).
         /// Details: [`params::Timeout`].
         #[doc(alias("0x0085"))]
         pub fn timeout(&mut self) -> LockedAccessor<'_, L, Timeout> {
-            LockedAccessor(self.device.parameter())
+            LockedAccessor::new(self.device.parameter())
         }
         /// action Read here; written only while unlocked (scope `parameters`, see [`Unlocked`]).
         /// Details: [`params::Action`].
         #[doc(alias("0x0084"))]
         pub fn action(&mut self) -> LockedAccessor<'_, L, Action> {
-            LockedAccessor(self.device.parameter())
+            LockedAccessor::new(self.device.parameter())
         }
     }
 }
@@ -288,50 +291,6 @@ pub static WRITE_LOCK: ::drivebus::write_lock::WriteLock = ::drivebus::write_loc
 /// [`LOCKED_EXCEPTION`], or the handle refuses as locked before sending, is
 /// [`UnlockError::Locked`](::drivebus::UnlockError::Locked).
 pub type UnlockError = ::drivebus::UnlockError<LOCKED_EXCEPTION>;
-/// The bound no parameter meets: a parameter that needs an unlock is written through the
-/// guard `drive.unlock_<name>(..)` returns, never through the handle.
-#[diagnostic::on_unimplemented(
-    message = "`{Self}` is written only while the drive is unlocked",
-    label = "needs an unlock",
-    note = "unlock first (`let mut unlocked = drive.unlock_<name>(..)?;`) and write through the guard: `unlocked.<parameter>().write(..)`"
-)]
-pub trait WritableWithoutUnlock {}
-/// A parameter that needs an unlock, seen from the handle: it can be read; writing it
-/// does not compile (see [`WritableWithoutUnlock`]).
-#[must_use = "an accessor does nothing until read"]
-pub struct LockedAccessor<'d, L, P>(::drivebus::Accessor<'d, L, P>);
-impl<
-    L: ::drivebus::Link,
-    P: ::drivebus::Readable<L::Protocol>,
-> LockedAccessor<'_, L, P> {
-    /// Reads the value in engineering units.
-    #[inline]
-    pub fn read(self) -> Result<P::Value, ::drivebus::Error> {
-        self.0.read()
-    }
-    /// Reads the raw value.
-    #[inline]
-    pub fn read_raw(self) -> Result<P::Raw, ::drivebus::Error> {
-        self.0.read_raw()
-    }
-    /// Does not compile: the parameter is written only while the drive is unlocked.
-    pub fn write(
-        self,
-        value: impl ::drivebus::ValueOf<P>,
-    ) -> Result<(), ::drivebus::Error>
-    where
-        P: WritableWithoutUnlock + ::drivebus::Writable<L::Protocol>,
-    {
-        self.0.write(value)
-    }
-    /// Does not compile: the parameter is written only while the drive is unlocked.
-    pub fn write_raw(self, raw: P::Raw) -> Result<(), ::drivebus::Error>
-    where
-        P: WritableWithoutUnlock + ::drivebus::Writable<L::Protocol>,
-    {
-        self.0.write_raw(raw)
-    }
-}
 /// A drive unlocked by `U` (a marker of [`unlock`]): its methods are the setters of the
 /// scopes `U` opens. Locks the drive when dropped (best effort; [`Unlocked::lock`]
 /// reports).

@@ -85,8 +85,8 @@ impl<B: ::drivebus::modbus::RegisterBus> Case<::drivebus::modbus::ModbusLink<B>>
         Self::new(::drivebus::modbus::ModbusLink::new(bus, unit, MODBUS_LIMITS))
     }
 }
-impl<L: ::drivebus::Link> Case<L> {
-    /// A drive reached over any link.
+impl<L> Case<L> {
+    /// A drive reached over any link (an async one as `Async(link)`, see `new_async`).
     pub fn new(link: L) -> Self {
         Self {
             device: ::drivebus::Device::new(link, ::drivebus::VariantId::default()),
@@ -100,6 +100,8 @@ impl<L: ::drivebus::Link> Case<L> {
     pub fn into_link(self) -> L {
         self.device.into_link()
     }
+}
+impl<L: ::drivebus::Link> Case<L> {
     /// Reads several parameters at once, e.g. `drive.read_many((params::A, params::B))`,
     /// in as few requests as the link allows.
     pub fn read_many<S: ::drivebus::read_set::ReadSet<L>>(
@@ -109,6 +111,7 @@ impl<L: ::drivebus::Link> Case<L> {
         self.device.read_many(set)
     }
 }
+::drivebus::async_handle!(Case, modbus(MODBUS_LIMITS));
 /// The handle's accessors, one per parameter: in a module of their own so that their
 /// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
@@ -116,7 +119,7 @@ mod parameter_accessors {
     #[allow(unused_imports)]
     use super::{params, Case};
     use ::drivebus::Accessor;
-    impl<L: ::drivebus::Link> Case<L> {
+    impl<L> Case<L> {
         /// speed_setpoint Details: [`params::SpeedSetpoint`].
         #[doc(alias("0x0042"))]
         pub fn speed_setpoint(&mut self) -> Accessor<'_, L, SpeedSetpoint> {

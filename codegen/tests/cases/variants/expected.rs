@@ -80,8 +80,8 @@ impl<B: ::drivebus::modbus::RegisterBus> Case<::drivebus::modbus::ModbusLink<B>>
         Self::new(::drivebus::modbus::ModbusLink::new(bus, unit, MODBUS_LIMITS))
     }
 }
-impl<L: ::drivebus::Link> Case<L> {
-    /// A drive reached over any link.
+impl<L> Case<L> {
+    /// A drive reached over any link (an async one as `Async(link)`, see `new_async`).
     pub fn new(link: L) -> Self {
         Self {
             device: ::drivebus::Device::new(link, ::drivebus::VariantId::default()),
@@ -95,6 +95,12 @@ impl<L: ::drivebus::Link> Case<L> {
     pub fn into_link(self) -> L {
         self.device.into_link()
     }
+    /// Selects the drive's firmware / configuration variant (the default is the first).
+    pub fn set_variant(&mut self, variant: Variant) {
+        self.device.set_variant(variant.id());
+    }
+}
+impl<L: ::drivebus::Link> Case<L> {
     /// Reads several parameters at once, e.g. `drive.read_many((params::A, params::B))`,
     /// in as few requests as the link allows.
     pub fn read_many<S: ::drivebus::read_set::ReadSet<L>>(
@@ -103,11 +109,8 @@ impl<L: ::drivebus::Link> Case<L> {
     ) -> Result<S::Values, ::drivebus::Error> {
         self.device.read_many(set)
     }
-    /// Selects the drive's firmware / configuration variant (the default is the first).
-    pub fn set_variant(&mut self, variant: Variant) {
-        self.device.set_variant(variant.id());
-    }
 }
+::drivebus::async_handle!(Case, modbus(MODBUS_LIMITS));
 /// The handle's accessors, one per parameter: in a module of their own so that their
 /// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
@@ -115,7 +118,7 @@ mod parameter_accessors {
     #[allow(unused_imports)]
     use super::{params, Case};
     use ::drivebus::Accessor;
-    impl<L: ::drivebus::Link> Case<L> {
+    impl<L> Case<L> {
         /// parameter_configuration Details: [`params::ParameterConfiguration`].
         #[doc(alias("0x0032"))]
         pub fn parameter_configuration(

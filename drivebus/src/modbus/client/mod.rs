@@ -346,9 +346,7 @@ impl<S: ByteStream, F: Framing> Client<S, F> {
     }
 
     fn drop_front(&mut self, n: usize) {
-        let n = n.min(self.rx_len);
-        self.rx.copy_within(n..self.rx_len, 0);
-        self.rx_len -= n;
+        super::in_flight::drop_front(&mut self.rx, &mut self.rx_len, n);
     }
 
     fn read_into_registers(

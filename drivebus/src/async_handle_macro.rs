@@ -1,0 +1,57 @@
+//! `async_handle!`: what a generated handle has over an async link, when drivebus is built with
+//! feature `async`; nothing otherwise.
+//!
+//! The macro is defined here, where the feature is known: a generated crate calls it
+//! unconditionally and needs no `cfg` of its own, so a crate generated without an `async`
+//! feature still builds, and gets the async API as soon as anything in the dependency graph
+//! enables drivebus's `async`.
+
+/// The async handle's inherent items of generated handle `$handle` (which holds a
+/// `device: Device<L>` and has `new`): `new_async`, `read_many_async` and one async constructor
+/// per protocol listed (`modbus(LIMITS)`, `canopen`, `rs232`).
+#[cfg(feature = "async")]
+#[doc(hidden)] // generated crates call it; users never need to
+#[macro_export]
+macro_rules! async_handle {
+    ($handle:ident $(, $protocol:ident $(($limits:expr))?)* $(,)?) => {
+        // Named apart from the blocking `new`/`read_many`: inherent impls of a downstream crate
+        // may not share a name even where, as here, no link is both blocking and async.
+        impl<L: $crate::asynch::AsyncLink> $handle<$crate::asynch::Async<L>> {
+            /// A drive reached over any async link: its accessors return futures.
+            pub fn new_async(link: L) -> Self {
+                Self::new($crate::asynch::Async(link))
+            }
+
+            /// Reads several parameters at once, e.g.
+            /// `drive.read_many_async((params::A, params::B)).await`, in as few requests as
+            /// the link allows.
+            pub async fn read_many_async<S: $crate::asynch::AsyncReadSet<L>>(
+                &mut self,
+                set: S,
+            ) -> Result<S::Values, $crate::Error> {
+                self.device().read_many(set).await
+            }
+        }
+        $($crate::async_handle!(@protocol $handle $protocol $(($limits))?);)*
+    };
+    (@protocol $handle:ident modbus($limits:expr)) => {
+        impl<B: $crate::modbus::AsyncRegisterBus>
+            $handle<$crate::asynch::Async<$crate::modbus::ModbusLink<B, $crate::modbus::StaticLimits>>>
+        {
+            /// A drive reached over an async Modbus client at `unit`.
+            pub fn modbus_async(bus: B, unit: $crate::modbus::UnitId) -> Self {
+                Self::new_async($crate::modbus::ModbusLink::new_static(bus, unit, $limits))
+            }
+        }
+    };
+    // The async CANopen and RS-232 constructors come with their async buses.
+    (@protocol $handle:ident $protocol:ident) => {};
+}
+
+/// Without feature `async`, a generated handle has no async items.
+#[cfg(not(feature = "async"))]
+#[doc(hidden)]
+#[macro_export]
+macro_rules! async_handle {
+    ($($tokens:tt)*) => {};
+}
