@@ -6,6 +6,7 @@
 //! an executor: time comes from a [`Timer`] the application supplies (tokio's behind feature
 //! `tokio`, an embassy timer, a test clock), so the async API builds for `no_std` targets.
 
+pub(crate) mod io_error;
 mod link;
 mod timer;
 
