@@ -8,6 +8,7 @@
 
 pub(crate) mod io_error;
 mod link;
+pub(crate) mod race;
 mod timer;
 
 pub use link::{Async, AsyncLink};

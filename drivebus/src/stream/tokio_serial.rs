@@ -21,6 +21,15 @@ pub struct TokioSerialStream {
 }
 
 impl TokioSerialStream {
+    /// Opens `path` at `baud`, 8N1, no flow control: the SLCAN adapters' and the Kinco RS-232
+    /// line's settings.
+    ///
+    /// # Panics
+    /// Outside a tokio runtime with I/O enabled.
+    pub fn open_8n1(path: &str, baud: u32) -> Result<Self, BusError> {
+        Self::open_8_bits(path, baud, Parity::None, StopBits::One)
+    }
+
     /// Opens `path` (`/dev/ttyUSB0`, a pty) at `baud` with 8 data bits, `parity`, `stop_bits`
     /// and no flow control.
     ///

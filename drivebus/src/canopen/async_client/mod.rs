@@ -6,12 +6,10 @@
 //! went out and kept running across frames that are not the transfer's, so foreign traffic
 //! cannot stretch it.
 
-mod race;
-
 use core::pin::pin;
 use core::time::Duration;
 
-use self::race::{first, ready_now, First};
+use crate::asynch::race::{first, ready_now, First};
 use crate::asynch::Timer;
 use crate::canopen::address::NodeId;
 use crate::canopen::can::AsyncCanBus;

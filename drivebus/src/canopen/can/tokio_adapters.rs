@@ -34,13 +34,9 @@ impl AsyncSlcanBus<crate::stream::TokioSerialStream> {
     /// [`SlcanBus::serial`](super::slcan::SlcanBus::serial)); call
     /// [`start`](AsyncSlcanBus::start) next.
     pub fn serial(path: &str, baud: u32) -> Result<Self, BusError> {
-        let port = crate::stream::TokioSerialStream::open_8_bits(
-            path,
-            baud,
-            serialport::Parity::None,
-            serialport::StopBits::One,
-        )?;
-        Ok(Self::new(port))
+        Ok(Self::new(crate::stream::TokioSerialStream::open_8n1(
+            path, baud,
+        )?))
     }
 }
 

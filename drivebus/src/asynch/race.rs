@@ -5,7 +5,8 @@ use core::pin::{pin, Pin};
 use core::task::Poll;
 
 /// Which of two futures completed first.
-pub(super) enum First<A, B> {
+#[cfg_attr(not(feature = "canopen"), allow(dead_code))]
+pub(crate) enum First<A, B> {
     /// The first one.
     A(A),
     /// The second one.
@@ -14,7 +15,8 @@ pub(super) enum First<A, B> {
 
 /// Polls `a`, then `b`, until one completes; `a` wins a tie. `a` is dropped if `b` wins, so it
 /// must be cancel-safe; `b` is borrowed and may be polled again later.
-pub(super) async fn first<A: Future, B: Future>(
+#[cfg_attr(not(feature = "canopen"), allow(dead_code))]
+pub(crate) async fn first<A: Future, B: Future>(
     a: A,
     mut b: Pin<&mut B>,
 ) -> First<A::Output, B::Output> {
@@ -30,7 +32,7 @@ pub(super) async fn first<A: Future, B: Future>(
 
 /// What `work` gives at its first poll, or `None` (then it is dropped, so it must be
 /// cancel-safe): what is there now, without waiting.
-pub(super) async fn ready_now<F: Future>(work: F) -> Option<F::Output> {
+pub(crate) async fn ready_now<F: Future>(work: F) -> Option<F::Output> {
     let mut work = pin!(work);
     match poll_fn(|cx| Poll::Ready(work.as_mut().poll(cx))).await {
         Poll::Ready(value) => Some(value),
