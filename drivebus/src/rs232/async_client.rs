@@ -1,5 +1,5 @@
 //! An async RS-232 host over any `embedded-io-async` byte stream: the sans-I/O [`Exchange`]
-//! the blocking [`Rs232Client`](super::client::Rs232Client) drives, driven with a [`Timer`].
+//! the blocking `rs232::client::Rs232Client` drives, driven with a [`Timer`].
 
 use core::time::Duration;
 

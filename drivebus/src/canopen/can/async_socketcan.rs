@@ -107,3 +107,36 @@ impl AsyncCanBus for AsyncSocketCanBus {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_missing_interface_is_the_blocking_backends_typed_error() {
+        assert_eq!(
+            AsyncSocketCanBus::open("drivegen-none0").map(drop),
+            Err(OpenError::NoInterface {
+                name: "drivegen-none0".into()
+            })
+        );
+    }
+
+    #[cfg(feature = "socketcan-tests")]
+    #[test]
+    fn frames_travel_between_two_async_sockets_on_vcan0() {
+        let runtime = tokio::runtime::Builder::new_current_thread()
+            .enable_all()
+            .build()
+            .unwrap();
+        runtime.block_on(async {
+            let mut a = AsyncSocketCanBus::open("vcan0").expect("vcan0 for socketcan-tests");
+            let mut b = AsyncSocketCanBus::open("vcan0").unwrap();
+            let frame = CanFrame::new(0x605, &[0x40, 0x00, 0x10, 0x00]).unwrap();
+            a.send(&frame).await.unwrap();
+            assert_eq!(b.recv().await, Ok(frame));
+            assert_eq!(a.try_send(&frame), Ok(true));
+            assert_eq!(b.recv().await, Ok(frame));
+        });
+    }
+}
