@@ -13,6 +13,14 @@ use drivebus::canopen::CanFrame;
 use drivebus::error::BusError;
 use tokio::io::{duplex, AsyncReadExt, AsyncWriteExt, DuplexStream};
 
+/// `work`'s output, failing the test if it takes more than 5 s (a broken decoder would
+/// otherwise wait for ever).
+async fn soon<F: std::future::Future>(work: F) -> F::Output {
+    tokio::time::timeout(Duration::from_secs(5), work)
+        .await
+        .expect("no answer within 5 s")
+}
+
 fn frame(id: u16, data: &[u8]) -> CanFrame {
     CanFrame::new(id, data).unwrap()
 }
@@ -38,7 +46,7 @@ async fn slcan_frames_go_out_as_lines_and_come_back_decoded() {
         .write_all(b"z\rnoise\rF00\rt58528001\r")
         .await
         .unwrap();
-    assert_eq!(bus.recv().await, Ok(frame(0x585, &[0x80, 0x01])));
+    assert_eq!(soon(bus.recv()).await, Ok(frame(0x585, &[0x80, 0x01])));
 }
 
 #[tokio::test]
@@ -49,7 +57,7 @@ async fn slcan_start_checks_each_answer_and_keeps_frames_that_come_between() {
     bus.start(Bitrate::K500, &TokioTimer, Duration::from_millis(200))
         .await
         .unwrap();
-    assert_eq!(bus.recv().await, Ok(frame(0x123, &[])));
+    assert_eq!(soon(bus.recv()).await, Ok(frame(0x123, &[])));
     let mut sent = [0u8; 7];
     adapter.read_exact(&mut sent).await.unwrap();
     assert_eq!(&sent, b"C\rS6\rO\r");
@@ -84,8 +92,8 @@ async fn a_dropped_send_is_finished_before_the_next_frame() {
     });
     bus.send(&frame(0x182, &[5, 6, 7, 8])).await.unwrap();
     assert_eq!(
-        reader.await.unwrap(),
-        b"t18140102030\x34\rt1824050607\x30\x38\r".to_vec()
+        soon(reader).await.unwrap(),
+        b"t181401020304\rt182405060708\r".to_vec()
     );
 }
 
@@ -94,7 +102,7 @@ async fn slcan_reports_the_end_of_the_stream() {
     let (mut bus, adapter) = slcan(256);
     drop(adapter);
     assert_eq!(
-        bus.recv().await,
+        soon(bus.recv()).await,
         Err(BusError::Io(std::io::ErrorKind::UnexpectedEof))
     );
 }
@@ -127,9 +135,42 @@ async fn candump_lines_both_ways_with_malformed_ones_counted() {
     );
     drop(relay_out);
     // The last line has no newline: it still counts, then the end of the stream is reported.
-    assert_eq!(bus.recv().await, Ok(frame(0x705, &[0x05])));
+    assert_eq!(soon(bus.recv()).await, Ok(frame(0x705, &[0x05])));
     assert_eq!(
-        bus.recv().await,
+        soon(bus.recv()).await,
         Err(BusError::Io(std::io::ErrorKind::UnexpectedEof))
     );
+}
+
+#[cfg(feature = "serial")]
+#[tokio::test]
+async fn slcan_over_a_serial_port_opens_the_channel_and_receives() {
+    use std::io::{Read, Write};
+    let pty = peer_support::pty_pair();
+    let adapter_path = pty.server.clone();
+    // The adapter at the other end of the line: answers C, S6 and O with CR, then sends a frame.
+    let adapter = std::thread::spawn(move || {
+        let mut line = std::fs::OpenOptions::new()
+            .read(true)
+            .write(true)
+            .open(adapter_path)
+            .unwrap();
+        let mut commands = Vec::new();
+        let mut byte = [0u8; 1];
+        while commands.iter().filter(|&&b| b == b'\r').count() < 3 {
+            line.read_exact(&mut byte).unwrap();
+            commands.push(byte[0]);
+            if byte[0] == b'\r' {
+                line.write_all(b"\r").unwrap();
+            }
+        }
+        line.write_all(b"t705100\r").unwrap();
+        commands
+    });
+    let mut bus = AsyncSlcanBus::serial(pty.client.to_str().unwrap(), 115_200).unwrap();
+    bus.start(Bitrate::K500, &TokioTimer, Duration::from_secs(2))
+        .await
+        .unwrap();
+    assert_eq!(soon(bus.recv()).await, Ok(frame(0x705, &[0])));
+    assert_eq!(adapter.join().unwrap(), b"C\rS6\rO\r");
 }
