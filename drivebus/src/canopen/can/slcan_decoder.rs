@@ -30,10 +30,16 @@ pub(crate) struct SlcanDecoder {
 }
 
 impl SlcanDecoder {
-    /// Adds received bytes. A buffer grown past any line's length held noise: it is dropped
-    /// first, so decoding resynchronises on the next terminator.
+    /// Adds received bytes. A buffer grown past any line's length without a terminator held
+    /// noise: it is dropped first, so decoding resynchronises on the next terminator. Whole
+    /// lines kept while a command's answer is awaited stay.
     pub(crate) fn push(&mut self, bytes: &[u8]) {
-        if self.pending.len() > MAX_LINE {
+        let terminated = || {
+            self.pending
+                .iter()
+                .any(|&b| b == b'\r' || b == b'\n' || b == BEL)
+        };
+        if self.pending.len() > MAX_LINE && !terminated() {
             self.pending.clear();
         }
         self.pending.extend_from_slice(bytes);
@@ -106,5 +112,35 @@ impl SlcanDecoder {
                 Err(e) => return Some(Err(e)),
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn frames_kept_while_an_answer_is_awaited_survive_a_long_wait() {
+        let mut decoder = SlcanDecoder::default();
+        for _ in 0..10 {
+            decoder.push(b"t1238DEADBEEF01020304\r");
+            assert_eq!(decoder.take_answer(), None);
+        }
+        decoder.push(b"\r");
+        assert_eq!(decoder.take_answer(), Some(Answer::Accepted));
+        let frames = core::iter::from_fn(|| decoder.next_event()).count();
+        assert_eq!(frames, 10);
+    }
+
+    #[test]
+    fn an_unterminated_run_of_noise_is_dropped() {
+        let mut decoder = SlcanDecoder::default();
+        decoder.push(&[b'x'; MAX_LINE + 1]);
+        decoder.push(b"t1230\r");
+        assert!(matches!(
+            decoder.next_event(),
+            Some(Ok(CanEvent::Frame { .. }))
+        ));
+        assert!(decoder.next_event().is_none());
     }
 }
