@@ -239,3 +239,17 @@ async fn an_answer_that_arrives_with_the_timeout_wins() {
     assert_eq!(sdo.upload(NODE, 0x2000, 0, &mut out).await, Ok(4));
     assert_eq!(out, 42u32.to_le_bytes());
 }
+
+#[tokio::test]
+async fn a_link_moves_into_a_spawned_task() {
+    let bus = AsyncInProcessBus::new();
+    let _seen = serve(bus.endpoint(), Arc::new(Mutex::new(3)));
+    let sdo = AsyncSdo::new(bus.endpoint(), TokioTimer).with_timeout(timeout());
+    let mut link = CanOpenLink::new(sdo, NODE);
+    // tokio::spawn needs the futures to be Send: the link's are, over a Send bus and timer.
+    let read = tokio::spawn(async move {
+        let mut out = [0u8; 4];
+        link.read(&object(0x2000), &mut out).await.map(|_| out)
+    });
+    assert_eq!(read.await.unwrap(), Ok(3u32.to_le_bytes()));
+}
