@@ -4,7 +4,8 @@
 # one. The feature lists are read from the manifests, so a new feature is checked without editing
 # this script. Then the pairs of drivebus whose code is built only when both are on: the device
 # side of a protocol (`server` with the protocol's feature) and the test doubles of a protocol
-# (`testing` with it).
+# (`testing` with it), and the async layer's (`async` with `canopen`: the async SDO client;
+# `tokio` with `canopen`, `socketcan` or `serial`: the tokio CAN interfaces and serial stream).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -27,6 +28,6 @@ print(" ".join(sorted(f for f in package["features"] if f != "default")))
 done
 # `check` still names drivebus, the loop's last crate.
 for pair in server,modbus-core server,canopen server,srdo testing,modbus-core testing,canopen \
-    testing,rs232 server,testing; do
+    testing,rs232 server,testing async,canopen tokio,canopen tokio,socketcan tokio,serial; do
     check --no-default-features --features "$pair"
 done

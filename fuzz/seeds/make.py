@@ -124,6 +124,9 @@ def can_line_seeds():
         write("candump_line", f"line{i}", line)
     for i, line in enumerate([b"t1238DEADBEEF01020304", b"t60580123456789ABCDEF", b"t1230", b"r1238", b"t12321122ABCD", b"T123456781AA", b"z"]):
         write("slcan_line", f"line{i}", line)
+    # async_can_streams: a chunk size byte, then a stream (SLCAN and candump lines, noise).
+    write("async_can_streams", "slcan", b"\x03" + b"z\rt1238DEADBEEF01020304\r\x07F05\rt1230\r")
+    write("async_can_streams", "candump", b"\x05" + b"# c\n(0.5) vcan0 585#4B00100092010000\n123#R\n605#40")
 
 
 def rs232_seeds():

@@ -16,7 +16,9 @@
 
 mod accessor;
 mod device;
+pub(crate) mod io_error;
 mod link;
+pub(crate) mod race;
 mod read_set;
 mod replay;
 mod timer;

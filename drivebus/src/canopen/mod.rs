@@ -17,6 +17,8 @@
 //!   streams and an in-process bus.
 //! * `client` — (`canopen`) the blocking layer: `BlockingSdo`, an [`SdoBus`] over any
 //!   [`CanBus`], so [`CanOpenLink`] runs on every interface; `client::scan`, the bus scan.
+//! * `async_client` — (`async` with `canopen`) the async layer: `AsyncSdo`, an `AsyncSdoBus`
+//!   over any `AsyncCanBus` driving the same transfers, so [`CanOpenLink`] is an `AsyncLink`.
 //!
 //! # Opening a CAN interface
 //!
@@ -57,6 +59,8 @@
 //! ```
 
 pub(crate) use drivebus_model::canopen as address;
+#[cfg(all(feature = "async", feature = "canopen"))]
+pub mod async_client;
 pub mod can;
 #[cfg(feature = "canopen")]
 pub mod client;
@@ -76,4 +80,6 @@ pub mod sync;
 pub use address::{CanOpen, NodeId, ObjectAddress};
 pub use can::CanBus;
 pub use frame::CanFrame;
+#[cfg(feature = "async")]
+pub use link::AsyncSdoBus;
 pub use link::{CanOpenLink, SdoBus};

@@ -19,6 +19,28 @@ impl<B: TelegramBus + ?Sized> TelegramBus for &mut B {
     }
 }
 
+/// A host able to exchange one request with one station at a time, awaited: the async twin of
+/// [`TelegramBus`], with the same contract. Dropping a future mid-exchange closes the exchange
+/// (its stale bytes are drained before the next one).
+#[cfg(feature = "async")]
+#[allow(async_fn_in_trait)]
+pub trait AsyncTelegramBus {
+    /// Sends `request` to `station` and returns its answer, as [`TelegramBus::exchange`] does.
+    async fn exchange(&mut self, station: StationId, request: &Request)
+        -> Result<Answer, BusError>;
+}
+
+#[cfg(feature = "async")]
+impl<B: AsyncTelegramBus + ?Sized> AsyncTelegramBus for &mut B {
+    async fn exchange(
+        &mut self,
+        station: StationId,
+        request: &Request,
+    ) -> Result<Answer, BusError> {
+        (**self).exchange(station, request).await
+    }
+}
+
 impl Rs232Error {
     /// The bus error of this failure in an exchange about `object`.
     pub fn about(self, object: Object) -> BusError {
@@ -37,7 +59,8 @@ pub struct Rs232Link<B> {
     station: StationId,
 }
 
-impl<B: TelegramBus> Rs232Link<B> {
+// Unbounded: the same link serves a blocking and an async bus.
+impl<B> Rs232Link<B> {
     /// Binds `bus` to `station`.
     pub fn new(bus: B, station: StationId) -> Self {
         Self { bus, station }
@@ -56,29 +79,62 @@ impl<B: TelegramBus> Rs232Link<B> {
     }
 }
 
+/// The request that reads the value at `address`.
+fn upload(address: &ObjectAddress) -> Request {
+    Request::upload(address.index, address.subindex)
+}
+
+/// The request that writes `data` to `address`.
+fn download(address: &ObjectAddress, data: &[u8]) -> Result<Request, BusError> {
+    let object = Object {
+        index: address.index,
+        subindex: address.subindex,
+    };
+    Request::download(object.index, object.subindex, data).map_err(|error| error.about(object))
+}
+
+/// Copies an upload's value out of its answer into `out`; returns its length.
+fn copy_value(answer: &Answer, out: &mut [u8]) -> Result<usize, BusError> {
+    let value = answer.value().ok_or(BusError::Frame(
+        "the bus answered an upload without a value",
+    ))?;
+    out.get_mut(..value.len())
+        .ok_or(BusError::Frame("value buffer too small"))?
+        .copy_from_slice(value);
+    Ok(value.len())
+}
+
 impl<B: TelegramBus> Link for Rs232Link<B> {
     type Protocol = Rs232;
 
     fn read(&mut self, address: &ObjectAddress, out: &mut [u8]) -> Result<usize, BusError> {
-        let request = Request::upload(address.index, address.subindex);
-        let answer = self.bus.exchange(self.station, &request)?;
-        let value = answer.value().ok_or(BusError::Frame(
-            "the bus answered an upload without a value",
-        ))?;
-        out.get_mut(..value.len())
-            .ok_or(BusError::Frame("value buffer too small"))?
-            .copy_from_slice(value);
-        Ok(value.len())
+        let answer = self.bus.exchange(self.station, &upload(address))?;
+        copy_value(&answer, out)
     }
 
     fn write(&mut self, address: &ObjectAddress, data: &[u8]) -> Result<(), BusError> {
-        let object = Object {
-            index: address.index,
-            subindex: address.subindex,
-        };
-        let request = Request::download(object.index, object.subindex, data)
-            .map_err(|error| error.about(object))?;
+        let request = download(address, data)?;
         self.bus.exchange(self.station, &request).map(drop)
+    }
+
+    fn wire_bytes(&self, address: &ObjectAddress) -> usize {
+        address.bytes as usize
+    }
+}
+
+/// The async twin of the [`Link`] impl: the same requests and answers, awaited.
+#[cfg(feature = "async")]
+impl<B: AsyncTelegramBus> crate::asynch::AsyncLink for Rs232Link<B> {
+    type Protocol = Rs232;
+
+    async fn read(&mut self, address: &ObjectAddress, out: &mut [u8]) -> Result<usize, BusError> {
+        let answer = self.bus.exchange(self.station, &upload(address)).await?;
+        copy_value(&answer, out)
+    }
+
+    async fn write(&mut self, address: &ObjectAddress, data: &[u8]) -> Result<(), BusError> {
+        let request = download(address, data)?;
+        self.bus.exchange(self.station, &request).await.map(drop)
     }
 
     fn wire_bytes(&self, address: &ObjectAddress) -> usize {

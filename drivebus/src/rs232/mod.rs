@@ -40,6 +40,8 @@
 //! # Ok::<(), drivebus::rs232::Rs232Error>(())
 //! ```
 
+#[cfg(feature = "async")]
+pub mod async_client;
 #[cfg(feature = "rs232")]
 pub mod client;
 pub mod data;
@@ -50,6 +52,8 @@ pub mod telegram;
 
 pub use crate::canopen::ObjectAddress;
 pub use error::Rs232Error;
+#[cfg(feature = "async")]
+pub use link::AsyncTelegramBus;
 pub use link::{Rs232Link, TelegramBus};
 
 pub use drivebus_model::rs232::Rs232;

@@ -5,11 +5,15 @@
 //!   a TCP connection, a pty or a test double.
 //! * `SerialStream` (feature `serial`, pulled in by `modbus` and by `rs232`) — a serial port
 //!   ([`serialport`](https://docs.rs/serialport)) as a byte stream.
+//! * `TokioSerialStream` (features `tokio` and `serial`, Unix) — a serial port as an
+//!   `embedded-io-async` stream for the async API.
 //!
 //! Neither protocol depends on the other: `--features rs232` builds without Modbus.
 
 #[cfg(feature = "serial")]
 mod serial;
+#[cfg(all(feature = "tokio", feature = "serial", unix))]
+mod tokio_serial;
 
 use std::time::Instant;
 
@@ -17,6 +21,8 @@ use crate::error::BusError;
 
 #[cfg(feature = "serial")]
 pub use serial::SerialStream;
+#[cfg(all(feature = "tokio", feature = "serial", unix))]
+pub use tokio_serial::TokioSerialStream;
 
 /// The byte channel under a client: a serial port, a TCP connection, or a test double.
 pub trait ByteStream {

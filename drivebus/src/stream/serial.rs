@@ -9,8 +9,22 @@ use serialport::{ClearBuffer, DataBits, FlowControl, Parity, SerialPort, StopBit
 use super::{io_error, ByteStream};
 use crate::error::BusError;
 
+/// The line settings of `path`: `baud`, 8 data bits, `parity`, `stop_bits`, no flow control.
+pub(crate) fn settings_8_bits(
+    path: &str,
+    baud: u32,
+    parity: Parity,
+    stop_bits: StopBits,
+) -> serialport::SerialPortBuilder {
+    serialport::new(path, baud)
+        .data_bits(DataBits::Eight)
+        .parity(parity)
+        .stop_bits(stop_bits)
+        .flow_control(FlowControl::None)
+}
+
 /// The bus error of a failure to open or set up a port.
-fn serial_error(error: serialport::Error) -> BusError {
+pub(crate) fn serial_error(error: serialport::Error) -> BusError {
     BusError::Io(match error.kind {
         serialport::ErrorKind::Io(kind) => kind,
         serialport::ErrorKind::NoDevice => ErrorKind::NotFound,
@@ -42,11 +56,7 @@ impl SerialStream {
         stop_bits: StopBits,
         timeout: Duration,
     ) -> Result<Self, BusError> {
-        let port = serialport::new(path, baud)
-            .data_bits(DataBits::Eight)
-            .parity(parity)
-            .stop_bits(stop_bits)
-            .flow_control(FlowControl::None)
+        let port = settings_8_bits(path, baud, parity, stop_bits)
             .timeout(timeout)
             .open()
             .map_err(serial_error)?;

@@ -345,16 +345,16 @@ impl CandumpBus<ChildStdin> {
     /// A bus over a child process's stdio (spawned with piped stdin and stdout), e.g. a relay
     /// to another CAN stack. The child stays owned by the caller, who must stop it.
     pub fn from_child(child: &mut Child) -> Result<Self, BusError> {
-        let stdin = child
-            .stdin
-            .take()
-            .ok_or(BusError::Unsupported("child stdin is not piped"))?;
-        let stdout = child
-            .stdout
-            .take()
-            .ok_or(BusError::Unsupported("child stdout is not piped"))?;
+        let (stdin, stdout) = piped(child.stdin.take(), child.stdout.take())?;
         Ok(Self::new(stdout, stdin))
     }
+}
+
+/// A child's stdin and stdout, each an error if it was not piped (or was taken already).
+pub(crate) fn piped<I, O>(stdin: Option<I>, stdout: Option<O>) -> Result<(I, O), BusError> {
+    let stdin = stdin.ok_or(BusError::Unsupported("child stdin is not piped"))?;
+    let stdout = stdout.ok_or(BusError::Unsupported("child stdout is not piped"))?;
+    Ok((stdin, stdout))
 }
 
 impl<W: Write> CanBus for CandumpBus<W> {

@@ -5,20 +5,44 @@
 //! * `slcan` — Lawicel ASCII adapters over any byte stream (serial port, TCP).
 //! * `candump` — can-utils text lines over pipes and files (relays, replay, offline decoding).
 //! * `socketcan` — Linux kernel CAN (feature `socketcan`).
+//!
+//! With feature `async`: [`AsyncCanBus`], the async twin of [`CanBus`], and (with `canopen`)
+//! `async_in_process`, `async_slcan` and `async_candump` over any `embedded-io-async` stream;
+//! with `tokio`: `tokio_adapters` (SLCAN over TCP and serial, candump over a child's stdio)
+//! and, with `socketcan`, `async_socketcan`.
 
 use core::time::Duration;
 
 use super::frame::CanFrame;
 use crate::error::BusError;
 
+#[cfg(feature = "async")]
+mod async_bus;
+#[cfg(all(feature = "async", feature = "canopen"))]
+pub mod async_candump;
+#[cfg(all(feature = "async", feature = "canopen"))]
+pub mod async_in_process;
+#[cfg(all(feature = "async", feature = "canopen"))]
+mod async_line;
+#[cfg(all(feature = "async", feature = "canopen"))]
+pub mod async_slcan;
+#[cfg(all(feature = "tokio", feature = "socketcan"))]
+pub mod async_socketcan;
 #[cfg(feature = "canopen")]
 pub mod candump;
 #[cfg(feature = "canopen")]
 pub mod in_process;
 #[cfg(feature = "canopen")]
 pub mod slcan;
+#[cfg(feature = "canopen")]
+mod slcan_decoder;
 #[cfg(feature = "socketcan")]
 pub mod socketcan;
+#[cfg(all(feature = "tokio", feature = "canopen"))]
+pub mod tokio_adapters;
+
+#[cfg(feature = "async")]
+pub use async_bus::AsyncCanBus;
 
 /// Why a CAN interface or adapter could not be opened: each case says what to do about it.
 #[cfg(feature = "canopen")]

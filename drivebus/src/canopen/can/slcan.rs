@@ -15,7 +15,8 @@ use std::time::Instant;
 use std::vec::Vec;
 
 use super::candump::{format_frame, parse_frame};
-use super::{CanBus, CanErrorReport, CanEvent, OpenError, Timestamp};
+use super::slcan_decoder::{Answer, SlcanDecoder};
+use super::{CanBus, CanEvent, OpenError};
 use crate::canopen::frame::CanFrame;
 use crate::error::BusError;
 
@@ -91,9 +92,6 @@ impl Bitrate {
 
 /// How long one blocking read of a TCP stream may take; bounds the lateness of `recv`.
 const POLL: Duration = Duration::from_millis(5);
-const BEL: u8 = 0x07;
-/// Longest line the protocol produces (extended frame, 8 bytes, timestamp) with margin.
-const MAX_LINE: usize = 64;
 /// How long [`SlcanBus::start`] waits for each answer of the opening sequence by default.
 pub const ANSWER_TIMEOUT: Duration = Duration::from_millis(500);
 
@@ -101,8 +99,7 @@ pub const ANSWER_TIMEOUT: Duration = Duration::from_millis(500);
 #[derive(Debug)]
 pub struct SlcanBus<S> {
     stream: S,
-    pending: Vec<u8>,
-    refused: usize,
+    decoder: SlcanDecoder,
     out: Vec<u8>,
 }
 
@@ -165,8 +162,7 @@ impl<S: Read + Write> SlcanBus<S> {
     pub fn new(stream: S) -> Self {
         Self {
             stream,
-            pending: Vec::with_capacity(MAX_LINE),
-            refused: 0,
+            decoder: SlcanDecoder::default(),
             out: Vec::with_capacity(32),
         }
     }
@@ -217,31 +213,17 @@ impl<S: Read + Write> SlcanBus<S> {
         let deadline = Instant::now() + timeout;
         let mut chunk = [0u8; 64];
         loop {
-            // An answer is a BEL or an empty line (CR alone) at the start of a line.
-            let mut start = 0;
-            while start < self.pending.len() {
-                match self.pending[start] {
-                    BEL => {
-                        self.pending.drain(start..=start);
-                        return Err(OpenError::Refused { command });
-                    }
-                    b'\r' => {
-                        self.pending.drain(start..=start);
-                        return Ok(());
-                    }
-                    _ => match self.pending[start..].iter().position(|&b| b == b'\r') {
-                        // A whole line (a frame, `z`): keep it, look after it.
-                        Some(end) => start += end + 1,
-                        None => break,
-                    },
-                }
+            match self.decoder.take_answer() {
+                Some(Answer::Accepted) => return Ok(()),
+                Some(Answer::Refused) => return Err(OpenError::Refused { command }),
+                None => {}
             }
             if Instant::now() >= deadline {
                 return Err(OpenError::NoAnswer { command });
             }
             match self.stream.read(&mut chunk) {
                 Ok(0) => return Err(OpenError::Io(io::ErrorKind::UnexpectedEof)),
-                Ok(n) => self.pending.extend_from_slice(&chunk[..n]),
+                Ok(n) => self.decoder.push(&chunk[..n]),
                 Err(e) if is_poll_timeout(e.kind()) => {}
                 Err(e) => return Err(OpenError::Io(e.kind())),
             }
@@ -255,7 +237,7 @@ impl<S: Read + Write> SlcanBus<S> {
 
     /// Commands the adapter refused (BEL answers) so far.
     pub fn refused_commands(&self) -> usize {
-        self.refused
+        self.decoder.refused()
     }
 
     /// The stream.
@@ -263,58 +245,13 @@ impl<S: Read + Write> SlcanBus<S> {
         &mut self.stream
     }
 
-    /// Takes one complete line (or BEL) out of the buffer and decodes it; `None` when no whole
-    /// line is buffered.
-    fn next_event_in_buffer(&mut self) -> Option<Result<CanEvent, BusError>> {
-        loop {
-            let end = self
-                .pending
-                .iter()
-                .position(|&b| b == b'\r' || b == b'\n' || b == BEL)?;
-            if self.pending[end] == BEL {
-                // A BEL ends whatever came before it on the line: that part is noise.
-                let noise = end > 0;
-                self.pending.drain(..=end);
-                self.refused += 1;
-                if noise {
-                    return Some(Ok(CanEvent::Garbage {
-                        why: "SLCAN: text before an error answer",
-                    }));
-                }
-                return Some(Ok(CanEvent::Refused));
-            }
-            let line: Vec<u8> = self.pending.drain(..=end).take(end).collect();
-            match parse_line(&line) {
-                Ok(SlcanLine::Frame { frame, timestamp }) => {
-                    return Some(Ok(CanEvent::Frame {
-                        frame,
-                        timestamp: timestamp.map(Timestamp::AdapterMillis),
-                    }))
-                }
-                Ok(SlcanLine::Status(flags)) => {
-                    return Some(Ok(CanEvent::Error {
-                        report: CanErrorReport::from_slcan_status(flags),
-                        timestamp: None,
-                    }))
-                }
-                Ok(SlcanLine::Ignored) => {}
-                Err(BusError::Frame(why)) => return Some(Ok(CanEvent::Garbage { why })),
-                Err(e) => return Some(Err(e)),
-            }
-        }
-    }
-
     /// Reads more bytes into the buffer; `false` when the read timed out.
     fn fill(&mut self) -> Result<bool, BusError> {
         let mut chunk = [0u8; 256];
-        if self.pending.len() > MAX_LINE {
-            // A line this long is noise: resynchronise on the next terminator.
-            self.pending.clear();
-        }
         match self.stream.read(&mut chunk) {
             Ok(0) => Err(BusError::Io(io::ErrorKind::UnexpectedEof)),
             Ok(n) => {
-                self.pending.extend_from_slice(&chunk[..n]);
+                self.decoder.push(&chunk[..n]);
                 Ok(true)
             }
             Err(e) if is_poll_timeout(e.kind()) => Ok(false),
@@ -479,7 +416,7 @@ impl<S: Read + Write> CanBus for SlcanBus<S> {
     fn recv_event(&mut self, timeout: Duration) -> Result<Option<CanEvent>, BusError> {
         let deadline = Instant::now() + timeout;
         loop {
-            if let Some(event) = self.next_event_in_buffer() {
+            if let Some(event) = self.decoder.next_event() {
                 return event.map(Some);
             }
             if Instant::now() >= deadline {
@@ -493,6 +430,7 @@ impl<S: Read + Write> CanBus for SlcanBus<S> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::canopen::can::Timestamp;
     use std::io::Cursor;
 
     /// A stream whose reads come from a script and whose writes are recorded.

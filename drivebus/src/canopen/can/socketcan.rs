@@ -105,7 +105,7 @@ fn wait_readable(fd: std::os::fd::RawFd, timeout: Duration) -> io::Result<bool> 
     Ok(ready > 0)
 }
 
-fn io_error(e: &io::Error) -> BusError {
+pub(super) fn io_error(e: &io::Error) -> BusError {
     if queue_full(e) {
         BusError::CanQueueFull
     } else {
@@ -161,6 +161,13 @@ impl SocketCanBus {
             state: BusState::ErrorActive,
             queue_full_waits: 0,
         })
+    }
+
+    /// Gives the opened, non-blocking socket up (to the async adapter, which registers it
+    /// with its reactor).
+    #[cfg(feature = "tokio")]
+    pub(super) fn into_socket(self) -> CanSocket {
+        self.socket
     }
 
     /// Replaces the `ENOBUFS` back-off.
@@ -229,6 +236,14 @@ pub fn from_socketcan(frame: &socketcan::CanFrame) -> Option<CanFrame> {
     }
 }
 
+/// The bus state an event reports, if it is an error report that names one.
+pub(super) fn reported_state(event: &CanEvent) -> Option<BusState> {
+    match event {
+        CanEvent::Error { report, .. } => report.state,
+        _ => None,
+    }
+}
+
 /// The event a received `socketcan` frame is: a standard frame, or a decoded error frame;
 /// `None` for extended-id frames.
 pub fn event_from_socketcan(
@@ -287,16 +302,7 @@ impl CanBus for SocketCanBus {
                 Ok((frame, time)) => {
                     if let Some(event) = event_from_socketcan(&frame, Some(Timestamp::Kernel(time)))
                     {
-                        if let CanEvent::Error {
-                            report:
-                                CanErrorReport {
-                                    state: Some(state), ..
-                                },
-                            ..
-                        } = event
-                        {
-                            self.state = state;
-                        }
+                        self.state = reported_state(&event).unwrap_or(self.state);
                         return Ok(Some(event));
                     }
                     // Extended frames are skipped until the deadline.

@@ -1,17 +1,18 @@
 //! A blocking SDO client over any [`CanBus`]: the sans-I/O transfers driven with a real clock.
 
+pub(crate) mod backlog;
 pub mod lss;
 pub mod scan;
 
 use core::time::Duration;
-use std::collections::VecDeque;
 use std::time::Instant;
 
+use self::backlog::{client_methods, outcome, Backlog, Settings};
 use crate::canopen::address::NodeId;
 use crate::canopen::can::CanBus;
 use crate::canopen::frame::CanFrame;
 use crate::canopen::link::SdoBus;
-use crate::canopen::sdo::{Progress, SdoClient, Transfer};
+use crate::canopen::sdo::{Progress, Transfer};
 use crate::error::BusError;
 
 /// Most frames kept for [`CanBus::recv`] while transfers run; older ones are dropped first.
@@ -29,11 +30,8 @@ pub const DEFAULT_TIMEOUT: Duration = Duration::from_millis(500);
 #[derive(Debug)]
 pub struct BlockingSdo<B> {
     bus: B,
-    backlog: VecDeque<CanFrame>,
-    dropped: usize,
-    timeout: Duration,
-    block_threshold: Option<usize>,
-    block_size: u8,
+    backlog: Backlog,
+    settings: Settings,
     epoch: Instant,
 }
 
@@ -42,63 +40,16 @@ impl<B: CanBus> BlockingSdo<B> {
     pub fn new(bus: B) -> Self {
         Self {
             bus,
-            backlog: VecDeque::new(),
-            dropped: 0,
-            timeout: DEFAULT_TIMEOUT,
-            block_threshold: None,
-            block_size: crate::canopen::sdo::block::MAX_BLOCK_SIZE,
+            backlog: Backlog::default(),
+            settings: Settings::new(DEFAULT_TIMEOUT),
             epoch: Instant::now(),
         }
     }
 
-    /// Sets how long the server has to answer each request.
-    pub fn with_timeout(mut self, timeout: Duration) -> Self {
-        self.timeout = timeout;
-        self
-    }
-
-    /// Uses block transfers for values (downloads) or buffers (uploads) of at least `threshold`
-    /// bytes, with `block_size` segments per block.
-    pub fn with_block_transfers(mut self, threshold: usize, block_size: u8) -> Self {
-        self.block_threshold = Some(threshold);
-        self.block_size = block_size;
-        self
-    }
-
-    /// The underlying bus.
-    pub fn bus_mut(&mut self) -> &mut B {
-        &mut self.bus
-    }
-
-    /// Gives the bus back.
-    pub fn into_inner(self) -> B {
-        self.bus
-    }
-
-    /// Frames dropped because the backlog was full.
-    pub fn dropped_frames(&self) -> usize {
-        self.dropped
-    }
-
-    fn keep(&mut self, frame: CanFrame) {
-        if self.backlog.len() == BACKLOG {
-            self.backlog.pop_front();
-            self.dropped += 1;
-        }
-        self.backlog.push_back(frame);
-    }
+    client_methods!();
 
     fn now(&self) -> Duration {
         self.epoch.elapsed()
-    }
-
-    fn client(&self, node: NodeId) -> SdoClient {
-        SdoClient::new(node, self.timeout)
-    }
-
-    fn use_block(&self, len: usize) -> bool {
-        self.block_threshold
-            .is_some_and(|threshold| len >= threshold)
     }
 
     /// Drops the SDO responses that arrived after their transfer ended — duplicates, answers
@@ -109,8 +60,7 @@ impl<B: CanBus> BlockingSdo<B> {
     fn drop_stale_responses(&mut self, response_cob: u16) -> Result<(), BusError> {
         for _ in 0..BACKLOG {
             match self.bus.recv(Duration::ZERO)? {
-                Some(frame) if frame.id() == response_cob => {}
-                Some(frame) => self.keep(frame),
+                Some(frame) => drop(self.backlog.sort(frame, response_cob)),
                 None => break,
             }
         }
@@ -119,31 +69,26 @@ impl<B: CanBus> BlockingSdo<B> {
 
     /// Drives `transfer` to its end: sends its frames, feeds it received frames and the time.
     pub fn run<T: Transfer>(&mut self, transfer: &mut T) -> Result<usize, BusError> {
-        self.drop_stale_responses(transfer.response_cob())?;
+        let response_cob = transfer.response_cob();
+        self.drop_stale_responses(response_cob)?;
         let mut progress = Progress::Pending;
         loop {
             // Drained after the end too: a failure may have queued an abort for the server.
             while let Some(frame) = transfer.poll_transmit() {
                 self.bus.send(&frame)?;
             }
-            let (index, subindex) = transfer.object();
-            match progress {
-                Progress::Done(len) => return Ok(len),
-                Progress::Failed(error) => return Err(error.into_bus_error(index, subindex)),
-                Progress::Pending => {}
+            if let Some(result) = outcome(progress, transfer) {
+                return result;
             }
             let Some(deadline) = transfer.deadline() else {
                 return Err(BusError::Frame("SDO transfer ended without a result"));
             };
             let now = self.now();
             progress = match self.bus.recv(deadline.saturating_sub(now))? {
-                Some(frame) if frame.id() == transfer.response_cob() => {
-                    transfer.handle(&frame, self.now())
-                }
-                Some(frame) => {
-                    self.keep(frame);
-                    Progress::Pending
-                }
+                Some(frame) => match self.backlog.sort(frame, response_cob) {
+                    Some(frame) => transfer.handle(&frame, self.now()),
+                    None => Progress::Pending,
+                },
                 None => transfer.handle_timeout(self.now()),
             };
         }
@@ -158,13 +103,8 @@ impl<B: CanBus> SdoBus for BlockingSdo<B> {
         subindex: u8,
         out: &mut [u8],
     ) -> Result<usize, BusError> {
-        let client = self.client(node);
         let now = self.now();
-        let mut transfer = if self.use_block(out.len()) {
-            client.block_upload(index, subindex, out, self.block_size, now)
-        } else {
-            client.upload(index, subindex, out, now)
-        };
+        let mut transfer = self.settings.upload(node, (index, subindex), out, now);
         self.run(&mut transfer)
     }
 
@@ -175,13 +115,8 @@ impl<B: CanBus> SdoBus for BlockingSdo<B> {
         subindex: u8,
         data: &[u8],
     ) -> Result<(), BusError> {
-        let client = self.client(node);
         let now = self.now();
-        let mut transfer = if self.use_block(data.len()) {
-            client.block_download(index, subindex, data, now)
-        } else {
-            client.download(index, subindex, data, now)
-        };
+        let mut transfer = self.settings.download(node, (index, subindex), data, now);
         self.run(&mut transfer).map(|_| ())
     }
 }
@@ -193,7 +128,7 @@ impl<B: CanBus> CanBus for BlockingSdo<B> {
     }
 
     fn recv(&mut self, timeout: Duration) -> Result<Option<CanFrame>, BusError> {
-        match self.backlog.pop_front() {
+        match self.backlog.pop() {
             Some(frame) => Ok(Some(frame)),
             None => self.bus.recv(timeout),
         }

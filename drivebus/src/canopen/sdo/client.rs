@@ -203,6 +203,10 @@ macro_rules! channel_methods {
         fn response_cob(&self) -> u16 {
             self.ch.response_cob()
         }
+
+        fn abort_frame(&self, code: AbortCode) -> Option<CanFrame> {
+            self.ch.abort_frame(code)
+        }
     };
 }
 

@@ -137,6 +137,13 @@ pub trait Transfer {
     fn object(&self) -> (u16, u8);
     /// The COB-ID the server answers on; frames with other ids are not this transfer's.
     fn response_cob(&self) -> u16;
+    /// The frame that aborts this transfer with `code`, for a driver that gives the transfer up
+    /// on its own (an async driver whose future was dropped); `None` once it has finished, or
+    /// when the transfer cannot say (the default).
+    fn abort_frame(&self, code: AbortCode) -> Option<CanFrame> {
+        let _ = code;
+        None
+    }
 }
 
 /// The connection state every transfer shares: COB-IDs, multiplexer, deadline, outgoing frame.
@@ -228,10 +235,19 @@ impl Channel {
         Ok(Some(data))
     }
 
+    /// The frame that aborts this channel's transfer with `code`; `None` once it has finished.
+    pub(crate) fn abort_frame(&self, code: AbortCode) -> Option<CanFrame> {
+        (!self.finished).then(|| self.abort_request(code))
+    }
+
+    fn abort_request(&self, code: AbortCode) -> CanFrame {
+        let abort = self.initiate(ccs::ABORT << 5, code.code().to_le_bytes());
+        CanFrame::full(self.request_cob, abort)
+    }
+
     /// Gives up: queues an abort frame for the server and reports the failure.
     pub(crate) fn abort(&mut self, code: AbortCode) -> Progress {
-        let abort = self.initiate(ccs::ABORT << 5, code.code().to_le_bytes());
-        self.outbox = Some(CanFrame::full(self.request_cob, abort));
+        self.outbox = Some(self.abort_request(code));
         self.finished = true;
         Progress::Failed(SdoError::Client(code))
     }
