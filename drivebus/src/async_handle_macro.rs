@@ -8,7 +8,8 @@
 
 /// The async handle's inherent items of generated handle `$handle` (which holds a
 /// `device: Device<L>` and has `new`): `new_async`, `read_many_async` and one async constructor
-/// per protocol listed (`modbus(LIMITS)`, `canopen`, `rs232`).
+/// per protocol listed (`modbus(LIMITS)`, `canopen`, `rs232`): `modbus_async`,
+/// `canopen_async`, `rs232_async`.
 #[cfg(feature = "async")]
 #[doc(hidden)] // generated crates call it; users never need to
 #[macro_export]
@@ -44,8 +45,28 @@ macro_rules! async_handle {
             }
         }
     };
-    // The async CANopen and RS-232 constructors come with their async buses.
-    (@protocol $handle:ident $protocol:ident) => {};
+    (@protocol $handle:ident canopen) => {
+        impl<B: $crate::canopen::AsyncSdoBus>
+            $handle<$crate::asynch::Async<$crate::canopen::CanOpenLink<B>>>
+        {
+            /// A drive reached over an async SDO client (`canopen::async_client::AsyncSdo`) at
+            /// `node`.
+            pub fn canopen_async(bus: B, node: $crate::canopen::NodeId) -> Self {
+                Self::new_async($crate::canopen::CanOpenLink::new(bus, node))
+            }
+        }
+    };
+    (@protocol $handle:ident rs232) => {
+        impl<B: $crate::rs232::AsyncTelegramBus>
+            $handle<$crate::asynch::Async<$crate::rs232::Rs232Link<B>>>
+        {
+            /// A drive reached over an async Kinco RS-232 host
+            /// (`rs232::async_client::AsyncRs232Client`) at `station`.
+            pub fn rs232_async(bus: B, station: $crate::rs232::StationId) -> Self {
+                Self::new_async($crate::rs232::Rs232Link::new(bus, station))
+            }
+        }
+    };
 }
 
 /// Without feature `async`, a generated handle has no async items.
