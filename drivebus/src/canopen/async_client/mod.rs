@@ -6,6 +6,8 @@
 //! went out and kept running across frames that are not the transfer's, so foreign traffic
 //! cannot stretch it.
 
+pub mod lss;
+
 use core::pin::pin;
 use core::time::Duration;
 

@@ -6,10 +6,9 @@ use core::time::Duration;
 use std::time::Instant;
 
 use crate::canopen::can::CanBus;
-use crate::canopen::lss::command::RangePart;
 use crate::canopen::lss::{
-    BitTiming, Command, Exchange, Fastscan, FastscanProgress, IdentityWord, LssAddress, LssError,
-    LssMode, NewNodeId, Outcome, Progress, Response,
+    request, BitTiming, Exchange, Fastscan, FastscanProgress, IdentityWord, LssAddress, LssError,
+    LssMode, Outcome, Progress, Request,
 };
 
 /// Default time slaves have to answer each command (python canopen 2.4.1 waits 500 ms too).
@@ -90,66 +89,48 @@ impl<B: CanBus> BlockingLss<B> {
         }
     }
 
-    fn exchange(&mut self, commands: &[Command]) -> Result<Outcome, LssError> {
-        let mut exchange = Exchange::new(commands, self.timeout, self.now());
-        self.run(&mut exchange)
-    }
-
-    /// The answer to one command only one slave may answer.
-    fn ask(&mut self, command: Command) -> Result<Response, LssError> {
-        self.exchange(&[command])?
-            .response
-            .ok_or(LssError::NoAnswer)
+    /// Runs one master operation (see [`request`]): its exchange, then its reading.
+    pub fn request<T>(&mut self, request: Request<T>) -> Result<T, LssError> {
+        let mut exchange = Exchange::new(request.commands(), self.timeout, self.now());
+        request.finish(self.run(&mut exchange)?)
     }
 
     /// Switch state global: every slave to `mode` (no answer).
     pub fn switch_global(&mut self, mode: LssMode) -> Result<(), LssError> {
-        self.exchange(&[Command::SwitchGlobal(mode)]).map(|_| ())
+        self.request(request::switch_global(mode))
     }
 
     /// Switch state selective: the slave at `address` enters configuration state. No answer is
     /// [`LssError::NoAnswer`]; two are [`LssError::SeveralAnswers`].
     pub fn switch_selective(&mut self, address: LssAddress) -> Result<(), LssError> {
-        let commands = IdentityWord::ALL.map(|word| {
-            Command::SwitchSelective(word, address.words()[usize::from(word.position())])
-        });
-        self.exchange(&commands).map(|_| ())
+        self.request(request::switch_selective(address))
     }
 
     /// Configure node id (the slave in configuration state); `raw` must be 1-127 or 255 (none):
     /// anything else is refused here, nothing is sent. Takes effect at the node's next reset;
     /// nothing is stored ([`BlockingLss::store`] does that).
     pub fn configure_node_id(&mut self, raw: u8) -> Result<(), LssError> {
-        let id = NewNodeId::new(raw)?;
-        confirmed(self.ask(Command::ConfigureNodeId(id))?)
+        self.request(request::configure_node_id(raw)?)
     }
 
     /// Configure bit timing from the CiA 305 table; a refusal carries the slave's error code.
     pub fn configure_bit_timing(&mut self, timing: BitTiming) -> Result<(), LssError> {
-        let command = Command::ConfigureBitTiming {
-            table: 0,
-            index: timing.index(),
-        };
-        confirmed(self.ask(command)?)
+        self.request(request::configure_bit_timing(timing))
     }
 
     /// Activate bit timing on every slave after `delay_ms` (no answer).
     pub fn activate_bit_timing(&mut self, delay_ms: u16) -> Result<(), LssError> {
-        self.exchange(&[Command::ActivateBitTiming { delay_ms }])
-            .map(|_| ())
+        self.request(request::activate_bit_timing(delay_ms))
     }
 
     /// Store configuration: the slave keeps its node id and bit timing across a power cycle.
     pub fn store(&mut self) -> Result<(), LssError> {
-        confirmed(self.ask(Command::Store)?)
+        self.request(request::store())
     }
 
     /// One word of the LSS address of the slave in configuration state.
     pub fn inquire(&mut self, word: IdentityWord) -> Result<u32, LssError> {
-        match self.ask(Command::Inquire(word))? {
-            Response::Inquired(_, value) => Ok(value),
-            _ => Err(LssError::NoAnswer),
-        }
+        self.request(request::inquire(word))
     }
 
     /// The whole LSS address of the slave in configuration state.
@@ -163,10 +144,7 @@ impl<B: CanBus> BlockingLss<B> {
 
     /// The active node id of the slave in configuration state (255: none).
     pub fn inquire_node_id(&mut self) -> Result<u8, LssError> {
-        match self.ask(Command::InquireNodeId)? {
-            Response::NodeId(id) => Ok(id),
-            _ => Err(LssError::NoAnswer),
-        }
+        self.request(request::inquire_node_id())
     }
 
     /// Identify remote slave: how many slaves of `vendor_id` and `product_code` have a revision
@@ -178,22 +156,17 @@ impl<B: CanBus> BlockingLss<B> {
         revision: RangeInclusive<u32>,
         serial: RangeInclusive<u32>,
     ) -> Result<usize, LssError> {
-        let values = [
+        self.request(request::identify_remote(
             vendor_id,
             product_code,
-            *revision.start(),
-            *revision.end(),
-            *serial.start(),
-            *serial.end(),
-        ];
-        let commands: [Command; 6] =
-            core::array::from_fn(|i| Command::IdentifyRemote(RangePart::ALL[i], values[i]));
-        Ok(self.exchange(&commands)?.count)
+            revision,
+            serial,
+        ))
     }
 
     /// Identify non-configured remote slave: how many slaves have no node id.
     pub fn identify_non_configured(&mut self) -> Result<usize, LssError> {
-        Ok(self.exchange(&[Command::IdentifyNonConfigured])?.count)
+        self.request(request::identify_non_configured())
     }
 
     /// Fastscan: the LSS address of one non-configured slave, now in configuration state, or
@@ -220,14 +193,6 @@ impl<B: CanBus> BlockingLss<B> {
             FastscanProgress::Failed(error) => Err(error),
             FastscanProgress::Pending => Err(LssError::NoAnswer),
         }
-    }
-}
-
-/// The verdict of a configure or store confirmation.
-fn confirmed(response: Response) -> Result<(), LssError> {
-    match response {
-        Response::Confirmed(_, verdict) => verdict.map_err(LssError::Refused),
-        _ => Err(LssError::NoAnswer),
     }
 }
 

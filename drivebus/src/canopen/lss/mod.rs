@@ -9,20 +9,23 @@
 //! * [`response`] — what a slave answers ([`Response`]), decoded into typed values.
 //! * [`exchange`] — one command and the answers it waits for, driven by the caller's clock.
 //! * [`fastscan`] — the Fastscan state machine: the identity of one non-configured node, bit by bit.
+//! * [`request`] — each master operation as the commands it sends and how its outcome reads,
+//!   shared by the blocking and the async master.
 //! * [`error`] — the typed failures ([`LssError`], [`ConfigureError`]).
 //! * [`bit_timing`] — the CiA 305 bit timing table.
 //! * `slave` — (feature `server`) an LSS slave for simulators and test peers.
 //!
 //! Like the SDO transfers, [`Exchange`] and [`Fastscan`] never read a clock or touch a bus: a
 //! driver loop drains `poll_transmit`, feeds received frames to `handle` and calls
-//! `handle_timeout` once `deadline` passes. The blocking driver is `canopen::client::lss`; an
-//! async one is the same loop with awaited sends, receives and timers.
+//! `handle_timeout` once `deadline` passes. The blocking driver is `canopen::client::lss`, the
+//! async one (feature `async`) `canopen::async_client::lss`.
 
 pub mod bit_timing;
 pub mod command;
 pub mod error;
 pub mod exchange;
 pub mod fastscan;
+pub mod request;
 pub mod response;
 #[cfg(feature = "server")]
 pub mod slave;
@@ -32,6 +35,7 @@ pub use command::{Command, IdentityWord, LssMode, NewNodeId};
 pub use error::{ConfigureError, LssError};
 pub use exchange::{Answers, Exchange, Outcome, Progress};
 pub use fastscan::{Fastscan, FastscanProgress};
+pub use request::Request;
 pub use response::{Confirmed, Response};
 #[cfg(feature = "server")]
 pub use slave::{LssSlave, SlaveEvent};
