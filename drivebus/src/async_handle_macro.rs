@@ -76,3 +76,23 @@ macro_rules! async_handle {
 macro_rules! async_handle {
     ($($tokens:tt)*) => {};
 }
+
+/// Items of a generated crate that exist only with drivebus's `async` (the async twins of a
+/// handle's procedures, `verify_identity_async`, `detect_variant_async`): passed through with
+/// the feature, dropped without it, so the generated crate needs no `cfg` of its own.
+#[cfg(feature = "async")]
+#[doc(hidden)] // generated crates call it; users never need to
+#[macro_export]
+macro_rules! async_items {
+    ($($item:item)*) => {
+        $($item)*
+    };
+}
+
+/// Without feature `async`, a generated crate has no async items.
+#[cfg(not(feature = "async"))]
+#[doc(hidden)]
+#[macro_export]
+macro_rules! async_items {
+    ($($tokens:tt)*) => {};
+}

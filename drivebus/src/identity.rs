@@ -70,14 +70,30 @@ impl<L: Link> Device<L> {
     /// as [`Error::WritesRefused`] naming the parameter, the covered and the found values.
     pub fn verify_identity(&mut self, checks: &[IdentityCheck<L::Protocol>]) -> Result<(), Error> {
         for check in checks {
-            let parameter = check.parameter.name;
             let found = self.read_integer(&check.parameter)?;
-            if let Some(reason) = check.covered.refusal(parameter, found) {
-                self.refuse_writes(reason);
-                return Err(Error::WritesRefused { parameter, reason });
-            }
+            self.conclude_identity(check, found)?;
         }
         Ok(())
+    }
+}
+
+impl<L> Device<L> {
+    /// What the blocking and the async `verify_identity` conclude from `found`, the value
+    /// `check`'s parameter read: nothing if it is covered; else every later write is refused
+    /// and the refusal comes back as [`Error::WritesRefused`] naming the parameter.
+    pub(crate) fn conclude_identity<P: Protocol>(
+        &mut self,
+        check: &IdentityCheck<P>,
+        found: i128,
+    ) -> Result<(), Error> {
+        let parameter = check.parameter.name;
+        match check.covered.refusal(parameter, found) {
+            Some(reason) => {
+                self.refuse_writes(reason);
+                Err(Error::WritesRefused { parameter, reason })
+            }
+            None => Ok(()),
+        }
     }
 }
 

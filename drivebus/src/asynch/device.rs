@@ -48,7 +48,10 @@ impl<L: AsyncLink> Device<Async<L>> {
     }
 
     /// Another parameter's raw integer value (a bound before a write).
-    async fn read_integer(&mut self, parameter: &RawInteger<L::Protocol>) -> Result<i128, Error> {
+    pub(super) async fn read_integer(
+        &mut self,
+        parameter: &RawInteger<L::Protocol>,
+    ) -> Result<i128, Error> {
         let address = parameter.read_at.get(self.variant);
         let address = self.read_target(
             parameter.name,

@@ -12,10 +12,14 @@
 //! blocking twins' methods, awaited. Everything but the I/O is the blocking device's code: the
 //! checks before a request and the decoding after it are functions both call, and a run-time
 //! scale (generated as blocking code over a `Device`) is replayed over the answers of async
-//! reads, one more run per input it reads, rather than generated twice.
+//! reads, one more run per input it reads, rather than generated twice. The procedures a handle
+//! runs on connect ([`Device::verify_identity`](crate::Device::verify_identity), the generated
+//! `verify_identity_async` and `detect_variant_async`) conclude from what they read with the
+//! blocking procedure's own functions: only the reads are awaited.
 
 mod accessor;
 mod device;
+mod identity;
 pub(crate) mod io_error;
 mod link;
 pub(crate) mod race;

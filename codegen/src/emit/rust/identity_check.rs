@@ -9,7 +9,9 @@
 //!
 //! Which checks a protocol runs is known per protocol: the handle implements
 //! `drivebus::IdentityChecks` for each protocol that reaches at least one identity parameter,
-//! with a table of `drivebus::IdentityCheck`s; `drivebus::Device::verify_identity` reads them.
+//! with a table of `drivebus::IdentityCheck`s; `drivebus::Device::verify_identity` reads them,
+//! and over an async link (drivebus's `async`, through `drivebus::async_items!`) the handle's
+//! `verify_identity_async` reads them with the async `Device::verify_identity`.
 
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
@@ -36,7 +38,7 @@ pub fn emit(device: &Device) -> TokenStream {
             .collect();
         (!reached.is_empty()).then(|| {
             quote! {
-                impl<L: ::drivebus::Link> ::drivebus::IdentityChecks<#protocol> for #handle<L> {
+                impl<L> ::drivebus::IdentityChecks<#protocol> for #handle<L> {
                     const IDENTITY_CHECKS: &'static [::drivebus::IdentityCheck<#protocol>] =
                         &[#( #reached ),*];
                 }
@@ -55,6 +57,10 @@ pub fn emit(device: &Device) -> TokenStream {
          `trust_unverified` is the explicit opt-in to write anyway.",
         described.join(", ")
     ));
+    let verify_async_doc = doc_attrs(
+        "`verify_identity` over an async link: the same parameters read, awaited, and the same \
+         conclusion (every later write refused on a value the description does not cover).",
+    );
     let values = identity_values(&checks, identity);
     quote! {
         #values
@@ -73,7 +79,24 @@ pub fn emit(device: &Device) -> TokenStream {
             }
         }
 
-        impl<L: ::drivebus::Link> #handle<L> {
+        // With drivebus's `async`: the same check, its reads awaited.
+        ::drivebus::async_items! {
+            impl<L: ::drivebus::asynch::AsyncLink> #handle<::drivebus::asynch::Async<L>>
+            where
+                Self: ::drivebus::IdentityChecks<L::Protocol>,
+            {
+                #verify_async_doc
+                pub async fn verify_identity_async(&mut self) -> Result<(), ::drivebus::Error> {
+                    self.device
+                        .verify_identity(
+                            <Self as ::drivebus::IdentityChecks<L::Protocol>>::IDENTITY_CHECKS,
+                        )
+                        .await
+                }
+            }
+        }
+
+        impl<L> #handle<L> {
             /// Writes to this drive although `verify_identity` found (or was not asked to check)
             /// a drive, firmware or configuration the description does not cover: the explicit,
             /// visible opt-in. Lifts every refusal of writes.

@@ -1,6 +1,7 @@
 //! Variants the drive reports at run time (`[[variant]] selected_by`): `Variant::selected_by`
 //! maps a raw value of the selecting parameter to a variant, and the handle's `detect_variant`
-//! reads it and selects the variant, or reports the value no variant covers.
+//! reads it and selects the variant, or reports the value no variant covers; over an async link
+//! (drivebus's `async`) `detect_variant_async` does the same with the read awaited.
 
 use proc_macro2::TokenStream;
 use quote::quote;
@@ -32,6 +33,10 @@ pub fn emit(device: &Device) -> TokenStream {
          read (`Error::VariantUnknown`) and every write but a stop is refused with \
          `Error::WritesRefused`; nothing is guessed and nothing is sent."
     ));
+    let detect_async_doc = doc_attrs(
+        "`detect_variant` over an async link: the same read, awaited, and the same selection \
+         (or refusal of writes on a value no variant is selected by).",
+    );
     quote! {
         /// What the drive reported about its variant.
         #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -53,14 +58,11 @@ pub fn emit(device: &Device) -> TokenStream {
             }
         }
 
-        impl<L: ::drivebus::Link> #handle<L>
-        where
-            params::#marker: ::drivebus::Readable<L::Protocol, Raw = #raw>,
-        {
-            #detect_doc
-            pub fn detect_variant(&mut self) -> Result<VariantSelection, ::drivebus::Error> {
-                let raw = self.device.read_raw::<params::#marker>()?;
-                Ok(match Variant::selected_by(raw) {
+        impl<L> #handle<L> {
+            /// What `detect_variant` and `detect_variant_async` conclude from the raw value
+            /// read: the variant it names, selected, or the refusal of writes.
+            fn select_reported_variant(&mut self, raw: #raw) -> VariantSelection {
+                match Variant::selected_by(raw) {
                     Some(variant) => {
                         self.set_variant(variant);
                         VariantSelection::Known(variant)
@@ -72,7 +74,34 @@ pub fn emit(device: &Device) -> TokenStream {
                         });
                         VariantSelection::Unknown(raw)
                     }
-                })
+                }
+            }
+        }
+
+        impl<L: ::drivebus::Link> #handle<L>
+        where
+            params::#marker: ::drivebus::Readable<L::Protocol, Raw = #raw>,
+        {
+            #detect_doc
+            pub fn detect_variant(&mut self) -> Result<VariantSelection, ::drivebus::Error> {
+                let raw = self.device.read_raw::<params::#marker>()?;
+                Ok(self.select_reported_variant(raw))
+            }
+        }
+
+        // With drivebus's `async`: the same detection, its read awaited.
+        ::drivebus::async_items! {
+            impl<L: ::drivebus::asynch::AsyncLink> #handle<::drivebus::asynch::Async<L>>
+            where
+                params::#marker: ::drivebus::Readable<L::Protocol, Raw = #raw>,
+            {
+                #detect_async_doc
+                pub async fn detect_variant_async(
+                    &mut self,
+                ) -> Result<VariantSelection, ::drivebus::Error> {
+                    let raw = self.device.read_raw::<params::#marker>().await?;
+                    Ok(self.select_reported_variant(raw))
+                }
             }
         }
     }

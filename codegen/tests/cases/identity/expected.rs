@@ -145,8 +145,7 @@ mod parameter_accessors {
 }
 /// The values of the identity parameter this description covers.
 pub const IDENTITY_VALUES: &[::core::primitive::i128] = &[242];
-impl<L: ::drivebus::Link> ::drivebus::IdentityChecks<::drivebus::canopen::CanOpen>
-for Case<L> {
+impl<L> ::drivebus::IdentityChecks<::drivebus::canopen::CanOpen> for Case<L> {
     const IDENTITY_CHECKS: &'static [::drivebus::IdentityCheck<
         ::drivebus::canopen::CanOpen,
     >] = &[
@@ -176,7 +175,15 @@ where
             )
     }
 }
-impl<L: ::drivebus::Link> Case<L> {
+::drivebus::async_items! {
+    impl < L : ::drivebus::asynch::AsyncLink > Case < ::drivebus::asynch::Async < L >>
+    where Self : ::drivebus::IdentityChecks < L::Protocol >, { #[doc =
+    " `verify_identity` over an async link: the same parameters read, awaited, and the same conclusion (every later write refused on a value the description does not cover)."]
+    pub async fn verify_identity_async(& mut self) -> Result < (), ::drivebus::Error > {
+    self.device.verify_identity(< Self as ::drivebus::IdentityChecks < L::Protocol >>
+    ::IDENTITY_CHECKS,). await } }
+}
+impl<L> Case<L> {
     /// Writes to this drive although `verify_identity` found (or was not asked to check)
     /// a drive, firmware or configuration the description does not cover: the explicit,
     /// visible opt-in. Lifts every refusal of writes.

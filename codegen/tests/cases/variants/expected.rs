@@ -157,6 +157,26 @@ impl Variant {
         }
     }
 }
+impl<L> Case<L> {
+    /// What `detect_variant` and `detect_variant_async` conclude from the raw value
+    /// read: the variant it names, selected, or the refusal of writes.
+    fn select_reported_variant(&mut self, raw: u16) -> VariantSelection {
+        match Variant::selected_by(raw) {
+            Some(variant) => {
+                self.set_variant(variant);
+                VariantSelection::Known(variant)
+            }
+            None => {
+                self.device
+                    .refuse_writes(::drivebus::WriteRefusal::UnknownVariant {
+                        selector: "parameter_configuration",
+                        value: ::core::primitive::i128::from(raw),
+                    });
+                VariantSelection::Unknown(raw)
+            }
+        }
+    }
+}
 impl<L: ::drivebus::Link> Case<L>
 where
     params::ParameterConfiguration: ::drivebus::Readable<L::Protocol, Raw = u16>,
@@ -168,21 +188,16 @@ where
     /// nothing is guessed and nothing is sent.
     pub fn detect_variant(&mut self) -> Result<VariantSelection, ::drivebus::Error> {
         let raw = self.device.read_raw::<params::ParameterConfiguration>()?;
-        Ok(
-            match Variant::selected_by(raw) {
-                Some(variant) => {
-                    self.set_variant(variant);
-                    VariantSelection::Known(variant)
-                }
-                None => {
-                    self.device
-                        .refuse_writes(::drivebus::WriteRefusal::UnknownVariant {
-                            selector: "parameter_configuration",
-                            value: ::core::primitive::i128::from(raw),
-                        });
-                    VariantSelection::Unknown(raw)
-                }
-            },
-        )
+        Ok(self.select_reported_variant(raw))
+    }
+}
+::drivebus::async_items! {
+    impl < L : ::drivebus::asynch::AsyncLink > Case < ::drivebus::asynch::Async < L >>
+    where params::ParameterConfiguration : ::drivebus::Readable < L::Protocol, Raw = u16
+    >, { #[doc =
+    " `detect_variant` over an async link: the same read, awaited, and the same selection (or refusal of writes on a value no variant is selected by)."]
+    pub async fn detect_variant_async(& mut self,) -> Result < VariantSelection,
+    ::drivebus::Error > { let raw = self.device.read_raw:: <
+    params::ParameterConfiguration > (). await ?; Ok(self.select_reported_variant(raw)) }
     }
 }
