@@ -15,6 +15,7 @@ use drivebus::canopen::can::async_slcan::AsyncSlcanBus;
 use drivebus::canopen::can::slcan::SlcanBus;
 use drivebus::canopen::can::tokio_adapters::TokioIo;
 use drivebus::canopen::{CanOpenLink, NodeId};
+use drivebus::interpret::OutsideRange;
 use drivebus::units::Rpm;
 use drivebus::{Error, ValueError};
 use drivesim::canopen::{Node, NodeConfig};
@@ -87,8 +88,27 @@ async fn typed_async_reads_writes_and_read_many_against_the_simulator() {
     assert_eq!(refused, blocking.vl_dimension_factor_denominator().write(0));
     assert_eq!(drive.vl_dimension_factor_denominator().read().await, Ok(10));
 
-    // The runs of sub-indices (`drive.sls_velocity_limit(n)`) have no async accessor yet: the
-    // generated indexed accessors are on the blocking handle only.
+    // A run of sub-indices (6693h:01..08), one indexed accessor, equal to the blocking one;
+    // outside the run the sub-index is refused before anything is sent. (A safety run: no
+    // setter, as on the blocking handle.)
+    for sub in 1..=8 {
+        assert_eq!(
+            drive.sls_velocity_limit(sub).read().await,
+            blocking.sls_velocity_limit(sub).read(),
+            "6693h:{sub:02x}"
+        );
+    }
+    assert_eq!(
+        drive.sls_velocity_limit(9).read().await,
+        Err(Error::Value(ValueError::OutOfRange {
+            parameter: "sls_velocity_limit",
+            value: OutsideRange::Int {
+                raw: 9,
+                min: 1,
+                max: 8
+            },
+        }))
+    );
 
     // Several parameters at once, equal to the blocking handle's.
     let many = drive
