@@ -4,6 +4,9 @@
 //! goes ACCEL → RUN, and Stop (coast, line 544) ends the output. Waits poll the drive until a
 //! deadline; nothing asserts on elapsed time.
 
+#[path = "support/simulated_smd.rs"]
+mod simulated_smd;
+
 use std::time::{Duration, Instant};
 
 use drivebus::modbus::client::{ModbusTcpClient, TcpConfig};
@@ -21,16 +24,7 @@ type Drive = LenzeSmd<ModbusLink<ModbusTcpClient>>;
 
 /// A simulated PC507 smd under Modbus control (C01 = 11) with these further presets.
 fn simulated(presets: &[(&str, i128)]) -> (Simulator, TcpServer) {
-    let sim = Simulator::load(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../descriptions/lenze-smd"
-    ))
-    .unwrap();
-    sim.preset("parameter_configuration", 507).unwrap();
-    sim.preset("control_source", 11).unwrap();
-    for (name, value) in presets {
-        sim.preset(name, *value).unwrap();
-    }
+    let sim = simulated_smd::pc507_under_modbus(presets);
     let server = sim.serve_modbus_tcp("127.0.0.1:0", UNIT).unwrap();
     (sim, server)
 }

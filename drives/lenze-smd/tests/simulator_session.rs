@@ -4,6 +4,9 @@
 //! polling over a second connection while the guard is held. And the untyped path
 //! (`drive.device().write_raw(..)`): a write to a locked parameter is refused before it is sent.
 
+#[path = "support/simulated_smd.rs"]
+mod simulated_smd;
+
 use std::sync::{Arc, Mutex};
 use std::thread::sleep;
 use std::time::Duration;
@@ -23,16 +26,7 @@ type Drive = LenzeSmd<ModbusLink<ModbusTcpClient>>;
 
 /// A simulated PC507 smd under Modbus control with these further presets.
 fn simulated(presets: &[(&str, i128)]) -> (Simulator, TcpServer) {
-    let sim = Simulator::load(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../descriptions/lenze-smd"
-    ))
-    .unwrap();
-    sim.preset("parameter_configuration", 507).unwrap();
-    sim.preset("control_source", 11).unwrap();
-    for (name, value) in presets {
-        sim.preset(name, *value).unwrap();
-    }
+    let sim = simulated_smd::pc507_under_modbus(presets);
     let server = sim.serve_modbus_tcp("127.0.0.1:0", UNIT).unwrap();
     (sim, server)
 }

@@ -59,7 +59,9 @@ pub(super) fn emit(device: &Device, handle: &Ident) -> TokenStream {
             #types
         }
 
-        impl<L: ::drivebus::Link> #handle<L> {
+        // No `Link` bound: the same methods serve the async handle (`Async<L>`), whose
+        // `Indexed` has the awaited read and write.
+        impl<L> #handle<L> {
             #( #methods )*
         }
     }

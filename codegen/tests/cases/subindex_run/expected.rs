@@ -159,7 +159,7 @@ pub mod indexed {
         params::SlsVelocityLimitRun,
     >;
 }
-impl<L: ::drivebus::Link> Case<L> {
+impl<L> Case<L> {
     /// n_SLS of SLS n. Sub-indices 1..=4 of object 0x6693: [`indexed::SlsVelocityLimit`].
     pub fn sls_velocity_limit(
         &mut self,
