@@ -3,6 +3,9 @@
 //! Real clients (drivebus included) also validate more and frame more kinds of request; the
 //! target is to stay within 1.2× of this.
 
+pub mod latency;
+pub mod mbap_sim;
+pub mod process;
 pub mod rs232;
 
 /// CRC-16/MODBUS tables for slicing by 16: `TABLES[k][b]` is the CRC of byte `b` followed by `k`
