@@ -7,14 +7,16 @@
 //! enables drivebus's `async`.
 
 /// The async handle's inherent items of generated handle `$handle` (which holds a
-/// `device: Device<L>` and has `new`): `new_async`, `read_many_async` and one async constructor
-/// per protocol listed (`modbus(LIMITS)`, `canopen`, `rs232`): `modbus_async`,
-/// `canopen_async`, `rs232_async`.
+/// `device: Device<L>` and has `new`): `new_async`, `read_many_async`, and per item listed:
+/// one async constructor per protocol (`modbus(LIMITS)`, `canopen`, `rs232`: `modbus_async`,
+/// `canopen_async`, `rs232_async`), the async twins of the handle's procedures (`identity`:
+/// `verify_identity_async`; `variant(SELECTOR, RAW)`: `detect_variant_async`, over the
+/// generated `select_reported_variant`).
 #[cfg(feature = "async")]
 #[doc(hidden)] // generated crates call it; users never need to
 #[macro_export]
 macro_rules! async_handle {
-    ($handle:ident $(, $protocol:ident $(($limits:expr))?)* $(,)?) => {
+    ($handle:ident $(, $item:ident $(($($argument:tt)*))?)* $(,)?) => {
         // Named apart from the blocking `new`/`read_many`: inherent impls of a downstream crate
         // may not share a name even where, as here, no link is both blocking and async.
         impl<L: $crate::asynch::AsyncLink> $handle<$crate::asynch::Async<L>> {
@@ -33,9 +35,9 @@ macro_rules! async_handle {
                 self.device().read_many(set).await
             }
         }
-        $($crate::async_handle!(@protocol $handle $protocol $(($limits))?);)*
+        $($crate::async_handle!(@item $handle $item $(($($argument)*))?);)*
     };
-    (@protocol $handle:ident modbus($limits:expr)) => {
+    (@item $handle:ident modbus($limits:expr)) => {
         impl<B: $crate::modbus::AsyncRegisterBus>
             $handle<$crate::asynch::Async<$crate::modbus::ModbusLink<B, $crate::modbus::StaticLimits>>>
         {
@@ -45,7 +47,7 @@ macro_rules! async_handle {
             }
         }
     };
-    (@protocol $handle:ident canopen) => {
+    (@item $handle:ident canopen) => {
         impl<B: $crate::canopen::AsyncSdoBus>
             $handle<$crate::asynch::Async<$crate::canopen::CanOpenLink<B>>>
         {
@@ -56,7 +58,36 @@ macro_rules! async_handle {
             }
         }
     };
-    (@protocol $handle:ident rs232) => {
+    (@item $handle:ident identity) => {
+        impl<L: $crate::asynch::AsyncLink> $handle<$crate::asynch::Async<L>>
+        where
+            Self: $crate::IdentityChecks<L::Protocol>,
+        {
+            /// `verify_identity` over an async link: the same parameters read, awaited, and the
+            /// same conclusion (every later write refused on a value the description does not
+            /// cover).
+            pub async fn verify_identity_async(&mut self) -> Result<(), $crate::Error> {
+                let checks = <Self as $crate::IdentityChecks<L::Protocol>>::IDENTITY_CHECKS;
+                self.device().verify_identity(checks).await
+            }
+        }
+    };
+    (@item $handle:ident variant($selector:ident, $raw:ty)) => {
+        impl<L: $crate::asynch::AsyncLink> $handle<$crate::asynch::Async<L>>
+        where
+            params::$selector: $crate::Readable<L::Protocol, Raw = $raw>,
+        {
+            /// `detect_variant` over an async link: the same read, awaited, and the same
+            /// selection (or refusal of writes on a value no variant is selected by).
+            pub async fn detect_variant_async(
+                &mut self,
+            ) -> Result<VariantSelection, $crate::Error> {
+                let raw = self.device().read_raw::<params::$selector>().await?;
+                Ok(self.select_reported_variant(raw))
+            }
+        }
+    };
+    (@item $handle:ident rs232) => {
         impl<B: $crate::rs232::AsyncTelegramBus>
             $handle<$crate::asynch::Async<$crate::rs232::Rs232Link<B>>>
         {
@@ -74,25 +105,5 @@ macro_rules! async_handle {
 #[doc(hidden)]
 #[macro_export]
 macro_rules! async_handle {
-    ($($tokens:tt)*) => {};
-}
-
-/// Items of a generated crate that exist only with drivebus's `async` (the async twins of a
-/// handle's procedures, `verify_identity_async`, `detect_variant_async`): passed through with
-/// the feature, dropped without it, so the generated crate needs no `cfg` of its own.
-#[cfg(feature = "async")]
-#[doc(hidden)] // generated crates call it; users never need to
-#[macro_export]
-macro_rules! async_items {
-    ($($item:item)*) => {
-        $($item)*
-    };
-}
-
-/// Without feature `async`, a generated crate has no async items.
-#[cfg(not(feature = "async"))]
-#[doc(hidden)]
-#[macro_export]
-macro_rules! async_items {
     ($($tokens:tt)*) => {};
 }

@@ -5,7 +5,7 @@ use proc_macro2::{Ident, Literal, TokenStream};
 use quote::quote;
 
 use super::addresses::hex;
-use super::{doc_attrs, ident};
+use super::{doc_attrs, ident, raw_type};
 use crate::emit::doc;
 use crate::ir::{Device, Table};
 use crate::names;
@@ -94,13 +94,20 @@ fn constructors(device: &Device, handle: &proc_macro2::Ident) -> TokenStream {
     quote! { #modbus #canopen #rs232 }
 }
 
-/// The protocols of the async constructors, as `async_handle!` takes them: `, modbus(LIMITS)`.
+/// The items of the async handle, as `async_handle!` takes them: the protocols of its
+/// constructors (`, modbus(LIMITS)`), `, identity` and `, variant(SELECTOR, RAW)`.
 fn async_protocols(device: &Device) -> TokenStream {
     let has = |on: fn(&crate::ir::Parameter) -> bool| device.parameters.iter().any(on);
     let modbus = has(|p| !p.modbus.is_empty()).then(|| quote! { , modbus(MODBUS_LIMITS) });
     let canopen = has(|p| !p.canopen.is_empty()).then(|| quote! { , canopen });
     let rs232 = has(|p| !p.rs232.is_empty()).then(|| quote! { , rs232 });
-    quote! { #modbus #canopen #rs232 }
+    let identity = (!device.identity_checks().is_empty()).then(|| quote! { , identity });
+    let variant = device.variant_selection().map(|(selector, _)| {
+        let marker = ident(&names::camel(&selector.name));
+        let raw = raw_type(selector.data_type);
+        quote! { , variant(#marker, #raw) }
+    });
+    quote! { #modbus #canopen #rs232 #identity #variant }
 }
 
 /// Whether any address of `p` allows reading.

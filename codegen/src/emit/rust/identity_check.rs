@@ -10,8 +10,8 @@
 //! Which checks a protocol runs is known per protocol: the handle implements
 //! `drivebus::IdentityChecks` for each protocol that reaches at least one identity parameter,
 //! with a table of `drivebus::IdentityCheck`s; `drivebus::Device::verify_identity` reads them,
-//! and over an async link (drivebus's `async`, through `drivebus::async_items!`) the handle's
-//! `verify_identity_async` reads them with the async `Device::verify_identity`.
+//! and over an async link (drivebus's `async`, through `drivebus::async_handle!`'s `identity`)
+//! the handle's `verify_identity_async` reads them with the async `Device::verify_identity`.
 
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
@@ -57,10 +57,6 @@ pub fn emit(device: &Device) -> TokenStream {
          `trust_unverified` is the explicit opt-in to write anyway.",
         described.join(", ")
     ));
-    let verify_async_doc = doc_attrs(
-        "`verify_identity` over an async link: the same parameters read, awaited, and the same \
-         conclusion (every later write refused on a value the description does not cover).",
-    );
     let values = identity_values(&checks, identity);
     quote! {
         #values
@@ -76,23 +72,6 @@ pub fn emit(device: &Device) -> TokenStream {
                 self.device.verify_identity(
                     <Self as ::drivebus::IdentityChecks<L::Protocol>>::IDENTITY_CHECKS,
                 )
-            }
-        }
-
-        // With drivebus's `async`: the same check, its reads awaited.
-        ::drivebus::async_items! {
-            impl<L: ::drivebus::asynch::AsyncLink> #handle<::drivebus::asynch::Async<L>>
-            where
-                Self: ::drivebus::IdentityChecks<L::Protocol>,
-            {
-                #verify_async_doc
-                pub async fn verify_identity_async(&mut self) -> Result<(), ::drivebus::Error> {
-                    self.device
-                        .verify_identity(
-                            <Self as ::drivebus::IdentityChecks<L::Protocol>>::IDENTITY_CHECKS,
-                        )
-                        .await
-                }
             }
         }
 

@@ -1,7 +1,8 @@
 //! Variants the drive reports at run time (`[[variant]] selected_by`): `Variant::selected_by`
 //! maps a raw value of the selecting parameter to a variant, and the handle's `detect_variant`
 //! reads it and selects the variant, or reports the value no variant covers; over an async link
-//! (drivebus's `async`) `detect_variant_async` does the same with the read awaited.
+//! (drivebus's `async`, `drivebus::async_handle!`'s `variant`) `detect_variant_async` does the
+//! same with the read awaited.
 
 use proc_macro2::TokenStream;
 use quote::quote;
@@ -33,10 +34,6 @@ pub fn emit(device: &Device) -> TokenStream {
          read (`Error::VariantUnknown`) and every write but a stop is refused with \
          `Error::WritesRefused`; nothing is guessed and nothing is sent."
     ));
-    let detect_async_doc = doc_attrs(
-        "`detect_variant` over an async link: the same read, awaited, and the same selection \
-         (or refusal of writes on a value no variant is selected by).",
-    );
     quote! {
         /// What the drive reported about its variant.
         #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -86,22 +83,6 @@ pub fn emit(device: &Device) -> TokenStream {
             pub fn detect_variant(&mut self) -> Result<VariantSelection, ::drivebus::Error> {
                 let raw = self.device.read_raw::<params::#marker>()?;
                 Ok(self.select_reported_variant(raw))
-            }
-        }
-
-        // With drivebus's `async`: the same detection, its read awaited.
-        ::drivebus::async_items! {
-            impl<L: ::drivebus::asynch::AsyncLink> #handle<::drivebus::asynch::Async<L>>
-            where
-                params::#marker: ::drivebus::Readable<L::Protocol, Raw = #raw>,
-            {
-                #detect_async_doc
-                pub async fn detect_variant_async(
-                    &mut self,
-                ) -> Result<VariantSelection, ::drivebus::Error> {
-                    let raw = self.device.read_raw::<params::#marker>().await?;
-                    Ok(self.select_reported_variant(raw))
-                }
             }
         }
     }

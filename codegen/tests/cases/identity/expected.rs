@@ -107,7 +107,7 @@ impl<L: ::drivebus::Link> Case<L> {
         self.device.read_many(set)
     }
 }
-::drivebus::async_handle!(Case, canopen);
+::drivebus::async_handle!(Case, canopen, identity);
 /// The handle's accessors, one per parameter: in a module of their own so that their
 /// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
@@ -174,14 +174,6 @@ where
                 <Self as ::drivebus::IdentityChecks<L::Protocol>>::IDENTITY_CHECKS,
             )
     }
-}
-::drivebus::async_items! {
-    impl < L : ::drivebus::asynch::AsyncLink > Case < ::drivebus::asynch::Async < L >>
-    where Self : ::drivebus::IdentityChecks < L::Protocol >, { #[doc =
-    " `verify_identity` over an async link: the same parameters read, awaited, and the same conclusion (every later write refused on a value the description does not cover)."]
-    pub async fn verify_identity_async(& mut self) -> Result < (), ::drivebus::Error > {
-    self.device.verify_identity(< Self as ::drivebus::IdentityChecks < L::Protocol >>
-    ::IDENTITY_CHECKS,). await } }
 }
 impl<L> Case<L> {
     /// Writes to this drive although `verify_identity` found (or was not asked to check)

@@ -110,7 +110,9 @@ impl<L: ::drivebus::Link> Case<L> {
         self.device.read_many(set)
     }
 }
-::drivebus::async_handle!(Case, modbus(MODBUS_LIMITS));
+::drivebus::async_handle!(
+    Case, modbus(MODBUS_LIMITS), variant(ParameterConfiguration, u16)
+);
 /// The handle's accessors, one per parameter: in a module of their own so that their
 /// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
@@ -189,15 +191,5 @@ where
     pub fn detect_variant(&mut self) -> Result<VariantSelection, ::drivebus::Error> {
         let raw = self.device.read_raw::<params::ParameterConfiguration>()?;
         Ok(self.select_reported_variant(raw))
-    }
-}
-::drivebus::async_items! {
-    impl < L : ::drivebus::asynch::AsyncLink > Case < ::drivebus::asynch::Async < L >>
-    where params::ParameterConfiguration : ::drivebus::Readable < L::Protocol, Raw = u16
-    >, { #[doc =
-    " `detect_variant` over an async link: the same read, awaited, and the same selection (or refusal of writes on a value no variant is selected by)."]
-    pub async fn detect_variant_async(& mut self,) -> Result < VariantSelection,
-    ::drivebus::Error > { let raw = self.device.read_raw:: <
-    params::ParameterConfiguration > (). await ?; Ok(self.select_reported_variant(raw)) }
     }
 }
