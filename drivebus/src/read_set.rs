@@ -30,6 +30,29 @@ fn decode_member<L: Link, P: Readable<L::Protocol>>(
     P::decode(raw, scale).map_err(named::<P>)
 }
 
+/// Calls `$impl!` with every tuple a read set may be, up to twelve parameters: once for the
+/// blocking [`ReadSet`], once for the async one.
+macro_rules! for_each_tuple {
+    ($impl:ident) => {
+        $impl! {
+            (A 0)
+            (A 0, B 1)
+            (A 0, B 1, C 2)
+            (A 0, B 1, C 2, D 3)
+            (A 0, B 1, C 2, D 3, E 4)
+            (A 0, B 1, C 2, D 3, E 4, F 5)
+            (A 0, B 1, C 2, D 3, E 4, F 5, G 6)
+            (A 0, B 1, C 2, D 3, E 4, F 5, G 6, H 7)
+            (A 0, B 1, C 2, D 3, E 4, F 5, G 6, H 7, I 8)
+            (A 0, B 1, C 2, D 3, E 4, F 5, G 6, H 7, I 8, J 9)
+            (A 0, B 1, C 2, D 3, E 4, F 5, G 6, H 7, I 8, J 9, K 10)
+            (A 0, B 1, C 2, D 3, E 4, F 5, G 6, H 7, I 8, J 9, K 10, M 11)
+        }
+    };
+}
+#[cfg(feature = "async")]
+pub(crate) use for_each_tuple;
+
 macro_rules! read_set_for_tuples {
     ($( ($($p:ident $i:tt),+) )*) => {$(
         impl<L: Link, $($p: Readable<L::Protocol>),+> ReadSet<L> for ($($p,)+) {
@@ -54,18 +77,5 @@ macro_rules! read_set_for_tuples {
 #[allow(non_snake_case)]
 mod tuples {
     use super::*;
-    read_set_for_tuples! {
-        (A 0)
-        (A 0, B 1)
-        (A 0, B 1, C 2)
-        (A 0, B 1, C 2, D 3)
-        (A 0, B 1, C 2, D 3, E 4)
-        (A 0, B 1, C 2, D 3, E 4, F 5)
-        (A 0, B 1, C 2, D 3, E 4, F 5, G 6)
-        (A 0, B 1, C 2, D 3, E 4, F 5, G 6, H 7)
-        (A 0, B 1, C 2, D 3, E 4, F 5, G 6, H 7, I 8)
-        (A 0, B 1, C 2, D 3, E 4, F 5, G 6, H 7, I 8, J 9)
-        (A 0, B 1, C 2, D 3, E 4, F 5, G 6, H 7, I 8, J 9, K 10)
-        (A 0, B 1, C 2, D 3, E 4, F 5, G 6, H 7, I 8, J 9, K 10, M 11)
-    }
+    for_each_tuple!(read_set_for_tuples);
 }

@@ -53,18 +53,5 @@ macro_rules! async_read_set_for_tuples {
 #[allow(non_snake_case)]
 mod tuples {
     use super::*;
-    async_read_set_for_tuples! {
-        (A 0)
-        (A 0, B 1)
-        (A 0, B 1, C 2)
-        (A 0, B 1, C 2, D 3)
-        (A 0, B 1, C 2, D 3, E 4)
-        (A 0, B 1, C 2, D 3, E 4, F 5)
-        (A 0, B 1, C 2, D 3, E 4, F 5, G 6)
-        (A 0, B 1, C 2, D 3, E 4, F 5, G 6, H 7)
-        (A 0, B 1, C 2, D 3, E 4, F 5, G 6, H 7, I 8)
-        (A 0, B 1, C 2, D 3, E 4, F 5, G 6, H 7, I 8, J 9)
-        (A 0, B 1, C 2, D 3, E 4, F 5, G 6, H 7, I 8, J 9, K 10)
-        (A 0, B 1, C 2, D 3, E 4, F 5, G 6, H 7, I 8, J 9, K 10, M 11)
-    }
+    crate::read_set::for_each_tuple!(async_read_set_for_tuples);
 }
