@@ -31,3 +31,11 @@ for pair in server,modbus-core server,canopen server,srdo testing,modbus-core te
     testing,rs232 server,testing async,canopen tokio,canopen tokio,socketcan tokio,serial; do
     check --no-default-features --features "$pair"
 done
+# The async layer and the Modbus core on a bare-metal target, as an embassy firmware would build
+# them: proves `async` names no executor and needs no std.
+no_std_target=thumbv7em-none-eabihf
+rustup target list --installed | grep -qx "$no_std_target" || rustup target add "$no_std_target"
+for features in async async,modbus-core; do
+    echo "drivebus for $no_std_target: $features"
+    cargo check --quiet -p drivebus --lib --no-default-features --features "$features" --target "$no_std_target"
+done
