@@ -113,6 +113,7 @@ pub(crate) mod tests {
             "unlock_commands",
             "lock_security",
             "stop",
+            "load_lenze_setting",
         ] {
             assert!(!saved.contains(&acting), "{acting}");
         }
