@@ -47,6 +47,11 @@ impl Rs232Server {
         }
     }
 
+    /// How the drive is wired: point to point, or in a loop that repeats every telegram.
+    pub fn mode(&self) -> LoopMode {
+        self.mode
+    }
+
     /// The bytes the drive sends after receiving `received`: the telegram itself in loop mode,
     /// then the answer if the telegram is this station's and its checksum is right.
     pub fn handle(&mut self, received: &Telegram) -> Vec<u8> {
