@@ -16,6 +16,7 @@
 
 mod builder;
 pub mod config_file;
+pub mod dbc;
 pub mod diagnostic;
 pub mod diff;
 pub mod eds;

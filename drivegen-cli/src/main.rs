@@ -45,6 +45,8 @@ enum Command {
     Watch(commands::watch::Args),
     /// Decode a candump capture into named, typed values.
     Decode(commands::decode::Args),
+    /// Export a description's PDOs as a DBC file for CAN log tools (cantools, SavvyCAN).
+    Dbc(commands::dbc::Args),
     /// Export a description as a CiA 306 EDS, or import a vendor EDS as a TOML overlay.
     Eds(commands::eds::Args),
     /// Find the CANopen nodes or Modbus units on a bus and match their identity against descriptions.
@@ -76,6 +78,7 @@ fn main() -> ExitCode {
         Command::Write(args) => commands::write::run(args),
         Command::Watch(args) => commands::watch::run(args),
         Command::Decode(args) => commands::decode::run(args),
+        Command::Dbc(args) => commands::dbc::run(args),
         Command::Eds(args) => commands::eds::run(args),
         Command::Safety(args) => commands::safety::run(args),
         Command::Scan(args) => commands::scan::run(args),

@@ -4,7 +4,7 @@
 use std::collections::HashMap;
 
 use drivebus::canopen::pdo::{MappedObject, PdoKind};
-use drivegen::ir::Device;
+use drivegen::ir::{Device, Direction};
 
 /// First RPDO and TPDO mapping objects.
 const RPDO_MAPPING: u16 = 0x1600;
@@ -47,7 +47,8 @@ impl PdoMappings {
         entries[slot] = MappedObject::from_entry(value);
     }
 
-    /// The named values of a PDO payload, if its mapping was seen and the payload holds it.
+    /// The named values of a PDO payload, if its mapping is known and the payload holds it: the
+    /// mapping seen in the capture, else the one the description declares for the PDO.
     pub fn decode(
         &self,
         device: &Device,
@@ -57,7 +58,14 @@ impl PdoMappings {
         payload: &[u8],
     ) -> Option<String> {
         let transmit = kind == PdoKind::Transmit;
-        let entries = self.maps.get(&(node, transmit, u16::from(number)))?;
+        let declared;
+        let entries = match self.maps.get(&(node, transmit, u16::from(number))) {
+            Some(learned) => learned,
+            None => {
+                declared = declared_mapping(device, transmit, number)?;
+                &declared
+            }
+        };
         let mut bit = 0usize;
         let mut values = Vec::with_capacity(entries.len());
         for entry in entries {
@@ -84,6 +92,19 @@ impl PdoMappings {
     }
 }
 
+/// The mapping the description declares for a PDO (`[[pdo]]`), if any.
+fn declared_mapping(device: &Device, transmit: bool, number: u8) -> Option<Vec<MappedObject>> {
+    let direction = if transmit {
+        Direction::Tx
+    } else {
+        Direction::Rx
+    };
+    let (pdo, _) = device
+        .pdos()
+        .find(|(p, d)| p.direction == direction && d.number == u16::from(number))?;
+    pdo.mapped_objects(device)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -107,9 +128,17 @@ mod tests {
         assert!(text.starts_with("statusword="), "{text}");
         assert!(text.ends_with("velocity_actual_value=1000"), "{text}");
         assert_eq!(
-            maps.decode(&device, 1, PdoKind::Transmit, 2, &payload),
+            maps.decode(&device, 1, PdoKind::Receive, 2, &payload),
             None,
-            "not mapped"
+            "neither learned nor declared"
+        );
+        // TPDO 2 was not seen being mapped: the description's mapping decodes it.
+        let declared = maps
+            .decode(&device, 1, PdoKind::Transmit, 2, &payload)
+            .unwrap();
+        assert!(
+            declared.contains("position_actual_value=1000"),
+            "{declared}"
         );
     }
 }

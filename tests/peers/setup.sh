@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # Installs the independent test peers: socat (pty pairs) and a Python venv at the workspace root
-# with pinned pymodbus / pyserial / canopen / python-can / pyModbusTCP. Idempotent; a no-op when
+# with pinned pymodbus / pyserial / canopen / python-can / pyModbusTCP / cantools. Idempotent; a no-op when
 # already done.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 venv="$root/.venv"
-pins=(pymodbus==3.16.1 pyserial==3.5 canopen==2.4.1 python-can==4.6.1 pyModbusTCP==0.3.1)
+pins=(pymodbus==3.16.1 pyserial==3.5 canopen==2.4.1 python-can==4.6.1 pyModbusTCP==0.3.1 cantools==45.1.0)
 stamp="$venv/.drivegen-peers"
 
 if ! command -v socat >/dev/null 2>&1; then

@@ -48,7 +48,7 @@ fn export(description: &Path, out: &Path) -> Result<(), CliError> {
             description.display()
         )));
     }
-    write(out, &drivegen::eds::export(&device))
+    super::write_file(out, &drivegen::eds::export(&device))
 }
 
 /// Writes the overlay skeleton (to `out`, else standard output), then prints the findings of its
@@ -61,7 +61,7 @@ fn import(eds: &Path, out: Option<&Path>) -> Result<(), CliError> {
     let imported = drivegen::eds::import_overlay(eds, &saved_at)
         .map_err(|e| CliError::Invalid(e.to_string()))?;
     match out {
-        Some(path) => write(path, &imported.overlay)?,
+        Some(path) => super::write_file(path, &imported.overlay)?,
         None => print!("{}", imported.overlay),
     }
     let findings = imported.checked.render();
@@ -88,11 +88,4 @@ fn import(eds: &Path, out: Option<&Path>) -> Result<(), CliError> {
             saved_at.display()
         )))
     }
-}
-
-fn write(path: &Path, text: &str) -> Result<(), CliError> {
-    std::fs::write(path, text)
-        .map_err(|e| CliError::Io(format!("cannot write {}: {e}", path.display())))?;
-    eprintln!("wrote {}", path.display());
-    Ok(())
 }

@@ -2,6 +2,7 @@
 
 pub mod check;
 pub mod config;
+pub mod dbc;
 pub mod decode;
 pub mod diff;
 pub mod dump;
@@ -28,6 +29,14 @@ pub const DRIVEBUS_VERSION: &str = "0.1";
 
 /// The drivegen version a new drive crate's build script uses.
 pub const DRIVEGEN_VERSION: &str = "0.1";
+
+/// Writes `text` to `path` and says so on standard error.
+pub fn write_file(path: &Path, text: &str) -> Result<(), CliError> {
+    std::fs::write(path, text)
+        .map_err(|e| CliError::Io(format!("cannot write {}: {e}", path.display())))?;
+    eprintln!("wrote {}", path.display());
+    Ok(())
+}
 
 /// Loads and validates a description; warnings go to stderr.
 pub fn load(description: &Path) -> Result<Device, CliError> {
