@@ -5,8 +5,10 @@ pub mod dictionary;
 pub mod lss;
 pub mod node;
 pub mod nodes;
+pub mod pdo;
 pub mod srdo;
 
 pub use dictionary::Dictionary;
 pub use node::{Node, NodeConfig};
+pub use pdo::Pdos;
 pub use srdo::Srdos;

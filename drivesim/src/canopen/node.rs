@@ -1,4 +1,5 @@
-//! A CANopen node: boot-up, NMT state, heartbeat producer, the SDO server, the SRDOs and, when
+//! A CANopen node: boot-up, NMT state, heartbeat producer, the SDO server, the PDOs, the SRDOs
+//! and, when
 //! the description makes the drive an LSS slave, LSS (CiA 305), sans-I/O, plus a blocking loop
 //! over any CAN backend.
 //!
@@ -17,6 +18,7 @@ use drivebus::canopen::sdo::server::SdoServer;
 use drivebus::canopen::{CanBus, CanFrame, NodeId};
 use drivebus::BusError;
 
+use super::pdo::Pdos;
 use super::srdo::Srdos;
 use super::Dictionary;
 use crate::behaviour::object;
@@ -40,6 +42,7 @@ pub struct Node {
     state: NmtState,
     next_heartbeat: Duration,
     reported_fault: Option<u16>,
+    pdos: Pdos,
     srdos: Srdos,
     variant: Option<String>,
     lss: Option<LssSlave>,
@@ -63,6 +66,7 @@ impl Node {
             state: NmtState::Initializing,
             next_heartbeat: Duration::ZERO,
             reported_fault: None,
+            pdos: Pdos::default(),
             srdos,
             variant: variant.map(str::to_owned),
             lss,
@@ -170,7 +174,10 @@ impl Node {
             return Vec::new();
         }
         if self.state == NmtState::Operational {
-            let srdos = &mut self.srdos;
+            let (pdos, srdos) = (&mut self.pdos, &mut self.srdos);
+            if let Some(sent) = self.sim.with(|drive| pdos.handle(frame, now, drive)) {
+                return sent;
+            }
             if self.sim.with(|drive| srdos.handle(frame, now, drive)) {
                 return Vec::new();
             }
@@ -201,6 +208,8 @@ impl Node {
                         return Vec::new();
                     }
                     self.start_srdos(now);
+                    let pdos = &mut self.pdos;
+                    self.sim.with(|drive| pdos.configure(drive.store()));
                 }
                 self.state = target;
                 Vec::new()
@@ -289,6 +298,20 @@ impl Node {
         self.sim.with(|drive| srdos.poll(now, drive.store()))
     }
 
+    /// The event-driven TPDOs due at `now` (Operational only).
+    pub fn poll_pdo(&mut self, now: Duration) -> Vec<CanFrame> {
+        if self.state != NmtState::Operational {
+            return Vec::new();
+        }
+        let pdos = &mut self.pdos;
+        self.sim.with(|drive| pdos.poll(now, drive.store()))
+    }
+
+    /// The node's PDOs: the ones it cannot carry, RPDOs too short for their mapping.
+    pub fn pdos(&self) -> &Pdos {
+        &self.pdos
+    }
+
     /// The node's SRDOs: refusals and the SRDOs it cannot carry.
     pub fn srdos(&self) -> &Srdos {
         &self.srdos
@@ -309,11 +332,12 @@ impl Node {
     }
 
     /// One turn at time `now`: the answers to `received` (if a frame came), then the EMCY,
-    /// heartbeat and SRDO frames that are due.
+    /// heartbeat, TPDO and SRDO frames that are due.
     pub fn step(&mut self, received: Option<&CanFrame>, now: Duration) -> Vec<CanFrame> {
         let mut out = received.map_or_else(Vec::new, |frame| self.handle(frame, now));
         out.extend(self.poll_emcy());
         out.extend(self.poll(now));
+        out.extend(self.poll_pdo(now));
         out.extend(self.poll_srdo(now));
         out
     }
