@@ -65,6 +65,8 @@ pub mod rs232;
 pub mod stream;
 #[cfg(feature = "testing")]
 pub mod testing;
+#[cfg(feature = "std")]
+pub mod trace;
 pub mod unlock_error;
 pub mod value;
 pub mod write_lock;

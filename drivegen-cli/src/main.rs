@@ -6,6 +6,8 @@ mod codec;
 mod commands;
 mod connect;
 mod error;
+mod frame_source;
+mod frames;
 mod identity_check;
 mod pdo_mappings;
 mod suggest;
@@ -45,6 +47,9 @@ enum Command {
     Watch(commands::watch::Args),
     /// Decode a candump capture into named, typed values.
     Decode(commands::decode::Args),
+    /// Decode a bus passively, live or from a candump log: filters by node and parameter, a
+    /// trigger with a window of frames before and after it; table, CSV or JSON lines.
+    Trace(commands::trace::Args),
     /// Export a description's PDOs as a DBC file for CAN log tools (cantools, SavvyCAN).
     Dbc(commands::dbc::Args),
     /// Export a description as a CiA 306 EDS, or import a vendor EDS as a TOML overlay.
@@ -79,6 +84,7 @@ fn main() -> ExitCode {
         Command::Watch(args) => commands::watch::run(args),
         Command::Decode(args) => commands::decode::run(args),
         Command::Dbc(args) => commands::dbc::run(args),
+        Command::Trace(args) => commands::trace::run(args),
         Command::Eds(args) => commands::eds::run(args),
         Command::Safety(args) => commands::safety::run(args),
         Command::Scan(args) => commands::scan::run(args),

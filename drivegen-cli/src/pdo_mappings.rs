@@ -6,6 +6,8 @@ use std::collections::HashMap;
 use drivebus::canopen::pdo::{MappedObject, PdoKind};
 use drivegen::ir::{Device, Direction};
 
+use crate::frames::{sample, Sample};
+
 /// First RPDO and TPDO mapping objects.
 const RPDO_MAPPING: u16 = 0x1600;
 const TPDO_MAPPING: u16 = 0x1A00;
@@ -47,8 +49,8 @@ impl PdoMappings {
         entries[slot] = MappedObject::from_entry(value);
     }
 
-    /// The named values of a PDO payload, if its mapping is known and the payload holds it: the
-    /// mapping seen in the capture, else the one the description declares for the PDO.
+    /// The parameter values of a PDO payload, if its mapping is known and the payload holds
+    /// it: the mapping seen in the capture, else the one the description declares for the PDO.
     pub fn decode(
         &self,
         device: &Device,
@@ -56,7 +58,7 @@ impl PdoMappings {
         kind: PdoKind,
         number: u8,
         payload: &[u8],
-    ) -> Option<String> {
+    ) -> Option<Vec<Sample>> {
         let transmit = kind == PdoKind::Transmit;
         let declared;
         let entries = match self.maps.get(&(node, transmit, u16::from(number))) {
@@ -74,21 +76,9 @@ impl PdoMappings {
             }
             let bytes = payload.get(bit / 8..bit / 8 + usize::from(entry.bits) / 8)?;
             bit += usize::from(entry.bits);
-            let parameter = device.parameters.iter().find(|p| {
-                p.canopen
-                    .iter()
-                    .any(|a| a.index == entry.index && a.subindex == entry.subindex)
-            });
-            values.push(match parameter {
-                Some(p) => format!(
-                    "{}={}",
-                    p.name,
-                    drivebus::interpret::show(device, p, bytes).text
-                ),
-                None => format!("{:04X}:{:02X}={bytes:02X?}", entry.index, entry.subindex),
-            });
+            values.push(sample(device, entry.index, entry.subindex, bytes));
         }
-        Some(values.join(", "))
+        Some(values)
     }
 }
 
@@ -122,23 +112,30 @@ mod tests {
         maps.learn(1, 0x1A00, 2, &0x606C_0020u32.to_le_bytes());
         maps.learn(1, 0x1A00, 0, &[2]);
         let payload = [0x37, 0x00, 0xE8, 0x03, 0x00, 0x00];
-        let text = maps
-            .decode(&device, 1, PdoKind::Transmit, 1, &payload)
-            .unwrap();
-        assert!(text.starts_with("statusword="), "{text}");
-        assert!(text.ends_with("velocity_actual_value=1000"), "{text}");
+        let named = |samples: Vec<Sample>| -> Vec<(String, Option<f64>)> {
+            samples
+                .into_iter()
+                .map(|s| (s.parameter, s.value))
+                .collect()
+        };
+        let learned = maps.decode(&device, 1, PdoKind::Transmit, 1, &payload);
+        assert_eq!(
+            named(learned.unwrap()),
+            [
+                ("statusword".to_owned(), Some(55.0)),
+                ("velocity_actual_value".to_owned(), Some(1000.0))
+            ]
+        );
         assert_eq!(
             maps.decode(&device, 1, PdoKind::Receive, 2, &payload),
             None,
             "neither learned nor declared"
         );
         // TPDO 2 was not seen being mapped: the description's mapping decodes it.
-        let declared = maps
-            .decode(&device, 1, PdoKind::Transmit, 2, &payload)
-            .unwrap();
-        assert!(
-            declared.contains("position_actual_value=1000"),
-            "{declared}"
+        let declared = maps.decode(&device, 1, PdoKind::Transmit, 2, &payload);
+        assert_eq!(
+            named(declared.unwrap())[1],
+            ("position_actual_value".to_owned(), Some(1000.0))
         );
     }
 }

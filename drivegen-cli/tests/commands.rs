@@ -490,6 +490,8 @@ fn write_checks_the_canopen_vendor_id_first() {
             &can,
             "--node-id",
             "4",
+            "--timeout-ms",
+            SIM_STARTUP_MS,
         ];
         args.extend_from_slice(extra);
         drivegen(&args)
@@ -519,9 +521,16 @@ fn write_sends_a_stop_whatever_the_identity_reads() {
         &can,
         "--node-id",
         "4",
+        "--timeout-ms",
+        SIM_STARTUP_MS,
     ]);
     assert!(stop.status.success(), "{}", stderr(&stop));
 }
+
+/// The answer timeout of a request to a simulator the command spawns (`candump:exec:`): the first
+/// request goes out while the child still loads its description (0.3 s on an idle machine, over
+/// the default 1 s on a loaded CI machine) and waits in its pipe until then.
+const SIM_STARTUP_MS: &str = "10000";
 
 /// The SWD description and a `--can` backend: its simulated node 4, reporting vendor-ID 0x1234.
 fn foreign_swd() -> (String, String) {
@@ -548,6 +557,7 @@ fn a_node_id_the_limits_do_not_allow_is_warned_about_and_not_refused() {
         let can = format!("candump:exec:{BIN} sim {eds} --can candump:stdio --node-id {node}");
         let mut args = command.to_vec();
         args.extend_from_slice(&["--can", &can, "--node-id", node]);
+        args.extend_from_slice(&["--timeout-ms", SIM_STARTUP_MS]);
         drivegen(&args)
     };
     let read = ["read", eds, "cob_id_used_by_tpdo1", "--json"];

@@ -14,6 +14,7 @@ pub mod read;
 pub mod safety;
 pub mod scan;
 pub mod sim;
+pub mod trace;
 pub mod watch;
 pub mod write;
 

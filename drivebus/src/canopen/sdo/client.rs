@@ -223,8 +223,7 @@ impl Transfer for Upload<'_> {
         };
         match self.state {
             UploadState::Initiate => {
-                // A response for another object is stale or another client's: not ours.
-                if !self.ch.mux_matches(&data) && specifier(&data) == scs::INITIATE_UPLOAD {
+                if self.ch.is_stale_initiate(&data) {
                     return Progress::Pending;
                 }
                 self.on_initiate(&data, now)
@@ -325,7 +324,7 @@ impl Transfer for Download<'_> {
         };
         match self.state {
             DownloadState::Initiate => {
-                if !self.ch.mux_matches(&data) && specifier(&data) == scs::INITIATE_DOWNLOAD {
+                if self.ch.is_stale_initiate(&data) {
                     return Progress::Pending;
                 }
                 self.on_initiate(&data, now)

@@ -183,6 +183,19 @@ impl Channel {
         data[1..4] == self.mux()
     }
 
+    /// Whether a response to a transfer waiting for its initiate answer is stale, the late answer
+    /// to an earlier transfer that timed out, or another client's: an initiate answer, upload or
+    /// download, for another object. It is passed over rather than taken for a protocol error, so
+    /// a stop written after a timed-out read still goes through. (The wrong kind of answer for
+    /// this very object stays an error: nothing tells it from a confused server.)
+    pub(crate) fn is_stale_initiate(&self, data: &[u8; 8]) -> bool {
+        let initiate = matches!(
+            specifier(data),
+            scs::INITIATE_UPLOAD | scs::INITIATE_DOWNLOAD
+        );
+        initiate && !self.mux_matches(data)
+    }
+
     /// A request carrying the multiplexer: `command`, index, subindex, then `tail`.
     pub(crate) fn initiate(&self, command: u8, tail: [u8; 4]) -> [u8; 8] {
         let [a, b, c] = self.mux();

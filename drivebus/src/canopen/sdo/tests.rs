@@ -158,6 +158,34 @@ fn foreign_frames_are_ignored() {
     assert_eq!(transfer.handle(&reply, Duration::ZERO), Progress::Done(4));
 }
 
+/// A read timed out and a stop was written at once: the drive's late answer to the read comes
+/// before the answer to the write, and is passed over, not taken for a protocol error.
+#[test]
+fn a_late_answer_to_an_earlier_transfer_is_passed_over() {
+    let data = 6u16.to_le_bytes();
+    let mut download = client().download(0x6040, 0, &data, Duration::ZERO);
+    download.poll_transmit();
+    let late_read = response([0x43, 0x18, 0x10, 1, 0x34, 0x12, 0, 0]); // 1018h:1
+    assert_eq!(
+        download.handle(&late_read, Duration::ZERO),
+        Progress::Pending
+    );
+    assert_eq!(download.poll_transmit(), None, "no abort");
+    let written = response([0x60, 0x40, 0x60, 0, 0, 0, 0, 0]);
+    assert_eq!(download.handle(&written, Duration::ZERO), Progress::Done(2));
+
+    let mut buf = [0u8; 4];
+    let mut upload = client().upload(0x1000, 0, &mut buf, Duration::ZERO);
+    upload.poll_transmit();
+    let late_write = response([0x60, 0x40, 0x60, 0, 0, 0, 0, 0]); // 6040h
+    assert_eq!(
+        upload.handle(&late_write, Duration::ZERO),
+        Progress::Pending
+    );
+    let reply = response([0x43, 0x00, 0x10, 0, 0x92, 0x01, 0x02, 0x00]);
+    assert_eq!(upload.handle(&reply, Duration::ZERO), Progress::Done(4));
+}
+
 #[test]
 fn a_server_abort_ends_the_transfer_with_its_code() {
     let mut buf = [0u8; 4];

@@ -1,0 +1,313 @@
+//! `drivegen trace`: a bus decoded passively, from a candump log or live, every frame named and
+//! typed with its time; filters by node and parameter; a trigger that keeps a window of frames
+//! before and after it; table, CSV or JSON lines.
+
+use std::collections::BTreeSet;
+use std::io::Write;
+use std::path::PathBuf;
+
+use drivebus::trace::{Armed, Captured, Trigger, Window};
+use drivegen::ir::Device;
+use serde_json::json;
+
+use crate::error::CliError;
+use crate::frame_source::{FrameSource, Received};
+use crate::frames::{Decoded, FrameDecoder};
+
+/// Arguments of `trace`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Description file, or a folder with a device.toml.
+    description: PathBuf,
+    /// candump log (`(1700000000.123456) can0 605#...`) or compact lines (`605#...`); none
+    /// with --can.
+    #[arg(required_unless_present = "can")]
+    capture: Option<PathBuf>,
+    #[command(flatten)]
+    live: crate::frame_source::LiveArgs,
+    /// Only frames from or to this node (repeatable).
+    #[arg(long = "node", value_name = "ID")]
+    nodes: Vec<u8>,
+    /// Only frames that carry this parameter, showing only the chosen ones (repeatable).
+    #[arg(long = "parameter", value_name = "NAME")]
+    parameters: Vec<String>,
+    /// Keep only windows around this trigger: NAME>LEVEL or NAME<LEVEL (a level crossed, in
+    /// the parameter's unit), emcy, or nmt (an NMT command or a node's changed state).
+    #[arg(long)]
+    trigger: Option<Trigger>,
+    /// With --trigger: frames kept before the trigger.
+    #[arg(long, default_value_t = 10, requires = "trigger")]
+    pre: usize,
+    /// With --trigger: frames kept after the trigger.
+    #[arg(long, default_value_t = 10, requires = "trigger")]
+    post: usize,
+    /// Comma-separated values with a header line.
+    #[arg(long, conflicts_with = "json")]
+    csv: bool,
+    /// One JSON object per frame.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Where a row stands in a captured window.
+#[derive(Debug, Clone, Copy)]
+struct Place {
+    window: usize,
+    at: &'static str,
+}
+
+/// A frame as printed.
+#[derive(Debug, Clone)]
+struct Row {
+    time: String,
+    decoded: Decoded,
+}
+
+/// Runs `trace`.
+pub fn run(args: Args) -> Result<(), CliError> {
+    let device = super::load(&args.description)?;
+    for name in &args.parameters {
+        super::parameter(&device, name)?;
+    }
+    if let Some(Trigger::Crosses { parameter, .. }) = &args.trigger {
+        super::parameter(&device, parameter)?;
+    }
+    let source = match &args.capture {
+        Some(path) => FrameSource::capture(path)?,
+        None => FrameSource::live(&args.live, &device)?,
+    };
+    let mut out = Output::new(&args);
+    let mut trace = Trace::new(&args, &device);
+    for received in source {
+        if out.closed {
+            break;
+        }
+        match received? {
+            Received::Frame { time, frame } => {
+                let decoded = trace.decoder.decode(&frame);
+                trace.take(Row { time, decoded }, &mut out)?;
+            }
+            Received::Malformed(reason) => trace.malformed.push(reason),
+            Received::BusError { .. } => trace.bus_errors += 1,
+        }
+    }
+    trace.finish(&mut out)?;
+    if trace.bus_errors > 0 {
+        eprintln!("the interface reported {} bus error(s)", trace.bus_errors);
+    }
+    if let Some(first) = trace.malformed.first() {
+        eprintln!(
+            "skipped {} malformed line(s); the first: {first}",
+            trace.malformed.len()
+        );
+    }
+    Ok(())
+}
+
+/// The filters, trigger and window of one run.
+struct Trace<'d> {
+    decoder: FrameDecoder<'d>,
+    nodes: BTreeSet<u8>,
+    parameters: BTreeSet<String>,
+    trigger: Option<(Armed, Window<Row>)>,
+    windows: usize,
+    malformed: Vec<String>,
+    bus_errors: usize,
+}
+
+impl<'d> Trace<'d> {
+    fn new(args: &Args, device: &'d Device) -> Self {
+        Self {
+            decoder: FrameDecoder::new(device),
+            nodes: args.nodes.iter().copied().collect(),
+            parameters: args.parameters.iter().cloned().collect(),
+            trigger: args
+                .trigger
+                .clone()
+                .map(|t| (t.arm(), Window::new(args.pre, args.post))),
+            windows: 0,
+            malformed: Vec::new(),
+            bus_errors: 0,
+        }
+    }
+
+    /// The row as the filters leave it: `None` if they drop it.
+    fn filtered(&self, mut row: Row) -> Option<Row> {
+        let node_ok =
+            self.nodes.is_empty() || row.decoded.node_id.is_some_and(|n| self.nodes.contains(&n));
+        if !node_ok {
+            return None;
+        }
+        if self.parameters.is_empty() {
+            return Some(row);
+        }
+        row.decoded
+            .samples
+            .retain(|s| self.parameters.contains(&s.parameter));
+        if row.decoded.samples.is_empty() {
+            return None;
+        }
+        row.decoded.value = row
+            .decoded
+            .samples
+            .iter()
+            .map(|s| format!("{}={}", s.parameter, s.text))
+            .collect::<Vec<_>>()
+            .join(", ");
+        Some(row)
+    }
+
+    fn take(&mut self, row: Row, out: &mut Output) -> Result<(), CliError> {
+        let Some((armed, _)) = &mut self.trigger else {
+            return match self.filtered(row) {
+                Some(row) => out.row(&row, None),
+                None => Ok(()),
+            };
+        };
+        let fired = row.decoded.events().any(|e| armed.fires(&e));
+        // The frame that fires is kept whatever the filters say.
+        let row = if fired { Some(row) } else { self.filtered(row) };
+        let Some(row) = row else { return Ok(()) };
+        let captured = self.trigger.as_mut().and_then(|(_, w)| w.push(row, fired));
+        match captured {
+            Some(captured) => self.print_window(captured, out),
+            None => Ok(()),
+        }
+    }
+
+    fn finish(&mut self, out: &mut Output) -> Result<(), CliError> {
+        let last = self.trigger.take().and_then(|(_, w)| w.finish());
+        match last {
+            Some(captured) => self.print_window(captured, out),
+            None => Ok(()),
+        }
+    }
+
+    fn print_window(&mut self, captured: Captured<Row>, out: &mut Output) -> Result<(), CliError> {
+        self.windows += 1;
+        let window = self.windows;
+        out.window_header(window, &captured)?;
+        let place = |at| Some(Place { window, at });
+        for row in &captured.before {
+            out.row(row, place("before"))?;
+        }
+        out.row(&captured.trigger, place("trigger"))?;
+        for row in &captured.after {
+            out.row(row, place("after"))?;
+        }
+        Ok(())
+    }
+}
+
+/// Rows as the chosen format prints them, to standard output as they come.
+struct Output {
+    format: Format,
+    out: std::io::Stdout,
+    header_done: bool,
+    closed: bool,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Format {
+    Lines,
+    Csv,
+    Json,
+}
+
+impl Output {
+    fn new(args: &Args) -> Self {
+        let format = match (args.csv, args.json) {
+            (true, _) => Format::Csv,
+            (_, true) => Format::Json,
+            _ => Format::Lines,
+        };
+        Self {
+            format,
+            out: std::io::stdout(),
+            header_done: false,
+            closed: false,
+        }
+    }
+
+    /// Writes a line; a reader that went away (a closed pipe) ends the output quietly.
+    fn write(&mut self, line: &str) -> Result<(), CliError> {
+        if self.closed {
+            return Ok(());
+        }
+        match writeln!(self.out.lock(), "{line}") {
+            Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {
+                self.closed = true;
+                Ok(())
+            }
+            other => other.map_err(|e| CliError::Io(format!("standard output: {e}"))),
+        }
+    }
+
+    fn window_header(&mut self, window: usize, captured: &Captured<Row>) -> Result<(), CliError> {
+        if self.format != Format::Lines {
+            return Ok(());
+        }
+        let incomplete = if captured.complete {
+            ""
+        } else {
+            ", the input ended before the window did"
+        };
+        self.write(&format!(
+            "# window {window}: triggered at {} ({} before, {} after{incomplete})",
+            captured.trigger.time,
+            captured.before.len(),
+            captured.after.len()
+        ))
+    }
+
+    fn row(&mut self, row: &Row, place: Option<Place>) -> Result<(), CliError> {
+        let d = &row.decoded;
+        match self.format {
+            Format::Lines => self.write(&format!(
+                "{}  {}  {}  {}  {}",
+                row.time, d.node, d.kind, d.what, d.value
+            )),
+            Format::Csv => {
+                if !self.header_done {
+                    self.header_done = true;
+                    self.write("window,at,time,node,kind,object,value")?;
+                }
+                let (window, at) =
+                    place.map_or((String::new(), ""), |p| (p.window.to_string(), p.at));
+                let fields = [&window, at, &row.time, &d.node, d.kind, &d.what, &d.value];
+                let line: Vec<String> = fields.iter().map(|f| csv_field(f)).collect();
+                self.write(&line.join(","))
+            }
+            Format::Json => {
+                let samples: serde_json::Map<String, serde_json::Value> = d
+                    .samples
+                    .iter()
+                    .map(|s| {
+                        let value = s.value.map_or_else(|| json!(s.text), |v| json!(v));
+                        (s.parameter.clone(), value)
+                    })
+                    .collect();
+                let line = json!({
+                    "window": place.map(|p| p.window),
+                    "at": place.map(|p| p.at),
+                    "time": row.time,
+                    "node": d.node,
+                    "kind": d.kind,
+                    "object": d.what,
+                    "value": d.value,
+                    "samples": samples,
+                });
+                self.write(&line.to_string())
+            }
+        }
+    }
+}
+
+/// A CSV field, quoted where it holds a comma, a quote or a line break (RFC 4180).
+fn csv_field(text: &str) -> String {
+    if text.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", text.replace('"', "\"\""))
+    } else {
+        text.to_owned()
+    }
+}
