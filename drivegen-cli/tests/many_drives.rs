@@ -46,7 +46,7 @@ fn at_units(
     let lafert = description("lafert-smartris");
     let mut args = vec![command, &lafert];
     args.extend(parameters);
-    args.extend(["--modbus-tcp", addr, "--timeout-ms", "200"]);
+    args.extend(["--modbus-tcp", addr, "--timeout-ms", "500"]);
     for unit in units {
         args.extend(["--unit", unit]);
     }
@@ -186,8 +186,17 @@ fn read_shows_a_column_per_canopen_node_and_the_missing_one_fails() {
         "candump:exec:{BIN} sim {swd} --can candump:stdio --node-id 4 --node-id 5 --set 5:vendor_id=0x1234"
     );
     let read = |nodes: &[&str]| {
-        // The default timeout: the simulated nodes' process may still be starting.
-        let mut args = vec!["read", &swd, "vendor_id", "--can", &can];
+        // A long timeout: the first request goes out while the simulated nodes' process may
+        // still be loading its description (README: give a started relay time to listen).
+        let mut args = vec![
+            "read",
+            &swd,
+            "vendor_id",
+            "--can",
+            &can,
+            "--timeout-ms",
+            "3000",
+        ];
         for node in nodes {
             args.extend(["--node-id", node]);
         }

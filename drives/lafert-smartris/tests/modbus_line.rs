@@ -138,7 +138,7 @@ fn units_polling_one_line_in_tight_loops_each_get_their_share() {
     let most = completed.iter().copied().max().unwrap();
     // Served in turn: no unit gets much less than another (a scheduler's hiccup costs a few).
     assert!(
-        completed.iter().all(|&n| n >= 20 && 2 * n >= most),
+        completed.iter().all(|&n| n >= 5 && 2 * n >= most),
         "completed requests per unit: {completed:?}"
     );
 }
