@@ -175,6 +175,13 @@ fn arrive(state: &mut State, waker: &Waker) -> Step {
 /// A later poll: the line was handed over, or it is still someone else's, or the waiter was
 /// sent away by [`Turns::close`].
 fn wait(state: &mut State, ticket: u64, waker: &Waker) -> Step {
+    if state.closed {
+        // Handed the line just before the close: it gives it up unused (nobody waits any more).
+        if state.holder == Some(ticket) {
+            state.holder = None;
+        }
+        return Step::Closed;
+    }
     if state.holder == Some(ticket) {
         return Step::Holding(ticket);
     }
@@ -263,6 +270,22 @@ mod tests {
         drop(first);
         drop(second);
         assert!(matches!(poll(&mut third, &waker), Poll::Ready(Ok(_))));
+    }
+
+    #[test]
+    fn a_waiter_handed_the_line_just_before_the_close_is_sent_away_too() {
+        let turns = Turns::default();
+        let waker = Waker::from(Arc::new(Count::default()));
+        let first = poll(&mut turns.take(), &waker);
+        let mut second = turns.take();
+        assert!(poll(&mut second, &waker).is_pending());
+        drop(first);
+        turns.close();
+        assert!(matches!(
+            poll(&mut second, &waker),
+            Poll::Ready(Err(Closed))
+        ));
+        assert_eq!(turns.state().holder, None);
     }
 
     #[test]
