@@ -2,6 +2,7 @@
 //! and a [`Session`] that reads and writes parameters by their IR addresses.
 
 use std::process::Child;
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 use std::time::Duration;
 
 use clap::Args;
@@ -11,7 +12,7 @@ use drivebus::interpret::{self, InterpretError, Variant};
 use drivebus::modbus::client::SerialStream;
 use drivebus::modbus::client::{ModbusTcpClient, SerialConfig, SerialRtuClient, TcpConfig};
 use drivebus::modbus::rtu::{Parity, StopBits};
-use drivebus::modbus::{ModbusLimits, ModbusLink, RegisterBus, UnitId, MAX_IN_FLIGHT};
+use drivebus::modbus::{ModbusLimits, ModbusLine, ModbusLink, RegisterBus, UnitId, MAX_IN_FLIGHT};
 use drivebus::rs232::client::{Rs232Client, Rs232Config, DEFAULT_BAUD};
 use drivebus::rs232::{LoopMode, Rs232Link, StationId};
 use drivebus::BusError;
@@ -59,13 +60,15 @@ pub struct BusArgs {
     /// Stop bits of --serial: 1 or 2.
     #[arg(long, default_value_t = 1)]
     pub stop_bits: u8,
-    /// Modbus unit id.
-    #[arg(long, default_value_t = 1)]
-    pub unit: u8,
-    /// CANopen node id, or Kinco RS-232 station id (default: the description's CANopen node id,
-    /// else 1 on RS-232).
+    /// Modbus unit id (default 1). `read` and `watch` take it repeated, for several drives on
+    /// one line or gateway: a column each.
     #[arg(long)]
-    pub node_id: Option<u8>,
+    pub unit: Vec<u8>,
+    /// CANopen node id, or Kinco RS-232 station id (default: the description's CANopen node id,
+    /// else 1 on RS-232). `read` and `watch` take it repeated, for several nodes on one bus: a
+    /// column each.
+    #[arg(long)]
+    pub node_id: Vec<u8>,
     /// How long the drive has to answer, in milliseconds.
     #[arg(long, default_value_t = 1000)]
     pub timeout_ms: u64,
@@ -93,39 +96,54 @@ impl CanBus for DynCan {
     }
 }
 
+/// A shared handle on a bus that talks to one drive at a time (a CAN SDO client, an RS-232
+/// line): each session's request holds it for its whole exchange.
+type Shared<T> = Arc<Mutex<T>>;
+
+fn hold<T>(shared: &Shared<T>) -> MutexGuard<'_, T> {
+    // Each exchange completes or fails inside one call: a panicked holder left nothing half-sent.
+    shared.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+/// The connection a session talks over; sessions for several drives on one bus hold clones.
+#[derive(Clone)]
 enum Link<'d> {
     Modbus {
-        bus: Box<dyn RegisterBus + Send>,
+        bus: ModbusLine<Box<dyn RegisterBus + Send>>,
         unit: UnitId,
         /// The described limits: registers per read, and whether FC 0x10 exists (without it
         /// values are written word by word).
         limits: ModbusLimits<'d>,
     },
     CanOpen {
-        sdo: BlockingSdo<DynCan>,
+        sdo: Shared<BlockingSdo<DynCan>>,
         node: NodeId,
     },
     Rs232 {
-        bus: Rs232Client<SerialStream>,
+        bus: Shared<Rs232Client<SerialStream>>,
         station: StationId,
     },
+}
+
+/// A relay process the CAN backend runs through, stopped when the last session ends.
+struct Relay(Child);
+
+impl Drop for Relay {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
 }
 
 /// A connection to one drive described by `device`, in the variant it reports.
 pub struct Session<'d> {
     link: Link<'d>,
+    /// The bus, for messages: `Modbus TCP 127.0.0.1:502`.
+    place: String,
+    /// The bus and the drive on it, for messages: `Modbus TCP 127.0.0.1:502 unit 3`.
     target: String,
-    relay: Option<Child>,
+    relay: Option<Arc<Relay>>,
     variant: Variant,
-}
-
-impl Drop for Session<'_> {
-    fn drop(&mut self) {
-        if let Some(child) = &mut self.relay {
-            let _ = child.kill();
-            let _ = child.wait();
-        }
-    }
 }
 
 fn parity(text: &str) -> Result<Parity, CliError> {
@@ -149,11 +167,62 @@ impl<'d> Session<'d> {
     /// `detect_variant` does), else, where the drive reports none, the description's default
     /// (its first). A drive that reports a variant the description does not cover still opens:
     /// parameters whose address depends on the variant are then refused, and so is every write
-    /// but a stop.
+    /// but a stop. The options name one drive: a repeated `--unit` or `--node-id` is refused.
     pub fn open(args: &BusArgs, device: &'d Device) -> Result<Self, CliError> {
-        let mut session = Self::connect(args, device)?;
-        session.variant = session.detect_variant(args.variant.as_deref(), device)?;
-        Ok(session)
+        let ids = drive_ids(args, device)?;
+        if let [_, _, ..] = ids.as_slice() {
+            return Err(CliError::Usage(
+                "this command talks to one drive: give --unit or --node-id once (read and watch take several)"
+                    .into(),
+            ));
+        }
+        let mut sessions = Self::open_each(args, device)?;
+        Ok(sessions.remove(0))
+    }
+
+    /// Opens the bus the options name once, and a session for each drive on it that `--unit`
+    /// (Modbus) or `--node-id` (CANopen, RS-232) names, in order, each in the variant it
+    /// reports (see [`open`](Self::open)). The sessions share the connection: each request
+    /// holds it for its exchange.
+    pub fn open_each(args: &BusArgs, device: &'d Device) -> Result<Vec<Self>, CliError> {
+        let ids = drive_ids(args, device)?;
+        let first = Self::connect(args, device, ids[0])?;
+        let mut sessions = Vec::with_capacity(ids.len());
+        for &id in &ids {
+            let mut session = first.to(id, device)?;
+            session.variant = session.detect_variant(args.variant.as_deref(), device)?;
+            sessions.push(session);
+        }
+        Ok(sessions)
+    }
+
+    /// A session on the same connection, to the drive at `id` (unit, node or station).
+    fn to(&self, id: u8, device: &Device) -> Result<Self, CliError> {
+        let link = match &self.link {
+            Link::Modbus { bus, limits, .. } => Link::Modbus {
+                bus: bus.clone(),
+                unit: UnitId(id),
+                limits: *limits,
+            },
+            Link::CanOpen { sdo, .. } => {
+                warn_node_relative_defaults(device, id);
+                Link::CanOpen {
+                    sdo: Arc::clone(sdo),
+                    node: node_id(id)?,
+                }
+            }
+            Link::Rs232 { bus, .. } => Link::Rs232 {
+                bus: Arc::clone(bus),
+                station: StationId(id),
+            },
+        };
+        Ok(Self {
+            target: target(&self.place, &link),
+            place: self.place.clone(),
+            link,
+            relay: self.relay.clone(),
+            variant: Variant::Single,
+        })
     }
 
     /// The variant named by `--variant`, else the one the drive reports.
@@ -221,8 +290,8 @@ impl<'d> Session<'d> {
         }
     }
 
-    /// Opens the bus the options name.
-    fn connect(args: &BusArgs, device: &'d Device) -> Result<Self, CliError> {
+    /// Opens the bus the options name, talking to the drive at `id`.
+    fn connect(args: &BusArgs, device: &'d Device, id: u8) -> Result<Self, CliError> {
         let timeout = Duration::from_millis(args.timeout_ms);
         if let Some(addr) = &args.modbus_tcp {
             let config = TcpConfig {
@@ -231,42 +300,38 @@ impl<'d> Session<'d> {
                 max_in_flight: args.max_in_flight.into(),
                 ..TcpConfig::default()
             };
-            let target = format!("Modbus TCP {addr} unit {}", args.unit);
+            let place = format!("Modbus TCP {addr}");
             let bus = ModbusTcpClient::connect(addr.as_str(), &config)
-                .map_err(|e| connect_error(&target, e))?;
-            return Ok(Self::modbus(Box::new(bus), args.unit, device, target));
+                .map_err(|e| connect_error(&format!("{place} unit {id}"), e))?;
+            return Ok(Self::modbus(Box::new(bus), id, device, place));
         }
         if let Some(path) = &args.serial {
             let config = serial_config(args.baud, &args.parity, args.stop_bits, timeout)?;
-            let target = format!("Modbus RTU {path} unit {}", args.unit);
-            let bus =
-                SerialRtuClient::open(path, &config).map_err(|e| connect_error(&target, e))?;
-            return Ok(Self::modbus(Box::new(bus), args.unit, device, target));
+            let place = format!("Modbus RTU {path}");
+            let bus = SerialRtuClient::open(path, &config)
+                .map_err(|e| connect_error(&format!("{place} unit {id}"), e))?;
+            return Ok(Self::modbus(Box::new(bus), id, device, place));
         }
         if let Some(backend) = &args.can {
-            let node = args
-                .node_id
-                .or(device.canopen.as_ref().map(|c| c.default_node_id))
-                .and_then(NodeId::new)
-                .ok_or_else(|| CliError::Usage("give a CANopen --node-id (1..=127)".into()))?;
-            warn_node_relative_defaults(device, node.0);
+            // Each node's session warns of its node-relative defaults (`to`).
+            let node = node_id(id)?;
             let settings = CanSettings {
                 bitrate: can::bitrate(args.bitrate, &[device]),
                 baud: args.baud.unwrap_or(can::DEFAULT_SLCAN_BAUD),
             };
             let (bus, relay) = can_backend(backend, settings)?;
-            return Ok(Self {
-                link: Link::CanOpen {
-                    sdo: BlockingSdo::new(DynCan(bus)).with_timeout(timeout),
+            let sdo = BlockingSdo::new(DynCan(bus)).with_timeout(timeout);
+            return Ok(Self::new(
+                Link::CanOpen {
+                    sdo: Arc::new(Mutex::new(sdo)),
                     node,
                 },
-                target: format!("CANopen {backend} node {}", node.0),
-                relay,
-                variant: Variant::Single,
-            });
+                format!("CANopen {backend}"),
+                relay.map(|child| Arc::new(Relay(child))),
+            ));
         }
         if let Some(path) = &args.kinco_rs232 {
-            return Self::rs232(args, device, path, timeout);
+            return Self::rs232(args, path, timeout, id);
         }
         Err(CliError::Usage(
             "name a bus: --modbus-tcp HOST:PORT, --serial PATH, --can BACKEND or --kinco-rs232 PATH"
@@ -274,12 +339,7 @@ impl<'d> Session<'d> {
         ))
     }
 
-    fn rs232(
-        args: &BusArgs,
-        device: &Device,
-        path: &str,
-        timeout: Duration,
-    ) -> Result<Self, CliError> {
+    fn rs232(args: &BusArgs, path: &str, timeout: Duration, id: u8) -> Result<Self, CliError> {
         let config = Rs232Config {
             baud: args.baud.unwrap_or(DEFAULT_BAUD),
             timeout,
@@ -289,31 +349,37 @@ impl<'d> Session<'d> {
                 LoopMode::PointToPoint
             },
         };
-        let station = StationId(station_id(args, device));
-        let target = format!("Kinco RS-232 {path} station {}", station.0);
-        let bus = Rs232Client::open(path, config).map_err(|e| connect_error(&target, e))?;
-        Ok(Self {
-            link: Link::Rs232 { bus, station },
-            target,
-            relay: None,
-            variant: Variant::Single,
-        })
+        let place = format!("Kinco RS-232 {path}");
+        let bus = Rs232Client::open(path, config)
+            .map_err(|e| connect_error(&format!("{place} station {id}"), e))?;
+        let link = Link::Rs232 {
+            bus: Arc::new(Mutex::new(bus)),
+            station: StationId(id),
+        };
+        Ok(Self::new(link, place, None))
     }
 
     fn modbus(
         bus: Box<dyn RegisterBus + Send>,
         unit: u8,
         device: &'d Device,
-        target: String,
+        place: String,
     ) -> Self {
+        let link = Link::Modbus {
+            bus: ModbusLine::new(bus),
+            unit: UnitId(unit),
+            limits: device.modbus_limits(),
+        };
+        Self::new(link, place, None)
+    }
+
+    /// A session over `link`, whose bus is at `place`, its variant not learned yet.
+    fn new(link: Link<'d>, place: String, relay: Option<Arc<Relay>>) -> Self {
         Self {
-            link: Link::Modbus {
-                bus,
-                unit: UnitId(unit),
-                limits: device.modbus_limits(),
-            },
-            target,
-            relay: None,
+            target: target(&place, &link),
+            place,
+            link,
+            relay,
             variant: Variant::Single,
         }
     }
@@ -357,6 +423,11 @@ impl<'d> Session<'d> {
         &self.target
     }
 
+    /// Which drive on the bus this is: `("unit", 3)`, `("node", 3)` or `("station", 3)`.
+    pub fn drive(&self) -> (&'static str, u8) {
+        self.link.drive()
+    }
+
     /// Reads the raw bytes of each parameter through the run-time interpreter: over Modbus with
     /// the fewest requests the device's limits allow (sent together with `--max-in-flight`),
     /// over CANopen and RS-232 an upload each.
@@ -364,16 +435,20 @@ impl<'d> Session<'d> {
         let variant = &self.variant;
         let read = match &mut self.link {
             Link::Modbus { bus, unit, limits } => interpret::read_raw(
-                &mut ModbusLink::new(&mut **bus, *unit, *limits),
+                &mut ModbusLink::new(bus, *unit, *limits),
                 variant,
                 parameters,
             ),
-            Link::CanOpen { sdo, node } => {
-                interpret::read_raw(&mut CanOpenLink::new(sdo, *node), variant, parameters)
-            }
-            Link::Rs232 { bus, station } => {
-                interpret::read_raw(&mut Rs232Link::new(bus, *station), variant, parameters)
-            }
+            Link::CanOpen { sdo, node } => interpret::read_raw(
+                &mut CanOpenLink::new(&mut *hold(sdo), *node),
+                variant,
+                parameters,
+            ),
+            Link::Rs232 { bus, station } => interpret::read_raw(
+                &mut Rs232Link::new(&mut *hold(bus), *station),
+                variant,
+                parameters,
+            ),
         };
         read.map_err(|e| interpret_error(&self.target, e))
     }
@@ -390,21 +465,21 @@ impl<'d> Session<'d> {
         let written = match &mut self.link {
             Link::Modbus { bus, unit, limits } => interpret::write_checked(
                 device,
-                &mut ModbusLink::new(&mut **bus, *unit, *limits),
+                &mut ModbusLink::new(bus, *unit, *limits),
                 variant,
                 parameter,
                 bytes,
             ),
             Link::CanOpen { sdo, node } => interpret::write_checked(
                 device,
-                &mut CanOpenLink::new(sdo, *node),
+                &mut CanOpenLink::new(&mut *hold(sdo), *node),
                 variant,
                 parameter,
                 bytes,
             ),
             Link::Rs232 { bus, station } => interpret::write_checked(
                 device,
-                &mut Rs232Link::new(bus, *station),
+                &mut Rs232Link::new(&mut *hold(bus), *station),
                 variant,
                 parameter,
                 bytes,
@@ -501,10 +576,57 @@ fn node_relative_default_warnings(device: &Device, node: u8) -> Vec<String> {
         .collect()
 }
 
-/// The RS-232 station: --node-id, else the description's CANopen node id (the drive's one id,
-/// manual line 2183), else 1.
-fn station_id(args: &BusArgs, device: &Device) -> u8 {
-    args.node_id
-        .or(device.canopen.as_ref().map(|c| c.default_node_id))
-        .unwrap_or(1)
+/// The drives the options name on their bus, in order: `--unit` on Modbus (default 1),
+/// `--node-id` on CAN (default: the description's node id) and RS-232 (default: the
+/// description's CANopen node id, the drive's one id, manual line 2183, else 1). The same id
+/// twice is refused.
+fn drive_ids(args: &BusArgs, device: &Device) -> Result<Vec<u8>, CliError> {
+    let described = device.canopen.as_ref().map(|c| c.default_node_id);
+    let (ids, option) = if args.modbus_tcp.is_some() || args.serial.is_some() {
+        (non_empty(&args.unit, Some(1)), "--unit")
+    } else if args.can.is_some() {
+        (non_empty(&args.node_id, described), "--node-id")
+    } else {
+        (non_empty(&args.node_id, described.or(Some(1))), "--node-id")
+    };
+    if ids.is_empty() {
+        return Err(CliError::Usage("give a CANopen --node-id (1..=127)".into()));
+    }
+    if let Some(twice) = ids
+        .iter()
+        .find(|id| ids.iter().filter(|i| i == id).count() > 1)
+    {
+        return Err(CliError::Usage(format!("{option} {twice} is given twice")));
+    }
+    Ok(ids)
+}
+
+/// `given`, else `default` alone (if any).
+fn non_empty(given: &[u8], default: Option<u8>) -> Vec<u8> {
+    match given {
+        [] => default.into_iter().collect(),
+        ids => ids.to_vec(),
+    }
+}
+
+/// A CANopen node id, 1..=127.
+fn node_id(id: u8) -> Result<NodeId, CliError> {
+    NodeId::new(id).ok_or_else(|| CliError::Usage("give a CANopen --node-id (1..=127)".into()))
+}
+
+/// The bus at `place` and the drive `link` talks to, for messages.
+fn target(place: &str, link: &Link<'_>) -> String {
+    let (kind, id) = link.drive();
+    format!("{place} {kind} {id}")
+}
+
+impl Link<'_> {
+    /// Which drive the link talks to: `("unit", 3)`, `("node", 3)` or `("station", 3)`.
+    fn drive(&self) -> (&'static str, u8) {
+        match self {
+            Link::Modbus { unit, .. } => ("unit", unit.0),
+            Link::CanOpen { node, .. } => ("node", node.0),
+            Link::Rs232 { station, .. } => ("station", station.0),
+        }
+    }
 }

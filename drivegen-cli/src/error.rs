@@ -74,6 +74,13 @@ pub enum CliError {
     ForeignDrive(String),
     /// `config compare` found this many differences.
     Differs(usize),
+    /// Some of the drives `read` or `watch` asked did not answer (their errors are shown).
+    DrivesFailed {
+        /// Drives that failed (in `watch`: at least once).
+        failed: usize,
+        /// Drives asked.
+        asked: usize,
+    },
     /// `config push` could not write (or verify) this many of the parameters it meant to.
     PushIncomplete {
         /// Parameters refused or not read back as written.
@@ -157,6 +164,10 @@ impl fmt::Display for CliError {
             } => write!(f, "{file}: {reason} (nothing was sent)"),
             CliError::ForeignDrive(why) => write!(f, "{why}: nothing was written"),
             CliError::Differs(count) => write!(f, "{count} difference(s)"),
+            CliError::DrivesFailed { failed, asked } => write!(
+                f,
+                "{failed} of {asked} drives failed (see their columns above)"
+            ),
             CliError::PushIncomplete { refused, planned } => write!(
                 f,
                 "{refused} of {planned} parameter(s) not written as the file holds them (see the report above)"

@@ -5,6 +5,7 @@ mod can;
 mod codec;
 mod commands;
 mod connect;
+mod drives;
 mod error;
 mod frame_source;
 mod frames;

@@ -4,29 +4,19 @@
 use std::io::{BufRead, BufReader};
 use std::net::TcpListener;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use drivebus::modbus::UnitId;
 use drivesim::modbus::tcp::TcpServer;
 use drivesim::Simulator;
 
-const BIN: &str = env!("CARGO_BIN_EXE_drivegen");
+mod support;
+
+use support::{drivegen, stderr, stdout, BIN};
 
 fn lafert_path() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/lafert-smartris")
-}
-
-fn drivegen(args: &[&str]) -> Output {
-    Command::new(BIN).args(args).output().unwrap()
-}
-
-fn stdout(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stdout).into_owned()
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).into_owned()
 }
 
 fn simulated_lafert() -> (Simulator, TcpServer, String) {

@@ -6,6 +6,9 @@
     modbus_server.py rtu <pty path>  -> serves Modbus RTU on the pty; prints "READY" once open
     ... --firmware N                 -> FW RELEASE CUSTOMER (holding 0x01FF) holds N (default 242,
                                         the release the Lafert description covers)
+    ... --units 1,2,3,4              -> several units on the one line or connection, each with the
+                                        map below and its own id in 0x0028; a request to another
+                                        id gets no answer, as on an RS-485 line (default: unit 1)
 
 Unit 1 holds a Lafert-like register map (non-shared tables, wire address 0 = first value):
   holding 0x0000..=0x00FF  value = address, except 0x0003 (full-scale velocity) = 3000 and
@@ -44,10 +47,17 @@ def option(name, default):
     return default
 
 
-def holding():
+def units():
+    """The unit ids --units names (default: unit 1 alone)."""
+    if "--units" in sys.argv:
+        return [int(u, 0) for u in sys.argv[sys.argv.index("--units") + 1].split(",")]
+    return [1]
+
+
+def holding(unit):
     values = list(range(0x100))
     values[FULL_SCALE_REGISTER] = FULL_SCALE_VELOCITY
-    values[ADDRESS_REGISTER] = 1
+    values[ADDRESS_REGISTER] = unit
     firmware = option("--firmware", 242)
     return [SimData(address=0, values=values, datatype=DataType.REGISTERS),
             SimData(address=FIRMWARE_RELEASE, values=[firmware], datatype=DataType.REGISTERS)]
@@ -76,10 +86,24 @@ async def action(function_code, start_address, address, count, current_registers
     return None
 
 
-def device():
+def device(unit):
     coils = [SimData(address=0, values=[a % 2 == 0 for a in range(32)], datatype=DataType.BITS)]
     discrete = [SimData(address=0, values=[a % 3 == 0 for a in range(16)], datatype=DataType.BITS)]
-    return SimDevice(id=1, simdata=(coils, discrete, holding(), inputs()), action=action)
+    return SimDevice(id=unit, simdata=(coils, discrete, holding(unit), inputs()), action=action)
+
+
+def devices():
+    """One device per unit."""
+    return [device(unit) for unit in units()]
+
+
+def silence_others():
+    """With --units, a request to an id nobody holds is dropped on arrival and gets no answer,
+    as on an RS-485 line (pymodbus would answer exception 0x04 from its simulator)."""
+    if "--units" not in sys.argv:
+        return None
+    ids = set(units())
+    return lambda sending, pdu: pdu if sending or pdu.dev_id in ids else None
 
 
 async def wait_for_stdin_eof():
@@ -89,12 +113,14 @@ async def wait_for_stdin_eof():
 
 async def main():
     mode = sys.argv[1]
+    served, trace = devices(), silence_others()
     if mode == "tcp":
-        server = ModbusTcpServer(device(), address=("127.0.0.1", 0))
+        server = ModbusTcpServer(served, address=("127.0.0.1", 0), trace_pdu=trace)
     elif mode == "rtu-over-tcp":
-        server = ModbusTcpServer(device(), address=("127.0.0.1", 0), framer=FramerType.RTU)
+        server = ModbusTcpServer(served, address=("127.0.0.1", 0), framer=FramerType.RTU,
+                                 trace_pdu=trace)
     elif mode == "rtu":
-        server = ModbusSerialServer(device(), port=sys.argv[2], baudrate=19200)
+        server = ModbusSerialServer(served, port=sys.argv[2], baudrate=19200, trace_pdu=trace)
     else:
         raise SystemExit(f"unknown mode {mode!r}")
     await server.serve_forever(background=True)

@@ -12,6 +12,9 @@
 //! * `client` (feature `modbus`) — blocking clients over a serial port, Modbus TCP and
 //!   RTU-over-TCP, all implementing [`RegisterBus`] and [`BitBus`].
 //!
+//! [`ModbusLine`] (feature `std`) shares one line, or one gateway connection, between handles
+//! for several units in several threads or async tasks, fairly.
+//!
 //! [`ModbusLink`] binds a [`RegisterBus`] and a unit id into a [`Link`](crate::Link): it reads and
 //! writes the registers a parameter occupies and converts between registers and the little-endian
 //! bytes of the value codec, honouring the parameter's word order. Batch reads go through the
@@ -32,14 +35,14 @@ pub use drivebus_model::modbus::exception;
 pub mod framing;
 #[cfg(any(feature = "modbus", feature = "async"))]
 mod in_flight;
+#[cfg(feature = "std")]
+mod line;
 mod link;
 pub mod pdu;
 pub mod planner;
 pub mod retry;
 #[cfg(feature = "modbus-core")]
 pub mod rtu;
-#[cfg(feature = "std")]
-mod shared_bus;
 pub mod tcp;
 
 pub use address::{
@@ -50,9 +53,12 @@ pub use address::{
 pub use async_bus::AsyncRegisterBus;
 pub use drivebus_model::modbus::Modbus;
 pub use exception::ExceptionCode;
-pub use link::{LimitsSource, ModbusLink, StaticLimits};
 #[cfg(feature = "std")]
-pub use shared_bus::SharedBus;
+#[allow(deprecated)]
+pub use line::SharedBus;
+#[cfg(feature = "std")]
+pub use line::{LineGuard, ModbusLine};
+pub use link::{LimitsSource, ModbusLink, StaticLimits};
 
 use crate::error::BusError;
 
@@ -137,35 +143,50 @@ impl<'a> RegisterRead<'a> {
     }
 }
 
-impl<B: RegisterBus + ?Sized> RegisterBus for &mut B {
-    fn read_registers(
-        &mut self,
-        unit: UnitId,
-        table: Table,
-        start: u16,
-        out: &mut [u16],
-    ) -> Result<(), BusError> {
-        (**self).read_registers(unit, table, start, out)
-    }
-    fn write_register(&mut self, unit: UnitId, address: u16, value: u16) -> Result<(), BusError> {
-        (**self).write_register(unit, address, value)
-    }
-    fn write_registers(
-        &mut self,
-        unit: UnitId,
-        start: u16,
-        values: &[u16],
-    ) -> Result<(), BusError> {
-        (**self).write_registers(unit, start, values)
-    }
-    fn read_register_batch(
-        &mut self,
-        unit: UnitId,
-        reads: &mut [RegisterRead<'_>],
-    ) -> Result<(), BusError> {
-        (**self).read_register_batch(unit, reads)
-    }
+/// A [`RegisterBus`] impl for a pointer to one (`&mut B`, `Box<B>`): every method, forwarded.
+macro_rules! forward_register_bus {
+    ($pointer:ty) => {
+        impl<B: RegisterBus + ?Sized> RegisterBus for $pointer {
+            fn read_registers(
+                &mut self,
+                unit: UnitId,
+                table: Table,
+                start: u16,
+                out: &mut [u16],
+            ) -> Result<(), BusError> {
+                (**self).read_registers(unit, table, start, out)
+            }
+            fn write_register(
+                &mut self,
+                unit: UnitId,
+                address: u16,
+                value: u16,
+            ) -> Result<(), BusError> {
+                (**self).write_register(unit, address, value)
+            }
+            fn write_registers(
+                &mut self,
+                unit: UnitId,
+                start: u16,
+                values: &[u16],
+            ) -> Result<(), BusError> {
+                (**self).write_registers(unit, start, values)
+            }
+            fn read_register_batch(
+                &mut self,
+                unit: UnitId,
+                reads: &mut [RegisterRead<'_>],
+            ) -> Result<(), BusError> {
+                (**self).read_register_batch(unit, reads)
+            }
+        }
+    };
 }
+
+forward_register_bus!(&mut B);
+// A boxed client: the CLI keeps whichever client the options opened behind one type.
+#[cfg(feature = "std")]
+forward_register_bus!(std::boxed::Box<B>);
 
 /// A Modbus client able to read and write single-bit data (coils and discrete inputs).
 pub trait BitBus {

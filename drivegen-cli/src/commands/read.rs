@@ -6,6 +6,7 @@ use drivegen::ir::{Device, Parameter};
 
 use crate::codec;
 use crate::connect::{BusArgs, Session};
+use crate::drives::{self, Drives};
 use crate::error::CliError;
 use crate::table;
 
@@ -24,12 +25,16 @@ pub struct Args {
     json: bool,
 }
 
-/// Reads each parameter once and prints a table (or JSON).
+/// Reads each parameter once and prints a table (or JSON): of one drive, or with a column per
+/// drive when several are named.
 pub fn run(args: Args) -> Result<(), CliError> {
     let device = super::load(&args.description)?;
     let parameters = resolve(&device, &args.parameters)?;
-    let mut session = Session::open(&args.bus, &device)?;
-    let values = read_all(&mut session, &device, &parameters)?;
+    let mut drives = Drives::open(&args.bus, &device)?;
+    let Some(session) = drives.single() else {
+        return run_each(&args, &device, &parameters, &mut drives);
+    };
+    let values = read_all(session, &device, &parameters)?;
     if args.json {
         let json: Vec<serde_json::Value> = parameters
             .iter()
@@ -49,6 +54,39 @@ pub fn run(args: Args) -> Result<(), CliError> {
         print!("{}", table::render(&rows));
     }
     Ok(())
+}
+
+/// Reads each parameter from every drive and prints one table with a column per drive (or a
+/// JSON array with an object per drive); fails when any drive did.
+fn run_each(
+    args: &Args,
+    device: &Device,
+    parameters: &[&Parameter],
+    drives: &mut Drives<'_>,
+) -> Result<(), CliError> {
+    let outcomes = drives.read_each(device, parameters);
+    if args.json {
+        let values = |shown: &[drivebus::interpret::Shown]| -> serde_json::Value {
+            parameters
+                .iter()
+                .zip(shown)
+                .map(|(p, s)| to_json(p, s))
+                .collect()
+        };
+        println!("{}", drives.to_json(&outcomes, values));
+    } else {
+        let header = std::iter::once("parameter".to_owned()).chain(drives.headers());
+        let mut rows = vec![header.collect()];
+        rows.extend(drives::rows(parameters, &outcomes));
+        print!("{}", table::render(&rows));
+    }
+    match drives::failures(&outcomes) {
+        0 => Ok(()),
+        failed => Err(CliError::DrivesFailed {
+            failed,
+            asked: drives.len(),
+        }),
+    }
 }
 
 /// The parameters named, each checked to exist before anything is sent.

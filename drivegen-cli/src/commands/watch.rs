@@ -3,7 +3,10 @@
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
-use crate::connect::{BusArgs, Session};
+use drivegen::ir::{Device, Parameter};
+
+use crate::connect::BusArgs;
+use crate::drives::{self, Drives, Outcome};
 use crate::error::CliError;
 
 /// Arguments of `watch`.
@@ -27,11 +30,15 @@ pub struct Args {
     json: bool,
 }
 
-/// Polls until `--count` is reached or the process is interrupted.
+/// Polls until `--count` is reached or the process is interrupted: one drive a line per poll,
+/// several drives a block of rows per poll with a column per drive.
 pub fn run(args: Args) -> Result<(), CliError> {
     let device = super::load(&args.description)?;
     let parameters = super::read::resolve(&device, &args.parameters)?;
-    let mut session = Session::open(&args.bus, &device)?;
+    let mut drives = Drives::open(&args.bus, &device)?;
+    let Some(session) = drives.single() else {
+        return watch_each(&args, &device, &parameters, &mut drives);
+    };
     let widths: Vec<usize> = parameters.iter().map(|p| p.name.len().max(12)).collect();
     if !args.json {
         let header: Vec<String> = parameters
@@ -44,14 +51,10 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let start = Instant::now();
     let mut polls = 0;
     while args.count.is_none_or(|n| polls < n) {
-        let values = super::read::read_all(&mut session, &device, &parameters)?;
+        let values = super::read::read_all(session, &device, &parameters)?;
         let elapsed = start.elapsed().as_secs_f64();
         if args.json {
-            let fields: serde_json::Map<String, serde_json::Value> = parameters
-                .iter()
-                .zip(&values)
-                .map(|(p, s)| (p.name.clone(), super::read::to_json(p, s)))
-                .collect();
+            let fields = by_name(&parameters, &values);
             println!(
                 "{}",
                 serde_json::json!({ "time": elapsed, "values": fields })
@@ -70,4 +73,85 @@ pub fn run(args: Args) -> Result<(), CliError> {
         }
     }
     Ok(())
+}
+
+/// Polls every drive until `--count` is reached or the process is interrupted. A drive that
+/// fails shows its error in its column and is asked again at the next poll; the others go on.
+/// Fails at the end when any drive failed at any poll.
+fn watch_each(
+    args: &Args,
+    device: &Device,
+    parameters: &[&Parameter],
+    drives: &mut Drives<'_>,
+) -> Result<(), CliError> {
+    let headers = drives.headers();
+    let name_width = parameters.iter().map(|p| p.name.len()).max().unwrap_or(0);
+    let widths: Vec<usize> = headers.iter().map(|h| h.len().max(12)).collect();
+    let line = |time: &str, name: &str, cells: &[String]| {
+        let cells: Vec<String> = cells
+            .iter()
+            .zip(&widths)
+            .map(|(cell, w)| format!("{cell:<w$}"))
+            .collect();
+        let line = format!("{time:>8}  {name:<name_width$}  {}", cells.join("  "));
+        println!("{}", line.trim_end());
+    };
+    if !args.json {
+        line("time", "parameter", &headers);
+    }
+    let mut failed = vec![false; drives.len()];
+    let start = Instant::now();
+    let mut polls = 0;
+    while args.count.is_none_or(|n| polls < n) {
+        let outcomes = drives.read_each(device, parameters);
+        let elapsed = start.elapsed().as_secs_f64();
+        for (failed, outcome) in failed.iter_mut().zip(&outcomes) {
+            *failed |= outcome.is_err();
+        }
+        if args.json {
+            println!("{}", poll_json(drives, parameters, &outcomes, elapsed));
+        } else {
+            for (i, row) in drives::rows(parameters, &outcomes).iter().enumerate() {
+                let time = if i == 0 {
+                    format!("{elapsed:.1}s")
+                } else {
+                    String::new()
+                };
+                line(&time, &row[0], &row[1..]);
+            }
+        }
+        polls += 1;
+        if args.count.is_none_or(|n| polls < n) {
+            std::thread::sleep(Duration::from_millis(args.interval_ms));
+        }
+    }
+    match failed.iter().filter(|f| **f).count() {
+        0 => Ok(()),
+        failed => Err(CliError::DrivesFailed {
+            failed,
+            asked: drives.len(),
+        }),
+    }
+}
+
+/// One poll of every drive as a JSON object: `{"time": 0.5, "drives": [...]}`, each drive's
+/// values by parameter name as one drive's poll gives them.
+fn poll_json(
+    drives: &Drives<'_>,
+    parameters: &[&Parameter],
+    outcomes: &[Outcome],
+    elapsed: f64,
+) -> serde_json::Value {
+    let values = |shown: &[drivebus::interpret::Shown]| by_name(parameters, shown);
+    serde_json::json!({ "time": elapsed, "drives": drives.to_json(outcomes, values) })
+}
+
+/// One drive's values of one poll, by parameter name.
+fn by_name(parameters: &[&Parameter], shown: &[drivebus::interpret::Shown]) -> serde_json::Value {
+    let fields: serde_json::Map<String, serde_json::Value> = parameters
+        .iter()
+        .zip(shown)
+        .map(|(p, s)| (p.name.clone(), super::read::to_json(p, s)))
+        .collect();
+    fields.into()
 }

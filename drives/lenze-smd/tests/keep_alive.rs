@@ -7,7 +7,7 @@ use std::sync::{Arc, Mutex};
 use std::thread::sleep;
 use std::time::Duration;
 
-use drivebus::modbus::{ModbusLink, RegisterBus, SharedBus, Table, UnitId};
+use drivebus::modbus::{ModbusLine, ModbusLink, RegisterBus, Table, UnitId};
 use drivebus::testing::MemoryBus;
 use drivebus::BusError;
 use lenze_smd::{KeepAlive, LenzeSmd};
@@ -158,7 +158,7 @@ fn for_drive_follows_n22_and_n23() {
 #[test]
 fn one_line_carries_an_unlocked_drive_and_its_keep_alive() {
     // On one RS-485 line there is no second connection: the application's handle and the
-    // keep-alive's share the line through `SharedBus`, request by request (line 372: poll at
+    // keep-alive's share the line through `ModbusLine`, request by request (line 372: poll at
     // under half of n23 while unlocked).
     let line = Line::default();
     let mut memory = drive(&line).into_link().into_bus();
@@ -168,7 +168,7 @@ fn one_line_carries_an_unlocked_drive_and_its_keep_alive() {
         .set_register(Table::Holding, 51, 10)
         .set_register(Table::Holding, 48, 1)
         .set_register(Table::Holding, 1, 0);
-    let bus = SharedBus::new(memory);
+    let bus = ModbusLine::new(memory);
     let mut application = LenzeSmd::modbus(bus.clone(), UnitId(1));
     let polling = Arc::new(Mutex::new(LenzeSmd::modbus(bus.clone(), UnitId(1))));
     let keep_alive = KeepAlive::spawn(polling, Duration::from_millis(90));
@@ -181,7 +181,7 @@ fn one_line_carries_an_unlocked_drive_and_its_keep_alive() {
     session.lock().unwrap();
     drop(keep_alive);
     assert_eq!(
-        bus.lock().memory.register(Table::Holding, 48),
+        bus.lock().unwrap().memory.register(Table::Holding, 48),
         Some(0),
         "the unlock went over the shared line"
     );

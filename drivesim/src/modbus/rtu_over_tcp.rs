@@ -9,6 +9,7 @@ use drivebus::modbus::client::ByteStream;
 use drivebus::modbus::UnitId;
 use drivebus::BusError;
 
+use super::Units;
 use crate::Simulator;
 
 /// Shortest read timeout handed to the socket (zero would mean "block forever").
@@ -22,14 +23,21 @@ pub fn serve(
     addr: impl ToSocketAddrs,
     unit: UnitId,
 ) -> std::io::Result<SocketAddr> {
+    serve_units(Units::one(sim.clone(), unit), addr)
+}
+
+/// Serves every drive of `units` as Modbus RTU over TCP on `addr`, as a serial gateway in front
+/// of one RS-485 line: each answers for its own unit id, other ids get no answer (see
+/// [`super::rtu::serve_units`]). Returns the bound address; the listener lives as long as the
+/// process.
+pub fn serve_units(units: Units, addr: impl ToSocketAddrs) -> std::io::Result<SocketAddr> {
     let listener = TcpListener::bind(addr)?;
     let bound = listener.local_addr()?;
-    let sim = sim.clone();
     std::thread::spawn(move || {
         for stream in listener.incoming().flatten() {
-            let sim = sim.clone();
+            let units = units.clone();
             // Ends with an I/O error once the client hung up.
-            std::thread::spawn(move || super::rtu::serve(&sim, &mut Connection(stream), unit));
+            std::thread::spawn(move || super::rtu::serve_units(&units, &mut Connection(stream)));
         }
     });
     Ok(bound)
