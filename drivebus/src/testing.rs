@@ -5,6 +5,11 @@
 //! * [`SdoRecorder`] — a [`MemoryBus`] that also keeps the first CAN frame of every SDO transfer.
 //! * `RtuRecorder` (with `modbus-core`) — a [`MemoryBus`] that also keeps every request as its RTU
 //!   frame.
+//! * [`Recorded`] — any link, blocking or async, keeping every request it passes on.
+
+mod recorded;
+
+pub use recorded::{LinkRequest, Recorded};
 
 use std::collections::BTreeMap;
 use std::vec::Vec;
