@@ -232,3 +232,20 @@ macro_rules! async_handle {
 macro_rules! async_handle {
     ($($tokens:tt)*) => {};
 }
+
+/// The items given, when drivebus is built with feature `async`; nothing otherwise: how a
+/// generated crate writes async items of its own (the async unlock guard) without a `cfg`.
+#[cfg(feature = "async")]
+#[doc(hidden)]
+#[macro_export]
+macro_rules! if_async {
+    ($($items:tt)*) => { $($items)* };
+}
+
+/// Without feature `async`, no async items.
+#[cfg(not(feature = "async"))]
+#[doc(hidden)]
+#[macro_export]
+macro_rules! if_async {
+    ($($items:tt)*) => {};
+}
