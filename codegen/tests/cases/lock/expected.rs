@@ -616,3 +616,33 @@ where
         Ok(Some(::core::time::Duration::from_millis(ms)))
     }
 }
+::drivebus::if_async! {
+    impl<L: ::drivebus::asynch::AsyncLink> Case<::drivebus::asynch::Async<L>>
+    where
+        params::Action: ::drivebus::Readable<L::Protocol>,
+        params::Timeout: ::drivebus::Readable<L::Protocol>,
+    {
+        /// `watchdog_timeout` awaited.
+        pub async fn watchdog_timeout_async(
+            &mut self,
+        ) -> Result<Option<::core::time::Duration>, ::drivebus::Error> {
+            const DISABLED: &[::core::primitive::i128] = &[0i128];
+            let action = ::core::primitive::i128::from(
+                self.device.read_raw::<params::Action>().await?,
+            );
+            if DISABLED.contains(&action) {
+                return Ok(None);
+            }
+            let raw = ::core::primitive::i128::from(
+                self.device.read_raw::<params::Timeout>().await?,
+            );
+            let ms = ::core::primitive::u64::try_from(raw)
+                .map_err(|_| {
+                    ::drivebus::Error::Value(::drivebus::ValueError::Overflow {
+                        parameter: "timeout",
+                    })
+                })?;
+            Ok(Some(::core::time::Duration::from_millis(ms)))
+        }
+    }
+}
