@@ -401,6 +401,31 @@ mod immediate {
         }
     }
 
+    /// An SDO client whose futures complete at their first poll, over the blocking one `B`
+    /// (a [`MemoryBus`](super::MemoryBus), an [`SdoRecorder`](super::SdoRecorder)).
+    #[cfg(feature = "canopen")]
+    impl<B: crate::canopen::SdoBus> crate::canopen::AsyncSdoBus for Immediate<B> {
+        async fn upload(
+            &mut self,
+            node: crate::canopen::NodeId,
+            index: u16,
+            subindex: u8,
+            out: &mut [u8],
+        ) -> Result<usize, BusError> {
+            self.0.upload(node, index, subindex, out)
+        }
+
+        async fn download(
+            &mut self,
+            node: crate::canopen::NodeId,
+            index: u16,
+            subindex: u8,
+            data: &[u8],
+        ) -> Result<(), BusError> {
+            self.0.download(node, index, subindex, data)
+        }
+    }
+
     /// Polls `future` once: its output if it completed, `None` if it waits on something.
     pub fn now<F: Future>(future: F) -> Option<F::Output> {
         let mut cx = Context::from_waker(Waker::noop());
