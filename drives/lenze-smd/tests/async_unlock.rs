@@ -20,7 +20,7 @@ use drivebus::units::Hertz;
 use drivebus::{BusError, Error, WriteRefusal};
 use lenze_smd::operation::State;
 use lenze_smd::unlock::Controls;
-use lenze_smd::{params, AsyncUnlocked, LenzeSmd, UnlockError, Variant};
+use lenze_smd::{params, AsyncUnlocked, Command, LenzeSmd, UnlockError, Variant};
 
 const UNIT: UnitId = UnitId(10);
 /// The serial speed command #40 (holding 0x0028), in 0.1 Hz.
@@ -178,4 +178,25 @@ async fn the_operation_machine_awaited_sends_what_the_blocking_walk_sends() {
         .filter(|request| matches!(request, LinkRequest::Write(..)))
         .count();
     assert_eq!(writes, 4, "{sent:?}");
+}
+
+#[tokio::test]
+async fn commands_under_an_async_unlock_start_and_stop_the_drive() {
+    let mut drive = connect(simulated(&[("acceleration_time", 0)])).await;
+    let mut session = unlocked_at_30_hz(&mut drive).await;
+    session
+        .command(Command::SerialSpeedReference)
+        .await
+        .unwrap();
+    session.command(Command::Start).await.unwrap();
+    assert_eq!(
+        session.drive().operation_state_async().await,
+        Ok(Some(State::Running))
+    );
+    session.command(Command::Stop).await.unwrap();
+    assert_eq!(
+        session.drive().operation_state_async().await,
+        Ok(Some(State::Stopped))
+    );
+    session.lock().await.unwrap();
 }
