@@ -65,7 +65,7 @@ pub const MAX_VALUE_BYTES: usize = 64;
 /// The protocol a link speaks; selects which address a parameter is reached at.
 pub trait Protocol: 'static {
     /// How a parameter is addressed on this protocol.
-    type Address: Copy + core::fmt::Debug + PartialEq;
+    type Address: Copy + core::fmt::Debug + PartialEq + 'static;
     /// Human-readable protocol name used in diagnostics.
     const NAME: &'static str;
 }

@@ -24,6 +24,9 @@ pub struct Device<L> {
     lock: Option<LockAccount>,
     /// Values given when the handle was opened (model constants, unreadable scale inputs).
     pub(crate) given: Given,
+    /// The lock command a dropped async unlock guard owes: sent before the next async request.
+    #[cfg(feature = "async")]
+    pub(crate) owed_lock: Option<crate::asynch::OwedLock>,
 }
 
 /// The address type of `L`'s protocol.
@@ -43,6 +46,8 @@ impl<L> Device<L> {
             refusal: None,
             lock: None,
             given: Given::default(),
+            #[cfg(feature = "async")]
+            owed_lock: None,
         }
     }
 
@@ -160,6 +165,23 @@ impl<L> Device<L> {
             });
         }
         Ok(!stops)
+    }
+
+    /// The lock's account follows a write of `bytes` to `name` that is as good as sent (an
+    /// owed lock command).
+    #[cfg(feature = "async")]
+    pub(crate) fn account_lock(&mut self, name: &'static str, bytes: &[u8]) {
+        if let Some(lock) = &mut self.lock {
+            lock.follow(name, bytes, &Ok(()));
+        }
+    }
+
+    /// Whether `cause` is the drive refusing a write as locked.
+    #[cfg(feature = "async")]
+    pub(crate) fn is_lock_refusal(&self, cause: &BusError) -> bool {
+        self.lock
+            .as_ref()
+            .is_some_and(|lock| lock.is_refusal(cause))
     }
 
     /// After a write's I/O: the lock's account follows what was sent and how it ended.

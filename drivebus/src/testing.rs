@@ -5,6 +5,11 @@
 //! * [`SdoRecorder`] — a [`MemoryBus`] that also keeps the first CAN frame of every SDO transfer.
 //! * `RtuRecorder` (with `modbus-core`) — a [`MemoryBus`] that also keeps every request as its RTU
 //!   frame.
+//! * [`Recorded`] — any link, blocking or async, keeping every request it passes on.
+
+mod recorded;
+
+pub use recorded::{LinkRequest, Recorded};
 
 use std::collections::BTreeMap;
 use std::vec::Vec;
@@ -393,6 +398,31 @@ mod immediate {
             requests: &[ReadRequest<'_, <L::Protocol as Protocol>::Address>],
         ) -> Option<usize> {
             self.0.failed_request(requests)
+        }
+    }
+
+    /// An SDO client whose futures complete at their first poll, over the blocking one `B`
+    /// (a [`MemoryBus`](super::MemoryBus), an [`SdoRecorder`](super::SdoRecorder)).
+    #[cfg(feature = "canopen")]
+    impl<B: crate::canopen::SdoBus> crate::canopen::AsyncSdoBus for Immediate<B> {
+        async fn upload(
+            &mut self,
+            node: crate::canopen::NodeId,
+            index: u16,
+            subindex: u8,
+            out: &mut [u8],
+        ) -> Result<usize, BusError> {
+            self.0.upload(node, index, subindex, out)
+        }
+
+        async fn download(
+            &mut self,
+            node: crate::canopen::NodeId,
+            index: u16,
+            subindex: u8,
+            data: &[u8],
+        ) -> Result<(), BusError> {
+            self.0.download(node, index, subindex, data)
         }
     }
 

@@ -59,11 +59,14 @@ impl LockAccount {
     pub(crate) fn follow(&mut self, parameter: &str, bytes: &[u8], outcome: &Result<(), BusError>) {
         match outcome {
             Ok(()) => self.written(parameter, bytes),
-            Err(BusError::ModbusException { code, .. }) if code.code() == self.lock.refusal => {
-                self.refused(parameter);
-            }
+            Err(cause) if self.is_refusal(cause) => self.refused(parameter),
             Err(_) => {}
         }
+    }
+
+    /// Whether `cause` is the drive refusing a write as locked (the lock's exception code).
+    pub(crate) fn is_refusal(&self, cause: &BusError) -> bool {
+        matches!(cause, BusError::ModbusException { code, .. } if code.code() == self.lock.refusal)
     }
 
     fn scope_of(&self, parameter: &str) -> Option<&'static LockScope<'static>> {

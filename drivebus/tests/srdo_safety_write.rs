@@ -325,3 +325,59 @@ fn a_stored_signature_mismatch_reports_both_values() {
         )))
     );
 }
+
+/// The SWD's SRDO1 objects in memory, for the writes to land on.
+#[cfg(feature = "async")]
+fn swd_memory() -> drivebus::testing::MemoryBus {
+    let mut memory = drivebus::testing::MemoryBus::new();
+    for ((index, subindex), value) in swd_objects() {
+        memory.set_object(index, subindex, &value);
+    }
+    for entry in 0..=2 {
+        memory.set_object(0x1381, entry, &[0; 4]);
+    }
+    memory
+}
+
+#[cfg(feature = "async")]
+#[test]
+fn the_async_safety_write_checks_and_sends_what_the_blocking_one_does() {
+    use drivebus::canopen::srdo::write_safety_configuration_async;
+    use drivebus::testing::{now, Immediate};
+    let config = srdo1(SrdoDirection::Receive);
+    let mut blocking = swd_memory();
+    let signature = write_safety_configuration(
+        &mut blocking,
+        NODE,
+        NmtState::PreOperational,
+        config,
+        MappingWrite::Write,
+    );
+    let mut awaited = Immediate(swd_memory());
+    let outcome = now(write_safety_configuration_async(
+        &mut awaited,
+        NODE,
+        NmtState::PreOperational,
+        config,
+        MappingWrite::Write,
+    ));
+    assert_eq!(outcome, Some(signature));
+    assert!(matches!(outcome, Some(Ok(_))), "{outcome:?}");
+    assert_eq!(awaited.0.log(), blocking.log());
+    // Refused before anything is sent outside Pre-Operational, as the blocking write is.
+    let mut idle = Immediate(swd_memory());
+    let refused = now(write_safety_configuration_async(
+        &mut idle,
+        NODE,
+        NmtState::Operational,
+        config,
+        MappingWrite::Write,
+    ));
+    assert_eq!(
+        refused,
+        Some(Err(SafetyWriteError::NotPreOperational {
+            state: NmtState::Operational
+        }))
+    );
+    assert!(idle.0.log().is_empty());
+}

@@ -1,6 +1,7 @@
 //! The async device: [`Device<Async<L>>`](Device) reads and writes parameters over an
 //! [`AsyncLink`], with the very checks of the blocking device.
 //!
+//! Every request first sends a lock command a dropped unlock guard owes ([`super::owed_lock`]).
 //! Only the I/O is written here: what comes before it (the refusals, the range and the lock)
 //! and after it (decoding, the lock's account) are the functions the blocking device calls too,
 //! and run-time scales are the generated blocking code, replayed ([`super::replay`]).
@@ -24,6 +25,7 @@ type ScaleFn<L> = fn(&mut Device<Replay<<L as AsyncLink>::Protocol>>) -> Result<
 impl<L: AsyncLink> Device<Async<L>> {
     /// Reads a parameter in engineering units.
     pub async fn read<P: Readable<L::Protocol>>(&mut self) -> Result<P::Value, Error> {
+        self.settle().await?;
         let raw = self.read_raw::<P>().await?;
         let scale = self.scale(P::read_scale).await?;
         P::decode(raw, scale).map_err(named::<P>)
@@ -40,6 +42,7 @@ impl<L: AsyncLink> Device<Async<L>> {
         name: &'static str,
         at: impl FnOnce(AddressOf<L>) -> AddressOf<L>,
     ) -> Result<P::Raw, Error> {
+        self.settle().await?;
         let address = P::read_address(self.variant).map(at);
         let address = self.read_target(name, P::READ_AT.depends_on_variant(), address)?;
         let mut buf = [0u8; MAX_VALUE_BYTES];
@@ -52,6 +55,7 @@ impl<L: AsyncLink> Device<Async<L>> {
         &mut self,
         parameter: &RawInteger<L::Protocol>,
     ) -> Result<i128, Error> {
+        self.settle().await?;
         let address = parameter.read_at.get(self.variant);
         let address = self.read_target(
             parameter.name,
@@ -65,6 +69,7 @@ impl<L: AsyncLink> Device<Async<L>> {
 
     /// Writes a parameter in engineering units; checked as [`Device::write`] checks it.
     pub async fn write<P: Writable<L::Protocol>>(&mut self, value: P::Value) -> Result<(), Error> {
+        self.settle().await?;
         let scale = self.scale(P::write_scale).await?;
         let raw = P::encode(value, scale).map_err(named::<P>)?;
         self.write_raw::<P>(raw).await
@@ -84,6 +89,7 @@ impl<L: AsyncLink> Device<Async<L>> {
         raw: P::Raw,
         at: impl FnOnce(AddressOf<L>) -> AddressOf<L>,
     ) -> Result<(), Error> {
+        self.settle().await?;
         if self.write_checks::<P>(name, &raw)? {
             self.check_bounds::<P>(&raw).await?;
         }
@@ -110,12 +116,14 @@ impl<L: AsyncLink> Device<Async<L>> {
 
     /// Reads several parameters at once, in as few requests as the link can manage.
     pub async fn read_many<S: AsyncReadSet<L>>(&mut self, set: S) -> Result<S::Values, Error> {
+        self.settle().await?;
         set.read_from(self).await
     }
 
     /// The scale `compute` (a parameter's `read_scale` or `write_scale`) gives, its inputs read
     /// over this device's link.
     pub(crate) async fn scale(&mut self, compute: ScaleFn<L>) -> Result<Scale, Error> {
+        self.settle().await?;
         replayed(self, compute, read_over::<L>).await
     }
 }

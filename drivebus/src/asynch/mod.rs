@@ -16,18 +16,24 @@
 //! runs on connect ([`Device::verify_identity`](crate::Device::verify_identity), the generated
 //! `verify_identity_async` and `detect_variant_async`) conclude from what they read with the
 //! blocking procedure's own functions: only the reads are awaited.
+//!
+//! An async unlock guard cannot write the lock command in `Drop`: one dropped without
+//! `lock().await` leaves the lock owed ([`Device::owe_write`](crate::Device::owe_write)), and
+//! the device's next async request sends it first.
 
 mod accessor;
 mod device;
 mod identity;
 pub(crate) mod io_error;
 mod link;
+mod owed_lock;
 pub(crate) mod race;
 mod read_set;
 mod replay;
 mod timer;
 
 pub use link::{Async, AsyncLink};
+pub use owed_lock::OwedLock;
 pub use read_set::AsyncReadSet;
 #[cfg(feature = "tokio")]
 pub use timer::TokioTimer;

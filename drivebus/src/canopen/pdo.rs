@@ -412,6 +412,21 @@ impl<'a> PdoConfig<'a> {
         }
         Ok(())
     }
+
+    /// [`Self::apply`] over an async SDO client (feature `async`): the same [`Self::plan`],
+    /// each write awaited.
+    #[cfg(feature = "async")]
+    pub async fn apply_async<B: super::link::AsyncSdoBus + ?Sized>(
+        &self,
+        bus: &mut B,
+        node: NodeId,
+    ) -> Result<(), BusError> {
+        for write in self.plan()? {
+            bus.download(node, write.index, write.subindex, write.data())
+                .await?;
+        }
+        Ok(())
+    }
 }
 
 /// The SDO writes of a [`PdoConfig`], in order.

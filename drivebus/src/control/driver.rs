@@ -1,141 +1,23 @@
 //! The blocking driver: walks a drive to a state by polling its status and writing commands until
 //! the planner is done or the deadline passes, and says where and why it got stuck.
 
-use core::fmt;
 use std::thread;
-use std::time::Duration;
 
 /// The deadline type of the driver (re-exported so generated crates need no `std` import).
 pub use std::time::Instant;
 
-use super::cia402::{Blocker, Cia402Planner, Observation, State, Step, Target, Waiting};
-use super::machine::{Plan, TransitionDef, TransitionKind};
+pub use super::control_error::{ControlError, StuckReason};
+pub use super::walk::POLL_INTERVAL;
+
+use super::cia402::{Observation, State, Target};
 use super::mode::{self, ModeStep};
 use super::objects::{Cia402Modes, Cia402Objects, VendorMachine};
+use super::walk::{self, Cia402Walk, MachineWalk, Walk};
 use super::Millis;
 use crate::device::Device;
 use crate::error::Error;
 use crate::link::Link;
 use crate::parameter::{OpenEnum, Readable, Writable};
-
-/// Pause between two status polls when nothing was written.
-pub const POLL_INTERVAL: Duration = Duration::from_millis(1);
-
-/// Why the driver stopped short of its target.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum StuckReason {
-    /// The CiA 402 planner cannot progress.
-    Blocked(Blocker),
-    /// The planner was still waiting (automatic transition, fault reset hold) at the deadline.
-    Waiting(Waiting),
-    /// The command was written but the drive did not take the transition before the deadline.
-    NoResponse {
-        /// The transition asked for.
-        transition: &'static TransitionDef<'static>,
-        /// The command value written.
-        command: u16,
-    },
-    /// The drive did not take an automatic transition (initialisation) before the deadline.
-    Awaiting(&'static TransitionDef<'static>),
-    /// A vendor machine needs an outside event (reset input, safety input) to go on.
-    NeedsExternal(&'static TransitionDef<'static>),
-    /// No transition of the vendor machine leads to the target.
-    Unreachable,
-    /// The status register shows none of the vendor machine's states.
-    UnknownStatus,
-}
-
-impl fmt::Display for StuckReason {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            StuckReason::Blocked(b) => b.fmt(f),
-            StuckReason::Waiting(w) => write!(f, "deadline passed while {w}"),
-            StuckReason::NoResponse {
-                transition,
-                command,
-            } => write!(
-                f,
-                "wrote {command:#06x} for transition {} but the drive did not take it",
-                transition.name
-            ),
-            StuckReason::Awaiting(t) => {
-                write!(
-                    f,
-                    "the drive did not take transition {} by itself: {}",
-                    t.name, t.doc
-                )
-            }
-            StuckReason::NeedsExternal(t) => {
-                write!(f, "transition {} needs an outside event: {}", t.name, t.doc)
-            }
-            StuckReason::Unreachable => f.write_str("no transition leads to the target"),
-            StuckReason::UnknownStatus => f.write_str("the status shows no known state"),
-        }
-    }
-}
-
-/// A failed control operation.
-#[derive(Debug, Clone, PartialEq)]
-pub enum ControlError {
-    /// Reading the status or writing a command failed.
-    Bus(Error),
-    /// The drive did not reach the target.
-    Stuck {
-        /// The target state's name.
-        target: &'static str,
-        /// The state the drive was last seen in (`None`: status not recognised).
-        state: Option<&'static str>,
-        /// The status word last read.
-        status: u16,
-        /// Why it did not progress.
-        reason: StuckReason,
-    },
-    /// The mode display (0x6061) did not show the requested mode before the deadline.
-    ModeNotConfirmed {
-        /// The mode written to 0x6060.
-        requested: i8,
-        /// The mode 0x6061 showed last.
-        displayed: i8,
-    },
-    /// The vendor machine has no state of this name.
-    UnknownState(&'static str),
-}
-
-impl From<Error> for ControlError {
-    fn from(error: Error) -> Self {
-        ControlError::Bus(error)
-    }
-}
-
-impl fmt::Display for ControlError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            ControlError::Bus(e) => write!(f, "drive control: {e}"),
-            ControlError::Stuck {
-                target,
-                state,
-                status,
-                reason,
-            } => write!(
-                f,
-                "drive stuck in {} (status {status:#06x}) on the way to {target}: {reason}",
-                state.unwrap_or("an unknown state")
-            ),
-            ControlError::ModeNotConfirmed {
-                requested,
-                displayed,
-            } => write!(
-                f,
-                "mode {requested} requested, the mode display still shows {displayed}"
-            ),
-            ControlError::UnknownState(name) => {
-                write!(f, "the state machine has no state {name:?}")
-            }
-        }
-    }
-}
-
-impl std::error::Error for ControlError {}
 
 /// Milliseconds since the driver started, the time the pure core sees.
 struct Clock(Instant);
@@ -143,19 +25,6 @@ struct Clock(Instant);
 impl Clock {
     fn now(&self) -> Millis {
         Millis(u64::try_from(self.0.elapsed().as_millis()).unwrap_or(u64::MAX))
-    }
-}
-
-/// Writes a command unless the same one was already written while the drive showed the same status.
-struct Commander {
-    last: Option<(u16, u16)>,
-}
-
-impl Commander {
-    fn should_write(&mut self, command: u16, status: u16) -> bool {
-        let fresh = self.last != Some((command, status));
-        self.last = Some((command, status));
-        fresh
     }
 }
 
@@ -192,40 +61,21 @@ where
     O::SafeTorqueOffWord: Readable<L::Protocol>,
 {
     let clock = Clock(Instant::now());
-    let mut planner = Cia402Planner::new(O::QUIRKS);
-    planner.sent(device.read_raw::<O::Controlword>()?, clock.now());
-    let mut commander = Commander { last: None };
+    let controlword = device.read_raw::<O::Controlword>()?;
+    let mut walk = Cia402Walk::new(O::QUIRKS, target, controlword, clock.now());
     loop {
         let seen = observe::<O, L>(device, &clock, &mut statusword)?;
-        let stuck = |reason| ControlError::Stuck {
-            target: target.state().name(),
-            state: State::decode(seen.statusword).map(State::name),
-            status: seen.statusword,
-            reason,
+        let (write, if_late) = match walk.step(&seen) {
+            Walk::Done => return Ok(()),
+            Walk::Failed(error) => return Err(error),
+            Walk::Pending { write, if_late } => (write, if_late),
         };
-        let reason = match planner.next(&seen, target) {
-            Step::Done => return Ok(()),
-            Step::Send {
-                controlword,
-                transition,
-            } => {
-                if commander.should_write(controlword, seen.statusword) {
-                    device.write_raw::<O::Controlword>(controlword)?;
-                    planner.sent(controlword, clock.now());
-                }
-                StuckReason::NoResponse {
-                    transition,
-                    command: controlword,
-                }
-            }
-            Step::Wait(waiting) => StuckReason::Waiting(waiting),
-            Step::Blocked(blocker) if blocker.is_final() => {
-                return Err(stuck(StuckReason::Blocked(blocker)))
-            }
-            Step::Blocked(blocker) => StuckReason::Blocked(blocker),
-        };
+        if let Some(controlword) = write {
+            device.write_raw::<O::Controlword>(controlword)?;
+            walk.sent(controlword, clock.now());
+        }
         if Instant::now() >= deadline {
-            return Err(stuck(reason));
+            return Err(if_late);
         }
         thread::sleep(POLL_INTERVAL);
     }
@@ -273,17 +123,8 @@ where
     O::Statusword: Readable<L::Protocol>,
     O::SafeTorqueOffWord: Readable<L::Protocol>,
 {
-    if state::<O, L>(device)? != Some(State::OperationEnabled) {
-        return drive_to::<O, L>(device, Target::SwitchOnDisabled, deadline);
-    }
-    match drive_to::<O, L>(device, Target::QuickStopActive, deadline) {
-        Err(ControlError::Stuck {
-            reason: StuckReason::Blocked(Blocker::QuickStopOnlyFromOperationEnabled),
-            state: Some(name),
-            ..
-        }) if name == State::SwitchOnDisabled.name() => Ok(()),
-        other => other,
-    }
+    let target = walk::quick_stop_target(state::<O, L>(device)?);
+    walk::quick_stop_outcome(drive_to::<O, L>(device, target, deadline))
 }
 
 /// Fault reset: from fault (or fault reaction active) to switch on disabled; nothing to do otherwise.
@@ -295,11 +136,10 @@ where
     O::Statusword: Readable<L::Protocol>,
     O::SafeTorqueOffWord: Readable<L::Protocol>,
 {
-    match state::<O, L>(device)? {
-        Some(State::Fault | State::FaultReactionActive) => {
-            drive_to::<O, L>(device, Target::SwitchOnDisabled, deadline)
-        }
-        _ => Ok(()),
+    if walk::needs_fault_reset(state::<O, L>(device)?) {
+        drive_to::<O, L>(device, Target::SwitchOnDisabled, deadline)
+    } else {
+        Ok(())
     }
 }
 
@@ -349,47 +189,19 @@ where
     V::Status: Readable<L::Protocol>,
     V::Command: Writable<L::Protocol>,
 {
-    let machine = V::MACHINE;
-    let goal = machine
-        .state_index(target)
-        .ok_or(ControlError::UnknownState(target))?;
-    let mut commander = Commander { last: None };
+    let mut walk = MachineWalk::new(V::MACHINE, target)?;
     loop {
         let status = device.read_raw::<V::Status>()?;
-        let current = machine.recognise(status);
-        let stuck = |reason| ControlError::Stuck {
-            target,
-            state: current
-                .and_then(|i| machine.states.get(usize::from(i)))
-                .map(|s| s.name),
-            status,
-            reason,
+        let (write, if_late) = match walk.step(status) {
+            Walk::Done => return Ok(()),
+            Walk::Failed(error) => return Err(error),
+            Walk::Pending { write, if_late } => (write, if_late),
         };
-        let reason = match current.map(|from| machine.next(from, goal, |_| true)) {
-            None => StuckReason::UnknownStatus,
-            Some(Plan::Done) => return Ok(()),
-            Some(Plan::Command(transition)) => {
-                let TransitionKind::Command(command) = transition.kind else {
-                    return Err(stuck(StuckReason::Unreachable));
-                };
-                if commander.should_write(command, status) {
-                    device.write_raw::<V::Command>(command)?;
-                }
-                StuckReason::NoResponse {
-                    transition,
-                    command,
-                }
-            }
-            Some(Plan::Await(transition)) => StuckReason::Awaiting(transition),
-            Some(Plan::NeedsExternal(transition)) => {
-                return Err(stuck(StuckReason::NeedsExternal(transition)))
-            }
-            Some(Plan::Unreachable | Plan::BadTable) => {
-                return Err(stuck(StuckReason::Unreachable))
-            }
-        };
+        if let Some(command) = write {
+            device.write_raw::<V::Command>(command)?;
+        }
         if Instant::now() >= deadline {
-            return Err(stuck(reason));
+            return Err(if_late);
         }
         thread::sleep(POLL_INTERVAL);
     }

@@ -15,9 +15,17 @@
 //!   the statusword of each state): the simulator's CiA 402 behaviour and the test double of masters.
 //! * [`mode`] — changing the mode of operation (0x6060) and confirming it (0x6061).
 //! * [`objects`] — the traits generated crates implement to hand their parameters to the driver.
+//! * [`walk`] — what a driver decides between two polls (the next command, or the error a
+//!   deadline ends the walk with), without I/O: the steps both drivers take.
 //! * `driver` (std) — the blocking driver behind `drive.enable_operation(deadline)`.
+//! * `async_driver` (feature `async`) — the async driver behind
+//!   `drive.enable_operation_async(&timer, limit).await`, waiting only through an
+//!   [`asynch::Timer`](crate::asynch::Timer).
 
+#[cfg(feature = "async")]
+pub mod async_driver;
 pub mod cia402;
+mod control_error;
 #[cfg(feature = "server")]
 pub mod device;
 #[cfg(feature = "std")]
@@ -26,8 +34,10 @@ pub use drivebus_model::control::machine;
 pub mod mode;
 pub mod objects;
 pub use drivebus_model::control::quirks;
+pub mod walk;
 
 pub use cia402::{Blocker, Cia402Planner, State, Step, Target, Waiting};
+pub use control_error::{ControlError, StuckReason};
 pub use machine::{Machine, Plan, StateDef, StatePattern, TransitionDef, TransitionKind};
 pub use objects::{Cia402Modes, Cia402Objects, VendorMachine};
 pub use quirks::{Quirk, Quirks};

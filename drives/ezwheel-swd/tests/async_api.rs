@@ -15,7 +15,9 @@ use drivebus::canopen::can::async_slcan::AsyncSlcanBus;
 use drivebus::canopen::can::slcan::SlcanBus;
 use drivebus::canopen::can::tokio_adapters::TokioIo;
 use drivebus::canopen::{CanOpenLink, NodeId};
+use drivebus::control::{ControlError, State};
 use drivebus::interpret::OutsideRange;
+use drivebus::testing::{LinkRequest, Recorded};
 use drivebus::units::Rpm;
 use drivebus::{Error, ValueError};
 use drivesim::canopen::{Node, NodeConfig};
@@ -130,4 +132,91 @@ async fn typed_async_reads_writes_and_read_many_against_the_simulator() {
         .unwrap();
     assert_eq!(many, once);
     assert_eq!((many.0, many.1, many.2), (Rpm(29.8), 1, 10));
+}
+
+/// Three seconds from now, the blocking driver's deadline.
+fn deadline() -> std::time::Instant {
+    std::time::Instant::now() + LIMIT
+}
+
+/// The async driver's limit.
+const LIMIT: Duration = Duration::from_secs(3);
+
+#[tokio::test]
+async fn the_cia402_walk_awaited_sends_what_the_blocking_walk_sends() {
+    // The blocking walk to operation enabled and back, on one simulated drive.
+    let (blocking, _running) = start();
+    let mut blocking = Swd::new(Recorded::new(blocking.into_link()));
+    assert_eq!(blocking.cia402_state(), Ok(Some(State::SwitchOnDisabled)));
+    blocking.enable_operation(deadline()).unwrap();
+    assert_eq!(blocking.cia402_state(), Ok(Some(State::OperationEnabled)));
+    blocking.disable(deadline()).unwrap();
+    assert_eq!(blocking.cia402_state(), Ok(Some(State::SwitchOnDisabled)));
+
+    // The same walk awaited, on a second one in the same state.
+    let sim = Simulator::load(support::simulated_swd::DESCRIPTION).unwrap();
+    let link = async_swd(&sim).await.into_link().into_inner();
+    let mut drive = Swd::new(Async(Recorded::new(link)));
+    let timer = TokioTimer;
+    assert_eq!(
+        drive.cia402_state_async().await,
+        Ok(Some(State::SwitchOnDisabled))
+    );
+    drive.enable_operation_async(&timer, LIMIT).await.unwrap();
+    assert_eq!(
+        drive.cia402_state_async().await,
+        Ok(Some(State::OperationEnabled))
+    );
+    drive.disable_async(&timer, LIMIT).await.unwrap();
+    assert_eq!(
+        drive.cia402_state_async().await,
+        Ok(Some(State::SwitchOnDisabled))
+    );
+
+    // The same requests in the same order (a status polled more often in one run is one poll).
+    let sent = drive.device().link_mut().0.log_without_repeats();
+    let expected = blocking.device().link_mut().log_without_repeats();
+    assert_eq!(sent, expected);
+    let commands: Vec<Vec<u8>> = sent
+        .iter()
+        .filter_map(|request| match request {
+            LinkRequest::Write(_, bytes) => Some(bytes.clone()),
+            LinkRequest::Read(_) => None,
+        })
+        .collect();
+    // Shutdown, switch on, enable operation; then disable voltage.
+    assert_eq!(commands, [[0x06, 0], [0x07, 0], [0x0F, 0], [0x00, 0]]);
+}
+
+#[tokio::test]
+async fn an_async_walk_out_of_time_says_where_the_drive_is_stuck() {
+    let sim = Simulator::load(support::simulated_swd::DESCRIPTION).unwrap();
+    let mut drive = async_swd(&sim).await;
+    // A limit too short for the drive: the error names the state and the missing transition,
+    // as the blocking driver's does at its deadline.
+    let outcome = drive
+        .enable_operation_async(&TokioTimer, Duration::ZERO)
+        .await;
+    assert!(
+        matches!(
+            outcome,
+            Err(ControlError::Bus(Error::Bus {
+                cause: drivebus::BusError::Timeout,
+                ..
+            })) | Err(ControlError::Stuck { .. })
+        ),
+        "{outcome:?}"
+    );
+    // The drive is usable afterwards: the dropped request left the bus consistent.
+    drive
+        .enable_operation_async(&TokioTimer, LIMIT)
+        .await
+        .unwrap();
+    drive.quick_stop_async(&TokioTimer, LIMIT).await.unwrap();
+    assert_ne!(
+        drive.cia402_state_async().await,
+        Ok(Some(State::OperationEnabled))
+    );
+    drive.fault_reset_async(&TokioTimer, LIMIT).await.unwrap();
+    drive.disable_async(&TokioTimer, LIMIT).await.unwrap();
 }

@@ -8,8 +8,10 @@ use std::time::Duration;
 
 use drivebus::asynch::{Async, TokioTimer};
 use drivebus::canopen::can::tokio_adapters::TokioIo;
+use drivebus::control::State;
 use drivebus::rs232::async_client::AsyncRs232Client;
 use drivebus::rs232::{LoopMode, Rs232Link, StationId};
+use drivebus::testing::{LinkRequest, Recorded};
 use drivebus::units::{Hertz, Percent, Rpm};
 use drivebus::{Error, ValueError};
 use drivesim::rs232::{InProcessLine, Rs232Server};
@@ -109,4 +111,49 @@ async fn typed_async_reads_writes_and_read_many_against_the_simulator() {
         (many.0, many.1, many.2),
         (Hertz(300.0), Rpm(150.0), Percent(100.0))
     );
+}
+
+#[tokio::test]
+async fn the_cia402_walk_awaited_sends_what_the_blocking_walk_sends() {
+    const LIMIT: Duration = Duration::from_secs(3);
+    // The blocking walk to operation enabled and back, on one simulated drive.
+    let sim = Simulator::load(DESCRIPTION).unwrap();
+    let line = InProcessLine::new(Rs232Server::new(&sim, STATION, LoopMode::PointToPoint));
+    let mut blocking = KincoFd::new(Recorded::new(KincoFd::rs232(line, STATION).into_link()));
+    let deadline = || std::time::Instant::now() + LIMIT;
+    blocking.enable_operation(deadline()).unwrap();
+    assert_eq!(blocking.cia402_state(), Ok(Some(State::OperationEnabled)));
+    blocking.disable(deadline()).unwrap();
+    assert_eq!(blocking.cia402_state(), Ok(Some(State::SwitchOnDisabled)));
+
+    // The same walk awaited, on a second simulated drive in the same state.
+    let sim = Simulator::load(DESCRIPTION).unwrap();
+    let link = async_kinco(&sim).into_link().into_inner();
+    let mut drive = KincoFd::new(Async(Recorded::new(link)));
+    drive
+        .enable_operation_async(&TokioTimer, LIMIT)
+        .await
+        .unwrap();
+    assert_eq!(
+        drive.cia402_state_async().await,
+        Ok(Some(State::OperationEnabled))
+    );
+    drive.disable_async(&TokioTimer, LIMIT).await.unwrap();
+    assert_eq!(
+        drive.cia402_state_async().await,
+        Ok(Some(State::SwitchOnDisabled))
+    );
+
+    // The same requests in the same order (a status polled more often in one run is one poll),
+    // the commands among them: shutdown, switch on, enable operation, disable voltage.
+    let sent = drive.device().link_mut().0.log_without_repeats();
+    assert_eq!(sent, blocking.device().link_mut().log_without_repeats());
+    let commands: Vec<&[u8]> = sent
+        .iter()
+        .filter_map(|request| match request {
+            LinkRequest::Write(_, bytes) => Some(bytes.as_slice()),
+            LinkRequest::Read(_) => None,
+        })
+        .collect();
+    assert_eq!(commands, [[0x06, 0], [0x07, 0], [0x0F, 0], [0x00, 0]]);
 }

@@ -8,6 +8,8 @@ include!(concat!(env!("OUT_DIR"), "/drive.rs"));
 
 mod emcy;
 mod run_sequence;
+// With drivebus's `async` (which this crate's `async` enables): the run sequence awaited.
+drivebus::if_async! { mod run_sequence_async; }
 mod store;
 mod wait;
 

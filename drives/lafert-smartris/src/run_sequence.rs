@@ -4,7 +4,9 @@
 //! (T3/T6). Each step checks the drive status and says what is wrong when it cannot go on.
 //!
 //! The control word values and the states each command leaves come from the description's
-//! `[state_machine]` (the generated [`modbus_run::MACHINE`]), not from this file.
+//! `[state_machine]` (the generated [`modbus_run::MACHINE`]), not from this file. What a step
+//! decides from what it read is a plain function here, which the blocking steps and their async
+//! twins (`run_sequence_async.rs`, feature `async`) both call.
 //!
 //! The manual reads the drive status with "func. 0x03" (ERRATA.md M12); it is input register
 //! 0x0060, read with FC 0x04, as the generated `drive_status` accessor does.
@@ -109,18 +111,69 @@ impl fmt::Display for RunError {
 
 impl core::error::Error for RunError {}
 
+/// Step 3's verdict: the operation mode read (holding 0x0207) must be `mode`'s.
+pub(crate) fn mode_verdict(mode: ControlMode, actual: OperationMode) -> Result<(), RunError> {
+    if actual == mode.operation_mode() {
+        Ok(())
+    } else {
+        Err(RunError::WrongMode {
+            expected: mode.operation_mode(),
+            actual,
+        })
+    }
+}
+
+/// What the drive status read says of a step that needs one of `expected`.
+pub(crate) enum StatusVerdict {
+    /// The drive is in one of the states.
+    In(DriveStatus),
+    /// The drive is in alarm: the error code (input 0x0063) is to be read and reported.
+    Alarm,
+    /// The step cannot go on.
+    Refused(RunError),
+}
+
+/// The verdict on `status` for a step that needs one of `expected`.
+pub(crate) fn status_verdict(status: DriveStatus, expected: DriveStatus) -> StatusVerdict {
+    if status.contains(DriveStatus::ALARM) {
+        StatusVerdict::Alarm
+    } else if status.contains(DriveStatus::SAFE) {
+        StatusVerdict::Refused(RunError::SafeTorqueOff)
+    } else if status.intersects(expected) {
+        StatusVerdict::In(status)
+    } else {
+        StatusVerdict::Refused(RunError::WrongState { expected, status })
+    }
+}
+
+/// The states a command leads from straight into `target`, as drive status bits.
+pub(crate) fn commanded_from(target: modbus_run::State) -> DriveStatus {
+    let to = MACHINE.state_index(target.name());
+    let sources = to.into_iter().flat_map(|to| MACHINE.commanded_from(to));
+    let shown = sources.flat_map(|state| state.patterns).map(|p| p.value);
+    DriveStatus::from_bits_retain(shown.fold(0, |all, bits| all | bits))
+}
+
+/// The control word of the described transition from `status` (one of `expected`, the states
+/// [`commanded_from`] gives) straight into `target`.
+pub(crate) fn command_into(
+    target: modbus_run::State,
+    status: DriveStatus,
+    expected: DriveStatus,
+) -> Result<ControlWord, RunError> {
+    let to = MACHINE.state_index(target.name());
+    MACHINE
+        .recognise(status.bits())
+        .zip(to)
+        .and_then(|(from, to)| MACHINE.command_between(from, to))
+        .map(ControlWord::from_bits_retain)
+        .ok_or(RunError::WrongState { expected, status })
+}
+
 impl<L: Link<Protocol = Modbus>> Smartris<L> {
     /// Step 3: the drive's operation mode (holding 0x0207) must be `mode`.
     pub fn check_operation_mode(&mut self, mode: ControlMode) -> Result<(), RunError> {
-        let actual = self.operation_mode().read()?;
-        if actual == mode.operation_mode() {
-            Ok(())
-        } else {
-            Err(RunError::WrongMode {
-                expected: mode.operation_mode(),
-                actual,
-            })
-        }
+        mode_verdict(mode, self.operation_mode().read()?)
     }
 
     /// Steps 3-6: checks the mode and that the drive is switched on (standby) or stopped without
@@ -171,37 +224,22 @@ impl<L: Link<Protocol = Modbus>> Smartris<L> {
     /// straight into `target`; refuses (nothing written) in alarm, on STO, or in a state no
     /// command leads from into `target`.
     fn command_into(&mut self, target: modbus_run::State) -> Result<(), RunError> {
-        let to = MACHINE.state_index(target.name());
-        let sources = to.into_iter().flat_map(|to| MACHINE.commanded_from(to));
-        let shown = sources.flat_map(|state| state.patterns).map(|p| p.value);
-        let expected = DriveStatus::from_bits_retain(shown.fold(0, |all, bits| all | bits));
+        let expected = commanded_from(target);
         let status = self.status_in(expected)?;
-        let from = MACHINE.recognise(status.bits());
-        let command = from
-            .zip(to)
-            .and_then(|(from, to)| MACHINE.command_between(from, to))
-            .ok_or(RunError::WrongState { expected, status })?;
-        self.control_word()
-            .write(ControlWord::from_bits_retain(command))?;
+        let command = command_into(target, status, expected)?;
+        self.control_word().write(command)?;
         Ok(())
     }
 
     /// Reads the drive status; fails with the decoded error code in alarm, on STO, or when none
     /// of the `expected` states is set.
     fn status_in(&mut self, expected: DriveStatus) -> Result<DriveStatus, RunError> {
-        let status = self.drive_status().read()?;
-        if status.contains(DriveStatus::ALARM) {
-            return Err(RunError::InAlarm {
+        match status_verdict(self.drive_status().read()?, expected) {
+            StatusVerdict::In(status) => Ok(status),
+            StatusVerdict::Alarm => Err(RunError::InAlarm {
                 code: self.error_code().read()?,
-            });
-        }
-        if status.contains(DriveStatus::SAFE) {
-            return Err(RunError::SafeTorqueOff);
-        }
-        if status.intersects(expected) {
-            Ok(status)
-        } else {
-            Err(RunError::WrongState { expected, status })
+            }),
+            StatusVerdict::Refused(error) => Err(error),
         }
     }
 }

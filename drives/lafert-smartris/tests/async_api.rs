@@ -5,10 +5,14 @@
 
 use std::time::Duration;
 
+use drivebus::asynch::{Async, TokioTimer};
 use drivebus::modbus::async_client::{AsyncClientConfig, AsyncRtuClient, AsyncTcpClient};
+use drivebus::modbus::client::{ModbusTcpClient, TcpConfig};
 use drivebus::modbus::UnitId;
+use drivebus::testing::{LinkRequest, Recorded};
 use drivebus::units::{Rpm, Volts};
 use drivebus::{Error, OutsideBound};
+use lafert_smartris::modbus_run::State;
 use lafert_smartris::types::{ControlWord, DriveStatus};
 use lafert_smartris::{params, Smartris};
 
@@ -118,4 +122,66 @@ async fn typed_async_api_over_rtu_over_tcp_against_pymodbus() {
         .await
         .unwrap();
     assert_eq!((status.bits(), volts), (0x1060, Volts(41.96)));
+}
+
+#[tokio::test]
+async fn the_run_sequence_awaited_sends_what_the_blocking_walk_sends() {
+    const LIMIT: Duration = Duration::from_secs(3);
+    let simulated = || {
+        let sim = drivesim::Simulator::load(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../descriptions/lafert-smartris"
+        ))
+        .unwrap();
+        let server = sim.serve_modbus_tcp("127.0.0.1:0", UnitId(1)).unwrap();
+        (sim, server)
+    };
+    // The blocking walk standby → run → standby (Table 3: T2, T3), on one simulated drive.
+    let (_sim, server) = simulated();
+    let client = ModbusTcpClient::connect(server.local_addr(), &TcpConfig::default()).unwrap();
+    let link = Smartris::modbus(client, UnitId(1)).into_link();
+    let mut blocking = Smartris::new(Recorded::new(link));
+    let deadline = || std::time::Instant::now() + LIMIT;
+    assert_eq!(blocking.modbus_run_state(), Ok(Some(State::Standby)));
+    blocking.goto_modbus_run(State::Run, deadline()).unwrap();
+    assert_eq!(blocking.modbus_run_state(), Ok(Some(State::Run)));
+    blocking
+        .goto_modbus_run(State::Standby, deadline())
+        .unwrap();
+    assert_eq!(blocking.modbus_run_state(), Ok(Some(State::Standby)));
+
+    // The same walk awaited, on a second simulated drive in the same state.
+    let (_sim, server) = simulated();
+    let client = AsyncTcpClient::connect(server.local_addr(), config())
+        .await
+        .unwrap();
+    let link = Smartris::modbus_async(client, UnitId(1)).into_link().0;
+    let mut drive = Smartris::new(Async(Recorded::new(link)));
+    let timer = TokioTimer;
+    drive
+        .goto_modbus_run_async(State::Run, &timer, LIMIT)
+        .await
+        .unwrap();
+    assert_eq!(drive.modbus_run_state_async().await, Ok(Some(State::Run)));
+    drive
+        .goto_modbus_run_async(State::Standby, &timer, LIMIT)
+        .await
+        .unwrap();
+    assert_eq!(
+        drive.modbus_run_state_async().await,
+        Ok(Some(State::Standby))
+    );
+
+    // The same requests in the same order; the commands among them are the manual's run
+    // (0x0003) and standby (0x0002).
+    let sent = drive.device().link_mut().0.log_without_repeats();
+    assert_eq!(sent, blocking.device().link_mut().log_without_repeats());
+    let commands: Vec<&[u8]> = sent
+        .iter()
+        .filter_map(|request| match request {
+            LinkRequest::Write(_, bytes) => Some(bytes.as_slice()),
+            LinkRequest::Read(_) => None,
+        })
+        .collect();
+    assert_eq!(commands, [[0x03, 0], [0x02, 0]]);
 }

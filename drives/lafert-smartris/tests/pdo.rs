@@ -71,14 +71,32 @@ fn the_cob_id_follows_the_node_id() {
     assert_eq!(Rpdo4::cob_id(NodeId(127)), 0x57F);
 }
 
-#[test]
-fn config_writes_the_cia301_mapping_sequence() {
-    let node = NodeId(3);
+/// The RPDO4 objects of node 3, to configure.
+fn rpdo4_objects() -> MemoryBus {
     let mut bus = MemoryBus::new();
     bus.set_object(0x1403, 1, &[0; 4])
         .set_object(0x1603, 0, &[0])
         .set_object(0x1603, 1, &[0; 4])
         .set_object(0x1603, 2, &[0; 4]);
+    bus
+}
+
+#[test]
+fn config_applied_over_an_async_sdo_client_writes_the_same_sequence() {
+    use drivebus::testing::{now, Immediate};
+    let node = NodeId(3);
+    let mut blocking = rpdo4_objects();
+    Rpdo4::config(node).apply(&mut blocking, node).unwrap();
+    let mut awaited = Immediate(rpdo4_objects());
+    let outcome = now(Rpdo4::config(node).apply_async(&mut awaited, node));
+    assert_eq!(outcome, Some(Ok(())));
+    assert_eq!(awaited.0.log(), blocking.log());
+}
+
+#[test]
+fn config_writes_the_cia301_mapping_sequence() {
+    let node = NodeId(3);
+    let mut bus = rpdo4_objects();
     Rpdo4::config(node).apply(&mut bus, node).unwrap();
 
     let cob_id = 0x503u32;

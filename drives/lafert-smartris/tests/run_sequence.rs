@@ -131,3 +131,53 @@ fn an_out_of_range_speed_is_a_typed_value_error() {
         Err(RunError::Bus(drivebus::Error::Value(_)))
     ));
 }
+
+#[test]
+fn the_async_steps_send_what_the_blocking_steps_send() {
+    use drivebus::asynch::Async;
+    use drivebus::testing::{now, Immediate};
+    let link = drive(SimulatedDrive::in_standby(2)).into_link();
+    let mut awaited = Smartris::new(Async(Immediate(link)));
+    let status = now(awaited.enable_async(ControlMode::Velocity)).unwrap();
+    assert!(status.unwrap().contains(DriveStatus::RUN_VELOCITY));
+    now(awaited.set_speed_async(Rpm(1000.0))).unwrap().unwrap();
+    now(awaited.stop_with_ramp_async()).unwrap().unwrap();
+    let stopped = now(awaited.stop_async()).unwrap().unwrap();
+    assert!(stopped.contains(DriveStatus::STOP));
+    let standby = now(awaited.standby_async()).unwrap().unwrap();
+    assert!(standby.contains(DriveStatus::STANDBY));
+    // Torque needs the torque mode: refused before anything is written, as by `enable`.
+    assert_eq!(
+        now(awaited.enable_async(ControlMode::Torque)).unwrap(),
+        Err(RunError::WrongMode {
+            expected: OperationMode::TORQUE,
+            actual: OperationMode::VELOCITY,
+        })
+    );
+    let sent = awaited.into_link().0 .0.into_bus().writes();
+
+    let mut blocking = drive(SimulatedDrive::in_standby(2));
+    blocking.enable(ControlMode::Velocity).unwrap();
+    blocking.set_speed(Rpm(1000.0)).unwrap();
+    blocking.stop_with_ramp().unwrap();
+    blocking.stop().unwrap();
+    blocking.standby().unwrap();
+    assert!(blocking.enable(ControlMode::Torque).is_err());
+    assert_eq!(sent, writes(blocking));
+}
+
+#[test]
+fn an_async_step_in_alarm_reports_the_decoded_error_code() {
+    use drivebus::asynch::Async;
+    use drivebus::testing::{now, Immediate};
+    let link = drive(SimulatedDrive::in_standby(2).with_alarm(0x2340)).into_link();
+    let mut awaited = Smartris::new(Async(Immediate(link)));
+    let refused = now(awaited.enable_async(ControlMode::Velocity)).unwrap();
+    let mut blocking = drive(SimulatedDrive::in_standby(2).with_alarm(0x2340));
+    assert_eq!(refused, blocking.enable(ControlMode::Velocity));
+    assert!(
+        matches!(refused, Err(RunError::InAlarm { .. })),
+        "{refused:?}"
+    );
+    assert!(awaited.into_link().0 .0.into_bus().writes().is_empty());
+}

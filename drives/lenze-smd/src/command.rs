@@ -71,3 +71,28 @@ impl<B: RegisterBus, U: OpensControls> Unlocked<'_, ModbusLink<B>, U> {
         Ok(written?)
     }
 }
+
+// With drivebus's `async`: the same commands under an async unlock.
+drivebus::if_async! {
+    impl<L, U> crate::AsyncUnlocked<'_, L, U>
+    where
+        L: drivebus::asynch::AsyncLink<Protocol = drivebus::modbus::Modbus>,
+        U: OpensControls,
+    {
+        /// [`Unlocked::command`] awaited: `command`'s word to register #1 through its generated
+        /// command parameter; a drive whose unlock ended answers [`UnlockError::Locked`].
+        pub async fn command(&mut self, command: Command) -> Result<(), UnlockError> {
+            let word = command.word();
+            let written = match command {
+                Command::UpdateBuffers => self.update_buffers().write_raw(word).await,
+                Command::Stop => self.stop().write_raw(word).await,
+                Command::Start => self.start().write_raw(word).await,
+                Command::Reverse => self.set_reverse().write_raw(word).await,
+                Command::Forward => self.set_forward().write_raw(word).await,
+                Command::SerialSpeedReference => self.serial_speed_reference().write_raw(word).await,
+                Command::LocalSpeedReference => self.local_speed_reference().write_raw(word).await,
+            };
+            Ok(written?)
+        }
+    }
+}

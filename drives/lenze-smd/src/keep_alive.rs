@@ -75,6 +75,7 @@ impl KeepAlive {
         let interval = Self::interval_for(timeout);
         let shared = Arc::clone(&report);
         let thread = std::thread::spawn(move || {
+            let started = Instant::now();
             let mut watch = Watch::new(timeout);
             while let Err(RecvTimeoutError::Timeout) = stopped.recv_timeout(interval) {
                 let poll = drive
@@ -83,7 +84,7 @@ impl KeepAlive {
                     .status()
                     .map(|_| ());
                 let mut report = shared.lock().unwrap_or_else(PoisonError::into_inner);
-                watch.record(poll, Instant::now(), &mut report);
+                watch.record(poll, started.elapsed(), &mut report);
             }
         });
         Self {
@@ -117,24 +118,32 @@ impl Drop for KeepAlive {
     }
 }
 
-/// Deadline bookkeeping of the polling thread.
-struct Watch {
+/// Deadline bookkeeping of a keep-alive, the thread's and the async one's: the time is what the
+/// caller measures from the keep-alive's start.
+pub(crate) struct Watch {
     timeout: Duration,
-    last_answer: Instant,
+    last_answer: Duration,
     miss_reported: bool,
 }
 
 impl Watch {
-    fn new(timeout: Duration) -> Self {
+    /// A watch started at time zero, for a watchdog `timeout`.
+    pub(crate) fn new(timeout: Duration) -> Self {
         Self {
             timeout,
-            last_answer: Instant::now(),
+            last_answer: Duration::ZERO,
             miss_reported: false,
         }
     }
 
-    fn record(&mut self, poll: Result<(), Error>, now: Instant, report: &mut KeepAliveReport) {
-        let silent_for = now.saturating_duration_since(self.last_answer);
+    /// Records the outcome of a poll that ended at `now`.
+    pub(crate) fn record(
+        &mut self,
+        poll: Result<(), Error>,
+        now: Duration,
+        report: &mut KeepAliveReport,
+    ) {
+        let silent_for = now.saturating_sub(self.last_answer);
         if silent_for > self.timeout && !self.miss_reported {
             report.missed.push(MissedDeadline { silent_for });
             self.miss_reported = true;

@@ -11,6 +11,12 @@ mod configuration;
 mod error;
 #[cfg(feature = "std")]
 mod keep_alive;
+// With drivebus's `async`: the keep-alive as steps of an async task.
+#[cfg(feature = "std")]
+drivebus::if_async! {
+    mod keep_alive_async;
+    pub use keep_alive_async::AsyncKeepAlive;
+}
 mod status_block;
 
 pub use command::Command;

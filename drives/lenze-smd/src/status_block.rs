@@ -60,22 +60,52 @@ impl<B: RegisterBus> LenzeSmd<ModbusLink<B>> {
     /// Reads the whole status block (#24-#29) in one request, FC 0x03 with a count of 6: the
     /// request planner takes the block from `MODBUS_LIMITS.read_blocks`.
     pub fn status(&mut self) -> Result<StatusBlock, Error> {
-        let (command_speed, actual_speed, load_and_status, direction, source, fault) = self
-            .read_many((
-                params::CommandSpeed,
-                params::ActualSpeed,
-                params::LoadAndStatus,
-                params::DirectionAndControlMode,
-                params::SpeedSourceAndReference,
-                params::FaultAndCommandedDirection,
-            ))?;
-        Ok(StatusBlock {
+        Ok(StatusBlock::from(self.read_many(Members::default())?))
+    }
+}
+
+/// The block's six parameters, as `read_many` takes them (`Members::default()`: markers are
+/// unit values).
+pub(crate) type Members = (
+    params::CommandSpeed,
+    params::ActualSpeed,
+    params::LoadAndStatus,
+    params::DirectionAndControlMode,
+    params::SpeedSourceAndReference,
+    params::FaultAndCommandedDirection,
+);
+
+/// The six values of [`Members`], as `read_many` gives them.
+type MemberValues = (
+    Hertz,
+    Hertz,
+    LoadAndStatus,
+    DirectionAndControlMode,
+    SpeedSourceAndReference,
+    FaultAndCommandedDirection,
+);
+
+impl From<MemberValues> for StatusBlock {
+    fn from(values: MemberValues) -> Self {
+        let (command_speed, actual_speed, load_and_status, direction, source, fault) = values;
+        StatusBlock {
             command_speed,
             actual_speed,
             load_and_status,
             direction_and_control_mode: direction,
             speed_source_and_reference: source,
             fault_and_commanded_direction: fault,
-        })
+        }
+    }
+}
+
+drivebus::if_async! {
+    impl<L: drivebus::asynch::AsyncLink<Protocol = drivebus::modbus::Modbus>>
+        LenzeSmd<drivebus::asynch::Async<L>>
+    {
+        /// `status` awaited: the whole status block (#24-#29) in one request.
+        pub async fn status_async(&mut self) -> Result<StatusBlock, Error> {
+            Ok(StatusBlock::from(self.read_many_async(Members::default()).await?))
+        }
     }
 }

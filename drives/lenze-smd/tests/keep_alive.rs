@@ -186,3 +186,69 @@ fn one_line_carries_an_unlocked_drive_and_its_keep_alive() {
         "the unlock went over the shared line"
     );
 }
+
+/// The flaky drive behind the async handle (its requests complete at once).
+fn async_drive(
+    line: &Line,
+) -> LenzeSmd<drivebus::asynch::Async<drivebus::testing::Immediate<ModbusLink<FlakyDrive>>>> {
+    let link = drive(line).into_link();
+    LenzeSmd::new(drivebus::asynch::Async(drivebus::testing::Immediate(link)))
+}
+
+#[test]
+fn the_async_keep_alive_records_what_the_thread_records() {
+    use drivebus::testing::now;
+    use lenze_smd::AsyncKeepAlive;
+    let line = Line::default();
+    let mut drive = async_drive(&line);
+    let ms = Duration::from_millis;
+    let mut keep_alive = AsyncKeepAlive::new(ms(90));
+    assert_eq!(keep_alive.interval(), KeepAlive::interval_for(ms(90)));
+    for at in [30, 60] {
+        now(keep_alive.poll(&mut drive, ms(at))).unwrap();
+    }
+    assert_eq!(keep_alive.report().polls, 2);
+    assert_eq!(
+        line.block_reads.load(Ordering::SeqCst),
+        2,
+        "one block read a poll"
+    );
+    // Silent from 60 ms: the miss is noticed once, at the first poll past 60 + 90 ms.
+    line.silent.store(true, Ordering::SeqCst);
+    for at in [90, 120, 150, 180, 210] {
+        now(keep_alive.poll(&mut drive, ms(at))).unwrap();
+    }
+    line.silent.store(false, Ordering::SeqCst);
+    now(keep_alive.poll(&mut drive, ms(240))).unwrap();
+    let report = keep_alive.report();
+    assert_eq!(report.polls, 3, "{report:?}");
+    assert_eq!(report.missed.len(), 1, "{report:?}");
+    assert_eq!(report.missed[0].silent_for, ms(120));
+    assert_eq!(
+        report.last_error.as_ref().and_then(|e| e.bus()),
+        Some(&BusError::Timeout)
+    );
+}
+
+#[tokio::test]
+async fn the_async_keep_alive_runs_until_dropped() {
+    use drivebus::asynch::TokioTimer;
+    use lenze_smd::AsyncKeepAlive;
+    let line = Line::default();
+    let mut drive = async_drive(&line);
+    let timeout = drive.watchdog_timeout_async().await.unwrap().unwrap();
+    let mut keep_alive = AsyncKeepAlive::new(timeout);
+    let ran = tokio::time::timeout(
+        Duration::from_millis(350),
+        keep_alive.run(&mut drive, &TokioTimer),
+    )
+    .await;
+    assert!(ran.is_err(), "`run` never completes");
+    // 300 ms timeout: a poll every 100 ms, three in 350 ms.
+    assert!(keep_alive.report().polls >= 2, "{:?}", keep_alive.report());
+    let stopped_at = line.block_reads.load(Ordering::SeqCst);
+    tokio::time::sleep(Duration::from_millis(150)).await;
+    assert_eq!(line.block_reads.load(Ordering::SeqCst), stopped_at);
+    // The drive is the application's again.
+    assert!(drive.status_async().await.is_ok());
+}

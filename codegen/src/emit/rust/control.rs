@@ -44,8 +44,8 @@ fn quirks(device: &Device) -> TokenStream {
 }
 
 fn cia402(device: &Device, handle: &Ident) -> Option<TokenStream> {
-    let control = marker(object(device, 0x6040, DataType::Unsigned(2))?);
-    let status = marker(object(device, 0x6041, DataType::Unsigned(2))?);
+    let (control, status) = cia402_objects(device)?;
+    let (control, status) = (marker(control), marker(status));
     let sto = device.cia402.as_ref().and_then(|c| c.sto_bit.as_ref());
     let sto_word = sto
         .and_then(|s| device.parameter(&s.parameter))
@@ -109,13 +109,25 @@ fn cia402(device: &Device, handle: &Ident) -> Option<TokenStream> {
     })
 }
 
-fn modes(device: &Device, handle: &Ident, control: &Ident) -> Option<TokenStream> {
+/// The controlword and statusword (0x6040, 0x6041), when the description has both.
+fn cia402_objects(device: &Device) -> Option<(&Parameter, &Parameter)> {
+    Some((
+        object(device, 0x6040, DataType::Unsigned(2))?,
+        object(device, 0x6041, DataType::Unsigned(2))?,
+    ))
+}
+
+/// The modes of operation and their display (0x6060, 0x6061) with their one enumeration, when
+/// the description has them.
+fn mode_objects(device: &Device) -> Option<(&Parameter, &Parameter, &str)> {
     let request = object(device, 0x6060, DataType::Signed(1))?;
     let display = object(device, 0x6061, DataType::Signed(1))?;
-    let modes = request.enumeration.as_ref()?;
-    if display.enumeration.as_ref() != Some(modes) {
-        return None;
-    }
+    let modes = request.enumeration.as_deref()?;
+    (display.enumeration.as_deref() == Some(modes)).then_some((request, display, modes))
+}
+
+fn modes(device: &Device, handle: &Ident, control: &Ident) -> Option<TokenStream> {
+    let (request, display, modes) = mode_objects(device)?;
     let mode = ident(&names::camel(modes));
     let (request, display) = (marker(request), marker(display));
     Some(quote! {
@@ -255,6 +267,24 @@ fn vendor(device: &Device, handle: &Ident) -> Option<TokenStream> {
             }
         }
     })
+}
+
+/// The control items of the async handle, as `drivebus::async_handle!` takes them: `, cia402`,
+/// `, modes` and `, machine(MODULE, GOTO, CURRENT)` where the blocking handle has the methods
+/// (the async ones are written once, in drivebus, over the same driver steps).
+pub fn async_items(device: &Device) -> TokenStream {
+    let cia402 = cia402_objects(device).map(|_| quote! { , cia402 });
+    let modes = mode_objects(device).map(|_| quote! { , modes });
+    let machine = device.state_machine.as_ref().filter(|m| {
+        device.parameter(&m.status).is_some() && device.parameter(&m.command).is_some()
+    });
+    let machine = machine.map(|m| {
+        let module = ident(&names::snake(&m.name));
+        let goto = format_ident!("goto_{}_async", module);
+        let current = format_ident!("{}_state_async", module);
+        quote! { , machine(#module, #goto, #current) }
+    });
+    quote! { #cia402 #modes #machine }
 }
 
 /// Control items of the drive handle `handle`; empty when the description has none.

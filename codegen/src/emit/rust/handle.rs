@@ -95,7 +95,8 @@ fn constructors(device: &Device, handle: &proc_macro2::Ident) -> TokenStream {
 }
 
 /// The items of the async handle, as `async_handle!` takes them: the protocols of its
-/// constructors (`, modbus(LIMITS)`), `, identity` and `, variant(SELECTOR, RAW)`.
+/// constructors (`, modbus(LIMITS)`), `, identity`, `, variant(SELECTOR, RAW)` and the control
+/// items (`, cia402`, `, modes`, `, machine(..)`).
 fn async_protocols(device: &Device) -> TokenStream {
     let has = |on: fn(&crate::ir::Parameter) -> bool| device.parameters.iter().any(on);
     let modbus = has(|p| !p.modbus.is_empty()).then(|| quote! { , modbus(MODBUS_LIMITS) });
@@ -107,7 +108,8 @@ fn async_protocols(device: &Device) -> TokenStream {
         let raw = raw_type(selector.data_type);
         quote! { , variant(#marker, #raw) }
     });
-    quote! { #modbus #canopen #rs232 #identity #variant }
+    let control = super::control::async_items(device);
+    quote! { #modbus #canopen #rs232 #identity #variant #control }
 }
 
 /// Whether any address of `p` allows reading.

@@ -26,6 +26,8 @@ struct Call {
     clauses: Vec<Vec<String>>,
     /// Whether each clause ends in `;` when the call is laid out one clause per line.
     terminated: bool,
+    /// Items already printed, laid out as the body of `path! { .. }` instead of the clauses.
+    block: Option<String>,
 }
 
 thread_local! {
@@ -43,6 +45,7 @@ pub(crate) fn clauses_call(path: &'static str, body: TokenStream) -> TokenStream
         path,
         clauses: split(body),
         terminated: true,
+        block: None,
     })
 }
 
@@ -52,6 +55,19 @@ pub(crate) fn list_call(path: &'static str, body: TokenStream) -> TokenStream {
         path,
         clauses: vec![split(body).concat()],
         terminated: false,
+        block: None,
+    })
+}
+
+/// A placeholder item for `path! { items }`, the items printed as prettyplease prints a file
+/// (it prints a macro's body as one run of tokens), one level in.
+pub(crate) fn block_call(path: &'static str, items: TokenStream) -> TokenStream {
+    let file: syn::File = syn::parse2(items).expect("the emitter produces valid items");
+    placeholder(Call {
+        path,
+        clauses: Vec::new(),
+        terminated: false,
+        block: Some(prettyplease::unparse(&file)),
     })
 }
 
@@ -70,6 +86,12 @@ fn placeholder(call: Call) -> TokenStream {
 pub(crate) fn finish(printed: &str) -> String {
     let calls: Vec<Call> = CALLS.with(|calls| std::mem::take(&mut *calls.borrow_mut()));
     let mut out = String::with_capacity(printed.len() + printed.len() / 8);
+    render(printed, &calls, &mut out);
+    out
+}
+
+/// [`finish`] of `printed` into `out`, with the calls of its placeholders.
+fn render(printed: &str, calls: &[Call], out: &mut String) {
     let mut in_fence = false;
     for line in printed.lines() {
         let trimmed = line.trim_start();
@@ -78,14 +100,30 @@ pub(crate) fn finish(printed: &str) -> String {
             let index: usize = rest.strip_suffix(");")?.parse().ok()?;
             calls.get(index)
         }) {
-            Some(call) => lay_out(call, indent, &mut out),
+            Some(Call {
+                path,
+                block: Some(block),
+                ..
+            }) => {
+                let _ = writeln!(out, "{indent}{path}! {{");
+                let inner: String = block
+                    .lines()
+                    .map(|line| match line {
+                        "" => "\n".to_owned(),
+                        line => format!("{indent}    {line}\n"),
+                    })
+                    .collect();
+                render(&inner, calls, out);
+                let _ = writeln!(out, "{indent}}}");
+            }
+            Some(call) => lay_out(call, indent, out),
             None => match trimmed.strip_prefix("///") {
                 Some(text) => {
                     let text = text.strip_prefix(' ').unwrap_or(text);
                     if text.starts_with("```") {
                         in_fence = !in_fence;
                     }
-                    doc_line(indent, text, in_fence, &mut out);
+                    doc_line(indent, text, in_fence, out);
                 }
                 None => {
                     in_fence = false;
@@ -95,7 +133,6 @@ pub(crate) fn finish(printed: &str) -> String {
             },
         }
     }
-    out
 }
 
 /// One call at `indent`: on one line when it fits, otherwise one clause per line with long

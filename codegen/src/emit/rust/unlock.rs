@@ -4,7 +4,10 @@
 //! writes the grant and returns an `Unlocked` guard borrowing the handle, whose methods are the
 //! setters of the scopes the unlock opens. `lock()` or dropping the guard writes the lock
 //! command. A write the drive refuses with the lock's exception code converts into
-//! `UnlockError::Locked`.
+//! `UnlockError::Locked`. With drivebus's `async` (through `drivebus::if_async!`), the async
+//! handle has `unlock_<name>_async(..).await` and the guard `AsyncUnlocked`, whose
+//! `lock().await` locks; dropped without it, it leaves the lock owed on the device, sent before
+//! the next request.
 
 use proc_macro2::{Ident, TokenStream};
 use quote::quote;
@@ -40,7 +43,16 @@ pub fn emit(device: &Device) -> TokenStream {
     let unlocks = lock
         .unlocks
         .iter()
-        .map(|u| unlock_method(device, u, &handle, &lock_bound));
+        .map(|u| unlock_method(device, u, &handle, &lock_bound, Flavor::Blocking));
+    let async_scopes = lock
+        .scopes
+        .iter()
+        .map(|s| async_scope_setters(device, s, &lock_bound));
+    let async_unlocks = lock
+        .unlocks
+        .iter()
+        .map(|u| unlock_method(device, u, &handle, &lock_bound, Flavor::Async));
+    let async_guard = async_guard(&handle, &lock_marker, &lock_bound);
     let refusal: proc_macro2::Literal = format!("0x{:02X}", lock.refusal)
         .parse()
         .expect("a hexadecimal integer is a literal");
@@ -58,11 +70,29 @@ pub fn emit(device: &Device) -> TokenStream {
         error_type(),
         guard(&handle, &lock_marker, &lock_bound),
     ];
-    quote! {
+    let blocking = quote! {
         #( #items )*
         #( #scopes )*
         #( #unlocks )*
+    };
+    // With drivebus's `async`: the async unlocks, their guard and its setters.
+    let async_items = quote! {
+        #async_guard
+        #( #async_scopes )*
+        #( #async_unlocks )*
+    };
+    let gated = super::layout::block_call("::drivebus::if_async", async_items);
+    quote! {
+        #blocking
+        #gated
     }
+}
+
+/// Which API an item belongs to: the blocking handle's, or the async handle's (`_async`).
+#[derive(Clone, Copy, PartialEq)]
+enum Flavor {
+    Blocking,
+    Async,
 }
 
 /// `pub mod unlock`: a trait per scope and a marker per unlock implementing the scopes it opens.
@@ -168,10 +198,7 @@ fn write_lock_table(lock: &WriteLock<'_>) -> TokenStream {
 /// The guard's setters of one scope: one accessor per parameter of the scope.
 fn scope_setters(device: &Device, scope: &LockScope, lock_bound: &TokenStream) -> TokenStream {
     let opens = opens_trait(&scope.name);
-    let setters = device
-        .scope_members(&scope.name)
-        .filter(|p| !super::indexed::is_member(p, device))
-        .map(setter);
+    let setters = setters(device, scope, quote! { L });
     quote! {
         impl<'d, L: ::drivebus::Link, U: unlock::#opens> Unlocked<'d, L, U>
         where
@@ -182,7 +209,37 @@ fn scope_setters(device: &Device, scope: &LockScope, lock_bound: &TokenStream) -
     }
 }
 
-fn setter(p: &Parameter) -> TokenStream {
+/// The async guard's setters of one scope: the blocking guard's, over `Async<L>`.
+fn async_scope_setters(
+    device: &Device,
+    scope: &LockScope,
+    lock_bound: &TokenStream,
+) -> TokenStream {
+    let opens = opens_trait(&scope.name);
+    let setters = setters(device, scope, quote! { ::drivebus::asynch::Async<L> });
+    quote! {
+        impl<'d, L: ::drivebus::asynch::AsyncLink, U: unlock::#opens> AsyncUnlocked<'d, L, U>
+        where
+            #lock_bound
+        {
+            #( #setters )*
+        }
+    }
+}
+
+/// One accessor over `link` per parameter of `scope`.
+fn setters<'a>(
+    device: &'a Device,
+    scope: &'a LockScope,
+    link: TokenStream,
+) -> impl Iterator<Item = TokenStream> + 'a {
+    device
+        .scope_members(&scope.name)
+        .filter(|p| !super::indexed::is_member(p, device))
+        .map(move |p| setter(p, &link))
+}
+
+fn setter(p: &Parameter, link: &TokenStream) -> TokenStream {
     let method = ident(&names::method(&p.name));
     let marker = ident(&names::camel(&p.name));
     let summary = doc::summary(p.doc.as_deref(), &p.name);
@@ -193,7 +250,7 @@ fn setter(p: &Parameter) -> TokenStream {
     quote! {
         #docs
         #aliases
-        pub fn #method(&mut self) -> ::drivebus::Accessor<'_, L, params::#marker> {
+        pub fn #method(&mut self) -> ::drivebus::Accessor<'_, #link, params::#marker> {
             self.drive.device.parameter()
         }
     }
@@ -205,8 +262,15 @@ fn unlock_method(
     unlock: &Unlock,
     handle: &Ident,
     lock_bound: &TokenStream,
+    flavor: Flavor,
 ) -> TokenStream {
-    let method = ident(&format!("unlock_{}", names::snake(&unlock.name)));
+    let suffix = if flavor == Flavor::Async {
+        "_async"
+    } else {
+        ""
+    };
+    let method = ident(&format!("unlock_{}{suffix}", names::snake(&unlock.name)));
+    let awaited = (flavor == Flavor::Async).then(|| quote! { .await });
     let unlock_marker = marker(unlock);
     let Some(grant) = device.parameter(&unlock.grant.parameter) else {
         return TokenStream::new();
@@ -238,7 +302,7 @@ fn unlock_method(
             let listed: Vec<String> = r.values.iter().map(i64::to_string).collect();
             (
                 quote! {
-                    let found = ::core::primitive::i128::from(self.device.read_raw::<params::#marker>()?);
+                    let found = ::core::primitive::i128::from(self.device.read_raw::<params::#marker>() #awaited ?);
                     const ALLOWED: &[::core::primitive::i128] = &[#( #values ),*];
                     if !ALLOWED.contains(&found) {
                         return Err(UnlockError::Requirement { parameter: #name, found, allowed: ALLOWED });
@@ -269,18 +333,98 @@ fn unlock_method(
         unlock.allows.iter().map(|s| format!("`{s}`")).collect::<Vec<_>>().join(" and "),
         ends.join(", ")
     ));
+    let bounds = quote! {
+        #lock_bound,
+        params::#grant_marker: ::drivebus::Writable<L::Protocol>,
+        #requirement_bound
+    };
+    let body = quote! {
+        #requirement
+        self.device.write_raw::<params::#grant_marker>(#value) #awaited ?;
+    };
+    match flavor {
+        Flavor::Blocking => quote! {
+            impl<L: ::drivebus::Link> #handle<L> where #bounds {
+                #docs
+                pub fn #method(&mut self, #argument) -> Result<Unlocked<'_, L, unlock::#unlock_marker>, UnlockError> {
+                    #body
+                    Ok(Unlocked::new(self))
+                }
+            }
+        },
+        Flavor::Async => {
+            let blocking = format!("unlock_{}", names::snake(&unlock.name));
+            let docs = doc_attrs(&format!(
+                "`{blocking}` awaited: the same requirement and grant, and an [`AsyncUnlocked`] \
+                 guard, which locks on `lock().await` (dropped without it, it leaves the lock \
+                 owed: the handle's next request sends it first)."
+            ));
+            quote! {
+                impl<L: ::drivebus::asynch::AsyncLink> #handle<::drivebus::asynch::Async<L>> where #bounds {
+                    #docs
+                    pub async fn #method(&mut self, #argument) -> Result<AsyncUnlocked<'_, L, unlock::#unlock_marker>, UnlockError> {
+                        #body
+                        Ok(AsyncUnlocked::new(self))
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The async guard: borrows the async handle while unlocked; `lock().await` locks, and a guard
+/// dropped without it leaves the lock owed on the device (`Device::owe_write`), sent before
+/// the next request: `Drop` cannot await.
+fn async_guard(handle: &Ident, lock_marker: &Ident, lock_bound: &TokenStream) -> TokenStream {
     quote! {
-        impl<L: ::drivebus::Link> #handle<L>
+        /// A drive unlocked by `U` over an async link: the setters of the scopes `U` opens, as
+        /// on [`Unlocked`]. [`AsyncUnlocked::lock`] locks the drive; dropped without it, the
+        /// guard leaves the lock owed and the handle's next request sends it first.
+        #[derive(Debug)]
+        pub struct AsyncUnlocked<'d, L: ::drivebus::asynch::AsyncLink, U>
         where
-            #lock_bound,
-            params::#grant_marker: ::drivebus::Writable<L::Protocol>,
-            #requirement_bound
+            #lock_bound
         {
-            #docs
-            pub fn #method(&mut self, #argument) -> Result<Unlocked<'_, L, unlock::#unlock_marker>, UnlockError> {
-                #requirement
-                self.device.write_raw::<params::#grant_marker>(#value)?;
-                Ok(Unlocked::new(self))
+            drive: &'d mut #handle<::drivebus::asynch::Async<L>>,
+            locked: bool,
+            unlock: ::core::marker::PhantomData<U>,
+        }
+
+        impl<'d, L: ::drivebus::asynch::AsyncLink, U> AsyncUnlocked<'d, L, U>
+        where
+            #lock_bound
+        {
+            fn new(drive: &'d mut #handle<::drivebus::asynch::Async<L>>) -> Self {
+                Self { drive, locked: false, unlock: ::core::marker::PhantomData }
+            }
+
+            /// The drive, for reads (a locked drive answers reads too).
+            pub fn drive(&mut self) -> &mut #handle<::drivebus::asynch::Async<L>> {
+                self.drive
+            }
+
+            /// Writes the lock command and ends the unlock. A drive that refuses it as locked
+            /// has ended the unlock already: that is success too. Dropped before the drive
+            /// answered, it leaves the lock owed.
+            pub async fn lock(mut self) -> Result<(), UnlockError> {
+                let outcome = self.drive.device.write_raw::<params::#lock_marker>(params::#lock_marker::TRIGGER).await;
+                self.locked = true;
+                match outcome.map_err(UnlockError::from) {
+                    Err(UnlockError::Locked { .. }) => Ok(()),
+                    other => other,
+                }
+            }
+        }
+
+        impl<L: ::drivebus::asynch::AsyncLink, U> Drop for AsyncUnlocked<'_, L, U>
+        where
+            #lock_bound
+        {
+            fn drop(&mut self) {
+                if !self.locked {
+                    // Only a lock command longer than 16 bytes fails to be recorded; none is.
+                    let _ = self.drive.device.owe_write::<params::#lock_marker>(params::#lock_marker::TRIGGER);
+                }
             }
         }
     }

@@ -1,6 +1,7 @@
 //! The serial watchdog of `[watchdog]`: the handle's `watchdog_timeout()` reads the action
 //! parameter and, unless its value disables the watchdog, the timeout (ms), so a keep-alive
-//! knows how often to communicate.
+//! knows how often to communicate; with drivebus's `async`, `watchdog_timeout_async()` on the
+//! async handle.
 
 use proc_macro2::TokenStream;
 use quote::quote;
@@ -35,6 +36,37 @@ pub fn emit(device: &Device) -> TokenStream {
             listed.join(" or ")
         }
     ));
+    let body = |awaited: TokenStream| {
+        quote! {
+            const DISABLED: &[::core::primitive::i128] = &[#( #disabled ),*];
+            let action = ::core::primitive::i128::from(self.device.read_raw::<params::#action>() #awaited ?);
+            if DISABLED.contains(&action) {
+                return Ok(None);
+            }
+            let raw = ::core::primitive::i128::from(self.device.read_raw::<params::#timeout>() #awaited ?);
+            let ms = ::core::primitive::u64::try_from(raw).map_err(|_| {
+                ::drivebus::Error::Value(::drivebus::ValueError::Overflow { parameter: #timeout_name })
+            })?;
+            Ok(Some(::core::time::Duration::from_millis(ms)))
+        }
+    };
+    let (blocking, awaited) = (body(quote! {}), body(quote! { .await }));
+    // With drivebus's `async`: the same reads, awaited.
+    let async_items = super::layout::block_call(
+        "::drivebus::if_async",
+        quote! {
+            impl<L: ::drivebus::asynch::AsyncLink> #handle<::drivebus::asynch::Async<L>>
+            where
+                params::#action: ::drivebus::Readable<L::Protocol>,
+                params::#timeout: ::drivebus::Readable<L::Protocol>,
+            {
+                /// `watchdog_timeout` awaited.
+                pub async fn watchdog_timeout_async(&mut self) -> Result<Option<::core::time::Duration>, ::drivebus::Error> {
+                    #awaited
+                }
+            }
+        },
+    );
     quote! {
         impl<L: ::drivebus::Link> #handle<L>
         where
@@ -43,17 +75,9 @@ pub fn emit(device: &Device) -> TokenStream {
         {
             #docs
             pub fn watchdog_timeout(&mut self) -> Result<Option<::core::time::Duration>, ::drivebus::Error> {
-                const DISABLED: &[::core::primitive::i128] = &[#( #disabled ),*];
-                let action = ::core::primitive::i128::from(self.device.read_raw::<params::#action>()?);
-                if DISABLED.contains(&action) {
-                    return Ok(None);
-                }
-                let raw = ::core::primitive::i128::from(self.device.read_raw::<params::#timeout>()?);
-                let ms = ::core::primitive::u64::try_from(raw).map_err(|_| {
-                    ::drivebus::Error::Value(::drivebus::ValueError::Overflow { parameter: #timeout_name })
-                })?;
-                Ok(Some(::core::time::Duration::from_millis(ms)))
+                #blocking
             }
         }
+        #async_items
     }
 }

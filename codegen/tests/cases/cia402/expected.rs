@@ -313,7 +313,7 @@ impl<L: ::drivebus::Link> Case<L> {
         self.device.read_many(set)
     }
 }
-::drivebus::async_handle!(Case, canopen);
+::drivebus::async_handle!(Case, canopen, cia402, modes);
 /// The handle's accessors, one per parameter: in a module of their own so that their
 /// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {

@@ -432,6 +432,160 @@ where
         Ok(Unlocked::new(self))
     }
 }
+::drivebus::if_async! {
+    /// A drive unlocked by `U` over an async link: the setters of the scopes `U` opens, as
+    /// on [`Unlocked`]. [`AsyncUnlocked::lock`] locks the drive; dropped without it, the
+    /// guard leaves the lock owed and the handle's next request sends it first.
+    #[derive(Debug)]
+    pub struct AsyncUnlocked<'d, L: ::drivebus::asynch::AsyncLink, U>
+    where
+        params::LockCommand: ::drivebus::Writable<L::Protocol>,
+    {
+        drive: &'d mut Case<::drivebus::asynch::Async<L>>,
+        locked: bool,
+        unlock: ::core::marker::PhantomData<U>,
+    }
+    impl<'d, L: ::drivebus::asynch::AsyncLink, U> AsyncUnlocked<'d, L, U>
+    where
+        params::LockCommand: ::drivebus::Writable<L::Protocol>,
+    {
+        fn new(drive: &'d mut Case<::drivebus::asynch::Async<L>>) -> Self {
+            Self {
+                drive,
+                locked: false,
+                unlock: ::core::marker::PhantomData,
+            }
+        }
+        /// The drive, for reads (a locked drive answers reads too).
+        pub fn drive(&mut self) -> &mut Case<::drivebus::asynch::Async<L>> {
+            self.drive
+        }
+        /// Writes the lock command and ends the unlock. A drive that refuses it as locked
+        /// has ended the unlock already: that is success too. Dropped before the drive
+        /// answered, it leaves the lock owed.
+        pub async fn lock(mut self) -> Result<(), UnlockError> {
+            let outcome = self
+                .drive
+                .device
+                .write_raw::<params::LockCommand>(params::LockCommand::TRIGGER)
+                .await;
+            self.locked = true;
+            match outcome.map_err(UnlockError::from) {
+                Err(UnlockError::Locked { .. }) => Ok(()),
+                other => other,
+            }
+        }
+    }
+    impl<L: ::drivebus::asynch::AsyncLink, U> Drop for AsyncUnlocked<'_, L, U>
+    where
+        params::LockCommand: ::drivebus::Writable<L::Protocol>,
+    {
+        fn drop(&mut self) {
+            if !self.locked {
+                let _ = self
+                    .drive
+                    .device
+                    .owe_write::<params::LockCommand>(params::LockCommand::TRIGGER);
+            }
+        }
+    }
+    impl<
+        'd,
+        L: ::drivebus::asynch::AsyncLink,
+        U: unlock::OpensControls,
+    > AsyncUnlocked<'d, L, U>
+    where
+        params::LockCommand: ::drivebus::Writable<L::Protocol>,
+    {
+        /// start Writable while unlocked. Details: [`params::Start`].
+        #[doc(alias("0x0001"))]
+        pub fn start(
+            &mut self,
+        ) -> ::drivebus::Accessor<'_, ::drivebus::asynch::Async<L>, params::Start> {
+            self.drive.device.parameter()
+        }
+    }
+    impl<
+        'd,
+        L: ::drivebus::asynch::AsyncLink,
+        U: unlock::OpensParameters,
+    > AsyncUnlocked<'d, L, U>
+    where
+        params::LockCommand: ::drivebus::Writable<L::Protocol>,
+    {
+        /// password Writable while unlocked. Details: [`params::Password`].
+        #[doc(alias("0x005E"))]
+        pub fn password(
+            &mut self,
+        ) -> ::drivebus::Accessor<'_, ::drivebus::asynch::Async<L>, params::Password> {
+            self.drive.device.parameter()
+        }
+        /// control_source Writable while unlocked. Details: [`params::ControlSource`].
+        #[doc(alias("0x0033"))]
+        pub fn control_source(
+            &mut self,
+        ) -> ::drivebus::Accessor<'_, ::drivebus::asynch::Async<L>, params::ControlSource> {
+            self.drive.device.parameter()
+        }
+        /// timeout Writable while unlocked. Details: [`params::Timeout`].
+        #[doc(alias("0x0085"))]
+        pub fn timeout(
+            &mut self,
+        ) -> ::drivebus::Accessor<'_, ::drivebus::asynch::Async<L>, params::Timeout> {
+            self.drive.device.parameter()
+        }
+        /// action Writable while unlocked. Details: [`params::Action`].
+        #[doc(alias("0x0084"))]
+        pub fn action(
+            &mut self,
+        ) -> ::drivebus::Accessor<'_, ::drivebus::asynch::Async<L>, params::Action> {
+            self.drive.device.parameter()
+        }
+    }
+    impl<L: ::drivebus::asynch::AsyncLink> Case<::drivebus::asynch::Async<L>>
+    where
+        params::LockCommand: ::drivebus::Writable<L::Protocol>,
+        params::UnlockWord: ::drivebus::Writable<L::Protocol>,
+        params::ControlSource: ::drivebus::Readable<L::Protocol>,
+    {
+        /// `unlock_controls` awaited: the same requirement and grant, and an [`AsyncUnlocked`]
+        /// guard, which locks on `lock().await` (dropped without it, it leaves the lock owed: the
+        /// handle's next request sends it first).
+        pub async fn unlock_controls_async(
+            &mut self,
+        ) -> Result<AsyncUnlocked<'_, L, unlock::Controls>, UnlockError> {
+            let found = ::core::primitive::i128::from(
+                self.device.read_raw::<params::ControlSource>().await?,
+            );
+            const ALLOWED: &[::core::primitive::i128] = &[10, 11];
+            if !ALLOWED.contains(&found) {
+                return Err(UnlockError::Requirement {
+                    parameter: "control_source",
+                    found,
+                    allowed: ALLOWED,
+                });
+            }
+            self.device.write_raw::<params::UnlockWord>(0).await?;
+            Ok(AsyncUnlocked::new(self))
+        }
+    }
+    impl<L: ::drivebus::asynch::AsyncLink> Case<::drivebus::asynch::Async<L>>
+    where
+        params::LockCommand: ::drivebus::Writable<L::Protocol>,
+        params::UnlockWord: ::drivebus::Writable<L::Protocol>,
+    {
+        /// `unlock_all` awaited: the same requirement and grant, and an [`AsyncUnlocked`] guard,
+        /// which locks on `lock().await` (dropped without it, it leaves the lock owed: the handle's
+        /// next request sends it first).
+        pub async fn unlock_all_async(
+            &mut self,
+            password: <params::UnlockWord as ::drivebus::Parameter>::Raw,
+        ) -> Result<AsyncUnlocked<'_, L, unlock::All>, UnlockError> {
+            self.device.write_raw::<params::UnlockWord>(password).await?;
+            Ok(AsyncUnlocked::new(self))
+        }
+    }
+}
 impl<L: ::drivebus::Link> Case<L>
 where
     params::Action: ::drivebus::Readable<L::Protocol>,
@@ -460,5 +614,35 @@ where
                 })
             })?;
         Ok(Some(::core::time::Duration::from_millis(ms)))
+    }
+}
+::drivebus::if_async! {
+    impl<L: ::drivebus::asynch::AsyncLink> Case<::drivebus::asynch::Async<L>>
+    where
+        params::Action: ::drivebus::Readable<L::Protocol>,
+        params::Timeout: ::drivebus::Readable<L::Protocol>,
+    {
+        /// `watchdog_timeout` awaited.
+        pub async fn watchdog_timeout_async(
+            &mut self,
+        ) -> Result<Option<::core::time::Duration>, ::drivebus::Error> {
+            const DISABLED: &[::core::primitive::i128] = &[0i128];
+            let action = ::core::primitive::i128::from(
+                self.device.read_raw::<params::Action>().await?,
+            );
+            if DISABLED.contains(&action) {
+                return Ok(None);
+            }
+            let raw = ::core::primitive::i128::from(
+                self.device.read_raw::<params::Timeout>().await?,
+            );
+            let ms = ::core::primitive::u64::try_from(raw)
+                .map_err(|_| {
+                    ::drivebus::Error::Value(::drivebus::ValueError::Overflow {
+                        parameter: "timeout",
+                    })
+                })?;
+            Ok(Some(::core::time::Duration::from_millis(ms)))
+        }
     }
 }

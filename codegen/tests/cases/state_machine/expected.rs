@@ -77,7 +77,10 @@ impl<L: ::drivebus::Link> Case<L> {
         self.device.read_many(set)
     }
 }
-::drivebus::async_handle!(Case, modbus(MODBUS_LIMITS));
+::drivebus::async_handle!(
+    Case, modbus(MODBUS_LIMITS), machine(operation, goto_operation_async,
+    operation_state_async)
+);
 /// The handle's accessors, one per parameter: in a module of their own so that their
 /// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {

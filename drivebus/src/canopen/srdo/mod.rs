@@ -49,6 +49,8 @@ pub use safety_function::{
     function_signature, write_safety_function, FunctionSignature, SafetyFunctionParameter,
     SafetyValue, Signed,
 };
+#[cfg(feature = "async")]
+pub use safety_write::write_safety_configuration_async;
 pub use safety_write::{write_safety_configuration, MappingWrite, SafetyPlan, SafetyWriteError};
 pub use signature::{signature, verify, SignatureMismatch, VerifyError};
 pub use stored_signature::{check_stored_signature, StoredSignatureError};

@@ -224,18 +224,54 @@ pub fn write_safety_configuration<B: SdoBus + ?Sized>(
     config: SrdoConfig<'_>,
     mapping: MappingWrite,
 ) -> Result<u16, SafetyWriteError> {
-    if state != NmtState::PreOperational {
-        return Err(SafetyWriteError::NotPreOperational { state });
-    }
-    let plan = SafetyPlan::new(config, mapping).map_err(SafetyWriteError::Config)?;
+    let plan = checked_plan(state, config, mapping)?;
     let signature = plan.signature();
     for write in plan {
         bus.download(node, write.index, write.subindex, write.data())
-            .map_err(|cause| SafetyWriteError::Bus {
-                index: write.index,
-                subindex: write.subindex,
-                cause,
-            })?;
+            .map_err(write_failed(&write))?;
     }
     Ok(signature)
+}
+
+/// [`write_safety_configuration`] over an async SDO client (feature `async`): the same checks
+/// and plan, each write awaited.
+#[cfg(feature = "async")]
+pub async fn write_safety_configuration_async<B: crate::canopen::link::AsyncSdoBus + ?Sized>(
+    bus: &mut B,
+    node: NodeId,
+    state: NmtState,
+    config: SrdoConfig<'_>,
+    mapping: MappingWrite,
+) -> Result<u16, SafetyWriteError> {
+    let plan = checked_plan(state, config, mapping)?;
+    let signature = plan.signature();
+    for write in plan {
+        bus.download(node, write.index, write.subindex, write.data())
+            .await
+            .map_err(write_failed(&write))?;
+    }
+    Ok(signature)
+}
+
+/// The writes of `config`, refused before any frame unless `state` is Pre-Operational and the
+/// configuration can be written.
+fn checked_plan(
+    state: NmtState,
+    config: SrdoConfig<'_>,
+    mapping: MappingWrite,
+) -> Result<SafetyPlan<'_>, SafetyWriteError> {
+    if state != NmtState::PreOperational {
+        return Err(SafetyWriteError::NotPreOperational { state });
+    }
+    SafetyPlan::new(config, mapping).map_err(SafetyWriteError::Config)
+}
+
+/// The error of `write` failing with a bus error.
+fn write_failed(write: &SdoWrite) -> impl Fn(BusError) -> SafetyWriteError {
+    let (index, subindex) = (write.index, write.subindex);
+    move |cause| SafetyWriteError::Bus {
+        index,
+        subindex,
+        cause,
+    }
 }

@@ -1,0 +1,209 @@
+//! What a control driver decides between two polls, without I/O and without a clock: the steps
+//! the blocking driver (`driver`) and the async one (`async_driver`) both take, so the two differ
+//! only in how they read, write and wait.
+//!
+//! A driver reads the status, hands it to a walk ([`Cia402Walk::step`], [`MachineWalk::step`]),
+//! writes the command the step names (if any), and, once its deadline has passed, fails with the
+//! step's error; otherwise it waits one poll interval and reads again.
+
+use core::time::Duration;
+
+use super::cia402::{Blocker, Cia402Planner, Observation, State, Step, Target};
+use super::control_error::{ControlError, StuckReason};
+use super::machine::{Machine, Plan, TransitionKind};
+use super::quirks::Quirks;
+use super::Millis;
+
+/// Pause between two status polls.
+pub const POLL_INTERVAL: Duration = Duration::from_millis(1);
+
+/// One step of a walk towards a target state.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Walk {
+    /// The drive is in the target state.
+    Done,
+    /// The walk cannot go on: the error says why.
+    Failed(ControlError),
+    /// Not there yet: write `write` (if any), then poll again, or fail with `if_late` once the
+    /// deadline has passed.
+    Pending {
+        /// The command to write now.
+        write: Option<u16>,
+        /// Why the drive is not there yet, as the error the deadline ends the walk with.
+        if_late: ControlError,
+    },
+}
+
+/// Writes a command unless the same one was already written while the drive showed the same
+/// status: a drive slow to take a transition is not flooded with the command.
+#[derive(Debug, Clone, Default)]
+struct Commander {
+    last: Option<(u16, u16)>,
+}
+
+impl Commander {
+    fn should_write(&mut self, command: u16, status: u16) -> bool {
+        let fresh = self.last != Some((command, status));
+        self.last = Some((command, status));
+        fresh
+    }
+}
+
+/// A walk of the CiA 402 machine to a target, over the [`Cia402Planner`].
+#[derive(Debug, Clone)]
+pub struct Cia402Walk {
+    planner: Cia402Planner,
+    commander: Commander,
+    target: Target,
+}
+
+impl Cia402Walk {
+    /// A walk to `target` of a drive with `quirks` whose controlword reads `controlword` at `now`.
+    pub fn new(quirks: Quirks, target: Target, controlword: u16, now: Millis) -> Self {
+        let mut planner = Cia402Planner::new(quirks);
+        planner.sent(controlword, now);
+        Self {
+            planner,
+            commander: Commander::default(),
+            target,
+        }
+    }
+
+    /// What to do after observing `seen`.
+    pub fn step(&mut self, seen: &Observation) -> Walk {
+        let stuck = |reason| ControlError::Stuck {
+            target: self.target.state().name(),
+            state: State::decode(seen.statusword).map(State::name),
+            status: seen.statusword,
+            reason,
+        };
+        match self.planner.next(seen, self.target) {
+            Step::Done => Walk::Done,
+            Step::Send {
+                controlword,
+                transition,
+            } => Walk::Pending {
+                write: self
+                    .commander
+                    .should_write(controlword, seen.statusword)
+                    .then_some(controlword),
+                if_late: stuck(StuckReason::NoResponse {
+                    transition,
+                    command: controlword,
+                }),
+            },
+            Step::Wait(waiting) => Walk::Pending {
+                write: None,
+                if_late: stuck(StuckReason::Waiting(waiting)),
+            },
+            Step::Blocked(blocker) if blocker.is_final() => {
+                Walk::Failed(stuck(StuckReason::Blocked(blocker)))
+            }
+            Step::Blocked(blocker) => Walk::Pending {
+                write: None,
+                if_late: stuck(StuckReason::Blocked(blocker)),
+            },
+        }
+    }
+
+    /// Records that the step's command was written at `now`.
+    pub fn sent(&mut self, controlword: u16, now: Millis) {
+        self.planner.sent(controlword, now);
+    }
+}
+
+/// The target of a quick stop from `state`: quick stop active from operation enabled, switch on
+/// disabled from anywhere else.
+pub fn quick_stop_target(state: Option<State>) -> Target {
+    match state {
+        Some(State::OperationEnabled) => Target::QuickStopActive,
+        _ => Target::SwitchOnDisabled,
+    }
+}
+
+/// A quick stop's outcome: a drive whose quick stop option code ends in switch on disabled
+/// counts as stopped there too.
+pub fn quick_stop_outcome(outcome: Result<(), ControlError>) -> Result<(), ControlError> {
+    match outcome {
+        Err(ControlError::Stuck {
+            reason: StuckReason::Blocked(Blocker::QuickStopOnlyFromOperationEnabled),
+            state: Some(name),
+            ..
+        }) if name == State::SwitchOnDisabled.name() => Ok(()),
+        other => other,
+    }
+}
+
+/// Whether a fault reset has anything to do in `state` (fault or fault reaction active).
+pub fn needs_fault_reset(state: Option<State>) -> bool {
+    matches!(state, Some(State::Fault | State::FaultReactionActive))
+}
+
+/// A walk of a vendor state machine (a [`Machine`] table) to the state called `target`.
+#[derive(Debug, Clone)]
+pub struct MachineWalk {
+    machine: Machine<'static>,
+    goal: u8,
+    target: &'static str,
+    commander: Commander,
+}
+
+impl MachineWalk {
+    /// A walk of `machine` to its state `target`; [`ControlError::UnknownState`] if it has none.
+    pub fn new(machine: Machine<'static>, target: &'static str) -> Result<Self, ControlError> {
+        let goal = machine
+            .state_index(target)
+            .ok_or(ControlError::UnknownState(target))?;
+        Ok(Self {
+            machine,
+            goal,
+            target,
+            commander: Commander::default(),
+        })
+    }
+
+    /// What to do after reading `status` from the status register.
+    pub fn step(&mut self, status: u16) -> Walk {
+        let machine = self.machine;
+        let current = machine.recognise(status);
+        let stuck = |reason| ControlError::Stuck {
+            target: self.target,
+            state: current
+                .and_then(|i| machine.states.get(usize::from(i)))
+                .map(|s| s.name),
+            status,
+            reason,
+        };
+        let pending = |write, reason| Walk::Pending {
+            write,
+            if_late: stuck(reason),
+        };
+        match current.map(|from| machine.next(from, self.goal, |_| true)) {
+            None => pending(None, StuckReason::UnknownStatus),
+            Some(Plan::Done) => Walk::Done,
+            Some(Plan::Command(transition)) => {
+                let TransitionKind::Command(command) = transition.kind else {
+                    return Walk::Failed(stuck(StuckReason::Unreachable));
+                };
+                let write = self
+                    .commander
+                    .should_write(command, status)
+                    .then_some(command);
+                pending(
+                    write,
+                    StuckReason::NoResponse {
+                        transition,
+                        command,
+                    },
+                )
+            }
+            Some(Plan::Await(transition)) => pending(None, StuckReason::Awaiting(transition)),
+            Some(Plan::NeedsExternal(transition)) => {
+                Walk::Failed(stuck(StuckReason::NeedsExternal(transition)))
+            }
+            Some(Plan::Unreachable | Plan::BadTable) => {
+                Walk::Failed(stuck(StuckReason::Unreachable))
+            }
+        }
+    }
+}
