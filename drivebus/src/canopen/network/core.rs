@@ -60,6 +60,8 @@ pub struct NetworkCore {
     /// SDO responses that arrived while no transfer to their node was in flight, or that
     /// overflowed a transfer's inbox.
     stale_sdo: u64,
+    /// SDO transfers in flight, all nodes together.
+    transfers: usize,
 }
 
 impl Default for NetworkCore {
@@ -77,6 +79,7 @@ impl NetworkCore {
             heartbeat: HeartbeatConsumer::new(),
             sync: None,
             stale_sdo: 0,
+            transfers: 0,
         }
     }
 
@@ -171,14 +174,24 @@ impl NetworkCore {
         }
         slot.sdo_claimed = true;
         slot.sdo_inbox.clear();
+        self.transfers += 1;
         true
+    }
+
+    /// Whether any SDO transfer is in flight: a shell that cannot be woken to send polls more
+    /// often meanwhile.
+    pub fn transfers_in_flight(&self) -> bool {
+        self.transfers > 0
     }
 
     /// Ends the transfer to `node`; responses that still arrive are dropped as stale.
     pub fn release_sdo(&mut self, node: NodeId) {
         let slot = self.slot(node);
-        slot.sdo_claimed = false;
+        let was_claimed = core::mem::take(&mut slot.sdo_claimed);
         slot.sdo_inbox.clear();
+        if was_claimed {
+            self.transfers -= 1;
+        }
     }
 
     /// The next SDO response for the transfer to `node`.
@@ -317,12 +330,15 @@ mod tests {
         let mut core = NetworkCore::new();
         assert!(core.claim_sdo(NodeId(3)));
         assert!(!core.claim_sdo(NodeId(3)), "one transfer per node");
+        assert!(core.transfers_in_flight());
         assert_eq!(core.handle(&sdo_response(3), MS), Some(NodeId(3)));
         core.handle(&sdo_response(4), MS);
         assert_eq!(core.next_sdo_response(NodeId(3)), Some(sdo_response(3)));
         assert_eq!(core.next_sdo_response(NodeId(4)), None);
         assert_eq!(core.stale_sdo_responses(), 1);
         core.release_sdo(NodeId(3));
+        core.release_sdo(NodeId(3));
+        assert!(!core.transfers_in_flight());
         core.handle(&sdo_response(3), MS);
         assert_eq!(core.stale_sdo_responses(), 2, "late answers are dropped");
     }

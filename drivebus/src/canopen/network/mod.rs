@@ -66,4 +66,5 @@ pub use blocking::{Network, DEFAULT_POLL_INTERVAL};
 pub use core::{NetworkCore, NodeStatus, OUTBOX, SDO_INBOX};
 pub use event::NetworkEvent;
 pub use node_sdo::NodeSdo;
+pub use router::BUSY_POLL_INTERVAL;
 pub use subscription::Subscription;

@@ -4,7 +4,9 @@
 //! [`CanBus`] has one `&mut self` for sending and receiving, so the thread cannot be woken out
 //! of a receive to send: it receives for at most one poll interval at a time, and a frame a
 //! caller queued waits at most that long on a silent bus (a received frame ends the wait at
-//! once, so a busy bus sends sooner).
+//! once, so a busy bus sends sooner). While SDO transfers are in flight the interval is
+//! [`BUSY_POLL_INTERVAL`], so the next request of a transfer, or of a caller that just finished
+//! one, goes out soon; an idle network wakes only every poll interval.
 
 use core::time::Duration;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -13,6 +15,15 @@ use std::sync::Arc;
 use super::shared::Shared;
 use crate::canopen::can::CanBus;
 use crate::error::BusError;
+
+/// How long the router receives at a time while SDO transfers are in flight, and for
+/// [`LINGER`] after the last one ended.
+pub const BUSY_POLL_INTERVAL: Duration = Duration::from_micros(100);
+
+/// How long the router stays quick after a transfer ended: a caller that reads one object after
+/// another starts its next transfer within that time, and should not wait a whole poll
+/// interval for it to go out.
+const LINGER: Duration = Duration::from_millis(20);
 
 /// Most frames received in one go before the queued frames are sent again, so a flooded bus
 /// cannot starve the senders.
@@ -26,8 +37,9 @@ pub(crate) fn run<B: CanBus>(
     poll_interval: Duration,
 ) -> (B, Result<(), BusError>) {
     let mut result = Ok(());
+    let mut busy_until = Duration::ZERO;
     while !stop.load(Ordering::Acquire) {
-        if let Err(error) = turn(&mut bus, shared, poll_interval) {
+        if let Err(error) = turn(&mut bus, shared, poll_interval, &mut busy_until) {
             result = Err(error);
             break;
         }
@@ -43,8 +55,13 @@ pub(crate) fn run<B: CanBus>(
 }
 
 /// One turn: send what is queued, run the timers, receive for at most `poll_interval` (or until
-/// the next timer), route what came.
-fn turn<B: CanBus>(bus: &mut B, shared: &Shared, poll_interval: Duration) -> Result<(), BusError> {
+/// the next timer; [`BUSY_POLL_INTERVAL`] until `busy_until`), route what came.
+fn turn<B: CanBus>(
+    bus: &mut B,
+    shared: &Shared,
+    poll_interval: Duration,
+    busy_until: &mut Duration,
+) -> Result<(), BusError> {
     send_queued(bus, shared)?;
     let wait = {
         let mut state = shared.lock();
@@ -55,10 +72,18 @@ fn turn<B: CanBus>(bus: &mut B, shared: &Shared, poll_interval: Duration) -> Res
         if state.core.has_transmit() {
             return Ok(());
         }
+        if state.core.transfers_in_flight() {
+            *busy_until = now + LINGER;
+        }
+        let interval = if now < *busy_until {
+            poll_interval.min(BUSY_POLL_INTERVAL)
+        } else {
+            poll_interval
+        };
         state
             .core
             .next_deadline()
-            .map_or(poll_interval, |d| d.saturating_sub(now).min(poll_interval))
+            .map_or(interval, |d| d.saturating_sub(now).min(interval))
     };
     for turn in 0..BURST {
         let Some(frame) = bus.recv(if turn == 0 { wait } else { Duration::ZERO })? else {
