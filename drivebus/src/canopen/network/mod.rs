@@ -12,8 +12,7 @@
 //! One design, two shells: [`NetworkCore`] is sans-I/O (it routes frames, tracks nodes and
 //! queues frames to send, given the time); the blocking [`Network`] runs it on a router
 //! thread, the async `AsyncNetwork` (feature `async`) in a router future driven by any
-//! executor, with an [`AsyncCanBus`](crate::canopen::can::AsyncCanBus) and a
-//! [`Timer`](crate::asynch::Timer).
+//! executor, with an `AsyncCanBus` and a `Timer`.
 //!
 //! ```no_run
 //! # fn main() -> Result<(), drivebus::BusError> {

@@ -16,8 +16,8 @@ use super::shared::Shared;
 use crate::canopen::can::CanBus;
 use crate::error::BusError;
 
-/// How long the router receives at a time while SDO transfers are in flight, and for
-/// [`LINGER`] after the last one ended.
+/// How long the router receives at a time while SDO transfers are in flight, and for 20 ms
+/// after the last one ended.
 pub const BUSY_POLL_INTERVAL: Duration = Duration::from_micros(100);
 
 /// How long the router stays quick after a transfer ended: a caller that reads one object after
