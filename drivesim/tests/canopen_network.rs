@@ -3,13 +3,12 @@
 //! times out alone, a node whose heartbeat stops and comes back, EMCY and PDO dispatch to the
 //! right node, and NMT for all nodes.
 
+mod network_support;
+
 use std::future::Future;
 use std::net::TcpListener;
 use std::pin::Pin;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
 use std::task::Poll;
-use std::thread::JoinHandle;
 use std::time::Duration;
 
 use drivebus::asynch::TokioTimer;
@@ -20,8 +19,9 @@ use drivebus::canopen::network::{AsyncNetwork, Network, NetworkEvent, Subscripti
 use drivebus::canopen::nmt::{NmtCommand, NmtState};
 use drivebus::canopen::{AsyncSdoBus, CanBus, CanFrame, NodeId, SdoBus};
 use drivebus::BusError;
-use drivesim::canopen::{nodes, Node, NodeConfig};
+use drivesim::canopen::{Node, NodeConfig};
 use drivesim::Simulator;
+use network_support::Serving;
 
 const FIXTURE: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
@@ -48,36 +48,6 @@ fn simulated_nodes(count: u8, heartbeat: Option<Duration>) -> Vec<Node> {
             Node::new(sim.clone(), config, sim.variant())
         })
         .collect()
-}
-
-/// Nodes served on one endpoint in a thread; stopped and joined on drop.
-struct Serving {
-    stop: Arc<AtomicBool>,
-    thread: Option<JoinHandle<()>>,
-}
-
-impl Serving {
-    fn start<B: CanBus + Send + 'static>(mut nodes: Vec<Node>, mut bus: B) -> Self {
-        let stop = Arc::new(AtomicBool::new(false));
-        let flag = Arc::clone(&stop);
-        let thread = std::thread::spawn(move || {
-            // Over TCP the run ends with an error when the manager hangs up: that ends a test.
-            let _ = nodes::run_while(&mut nodes, &mut bus, || !flag.load(Ordering::Relaxed));
-        });
-        Self {
-            stop,
-            thread: Some(thread),
-        }
-    }
-}
-
-impl Drop for Serving {
-    fn drop(&mut self) {
-        self.stop.store(true, Ordering::Relaxed);
-        if let Some(thread) = self.thread.take() {
-            let _ = thread.join();
-        }
-    }
 }
 
 fn measured(result: Result<usize, BusError>, out: [u8; 2]) -> Result<u16, BusError> {

@@ -49,6 +49,7 @@
 #[cfg(feature = "async")]
 mod async_network;
 mod blocking;
+pub mod boot;
 mod core;
 mod event;
 mod guarded;
