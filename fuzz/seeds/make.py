@@ -219,6 +219,34 @@ def network_router_seeds():
     write("network_router", "neighbour", node5 + frame(0x586, [0x43] + [0] * 7) + frame(0x186, [9]) + [1, 10])
 
 
+def network_file_seeds():
+    """`drivegen network boot` files (docs/network.md): whole, cut short, a bad node id."""
+    text = NETWORK_FILE.encode()
+    write("network_file", "network.toml", text)
+    write("network_file", "truncated.toml", text[: text.index(b"heartbeat_ms") + 5])
+    write("network_file", "node_id_0.toml", text.replace(b"id = 5", b"id = 0"))
+
+
+NETWORK_FILE = """format = 1
+
+[[node]]
+id = 5
+description = "../descriptions/lafert-smartris"
+identity = { vendor_id = 0x0DD0, product_code = 7, revision = 1 }
+heartbeat_ms = 100
+start = true
+parameters = { speed_ramp_up = "2000 ms", operation_mode = "velocity", limit = 12 }
+
+[[node]]
+id = 6
+description = "../descriptions/kinco-fd"
+start = false
+
+[node.parameters]
+target_speed = "100 rpm"
+"""
+
+
 def clear_generated_seeds():
     """Removes the seeds this script writes; the others (`KEPT_PREFIXES`) stay."""
     for target in SEEDS.iterdir():
@@ -239,3 +267,4 @@ if __name__ == "__main__":
     description_seeds()
     config_file_seeds()
     network_router_seeds()
+    network_file_seeds()
