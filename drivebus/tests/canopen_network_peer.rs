@@ -132,7 +132,7 @@ fn an_emcy_reaches_its_own_node_and_nmt_all_starts_a_watched_node() {
     let mut two = network.node(NodeId(2)).with_timeout(TIMEOUT);
     two.download(NodeId(2), 0x1017, 0, &50u16.to_le_bytes())
         .unwrap();
-    network.monitor_heartbeat(NodeId(2), Duration::from_millis(500));
+    network.monitor_heartbeat(NodeId(2), Duration::from_secs(1));
     network
         .nmt(NmtCommand::ResetCommunication, Some(NodeId(2)))
         .unwrap();

@@ -160,11 +160,11 @@ async fn thirty_two_nodes_are_read_at_once_over_slcan_by_the_async_manager() {
     }
 }
 
-/// The events of `subscription` until `wanted` came (returned, with those before it), or a
-/// second passed without it.
+/// The events of `subscription` until `wanted` came (returned, with those before it), or three
+/// seconds passed without any event.
 fn events_until(subscription: &Subscription, wanted: NetworkEvent) -> Vec<NetworkEvent> {
     let mut seen = Vec::new();
-    while let Ok(Some(event)) = subscription.recv(Duration::from_secs(2)) {
+    while let Ok(Some(event)) = subscription.recv(Duration::from_secs(3)) {
         seen.push(event);
         if event == wanted {
             break;
@@ -180,7 +180,8 @@ fn a_node_whose_heartbeat_stops_is_lost_then_back() {
     let heartbeat = Some(Duration::from_millis(50));
     let network = Network::new(bus.endpoint());
     let events = network.subscribe(node, 64);
-    network.monitor_heartbeat(node, Duration::from_millis(300));
+    // A second of silence: far beyond a stall of the simulated node's thread on a loaded machine.
+    network.monitor_heartbeat(node, Duration::from_secs(1));
     let serving = Serving::start(simulated_nodes(1, heartbeat), bus.endpoint());
     assert_eq!(
         events.recv(TIMEOUT),

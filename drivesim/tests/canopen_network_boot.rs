@@ -48,7 +48,8 @@ fn simulated(ids: &[u8]) -> Vec<Node> {
         .collect()
 }
 
-/// Expects vendor [`VENDOR`], product 7; heartbeat 50 ms; setpoint (2000h) = `setpoint`.
+/// Expects vendor [`VENDOR`], product 7; heartbeat 200 ms (watched for 450 ms); setpoint
+/// (2000h) = `setpoint`.
 fn plan(id: u8, setpoint: i16) -> NodeBoot {
     NodeBoot {
         node: NodeId(id),
@@ -57,7 +58,7 @@ fn plan(id: u8, setpoint: i16) -> NodeBoot {
             product_code: Some(7),
             revision: None,
         },
-        heartbeat: Some(Duration::from_millis(50)),
+        heartbeat: Some(Duration::from_millis(200)),
         writes: vec![BootWrite {
             index: 0x2000,
             subindex: 0,
