@@ -1,7 +1,8 @@
 //! The network manager against python-canopen 2.4.1 as an independent second party: eight
 //! LocalNodes (ids 1-8, one relay process, candump stdio) read at once through one `Network`,
 //! a missing ninth node timing out alone, an EMCY raised by a write reaching its own node's
-//! subscriber only, and a node whose heartbeat the manager watches started by NMT for all.
+//! subscriber only, a node whose heartbeat the manager watches started by NMT for all, and
+//! python nodes booted by `network::boot` (a foreign and a missing one left alone).
 #![cfg(feature = "canopen")]
 
 mod support;
@@ -149,4 +150,64 @@ fn an_emcy_reaches_its_own_node_and_nmt_all_starts_a_watched_node() {
     );
     assert_eq!(network.status(NodeId(2)).state, Some(NmtState::Operational));
     assert!(!network.status(NodeId(2)).lost);
+}
+
+#[test]
+fn python_nodes_are_booted_a_foreign_one_left_alone() {
+    use drivebus::canopen::network::boot::{
+        boot_all, BootError, BootWrite, ExpectedIdentity, NodeBoot,
+    };
+
+    let (_peers, network, events) = start();
+    // The EDS's identity: vendor-ID 0DD0h, product code 1.
+    let plan = |id: u8, product: u32| NodeBoot {
+        node: NodeId(id),
+        identity: ExpectedIdentity {
+            vendor_id: Some(0x0DD0),
+            product_code: Some(product),
+            revision: None,
+        },
+        heartbeat: Some(Duration::from_millis(200)),
+        writes: vec![BootWrite {
+            index: 0x2003,
+            subindex: 0,
+            data: (0x1000_0000 + u32::from(id)).to_le_bytes().to_vec(),
+        }],
+        start: true,
+    };
+    let plans = [plan(1, 1), plan(2, 1), plan(3, 2), plan(NODES + 1, 1)];
+    let reports = boot_all(&network, &plans, TIMEOUT);
+    let results: Vec<_> = reports
+        .iter()
+        .map(|r| (r.node.get(), r.result.clone()))
+        .collect();
+    assert_eq!(
+        results,
+        [
+            (1, Ok(())),
+            (2, Ok(())),
+            (
+                3,
+                Err(BootError::Foreign {
+                    subindex: 2,
+                    expected: 2,
+                    found: 1
+                })
+            ),
+            (NODES + 1, Err(BootError::Missing)),
+        ]
+    );
+    for (id, expected) in [(1u8, 0x1000_0001u32), (2, 0x1000_0002), (3, 0x1234_5678)] {
+        let mut sdo = network.node(NodeId(id)).with_timeout(TIMEOUT);
+        let mut out = [0u8; 4];
+        sdo.upload(NodeId(id), 0x2003, 0, &mut out).unwrap();
+        assert_eq!(u32::from_le_bytes(out), expected, "node {id}");
+    }
+    // Node 1 runs: the heartbeat it was given reports it operational.
+    let seen = events_until(&events[0], NetworkEvent::State(NmtState::Operational));
+    assert_eq!(
+        seen.last(),
+        Some(&NetworkEvent::State(NmtState::Operational)),
+        "{seen:?}"
+    );
 }

@@ -45,8 +45,9 @@ struct Slot {
     sdo_claimed: bool,
     /// Responses on the node's SDO response COB-ID while a transfer is in flight.
     sdo_inbox: VecDeque<CanFrame>,
-    /// The subscriber's queue, if the node has one.
+    /// The subscriber's queue, if the node has one, and the subscription it belongs to.
     events: Option<BoundedQueue<NetworkEvent>>,
+    subscription: u64,
     status: NodeStatus,
 }
 
@@ -132,14 +133,22 @@ impl NetworkCore {
         self.slot(node).status.lost = false;
     }
 
-    /// Gives `node` a subscriber queue of `capacity` events (replacing any earlier one).
-    pub fn subscribe(&mut self, node: NodeId, capacity: usize) {
-        self.slot(node).events = Some(BoundedQueue::new(capacity));
+    /// Gives `node` a subscriber queue of `capacity` events, replacing any earlier one; returns
+    /// the subscription's number for [`unsubscribe`](Self::unsubscribe).
+    pub fn subscribe(&mut self, node: NodeId, capacity: usize) -> u64 {
+        let slot = self.slot(node);
+        slot.events = Some(BoundedQueue::new(capacity));
+        slot.subscription += 1;
+        slot.subscription
     }
 
-    /// Removes `node`'s subscriber queue; its events are no longer kept.
-    pub fn unsubscribe(&mut self, node: NodeId) {
-        self.slot(node).events = None;
+    /// Removes `node`'s subscriber queue if it is still subscription `number`'s (a later
+    /// subscription that replaced it stays); its events are no longer kept.
+    pub fn unsubscribe(&mut self, node: NodeId, number: u64) {
+        let slot = self.slot(node);
+        if slot.subscription == number {
+            slot.events = None;
+        }
     }
 
     /// The oldest event for `node`'s subscriber.
@@ -411,6 +420,22 @@ mod tests {
         assert_eq!(core.next_deadline(), Some(10 * MS));
         core.set_sync(None, 10 * MS);
         assert!(!core.handle_time(20 * MS));
+    }
+
+    #[test]
+    fn a_replaced_subscription_does_not_unsubscribe_its_successor() {
+        let mut core = NetworkCore::new();
+        let first = core.subscribe(NodeId(2), 4);
+        let second = core.subscribe(NodeId(2), 4);
+        core.unsubscribe(NodeId(2), first);
+        core.handle(&CanFrame::new(0x182, &[1]).unwrap(), MS);
+        assert!(
+            core.next_event(NodeId(2)).is_some(),
+            "the second still receives"
+        );
+        core.unsubscribe(NodeId(2), second);
+        core.handle(&CanFrame::new(0x182, &[1]).unwrap(), MS);
+        assert_eq!(core.next_event(NodeId(2)), None);
     }
 
     #[test]

@@ -15,12 +15,17 @@ use crate::error::BusError;
 pub struct Subscription {
     shared: Arc<Shared>,
     node: NodeId,
+    number: u64,
 }
 
 impl Subscription {
     pub(crate) fn new(shared: Arc<Shared>, node: NodeId, capacity: usize) -> Self {
-        shared.lock().core.subscribe(node, capacity);
-        Self { shared, node }
+        let number = shared.lock().core.subscribe(node, capacity);
+        Self {
+            shared,
+            node,
+            number,
+        }
     }
 
     /// The node.
@@ -61,6 +66,6 @@ impl Subscription {
 
 impl Drop for Subscription {
     fn drop(&mut self) {
-        self.shared.lock().core.unsubscribe(self.node);
+        self.shared.lock().core.unsubscribe(self.node, self.number);
     }
 }

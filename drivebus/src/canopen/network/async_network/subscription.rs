@@ -15,12 +15,17 @@ use crate::error::BusError;
 pub struct AsyncSubscription {
     shared: Arc<Shared>,
     node: NodeId,
+    number: u64,
 }
 
 impl AsyncSubscription {
     pub(crate) fn new(shared: Arc<Shared>, node: NodeId, capacity: usize) -> Self {
-        shared.lock().core.subscribe(node, capacity);
-        Self { shared, node }
+        let number = shared.lock().core.subscribe(node, capacity);
+        Self {
+            shared,
+            node,
+            number,
+        }
     }
 
     /// The node.
@@ -58,6 +63,6 @@ impl AsyncSubscription {
 
 impl Drop for AsyncSubscription {
     fn drop(&mut self) {
-        self.shared.lock().core.unsubscribe(self.node);
+        self.shared.lock().core.unsubscribe(self.node, self.number);
     }
 }
