@@ -177,26 +177,16 @@ fn python_nodes_are_booted_a_foreign_one_left_alone() {
     };
     let plans = [plan(1, 1), plan(2, 1), plan(3, 2), plan(NODES + 1, 1)];
     let reports = boot_all(&network, &plans, TIMEOUT);
-    let results: Vec<_> = reports
-        .iter()
-        .map(|r| (r.node.get(), r.result.clone()))
-        .collect();
-    assert_eq!(
-        results,
-        [
-            (1, Ok(())),
-            (2, Ok(())),
-            (
-                3,
-                Err(BootError::Foreign {
-                    subindex: 2,
-                    expected: 2,
-                    found: 1
-                })
-            ),
-            (NODES + 1, Err(BootError::Missing)),
-        ]
-    );
+    let foreign = BootError::Foreign {
+        subindex: 2,
+        expected: 2,
+        found: 1,
+    };
+    let outcomes = [Ok(()), Ok(()), Err(foreign), Err(BootError::Missing)];
+    for ((report, plan), outcome) in reports.iter().zip(&plans).zip(outcomes) {
+        assert_eq!(report.node, plan.node);
+        assert_eq!(report.result, outcome, "node {}", plan.node.get());
+    }
     for (id, expected) in [(1u8, 0x1000_0001u32), (2, 0x1000_0002), (3, 0x1234_5678)] {
         let mut sdo = network.node(NodeId(id)).with_timeout(TIMEOUT);
         let mut out = [0u8; 4];
