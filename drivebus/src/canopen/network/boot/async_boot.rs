@@ -3,10 +3,9 @@
 
 use core::time::Duration;
 
-use super::blocking::value;
-use super::{Action, BootProcedure, BootReport, NodeBoot};
+use super::{BootReport, NodeBoot};
 use crate::asynch::Timer;
-use crate::canopen::link::AsyncSdoBus;
+use crate::canopen::link::AsyncSdoBus as _;
 use crate::canopen::network::AsyncNetwork;
 
 /// Boots one node as `plan` says, each request given `timeout`; a booted node with a heartbeat
@@ -16,30 +15,5 @@ pub async fn boot_node_async<T: Timer + Clone>(
     plan: &NodeBoot,
     timeout: Duration,
 ) -> BootReport {
-    let node = plan.node;
-    let mut sdo = network.node(node).with_timeout(timeout);
-    let mut procedure = BootProcedure::new(plan);
-    loop {
-        match procedure.action() {
-            Action::Read { index, subindex } => {
-                let mut out = [0u8; 4];
-                let read = sdo.upload(node, index, subindex, &mut out).await;
-                procedure.read(read.map(|len| value(out, len)));
-            }
-            Action::Write {
-                index,
-                subindex,
-                data,
-            } => {
-                let wrote = sdo.download(node, index, subindex, data).await;
-                procedure.wrote(wrote);
-            }
-            Action::Nmt(command) => procedure.sent(network.nmt(command, Some(node))),
-            Action::Finished => break,
-        }
-    }
-    if let Some(timeout) = procedure.heartbeat_watch() {
-        network.monitor_heartbeat(node, timeout);
-    }
-    procedure.report()
+    drive_boot!(network, plan, timeout, await)
 }

@@ -9,6 +9,38 @@
 //! (a thread per node); with feature `async`, [`boot_node_async`] over an
 //! [`AsyncNetwork`](super::AsyncNetwork).
 
+/// The loop both drivers run over a network handle: the procedure's reads and writes through
+/// the node's SDO handle, its NMT through the network, then the heartbeat watched. The async
+/// driver passes `await`, and each request is awaited; the blocking one passes nothing.
+macro_rules! drive_boot {
+    ($network:expr, $plan:expr, $timeout:expr $(, $awaited:tt)?) => {{
+        use $crate::canopen::network::boot::{Action, BootProcedure};
+        let (network, plan) = ($network, $plan);
+        let node = plan.node;
+        let mut sdo = network.node(node).with_timeout($timeout);
+        let mut procedure = BootProcedure::new(plan);
+        loop {
+            match procedure.action() {
+                Action::Read { index, subindex } => {
+                    let mut out = [0u8; 4];
+                    let read = sdo.upload(node, index, subindex, &mut out)$(.$awaited)?;
+                    procedure.read(read.map(|len| $crate::canopen::network::boot::value(out, len)));
+                }
+                Action::Write { index, subindex, data } => {
+                    let wrote = sdo.download(node, index, subindex, data)$(.$awaited)?;
+                    procedure.wrote(wrote);
+                }
+                Action::Nmt(command) => procedure.sent(network.nmt(command, Some(node))),
+                Action::Finished => break,
+            }
+        }
+        if let Some(timeout) = procedure.heartbeat_watch() {
+            network.monitor_heartbeat(node, timeout);
+        }
+        procedure.report()
+    }};
+}
+
 #[cfg(feature = "async")]
 mod async_boot;
 mod blocking;
@@ -163,6 +195,14 @@ impl fmt::Display for BootError {
 }
 
 impl std::error::Error for BootError {}
+
+/// The value of an upload of at most 4 bytes, little-endian.
+pub(crate) fn value(out: [u8; 4], len: usize) -> u32 {
+    let mut bytes = [0u8; 4];
+    let len = len.min(4);
+    bytes[..len].copy_from_slice(&out[..len]);
+    u32::from_le_bytes(bytes)
+}
 
 /// How booting one node ended.
 #[derive(Debug, Clone, PartialEq, Eq)]
