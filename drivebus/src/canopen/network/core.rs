@@ -38,6 +38,20 @@ pub struct NodeStatus {
     pub last_emcy: Option<Emcy>,
 }
 
+/// One subscription to a node's events, as [`NetworkCore::subscribe`] gave it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SubscriptionId {
+    node: NodeId,
+    number: u64,
+}
+
+impl SubscriptionId {
+    /// The node subscribed to.
+    pub fn node(&self) -> NodeId {
+        self.node
+    }
+}
+
 /// One node's share of the manager.
 #[derive(Debug, Default)]
 struct Slot {
@@ -134,19 +148,22 @@ impl NetworkCore {
     }
 
     /// Gives `node` a subscriber queue of `capacity` events, replacing any earlier one; returns
-    /// the subscription's number for [`unsubscribe`](Self::unsubscribe).
-    pub fn subscribe(&mut self, node: NodeId, capacity: usize) -> u64 {
+    /// the subscription, for [`unsubscribe`](Self::unsubscribe).
+    pub fn subscribe(&mut self, node: NodeId, capacity: usize) -> SubscriptionId {
         let slot = self.slot(node);
         slot.events = Some(BoundedQueue::new(capacity));
         slot.subscription += 1;
-        slot.subscription
+        SubscriptionId {
+            node,
+            number: slot.subscription,
+        }
     }
 
-    /// Removes `node`'s subscriber queue if it is still subscription `number`'s (a later
-    /// subscription that replaced it stays); its events are no longer kept.
-    pub fn unsubscribe(&mut self, node: NodeId, number: u64) {
-        let slot = self.slot(node);
-        if slot.subscription == number {
+    /// Removes the subscriber queue of `subscription`'s node if it is still that
+    /// subscription's (a later one that replaced it stays); its events are no longer kept.
+    pub fn unsubscribe(&mut self, subscription: SubscriptionId) {
+        let slot = self.slot(subscription.node);
+        if slot.subscription == subscription.number {
             slot.events = None;
         }
     }
@@ -427,13 +444,13 @@ mod tests {
         let mut core = NetworkCore::new();
         let first = core.subscribe(NodeId(2), 4);
         let second = core.subscribe(NodeId(2), 4);
-        core.unsubscribe(NodeId(2), first);
+        core.unsubscribe(first);
         core.handle(&CanFrame::new(0x182, &[1]).unwrap(), MS);
         assert!(
             core.next_event(NodeId(2)).is_some(),
             "the second still receives"
         );
-        core.unsubscribe(NodeId(2), second);
+        core.unsubscribe(second);
         core.handle(&CanFrame::new(0x182, &[1]).unwrap(), MS);
         assert_eq!(core.next_event(NodeId(2)), None);
     }

@@ -63,7 +63,7 @@ mod subscription;
 #[cfg(feature = "async")]
 pub use async_network::{AsyncNetwork, AsyncNodeSdo, AsyncRouter, AsyncSubscription};
 pub use blocking::{Network, DEFAULT_POLL_INTERVAL};
-pub use core::{NetworkCore, NodeStatus, OUTBOX, SDO_INBOX};
+pub use core::{NetworkCore, NodeStatus, SubscriptionId, OUTBOX, SDO_INBOX};
 pub use event::NetworkEvent;
 pub use node_sdo::NodeSdo;
 pub use router::BUSY_POLL_INTERVAL;

@@ -7,6 +7,7 @@ use std::time::Instant;
 use super::event::NetworkEvent;
 use super::shared::Shared;
 use crate::canopen::address::NodeId;
+use crate::canopen::network::core::SubscriptionId;
 use crate::error::BusError;
 
 /// One node's events, from [`Network::subscribe`](super::Network::subscribe); dropping it
@@ -14,28 +15,23 @@ use crate::error::BusError;
 #[derive(Debug)]
 pub struct Subscription {
     shared: Arc<Shared>,
-    node: NodeId,
-    number: u64,
+    id: SubscriptionId,
 }
 
 impl Subscription {
     pub(crate) fn new(shared: Arc<Shared>, node: NodeId, capacity: usize) -> Self {
-        let number = shared.lock().core.subscribe(node, capacity);
-        Self {
-            shared,
-            node,
-            number,
-        }
+        let id = shared.lock().core.subscribe(node, capacity);
+        Self { shared, id }
     }
 
     /// The node.
     pub fn node(&self) -> NodeId {
-        self.node
+        self.id.node()
     }
 
     /// The oldest event, without waiting.
     pub fn try_recv(&self) -> Option<NetworkEvent> {
-        self.shared.lock().core.next_event(self.node)
+        self.shared.lock().core.next_event(self.id.node())
     }
 
     /// The oldest event, waiting at most `timeout` for one: `Ok(None)` when none came, an
@@ -44,7 +40,7 @@ impl Subscription {
         let deadline = Instant::now() + timeout;
         let mut state = self.shared.lock();
         loop {
-            if let Some(event) = state.core.next_event(self.node) {
+            if let Some(event) = state.core.next_event(self.id.node()) {
                 return Ok(Some(event));
             }
             if let Some(error) = &state.ended {
@@ -54,18 +50,18 @@ impl Subscription {
             if left.is_zero() {
                 return Ok(None);
             }
-            state = self.shared.wait(state, self.node, left);
+            state = self.shared.wait(state, self.id.node(), left);
         }
     }
 
     /// Events dropped because the queue was full.
     pub fn dropped(&self) -> u64 {
-        self.shared.lock().core.dropped_events(self.node)
+        self.shared.lock().core.dropped_events(self.id.node())
     }
 }
 
 impl Drop for Subscription {
     fn drop(&mut self) {
-        self.shared.lock().core.unsubscribe(self.node, self.number);
+        self.shared.lock().core.unsubscribe(self.id);
     }
 }

@@ -6,6 +6,7 @@ use std::sync::Arc;
 
 use super::shared::Shared;
 use crate::canopen::address::NodeId;
+use crate::canopen::network::core::SubscriptionId;
 use crate::canopen::network::NetworkEvent;
 use crate::error::BusError;
 
@@ -14,28 +15,23 @@ use crate::error::BusError;
 #[derive(Debug)]
 pub struct AsyncSubscription {
     shared: Arc<Shared>,
-    node: NodeId,
-    number: u64,
+    id: SubscriptionId,
 }
 
 impl AsyncSubscription {
     pub(crate) fn new(shared: Arc<Shared>, node: NodeId, capacity: usize) -> Self {
-        let number = shared.lock().core.subscribe(node, capacity);
-        Self {
-            shared,
-            node,
-            number,
-        }
+        let id = shared.lock().core.subscribe(node, capacity);
+        Self { shared, id }
     }
 
     /// The node.
     pub fn node(&self) -> NodeId {
-        self.node
+        self.id.node()
     }
 
     /// The oldest event, without waiting.
     pub fn try_next(&self) -> Option<NetworkEvent> {
-        self.shared.lock().core.next_event(self.node)
+        self.shared.lock().core.next_event(self.id.node())
     }
 
     /// The oldest event, waiting for one; an error once the network stopped and every kept
@@ -43,13 +39,13 @@ impl AsyncSubscription {
     pub async fn next(&self) -> Result<NetworkEvent, BusError> {
         poll_fn(|cx| {
             let mut state = self.shared.lock();
-            if let Some(event) = state.core.next_event(self.node) {
+            if let Some(event) = state.core.next_event(self.id.node()) {
                 return Poll::Ready(Ok(event));
             }
             if let Some(error) = &state.ended {
                 return Poll::Ready(Err(error.clone()));
             }
-            state.wait_on(self.node, cx);
+            state.wait_on(self.id.node(), cx);
             Poll::Pending
         })
         .await
@@ -57,12 +53,12 @@ impl AsyncSubscription {
 
     /// Events dropped because the queue was full.
     pub fn dropped(&self) -> u64 {
-        self.shared.lock().core.dropped_events(self.node)
+        self.shared.lock().core.dropped_events(self.id.node())
     }
 }
 
 impl Drop for AsyncSubscription {
     fn drop(&mut self) {
-        self.shared.lock().core.unsubscribe(self.node, self.number);
+        self.shared.lock().core.unsubscribe(self.id);
     }
 }
