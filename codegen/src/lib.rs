@@ -10,6 +10,8 @@
 //! * [`eds`] reads CiA 306 EDS / DCF files (alone or under a TOML overlay) and writes EDS files;
 //! * [`config_file`] reads and writes the configuration backups of `drivegen config`, each entry
 //!   with its line;
+//! * [`network_file`] reads the network files of `drivegen network boot` (issue 31), each node
+//!   with its line;
 //! * [`names`] is the naming policy (description names to Rust identifiers) that validation,
 //!   the EDS reader and writer and the emitter share;
 //! * [`Builder`] is the `build.rs` entry point of drive crates.
@@ -25,8 +27,10 @@ pub mod ir;
 pub mod load;
 mod mandatory_objects;
 pub mod names;
+pub mod network_file;
 #[cfg(test)]
 mod test_support;
+mod toml_file;
 pub mod validate;
 
 use std::path::Path;

@@ -59,6 +59,8 @@ enum Command {
     Scan(commands::scan::Args),
     /// LSS (CiA 305): find CANopen nodes without a node id (Fastscan), set node ids and bit rates.
     Lss(commands::lss::Args),
+    /// Many CANopen nodes on one bus: boot them from a network file, or list their status.
+    Network(commands::network::Args),
     /// CANopen Safety: the safety configuration signature of an SRDO.
     Safety(commands::safety::Args),
     /// Save a drive's configuration to a file, write it back, or compare it (exit code 0: done
@@ -91,6 +93,7 @@ fn main() -> ExitCode {
         Command::Scan(args) => commands::scan::run(args),
         Command::Config(args) => commands::config::run(args),
         Command::Lss(args) => commands::lss::run(args),
+        Command::Network(args) => commands::network::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

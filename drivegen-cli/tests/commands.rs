@@ -40,7 +40,7 @@ fn raw(sim: &Simulator, name: &str) -> i128 {
 #[test]
 fn every_subcommand_has_help() {
     for command in [
-        "check", "dump", "generate", "sim", "read", "write", "watch", "decode",
+        "check", "dump", "generate", "sim", "read", "write", "watch", "decode", "network",
     ] {
         let output = drivegen(&[command, "--help"]);
         assert!(output.status.success(), "{command} --help");

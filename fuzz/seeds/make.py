@@ -206,6 +206,47 @@ def config_file_seeds():
     write("config_file", "format2.toml", text.replace(b"format = 1", b"format = 2"))
 
 
+def network_router_seeds():
+    """The network core: a node subscribed and claimed, its SDO answer, PDO, EMCY, heartbeats and
+    a silence long enough to lose it; and a neighbour's frames it must not get."""
+    def frame(cob, data):
+        return [0, cob & 0xFF, cob >> 8, len(data)] + data + [0] * (8 - len(data))
+    node5 = [4, 4, 7, 2, 4, 5, 4, 100]
+    answer = frame(0x585, [0x43, 0x00, 0x10, 0x00, 0x92, 0x01, 0x02, 0x00])
+    traffic = frame(0x185, [1, 2]) + frame(0x085, [0x10, 0x23, 1, 0, 0, 0, 0, 0]) + frame(0x705, [0])
+    silence = [1, 50, 1, 200, 1, 200] + frame(0x705, [0x05])
+    write("network_router", "one_node", node5 + answer + traffic + silence + [3, 4])
+    write("network_router", "neighbour", node5 + frame(0x586, [0x43] + [0] * 7) + frame(0x186, [9]) + [1, 10])
+
+
+def network_file_seeds():
+    """`drivegen network boot` files (docs/network.md): whole, cut short, a bad node id."""
+    text = NETWORK_FILE.encode()
+    write("network_file", "network.toml", text)
+    write("network_file", "truncated.toml", text[: text.index(b"heartbeat_ms") + 5])
+    write("network_file", "node_id_0.toml", text.replace(b"id = 5", b"id = 0"))
+
+
+NETWORK_FILE = """format = 1
+
+[[node]]
+id = 5
+description = "../descriptions/lafert-smartris"
+identity = { vendor_id = 0x0DD0, product_code = 7, revision = 1 }
+heartbeat_ms = 100
+start = true
+parameters = { speed_ramp_up = "2000 ms", operation_mode = "velocity", limit = 12 }
+
+[[node]]
+id = 6
+description = "../descriptions/kinco-fd"
+start = false
+
+[node.parameters]
+target_speed = "100 rpm"
+"""
+
+
 def clear_generated_seeds():
     """Removes the seeds this script writes; the others (`KEPT_PREFIXES`) stay."""
     for target in SEEDS.iterdir():
@@ -225,3 +266,5 @@ if __name__ == "__main__":
     srdo_seeds()
     description_seeds()
     config_file_seeds()
+    network_router_seeds()
+    network_file_seeds()

@@ -1,11 +1,13 @@
 """A python-canopen LocalNode on python-can's virtual bus, relayed to stdin/stdout as candump
 compact lines (`605#4000100000000000`, `701#R1`), so a separate process can reach it.
 
-    canopen_relay.py EDS NODE_ID
+    canopen_relay.py EDS NODE_ID[,NODE_ID...]
 
-Beyond LocalNode: it sends a boot-up at start and after an NMT reset (LocalNode does not), and a
-write to 0x2000 sends an EMCY with the written code (register 0x01, manufacturer bytes 01..05).
-It exits when stdin closes.
+With several node ids (comma-separated: wrappers such as cia402_relay.py take arguments after
+it), every one is a LocalNode of the same EDS on the same bus (a network of
+nodes for a master to manage). Beyond LocalNode: each sends a boot-up at start and after an NMT
+reset (LocalNode does not), and a write to 0x2000 sends an EMCY of that node with the written
+code (register 0x01, manufacturer bytes 01..05). It exits when stdin closes.
 """
 import os
 import subprocess
@@ -101,32 +103,40 @@ def relay_stdio(bus):
 
 
 def main(install=None):
-    """Runs the relay; `install(node)` may add behaviour (write callbacks) to the LocalNode."""
-    eds, node_id = sys.argv[1], int(sys.argv[2], 0)
+    """Runs the relay; `install(node)` may add behaviour (write callbacks) to each LocalNode."""
+    eds, node_ids = sys.argv[1], [int(arg, 0) for arg in sys.argv[2].split(",")]
     channel = f"drivegen-relay-{os.getpid()}"
     # The relay's own bus exists before anything is sent, so it sees the first boot-up.
     relay = can.Bus(interface="virtual", channel=channel)
     network = canopen.Network()
     network.connect(interface="virtual", channel=channel)
-    node = canopen.LocalNode(node_id, eds)
-    network.add_node(node)
+    nodes = {}
+    for node_id in node_ids:
+        node = canopen.LocalNode(node_id, eds)
+        network.add_node(node)
+        nodes[node_id] = node
 
-    def boot():
+    def boot(node):
         node.nmt.send_command(0x81)  # INITIALISING: sends the boot-up message
         node.nmt.send_command(0x80)  # PRE-OPERATIONAL: starts the heartbeat if 0x1017 is set
 
     def on_nmt(can_id, data, timestamp):
         command, target = data[0], data[1]
-        if command in (0x81, 0x82) and target in (0, node_id):
-            boot()
+        if command in (0x81, 0x82):
+            for node_id, node in nodes.items():
+                if target in (0, node_id):
+                    boot(node)
 
-    def on_write(index, subindex, od, data, **kwargs):
-        if index == 0x2000:
-            node.emcy.send(int.from_bytes(data, "little"), 0x01, b"\x01\x02\x03\x04\x05")
+    def emcy_on_write(node):
+        def on_write(index, subindex, od, data, **kwargs):
+            if index == 0x2000:
+                node.emcy.send(int.from_bytes(data, "little"), 0x01, b"\x01\x02\x03\x04\x05")
+        return on_write
 
-    node.add_write_callback(on_write)
-    if install is not None:
-        install(node)
+    for node in nodes.values():
+        node.add_write_callback(emcy_on_write(node))
+        if install is not None:
+            install(node)
     network.subscribe(0, on_nmt)
     out_lock = threading.Lock()
 
@@ -139,7 +149,8 @@ def main(install=None):
                     sys.stdout.flush()
 
     threading.Thread(target=pump_out, daemon=True).start()
-    boot()
+    for node in nodes.values():
+        boot(node)
     for line in sys.stdin:
         line = line.strip()
         if line:

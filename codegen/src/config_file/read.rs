@@ -11,6 +11,7 @@ use super::{
     ConfigFile, DescriptionRef, DriveRecord, IdentityEntry, SavedParameter, SavedRaw, Unread,
     FORMAT_VERSION,
 };
+use crate::toml_file::{self, in_file_order, Unreadable};
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -45,35 +46,30 @@ struct RawDrive {
 /// Reads a configuration file. Every entry keeps its line; a file that is not TOML, cut short,
 /// of another format version or with an entry of the wrong shape is refused with the line.
 pub fn parse(text: &str) -> Result<ConfigFile, ConfigFileError> {
-    let raw: RawFile = toml::from_str(text).map_err(|e| {
-        let line = e.span().map(|span| line_of(text, span.start));
-        ConfigFileError::at(line, Kind::Syntax(e.message().to_owned()))
+    let raw: RawFile = toml_file::read(text, FORMAT_VERSION, |raw: &RawFile| raw.format.as_ref())
+        .map_err(|unreadable| match unreadable {
+        Unreadable::Syntax(line, why) => ConfigFileError::at(line, Kind::Syntax(why)),
+        Unreadable::MissingFormat => ConfigFileError::at(None, Kind::Missing("format")),
+        Unreadable::UnsupportedFormat(line, found) => {
+            ConfigFileError::at(Some(line), Kind::UnsupportedFormat(found))
+        }
     })?;
-    let format = raw
-        .format
-        .ok_or(ConfigFileError::at(None, Kind::Missing("format")))?;
-    if *format.get_ref() != i64::from(FORMAT_VERSION) {
-        return Err(ConfigFileError::at(
-            Some(line_of(text, format.span().start)),
-            Kind::UnsupportedFormat(*format.get_ref()),
-        ));
-    }
     let description = raw
         .description
         .ok_or(ConfigFileError::at(None, Kind::Missing("[description]")))?;
     let drive = raw
         .drive
         .ok_or(ConfigFileError::at(None, Kind::Missing("[drive]")))?;
-    let identity = sorted(text, raw.identity)
+    let identity = in_file_order(text, raw.identity)
         .map(|(name, line, value)| {
             let raw = int_of(&value).ok_or_else(|| malformed(line, &name, "an integer"))?;
             Ok(IdentityEntry { name, raw, line })
         })
         .collect::<Result<_, ConfigFileError>>()?;
-    let parameters: Vec<SavedParameter> = sorted(text, raw.parameters)
+    let parameters: Vec<SavedParameter> = in_file_order(text, raw.parameters)
         .map(|(name, line, value)| saved(name, line, &value))
         .collect::<Result<_, _>>()?;
-    let unread: Vec<Unread> = sorted(text, raw.unread)
+    let unread: Vec<Unread> = in_file_order(text, raw.unread)
         .map(|(name, line, value)| match value {
             toml::Value::String(reason) => Ok(Unread { name, reason, line }),
             _ => Err(malformed(line, &name, "the reason as a string")),
@@ -103,21 +99,6 @@ pub fn parse(text: &str) -> Result<ConfigFile, ConfigFileError> {
         parameters,
         unread,
     })
-}
-
-/// The entries of a table in the order of the file, each with its key's line.
-fn sorted(
-    text: &str,
-    table: BTreeMap<Spanned<String>, toml::Value>,
-) -> impl Iterator<Item = (String, u32, toml::Value)> + '_ {
-    let mut entries: Vec<_> = table
-        .into_iter()
-        .map(|(key, value)| (key.span().start, key.into_inner(), value))
-        .collect();
-    entries.sort_by_key(|(start, _, _)| *start);
-    entries
-        .into_iter()
-        .map(move |(start, name, value)| (name, line_of(text, start), value))
 }
 
 /// One `name = { value = "...", raw = ..., unit = "..." }` entry.
@@ -183,11 +164,4 @@ fn malformed(line: u32, key: &str, expected: &'static str) -> ConfigFileError {
             expected,
         },
     )
-}
-
-/// The 1-based line of byte `offset` of `text`.
-fn line_of(text: &str, offset: usize) -> u32 {
-    let end = offset.min(text.len());
-    let before = text.get(..end).unwrap_or(text);
-    u32::try_from(before.matches('\n').count() + 1).unwrap_or(u32::MAX)
 }

@@ -19,6 +19,9 @@
 //!   [`CanBus`], so [`CanOpenLink`] runs on every interface; `client::scan`, the bus scan.
 //! * `async_client` — (`async` with `canopen`) the async layer: `AsyncSdo`, an `AsyncSdoBus`
 //!   over any `AsyncCanBus` driving the same transfers, so [`CanOpenLink`] is an `AsyncLink`.
+//! * `network` — (`canopen`) the network manager: one bus shared by the drives of many nodes,
+//!   SDO to several nodes at once, per-node PDO/EMCY/heartbeat subscribers, SYNC, NMT; blocking
+//!   and (with `async`) async.
 //!
 //! # Opening a CAN interface
 //!
@@ -61,6 +64,8 @@
 pub(crate) use drivebus_model::canopen as address;
 #[cfg(all(feature = "async", feature = "canopen"))]
 pub mod async_client;
+#[cfg(feature = "canopen")]
+mod bounded_queue;
 pub mod can;
 #[cfg(feature = "canopen")]
 pub mod client;
@@ -70,6 +75,8 @@ pub mod heartbeat;
 mod link;
 pub mod lss;
 pub mod message;
+#[cfg(feature = "canopen")]
+pub mod network;
 pub mod nmt;
 pub mod pdo;
 pub mod sdo;

@@ -9,6 +9,7 @@ pub mod dump;
 pub mod eds;
 pub mod generate;
 pub mod lss;
+pub mod network;
 pub mod new;
 pub mod read;
 pub mod safety;

@@ -2,42 +2,44 @@
 //! with: shared by the blocking [`BlockingSdo`](super::BlockingSdo) and the async
 //! `AsyncSdo`, which differ only in how they wait.
 
-use core::time::Duration;
-use std::collections::VecDeque;
-
 use crate::canopen::address::NodeId;
+use crate::canopen::bounded_queue::BoundedQueue;
 use crate::canopen::frame::CanFrame;
 use crate::canopen::sdo::{Download, Progress, SdoClient, Transfer, Upload};
 use crate::error::BusError;
+use core::time::Duration;
 
 use super::BACKLOG;
 
 /// Frames that arrived during transfers but were not theirs (PDOs, heartbeats, EMCY, other
 /// nodes' SDOs), oldest first, at most [`BACKLOG`]; older ones are dropped first.
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub(crate) struct Backlog {
-    frames: VecDeque<CanFrame>,
-    dropped: usize,
+    frames: BoundedQueue<CanFrame>,
+}
+
+impl Default for Backlog {
+    fn default() -> Self {
+        Self {
+            frames: BoundedQueue::new(BACKLOG),
+        }
+    }
 }
 
 impl Backlog {
     /// Keeps `frame` for the bus's own receive.
     pub(crate) fn keep(&mut self, frame: CanFrame) {
-        if self.frames.len() == BACKLOG {
-            self.frames.pop_front();
-            self.dropped += 1;
-        }
-        self.frames.push_back(frame);
+        self.frames.push(frame);
     }
 
     /// The oldest kept frame.
     pub(crate) fn pop(&mut self) -> Option<CanFrame> {
-        self.frames.pop_front()
+        self.frames.pop()
     }
 
     /// Frames dropped because the backlog was full.
     pub(crate) fn dropped(&self) -> usize {
-        self.dropped
+        usize::try_from(self.frames.dropped()).unwrap_or(usize::MAX)
     }
 
     /// A received frame, sorted: `Some` if it is on the transfer's response COB-ID
@@ -124,9 +126,9 @@ impl Settings {
     }
 }
 
-/// The settings and accessors both SDO clients offer, over their `bus`, `settings` and
-/// `backlog` fields.
-macro_rules! client_methods {
+/// The builder methods of the SDO clients and the network's node handles, over their
+/// `settings` field.
+macro_rules! settings_methods {
     () => {
         /// Sets how long the server has to answer each request.
         pub fn with_timeout(mut self, timeout: Duration) -> Self {
@@ -141,6 +143,15 @@ macro_rules! client_methods {
             self.settings.block_size = block_size;
             self
         }
+    };
+}
+pub(crate) use settings_methods;
+
+/// The settings and accessors both SDO clients offer, over their `bus`, `settings` and
+/// `backlog` fields.
+macro_rules! client_methods {
+    () => {
+        $crate::canopen::client::backlog::settings_methods!();
 
         /// The underlying bus.
         pub fn bus_mut(&mut self) -> &mut B {
