@@ -14,6 +14,7 @@
 //! * `device` (feature `server`) — the device side of CiA 402 (transitions a controlword takes,
 //!   the statusword of each state): the simulator's CiA 402 behaviour and the test double of masters.
 //! * [`mode`] — changing the mode of operation (0x6060) and confirming it (0x6061).
+//! * [`mode_bits`] — the controlword and statusword bits of profile position and homing.
 //! * [`objects`] — the traits generated crates implement to hand their parameters to the driver.
 //! * `driver` (std) — the blocking driver behind `drive.enable_operation(deadline)`.
 
@@ -24,6 +25,7 @@ pub mod device;
 pub mod driver;
 pub use drivebus_model::control::machine;
 pub mod mode;
+pub use drivebus_model::control::mode_bits;
 pub mod objects;
 pub use drivebus_model::control::quirks;
 

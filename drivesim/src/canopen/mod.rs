@@ -2,11 +2,13 @@
 //! NMT, heartbeat, an SDO server, SRDOs and (for LSS slaves) LSS, run over any [`CanBus`](drivebus::canopen::CanBus).
 
 pub mod dictionary;
+pub mod in_process;
 pub mod lss;
 pub mod node;
 pub mod nodes;
 pub mod srdo;
 
 pub use dictionary::Dictionary;
+pub use in_process::InProcessNode;
 pub use node::{Node, NodeConfig};
 pub use srdo::Srdos;
