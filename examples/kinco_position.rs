@@ -42,10 +42,16 @@ fn main() -> Result<(), Box<dyn Error>> {
     // Values the DEC conversion represents exactly at 10000 increments: 150 rpm = 409600 DEC,
     // 610.3515625 rps/s = 100000 DEC (the manual's default acceleration).
     drive.profile_speed().write(Rpm(150.0))?;
-    drive.profile_acceleration().write(RpsPerSecond(610.351_562_5))?;
-    drive.profile_deceleration().write(RpsPerSecond(610.351_562_5))?;
+    drive
+        .profile_acceleration()
+        .write(RpsPerSecond(610.351_562_5))?;
+    drive
+        .profile_deceleration()
+        .write(RpsPerSecond(610.351_562_5))?;
     drive.homing_speed_switch().write(Rpm(75.0))?;
-    drive.homing_acceleration().write(RpsPerSecond(610.351_562_5))?;
+    drive
+        .homing_acceleration()
+        .write(RpsPerSecond(610.351_562_5))?;
     drive.homing_offset().write(Increments(1_000.0))?;
     drive.enable_operation(Instant::now() + Duration::from_secs(2))?;
 

@@ -19,14 +19,11 @@ use drivebus::canopen::client::BlockingSdo;
 use drivebus::canopen::NodeId;
 use drivebus::modbus::client::{ModbusTcpClient, TcpConfig};
 use drivebus::modbus::UnitId;
-use drivebus::rs232::data::{Answer, Request};
-use drivebus::rs232::exchange::Exchange;
-use drivebus::rs232::{LoopMode, StationId, TelegramBus};
+use drivebus::rs232::{LoopMode, StationId};
 use drivebus::units::Rpm;
-use drivebus::BusError;
 use drivebus::{Link, Readable, Writable};
 use drivesim::canopen::{Node, NodeConfig};
-use drivesim::rs232::Rs232Server;
+use drivesim::rs232::{InProcessLine, Rs232Server};
 use kinco_fd::params::{
     Controlword, ModesOfOperation, Statusword, TargetVelocity, VelocityActualValue,
 };
@@ -73,26 +70,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     rs232_sim.preset("encoder_resolution", 10_000)?;
     let server = Rs232Server::new(&rs232_sim, StationId(1), LoopMode::PointToPoint);
     // Over RS-232 the encoder resolution (6410h.03) is read from the drive, as over CANopen.
-    speed_mode(KincoFd::rs232(InProcessLine { server }, StationId(1)))
-}
-
-/// A serial line whose far end is the simulator's RS-232 server: each request telegram goes
-/// through the same sans-I/O exchange a serial client uses, and the server's bytes come back.
-struct InProcessLine {
-    server: Rs232Server,
-}
-
-impl TelegramBus for InProcessLine {
-    fn exchange(&mut self, station: StationId, request: &Request) -> Result<Answer, BusError> {
-        let object = request.object();
-        let mut exchange = Exchange::new(station, *request, LoopMode::PointToPoint);
-        let reply = self.server.handle(exchange.telegram());
-        match exchange.receive(&reply) {
-            Ok(Some(answer)) => Ok(answer),
-            Ok(None) => Err(exchange.timed_out().about(object)),
-            Err(error) => Err(error.about(object)),
-        }
-    }
+    speed_mode(KincoFd::rs232(InProcessLine::new(server), StationId(1)))
 }
 
 /// Mode 3, 150 rpm, power on; then the drive's own view of it.

@@ -9,12 +9,10 @@ use std::time::Duration;
 use drivebus::asynch::{Async, TokioTimer};
 use drivebus::canopen::can::tokio_adapters::TokioIo;
 use drivebus::rs232::async_client::AsyncRs232Client;
-use drivebus::rs232::data::{Answer, Request};
-use drivebus::rs232::exchange::Exchange;
-use drivebus::rs232::{LoopMode, Rs232Link, StationId, TelegramBus};
+use drivebus::rs232::{LoopMode, Rs232Link, StationId};
 use drivebus::units::{Hertz, Percent, Rpm};
 use drivebus::{BusError, Error, ValueError};
-use drivesim::rs232::Rs232Server;
+use drivesim::rs232::{InProcessLine, Rs232Server};
 use drivesim::Simulator;
 use kinco_fd::{params, KincoFd};
 use tokio::io::{AsyncReadExt, AsyncWriteExt, DuplexStream};
@@ -45,34 +43,13 @@ fn async_kinco(sim: &Simulator) -> AsyncKinco {
     KincoFd::rs232_async(host, STATION)
 }
 
-/// A blocking serial line whose far end is the simulator's RS-232 server, in process: each
-/// request goes through the sans-I/O exchange a serial host uses.
-struct InProcessLine {
-    server: Rs232Server,
-}
-
-impl TelegramBus for InProcessLine {
-    fn exchange(&mut self, station: StationId, request: &Request) -> Result<Answer, BusError> {
-        let object = request.object();
-        let mut exchange = Exchange::new(station, *request, LoopMode::PointToPoint);
-        let reply = self.server.handle(exchange.telegram());
-        match exchange.receive(&reply) {
-            Ok(Some(answer)) => Ok(answer),
-            Ok(None) => Err(exchange.timed_out().about(object)),
-            Err(error) => Err(error.about(object)),
-        }
-    }
-}
-
 #[tokio::test]
 async fn typed_async_reads_writes_and_read_many_against_the_simulator() {
     let sim = Simulator::load(DESCRIPTION).unwrap();
     // The simulated motor's encoder: the manual's examples assume 10000 increments.
     sim.preset("encoder_resolution", 10_000).unwrap();
     let mut drive = async_kinco(&sim);
-    let line = InProcessLine {
-        server: Rs232Server::new(&sim, STATION, LoopMode::PointToPoint),
-    };
+    let line = InProcessLine::new(Rs232Server::new(&sim, STATION, LoopMode::PointToPoint));
     let mut blocking = KincoFd::rs232(line, STATION);
 
     // A read with units: 60F9h.05, BW = raw × 20 + 100 Hz (default 7: 240 Hz).

@@ -1,5 +1,5 @@
 //! The typed motion API (issue 32) against the simulated Kinco over CANopen on an in-process
-//! bus: homing onto the simulated switch with the home offset, profile position moves absolute
+//! bus (and once over RS-232): homing onto the simulated switch with the home offset, profile position moves absolute
 //! and relative, and each refusal and failure as its typed error — a target outside the
 //! software limits, a homing method the description does not list, a move while not operation
 //! enabled (nothing sent), a following error and a time out (the axis halted).
@@ -11,7 +11,9 @@ use drivebus::canopen::client::BlockingSdo;
 use drivebus::canopen::{CanOpenLink, NodeId};
 use drivebus::control::motion_error::MotionError;
 use drivebus::control::position::{Move, SoftLimits};
+use drivebus::rs232::{LoopMode, StationId};
 use drivesim::canopen::{InProcessNode, NodeConfig};
+use drivesim::rs232::{InProcessLine, Rs232Server};
 use drivesim::Simulator;
 use kinco_fd::types::HomingMethod;
 use kinco_fd::KincoFd;
@@ -41,16 +43,23 @@ fn soon(seconds: u64) -> Instant {
     Instant::now() + Duration::from_secs(seconds)
 }
 
-/// Operation enabled, with a quick profile (raw units: the simulated axis takes velocity units
-/// as position units per second).
+/// A quick profile (raw units: the simulated axis takes velocity units as position units per
+/// second), then operation enabled; over any link.
+macro_rules! quick_and_enabled {
+    ($drive:expr) => {{
+        $drive.profile_speed().write_raw(200_000).unwrap();
+        $drive.profile_acceleration().write_raw(1_000_000).unwrap();
+        $drive.profile_deceleration().write_raw(1_000_000).unwrap();
+        $drive.homing_speed_switch().write_raw(100_000).unwrap();
+        $drive.homing_acceleration().write_raw(1_000_000).unwrap();
+        $drive.enable_operation(soon(2)).unwrap();
+    }};
+}
+
+/// Operation enabled over CANopen, with the quick profile.
 fn enabled() -> (Drive, Running) {
     let (mut drive, running) = start();
-    drive.profile_speed().write_raw(200_000).unwrap();
-    drive.profile_acceleration().write_raw(1_000_000).unwrap();
-    drive.profile_deceleration().write_raw(1_000_000).unwrap();
-    drive.homing_speed_switch().write_raw(100_000).unwrap();
-    drive.homing_acceleration().write_raw(1_000_000).unwrap();
-    drive.enable_operation(soon(2)).unwrap();
+    quick_and_enabled!(drive);
     (drive, running)
 }
 
@@ -148,4 +157,17 @@ fn homing_without_a_switch_is_a_homing_error() {
         matches!(error, MotionError::HomingError { .. }),
         "{error:?}"
     );
+}
+
+/// The manual's homing and position sequences over the Kinco RS-232 protocol (sections 10.4 and
+/// 11.x print them as telegrams): the same typed calls, through the simulator's RS-232 server.
+#[test]
+fn homes_and_moves_over_rs232() {
+    let description = concat!(env!("CARGO_MANIFEST_DIR"), "/../../descriptions/kinco-fd");
+    let sim = Simulator::load(description).unwrap();
+    let server = Rs232Server::new(&sim, StationId(1), LoopMode::PointToPoint);
+    let mut drive = KincoFd::rs232(InProcessLine::new(server), StationId(1));
+    quick_and_enabled!(drive);
+    assert_eq!(drive.home(HomingMethod::METHOD33, soon(5)).unwrap(), 0);
+    assert_eq!(drive.move_to(Move::to(50_000), soon(5)).unwrap(), 50_000);
 }
