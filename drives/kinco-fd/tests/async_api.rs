@@ -11,7 +11,7 @@ use drivebus::canopen::can::tokio_adapters::TokioIo;
 use drivebus::rs232::async_client::AsyncRs232Client;
 use drivebus::rs232::{LoopMode, Rs232Link, StationId};
 use drivebus::units::{Hertz, Percent, Rpm};
-use drivebus::{BusError, Error, ValueError};
+use drivebus::{Error, ValueError};
 use drivesim::rs232::{InProcessLine, Rs232Server};
 use drivesim::Simulator;
 use kinco_fd::{params, KincoFd};
