@@ -103,6 +103,18 @@ impl Drive {
         self.tick(Duration::ZERO);
     }
 
+    /// Blocks the load (`true`): the actual position stops following the demand, so a move
+    /// ends in a following error; `false` frees it.
+    pub fn block_load(&mut self, blocked: bool) {
+        self.shared.load_blocked = blocked;
+    }
+
+    /// Puts the simulated home switch at `position` (position units as the drive counts them
+    /// now), or removes it (`None`: homing on a switch fails).
+    pub fn place_home_switch(&mut self, position: Option<i64>) {
+        self.shared.home_switch = crate::behaviour::HomeSwitch(position.map(|p| p as f64));
+    }
+
     /// The active fault code, if any.
     pub fn fault(&self) -> Option<u16> {
         self.shared.fault

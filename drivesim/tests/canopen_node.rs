@@ -1,39 +1,21 @@
 //! The CANopen node on an in-process bus against drivebus's SDO client: abort codes, NMT,
 //! heartbeat, and the CiA 402 state machine driving the motor.
 
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
-use std::thread::JoinHandle;
 use std::time::Duration;
 
-use drivebus::canopen::can::in_process::{InProcessBus, InProcessEndpoint};
+use drivebus::canopen::can::in_process::InProcessEndpoint;
 use drivebus::canopen::client::BlockingSdo;
 use drivebus::canopen::nmt::{decode_heartbeat, NmtCommand, NmtState};
 use drivebus::canopen::{CanBus, NodeId, SdoBus};
 use drivebus::BusError;
-use drivesim::canopen::{Node, NodeConfig};
+use drivesim::canopen::{InProcessNode, NodeConfig};
 use drivesim::Simulator;
-
-/// A node running in a thread; stopped and joined on drop.
-struct Running {
-    stop: Arc<AtomicBool>,
-    thread: Option<JoinHandle<()>>,
-}
-
-impl Drop for Running {
-    fn drop(&mut self) {
-        self.stop.store(true, Ordering::Relaxed);
-        if let Some(t) = self.thread.take() {
-            t.join().unwrap();
-        }
-    }
-}
 
 fn start(
     description: &str,
     node: u8,
     heartbeat: Option<Duration>,
-) -> (BlockingSdo<InProcessEndpoint>, Running) {
+) -> (BlockingSdo<InProcessEndpoint>, InProcessNode) {
     start_sim(Simulator::load(description).unwrap(), node, heartbeat)
 }
 
@@ -42,29 +24,14 @@ fn start_sim(
     sim: Simulator,
     node: u8,
     heartbeat: Option<Duration>,
-) -> (BlockingSdo<InProcessEndpoint>, Running) {
-    let bus = InProcessBus::new();
-    let client = bus.endpoint();
-    let mut endpoint = bus.endpoint();
+) -> (BlockingSdo<InProcessEndpoint>, InProcessNode) {
     let config = NodeConfig {
         node: NodeId(node),
         heartbeat,
     };
-    let stop = Arc::new(AtomicBool::new(false));
-    let flag = Arc::clone(&stop);
-    let thread = std::thread::spawn(move || {
-        let mut node = Node::new(sim.clone(), config, sim.variant());
-        node.run_while(&mut endpoint, || !flag.load(Ordering::Relaxed))
-            .unwrap();
-    });
+    let (client, running) = InProcessNode::start(sim, config);
     let sdo = BlockingSdo::new(client).with_timeout(Duration::from_millis(300));
-    (
-        sdo,
-        Running {
-            stop,
-            thread: Some(thread),
-        },
-    )
+    (sdo, running)
 }
 
 const FIXTURE: &str = concat!(

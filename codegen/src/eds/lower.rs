@@ -72,6 +72,7 @@ pub fn lower(dictionary: Dictionary, file: FileId, files: &Files) -> EdsModel {
             .product_name
             .clone()
             .map_or_else(|| "EDS".into(), |p| format!("{p} EDS")),
+        standard: false,
     };
     let cited = ir::CitedDoc::shared(EDS_SOURCE_ID, &file_name);
     let cite = |span: &Span, line: u32, section: String| ir::Citation {

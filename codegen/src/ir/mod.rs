@@ -348,6 +348,10 @@ pub struct SourceDoc {
     pub file: String,
     /// Title.
     pub title: String,
+    /// A published standard (CiA 402) rather than a manual in shared/seeds: cited by section,
+    /// without a line. Left out of the JSON when false.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub standard: bool,
 }
 
 /// A cited manual as its citations name it: one per manual, shared by all of them (a description
@@ -358,6 +362,9 @@ pub struct CitedDoc {
     pub doc: String,
     /// The `SourceDoc::file` it resolves to.
     pub file: String,
+    /// `SourceDoc::standard`: cited by section, without a line. Left out of the JSON when false.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub standard: bool,
 }
 
 impl CitedDoc {
@@ -366,6 +373,16 @@ impl CitedDoc {
         Arc::new(CitedDoc {
             doc: doc.to_owned(),
             file: file.to_owned(),
+            standard: false,
+        })
+    }
+
+    /// The published standard `doc` (CiA 402), cited by section, ready to share.
+    pub fn standard(doc: &str, title: &str) -> Arc<Self> {
+        Arc::new(CitedDoc {
+            doc: doc.to_owned(),
+            file: title.to_owned(),
+            standard: true,
         })
     }
 }

@@ -95,6 +95,9 @@ pub struct RawSource {
     pub id: Spanned<String>,
     pub file: String,
     pub title: String,
+    /// A published standard (CiA 402), cited by section: its citations need no line.
+    #[serde(default)]
+    pub standard: bool,
 }
 
 #[derive(Debug, Clone, Deserialize)]

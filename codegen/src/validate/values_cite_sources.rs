@@ -9,6 +9,8 @@ const RULE: &str = super::rule_name(module_path!());
 fn uncited(kind: &str, name: &str, span: &Span, source: &Option<Citation>) -> Option<Diagnostic> {
     let message = match source {
         None => format!("{kind} `{name}` cites no source"),
+        // A standard is cited by its section; a manual by its line.
+        Some(c) if c.cited.standard && c.section.is_some() => return None,
         Some(c) if c.line.is_none() => format!("{kind} `{name}` cites no line of `{}`", c.doc()),
         Some(_) => return None,
     };
@@ -121,5 +123,27 @@ source = { doc = "m", section = "2" }
                 "parameter `b` cites no line of `m`"
             ]
         );
+    }
+
+    #[test]
+    fn a_standard_is_cited_by_section_but_not_without_one() {
+        let body = r#"
+[[source]]
+id = "cia402"
+file = "CiA 402-2"
+title = "CiA 402-2"
+standard = true
+[[parameter]]
+name = "a"
+type = "u8"
+modbus = { table = "holding", address = 1 }
+source = { doc = "cia402", section = "6082h End velocity" }
+[[parameter]]
+name = "b"
+type = "u8"
+modbus = { table = "holding", address = 2 }
+source = { doc = "cia402" }
+"#;
+        assert_eq!(messages(RULE, body), ["parameter `b` cites no line of `cia402`"]);
     }
 }

@@ -3,6 +3,7 @@
 //! tables cannot express are in `drivebus::control`.
 
 pub mod machine;
+pub mod mode_bits;
 pub mod quirks;
 
 pub use machine::{Machine, Plan, StateDef, StatePattern, TransitionDef, TransitionKind};

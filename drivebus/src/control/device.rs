@@ -26,7 +26,8 @@
 //!   which the planner waits for bit 9, sets it in every state but not ready to switch on, before
 //!   transition 1 activates communication (line 2260): [`Cia402Device::with_quirks`];
 //! * bit 7 (warning), bit 8 and bits 10-15 (target reached, mode-specific, manufacturer): 0; the
-//!   device models no warning, motion or mode.
+//!   device models no warning, motion or mode (the simulator's positioning axis adds bits 10, 12
+//!   and 13 in profile position and homing mode: `drivesim::behaviour::axis`).
 //!
 //! | state | statusword | with `honours-remote` |
 //! |---|---|---|

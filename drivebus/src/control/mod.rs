@@ -14,6 +14,11 @@
 //! * `device` (feature `server`) — the device side of CiA 402 (transitions a controlword takes,
 //!   the statusword of each state): the simulator's CiA 402 behaviour and the test double of masters.
 //! * [`mode`] — changing the mode of operation (0x6060) and confirming it (0x6061).
+//! * [`mode_bits`] — the controlword and statusword bits of profile position and homing.
+//! * [`position`] and [`homing`] — a profile position move and a homing run as pure planners
+//!   (set-point handshake, target reached, following and homing errors).
+//! * `motion_driver` and `motion_error` (std) — their blocking shell behind `drive.move_to(..)`
+//!   and `drive.home(..)`, and its typed errors.
 //! * [`objects`] — the traits generated crates implement to hand their parameters to the driver.
 //! * [`walk`] — what a driver decides between two polls (the next command, or the error a
 //!   deadline ends the walk with), without I/O: the steps both drivers take.
@@ -31,15 +36,24 @@ pub mod device;
 #[cfg(feature = "std")]
 pub mod driver;
 pub use drivebus_model::control::machine;
+pub mod homing;
 pub mod mode;
+pub use drivebus_model::control::mode_bits;
+#[cfg(feature = "std")]
+pub mod motion_driver;
+#[cfg(feature = "std")]
+pub mod motion_error;
 pub mod objects;
+pub mod position;
 pub use drivebus_model::control::quirks;
 pub mod walk;
 
 pub use cia402::{Blocker, Cia402Planner, State, Step, Target, Waiting};
 pub use control_error::{ControlError, StuckReason};
 pub use machine::{Machine, Plan, StateDef, StatePattern, TransitionDef, TransitionKind};
-pub use objects::{Cia402Modes, Cia402Objects, VendorMachine};
+pub use objects::{
+    Cia402Modes, Cia402Objects, HomingObjects, ProfilePositionObjects, VendorMachine,
+};
 pub use quirks::{Quirk, Quirks};
 
 /// A monotonic time in milliseconds, from any epoch the caller chooses; the core has no clock.

@@ -42,3 +42,22 @@ pub trait VendorMachine {
     /// States and transitions.
     const MACHINE: Machine<'static>;
 }
+
+/// The profile position objects of a CiA 402 drive whose modes list profile position (1):
+/// drivegen implements it when the description has the target position (607Ah) and a position
+/// actual value (6064h, else the internal value 6063h).
+pub trait ProfilePositionObjects: Cia402Modes {
+    /// Target position (607Ah).
+    type TargetPosition: Parameter<Raw = i32>;
+    /// Position actual value (6064h or 6063h).
+    type PositionActual: Parameter<Raw = i32>;
+}
+
+/// The homing objects of a CiA 402 drive whose modes list homing (6): drivegen implements it
+/// when the description has the homing method (6098h) as an enum of the methods the drive lists.
+pub trait HomingObjects: Cia402Modes {
+    /// The description's open enum of homing methods.
+    type Method: OpenEnum<Raw = i8>;
+    /// Homing method (6098h).
+    type HomingMethod: Parameter<Raw = i8, Value = Self::Method>;
+}

@@ -114,6 +114,12 @@ impl Behaviour for Cia402 {
         }
     }
 
+    /// The mode-specific bits the axis shows (profile position, homing) join the statusword.
+    fn settle(&mut self, store: &mut Store, shared: &mut Shared) {
+        let word = self.device.statusword() | shared.mode_bits;
+        store.set_int(self.statusword, i128::from(word));
+    }
+
     fn reset(&mut self, store: &mut Store, shared: &mut Shared) {
         self.device = Cia402Device::default().with_quirks(self.quirks);
         self.show(store);

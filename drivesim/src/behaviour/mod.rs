@@ -10,6 +10,7 @@ use drivegen::ir::SpeedPhase;
 use crate::refusal::Refusal;
 use crate::store::{ParamId, Store};
 
+pub mod axis;
 pub mod bounds;
 pub mod cia402;
 pub mod commands;
@@ -18,6 +19,7 @@ pub mod motor;
 pub mod ramp;
 pub mod srdo_validity;
 pub mod state_machine;
+pub mod trajectory;
 pub mod write_lock;
 
 /// What the power stage is doing, as the active state machine commands it.
@@ -58,6 +60,38 @@ pub struct Shared {
     /// Where the motor's speed is relative to its target while the power stage drives it (set
     /// by the motor; `None` while it is off).
     pub phase: Option<SpeedPhase>,
+    /// The mode-specific statusword bits 10, 12 and 13 the axis shows (profile position,
+    /// homing), added to the CiA 402 statusword.
+    pub mode_bits: u16,
+    /// Set by a test: the load does not move, so the following error grows.
+    pub load_blocked: bool,
+    /// Where the simulated home switch is.
+    pub home_switch: HomeSwitch,
+}
+
+/// Where the simulated home switch is, in position units as the drive counts them now; `None`:
+/// the axis has none, and homing on a switch fails.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HomeSwitch(pub Option<f64>);
+
+impl HomeSwitch {
+    /// Where a drive has its home switch at power-on: some way on the negative side, so that a
+    /// homing run is seen to move.
+    pub const AT_POWER_ON: f64 = -12_000.0;
+
+    /// The drive's positions moved by `by` (homing set a new zero): the switch stays where it
+    /// is physically.
+    pub fn shift(&mut self, by: f64) {
+        if let Some(at) = &mut self.0 {
+            *at += by;
+        }
+    }
+}
+
+impl Default for HomeSwitch {
+    fn default() -> Self {
+        HomeSwitch(Some(Self::AT_POWER_ON))
+    }
 }
 
 /// One aspect of the drive's behaviour.
@@ -80,7 +114,8 @@ pub trait Behaviour: Debug + Send {
 }
 
 /// The behaviours a description calls for, in the order they run: the write lock, bounds set by
-/// other parameters, commands, the communication loss supervision, state machines, the motor, the SRDO configuration-valid flag.
+/// other parameters, commands, the communication loss supervision, state machines, the motor,
+/// the positioning axis, the SRDO configuration-valid flag.
 pub fn for_device(store: &mut Store) -> Vec<Box<dyn Behaviour>> {
     let mut behaviours: Vec<Box<dyn Behaviour>> = Vec::new();
     if let Some(b) = write_lock::WriteLock::detect(store) {
@@ -102,6 +137,11 @@ pub fn for_device(store: &mut Store) -> Vec<Box<dyn Behaviour>> {
         behaviours.push(Box::new(b));
     }
     if let Some(b) = motor::Motor::detect(store) {
+        behaviours.push(Box::new(b));
+    }
+    // After the motor: in the positioning modes the axis shows the speed, in the others it
+    // integrates the motor's.
+    if let Some(b) = axis::Axis::detect(store) {
         behaviours.push(Box::new(b));
     }
     if let Some(b) = srdo_validity::SrdoValidity::detect(store) {

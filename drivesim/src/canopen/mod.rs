@@ -2,6 +2,7 @@
 //! NMT, heartbeat, an SDO server, SRDOs and (for LSS slaves) LSS, run over any [`CanBus`](drivebus::canopen::CanBus).
 
 pub mod dictionary;
+pub mod in_process;
 pub mod lss;
 pub mod node;
 pub mod nodes;
@@ -9,6 +10,7 @@ pub mod pdo;
 pub mod srdo;
 
 pub use dictionary::Dictionary;
+pub use in_process::InProcessNode;
 pub use node::{Node, NodeConfig};
 pub use pdo::Pdos;
 pub use srdo::Srdos;

@@ -58,6 +58,7 @@ fn cia402(device: &Device, handle: &Ident) -> Option<TokenStream> {
     };
     let quirks = quirks(device);
     let modes = modes(device, handle, &control);
+    let motion = super::motion::emit(device, handle, &control, &status);
     Some(quote! {
         /// The drive's deviations from CiA 402 (its description's `[cia402]` table), read by the
         /// control driver.
@@ -106,6 +107,8 @@ fn cia402(device: &Device, handle: &Ident) -> Option<TokenStream> {
         }
 
         #modes
+
+        #motion
     })
 }
 

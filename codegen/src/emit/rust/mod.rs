@@ -15,6 +15,7 @@ mod identity_check;
 mod indexed;
 mod layout;
 mod mapping;
+mod motion;
 mod parameter;
 mod parameter_doc;
 mod pdo;

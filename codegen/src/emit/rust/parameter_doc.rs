@@ -245,11 +245,17 @@ pub fn citation(c: &Citation, device: &Device) -> String {
     cite
 }
 
-/// The `params` module's list of the sources the parameters' Source rows cite by id.
+/// The `params` module's list of the sources the parameters' and mappings' Source rows cite by
+/// id; a source only an included profile's unselected objects cite is left out.
 pub fn sources_doc(device: &Device) -> String {
+    let parameters = device.parameters.iter().filter_map(|p| p.source.as_ref());
+    let mappings = device.mappings.iter().filter_map(|m| m.source.as_ref());
+    let cited: std::collections::BTreeSet<&str> =
+        parameters.chain(mappings).map(|c| c.doc()).collect();
     let listed: Vec<String> = device
         .sources
         .iter()
+        .filter(|s| cited.contains(s.id.as_str()))
         .map(|s| format!("`{}`: {}", doc::escape(&s.id), doc::escape(&s.title)))
         .collect();
     if listed.is_empty() {

@@ -198,12 +198,17 @@ impl Lowering<'_> {
                 }
                 Some(_) => {}
                 None => {
-                    self.sources
-                        .insert(id.clone(), ir::CitedDoc::shared(id, &source.file));
+                    let cited = if source.standard {
+                        ir::CitedDoc::standard(id, &source.file)
+                    } else {
+                        ir::CitedDoc::shared(id, &source.file)
+                    };
+                    self.sources.insert(id.clone(), cited);
                     device.sources.push(ir::SourceDoc {
                         id: id.clone(),
                         file: source.file.clone(),
                         title: source.title.clone(),
+                        standard: source.standard,
                     });
                 }
             }

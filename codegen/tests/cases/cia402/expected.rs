@@ -160,8 +160,6 @@ pub mod types {
 /// `lafert`: Lafert Smartris Drive user guide, FW 2.4.2, rel. 2.2 (16.05.2025)
 ///
 /// `swd`: ez-Wheel SWD Safety Drive & Wheel Drive user manual v2.0.3 (2024)
-///
-/// `kinco`: Kinco FD1X3 / FD1X4 low-voltage servo driver user manual
 pub mod params {
     #[allow(unused_imports)]
     use super::types;

@@ -1,0 +1,169 @@
+//! The blocking shell of the motion planners: a profile position move and a homing run, each
+//! refused before anything is sent when it cannot be made (not operation enabled, a target
+//! outside the software limits, a homing method the description does not list), then driven by
+//! polling the statusword until done, failed or the deadline. A following error, homing error or
+//! time out halts the axis (controlword bit 8) before the error is returned, so it is never left
+//! enabled heading for a stale target.
+
+use std::thread;
+
+use super::driver::{set_mode, Instant, POLL_INTERVAL};
+use super::homing::{HomingPlanner, HomingStep};
+use super::mode_bits::{HOMING, PROFILE_POSITION};
+use super::motion_error::MotionError;
+use super::objects::{HomingObjects, ProfilePositionObjects};
+use super::position::{operation_enabled, Move, MovePlanner, MoveStep, SoftLimits};
+use crate::device::Device;
+use crate::link::Link;
+use crate::parameter::{FromWire, OpenEnum, Readable, Writable};
+
+/// Refuses unless the drive is operation enabled; returns the statusword.
+fn enabled<O, L>(device: &mut Device<L>) -> Result<u16, MotionError>
+where
+    O: super::objects::Cia402Objects,
+    L: Link,
+    O::Statusword: Readable<L::Protocol>,
+{
+    let status = device.read_raw::<O::Statusword>()?;
+    if operation_enabled(status) {
+        Ok(status)
+    } else {
+        Err(MotionError::NotOperationEnabled { status })
+    }
+}
+
+/// Moves to `request.target` in profile position mode (switching to it first) and returns the
+/// position actual value once the drive reports target reached. `limits` are the software
+/// position limits (607Dh) the generated handle read, if the drive has them; a relative target
+/// is checked from the actual position.
+pub fn move_to<O, L>(
+    device: &mut Device<L>,
+    request: Move,
+    limits: Option<SoftLimits>,
+    deadline: Instant,
+) -> Result<i32, MotionError>
+where
+    O: ProfilePositionObjects,
+    L: Link,
+    O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
+    O::Statusword: Readable<L::Protocol>,
+    O::ModesOfOperation: Writable<L::Protocol>,
+    O::ModesOfOperationDisplay: Readable<L::Protocol>,
+    O::TargetPosition: Writable<L::Protocol>,
+    O::PositionActual: Readable<L::Protocol>,
+{
+    enabled::<O, L>(device)?;
+    if let Some(limits) = limits {
+        let end = if request.relative {
+            i64::from(device.read_raw::<O::PositionActual>()?) + i64::from(request.target)
+        } else {
+            i64::from(request.target)
+        };
+        if !limits.allow(end) {
+            return Err(MotionError::OutsideLimits {
+                target: end,
+                limits,
+            });
+        }
+    }
+    let mode = O::Mode::from_raw(PROFILE_POSITION, FromWire(()));
+    set_mode::<O, L>(device, mode, deadline)?;
+    device.write_raw::<O::TargetPosition>(request.target)?;
+    let mut planner = MovePlanner::new(request, device.read_raw::<O::Controlword>()?);
+    let halt = planner.halt();
+    run::<O, L>(device, deadline, halt, |status| {
+        match planner.next(status) {
+            MoveStep::Send(controlword) => Poll::Send(controlword),
+            MoveStep::Wait => Poll::Wait,
+            MoveStep::Done => Poll::Done,
+            MoveStep::Failed(failure) => Poll::Fail(MotionError::of_move(failure, status)),
+        }
+    })
+}
+
+/// Homes with `method` in homing mode (switching to it first), the speeds, acceleration and
+/// offset as the drive holds them, and returns the position actual value once homing is
+/// attained.
+pub fn home<O, L>(
+    device: &mut Device<L>,
+    method: O::Method,
+    deadline: Instant,
+) -> Result<i32, MotionError>
+where
+    O: HomingObjects + ProfilePositionObjects,
+    L: Link,
+    O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
+    O::Statusword: Readable<L::Protocol>,
+    O::ModesOfOperation: Writable<L::Protocol>,
+    O::ModesOfOperationDisplay: Readable<L::Protocol>,
+    O::HomingMethod: Writable<L::Protocol>,
+    O::PositionActual: Readable<L::Protocol>,
+{
+    if method.name().is_none() {
+        return Err(MotionError::HomingMethodNotListed {
+            method: method.raw(),
+        });
+    }
+    enabled::<O, L>(device)?;
+    let mode = O::Mode::from_raw(HOMING, FromWire(()));
+    set_mode::<O, L>(device, mode, deadline)?;
+    device.write::<O::HomingMethod>(method)?;
+    let mut planner = HomingPlanner::new(device.read_raw::<O::Controlword>()?);
+    let halt = planner.halt();
+    run::<O, L>(device, deadline, halt, |status| {
+        match planner.next(status) {
+            HomingStep::Send(controlword) => Poll::Send(controlword),
+            HomingStep::Wait => Poll::Wait,
+            HomingStep::Done => Poll::Done,
+            HomingStep::Failed(failure) => Poll::Fail(MotionError::of_homing(failure, status)),
+        }
+    })
+}
+
+/// A planner's answer to a statusword, as the poll loop acts on it.
+enum Poll {
+    Send(u16),
+    Wait,
+    Done,
+    Fail(MotionError),
+}
+
+/// Reads the statusword and acts on `next`'s answer until done (returning the actual position)
+/// or failed; a failure the drive does not stop on by itself, or the deadline, writes `halt`
+/// first.
+fn run<O, L>(
+    device: &mut Device<L>,
+    deadline: Instant,
+    halt: u16,
+    mut next: impl FnMut(u16) -> Poll,
+) -> Result<i32, MotionError>
+where
+    O: ProfilePositionObjects,
+    L: Link,
+    O::Controlword: Writable<L::Protocol>,
+    O::Statusword: Readable<L::Protocol>,
+    O::PositionActual: Readable<L::Protocol>,
+{
+    loop {
+        let status = device.read_raw::<O::Statusword>()?;
+        match next(status) {
+            Poll::Done => return Ok(device.read_raw::<O::PositionActual>()?),
+            Poll::Send(controlword) => {
+                device.write_raw::<O::Controlword>(controlword)?;
+                continue;
+            }
+            Poll::Fail(error) => {
+                if error.is_halted() {
+                    device.write_raw::<O::Controlword>(halt)?;
+                }
+                return Err(error);
+            }
+            Poll::Wait => {}
+        }
+        if Instant::now() >= deadline {
+            device.write_raw::<O::Controlword>(halt)?;
+            return Err(MotionError::Timeout { status });
+        }
+        thread::sleep(POLL_INTERVAL);
+    }
+}

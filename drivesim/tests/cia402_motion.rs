@@ -1,0 +1,198 @@
+//! The simulated positioning axis on the Kinco description (its objects found by CiA 402 index):
+//! profile position with the set-point handshake, target reached and the following error, and
+//! homing onto the simulated switch with the home offset. Time is advanced by hand, so the
+//! trapezoid's timing is checked exactly.
+
+use std::time::Duration;
+
+use drivesim::Drive;
+
+const KINCO: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../descriptions/kinco-fd");
+
+const TARGET_REACHED: u16 = 1 << 10;
+const BIT_12: u16 = 1 << 12;
+const BIT_13: u16 = 1 << 13;
+
+fn drive() -> Drive {
+    let checked = drivegen::check(std::path::Path::new(KINCO));
+    let report = checked.render();
+    Drive::new(checked.device.unwrap_or_else(|| panic!("{report}")))
+}
+
+/// Writes `value` to parameter `name` as a client does, in the parameter's width.
+fn set(drive: &mut Drive, name: &str, value: i64) {
+    let id = drive.store().id(name).unwrap_or_else(|| panic!("{name}"));
+    let width = drive.store().bytes(id).len();
+    let bytes = value.to_le_bytes();
+    drive
+        .write(id, &bytes[..width])
+        .unwrap_or_else(|e| panic!("{name} = {value}: {e:?}"));
+}
+
+fn get(drive: &Drive, name: &str) -> i128 {
+    let id = drive.store().id(name).unwrap();
+    drive.store().int(id).unwrap()
+}
+
+fn status(drive: &Drive) -> u16 {
+    get(drive, "statusword") as u16
+}
+
+/// Operation enabled in `mode`, with a profile of 10 000 units/s at 20 000 units/s².
+fn enabled(mode: i64) -> Drive {
+    let mut drive = drive();
+    for word in [0x06, 0x07, 0x0F] {
+        set(&mut drive, "controlword", word);
+    }
+    set(&mut drive, "modes_of_operation", mode);
+    set(&mut drive, "profile_speed", 10_000);
+    set(&mut drive, "profile_acceleration", 20_000);
+    set(&mut drive, "profile_deceleration", 20_000);
+    drive
+}
+
+/// Ticks in 10 ms steps until `done` or `limit` seconds; returns the seconds spent.
+fn run_until(drive: &mut Drive, limit: f64, done: impl Fn(&Drive) -> bool) -> f64 {
+    let mut spent = 0.0;
+    while !done(drive) {
+        assert!(
+            spent < limit,
+            "not done after {limit} s: status {:#06X}",
+            status(drive)
+        );
+        drive.tick(Duration::from_millis(10));
+        spent += 0.01;
+    }
+    spent
+}
+
+#[test]
+fn a_profile_position_move_acknowledges_travels_the_trapezoid_and_reaches_its_target() {
+    let mut drive = enabled(1);
+    assert_ne!(status(&drive) & TARGET_REACHED, 0, "standing on its target");
+    set(&mut drive, "target_position", 50_000);
+    set(&mut drive, "controlword", 0x1F);
+    let word = status(&drive);
+    assert_eq!(word & (BIT_12 | TARGET_REACHED), BIT_12, "{word:#06X}");
+    set(&mut drive, "controlword", 0x0F);
+    assert_eq!(status(&drive) & BIT_12, 0, "acknowledge falls with bit 4");
+    // 0.5 s up to 10 000/s (2 500), 0.5 s down (2 500), 45 000 at speed (4.5 s): 5.5 s.
+    let spent = run_until(&mut drive, 10.0, |d| status(d) & TARGET_REACHED != 0);
+    assert!((5.4..=5.6).contains(&spent), "{spent} s");
+    assert_eq!(get(&drive, "position_actual"), 50_000);
+    assert_eq!(get(&drive, "velocity_actual_value"), 0);
+
+    set(&mut drive, "target_position", -2_000);
+    set(&mut drive, "controlword", 0x4F);
+    set(&mut drive, "controlword", 0x5F);
+    run_until(&mut drive, 10.0, |d| status(d) & TARGET_REACHED != 0);
+    assert_eq!(
+        get(&drive, "position_actual"),
+        48_000,
+        "relative to the target"
+    );
+}
+
+#[test]
+fn a_set_point_during_a_move_follows_it_unless_changed_immediately() {
+    let mut drive = enabled(1);
+    set(&mut drive, "target_position", 10_000);
+    set(&mut drive, "controlword", 0x1F);
+    set(&mut drive, "controlword", 0x0F);
+    drive.tick(Duration::from_millis(200));
+    set(&mut drive, "target_position", 0);
+    set(&mut drive, "controlword", 0x1F);
+    drive.tick(Duration::from_millis(200));
+    assert!(
+        get(&drive, "position_actual") > 1_000,
+        "still heading for 10 000"
+    );
+    set(&mut drive, "controlword", 0x0F);
+    run_until(&mut drive, 10.0, |d| status(d) & TARGET_REACHED != 0);
+    assert_eq!(
+        get(&drive, "position_actual"),
+        0,
+        "then the buffered set-point"
+    );
+
+    set(&mut drive, "target_position", 10_000);
+    set(&mut drive, "controlword", 0x1F);
+    set(&mut drive, "controlword", 0x0F);
+    drive.tick(Duration::from_millis(500));
+    set(&mut drive, "target_position", 3_000);
+    set(&mut drive, "controlword", 0x3F);
+    run_until(&mut drive, 10.0, |d| status(d) & TARGET_REACHED != 0);
+    assert_eq!(get(&drive, "position_actual"), 3_000, "replaced at once");
+}
+
+#[test]
+fn a_blocked_load_ends_in_a_following_error_and_halt_stops_the_move() {
+    let mut drive = enabled(1);
+    set(&mut drive, "max_following_error", 1_000);
+    drive.block_load(true);
+    set(&mut drive, "target_position", 50_000);
+    set(&mut drive, "controlword", 0x1F);
+    run_until(&mut drive, 2.0, |d| status(d) & BIT_13 != 0);
+    assert_eq!(get(&drive, "position_actual"), 0);
+    drive.block_load(false);
+
+    let mut drive = enabled(1);
+    set(&mut drive, "target_position", 50_000);
+    set(&mut drive, "controlword", 0x1F);
+    drive.tick(Duration::from_secs(1));
+    set(&mut drive, "controlword", 0x010F);
+    let spent = run_until(&mut drive, 2.0, |d| status(d) & TARGET_REACHED != 0);
+    assert!(spent <= 0.6, "stopped on the deceleration: {spent} s");
+    assert!(get(&drive, "position_actual") < 50_000);
+}
+
+#[test]
+fn homing_finds_the_switch_and_sets_the_home_offset() {
+    let mut drive = enabled(6);
+    drive.place_home_switch(Some(-4_000));
+    set(&mut drive, "homing_method", 17);
+    set(&mut drive, "homing_speed_switch", 4_000);
+    set(&mut drive, "homing_acceleration", 40_000);
+    set(&mut drive, "homing_offset", 250);
+    set(&mut drive, "controlword", 0x1F);
+    assert_eq!(status(&drive) & (TARGET_REACHED | BIT_12), 0, "homing");
+    run_until(&mut drive, 3.0, |d| status(d) & BIT_12 != 0);
+    let word = status(&drive);
+    assert_eq!(
+        word & (TARGET_REACHED | BIT_12 | BIT_13),
+        TARGET_REACHED | BIT_12
+    );
+    assert_eq!(
+        get(&drive, "position_actual"),
+        -250,
+        "home is minus the offset"
+    );
+
+    // The switch stays where it is: homing again from elsewhere ends on the same place.
+    set(&mut drive, "controlword", 0x0F);
+    set(&mut drive, "modes_of_operation", 1);
+    set(&mut drive, "target_position", 5_000);
+    set(&mut drive, "controlword", 0x1F);
+    run_until(&mut drive, 5.0, |d| status(d) & TARGET_REACHED != 0);
+    set(&mut drive, "controlword", 0x0F);
+    set(&mut drive, "modes_of_operation", 6);
+    set(&mut drive, "controlword", 0x1F);
+    run_until(&mut drive, 5.0, |d| status(d) & BIT_12 != 0);
+    assert_eq!(get(&drive, "position_actual"), -250);
+}
+
+#[test]
+fn homing_on_the_current_position_is_at_once_and_without_a_switch_fails() {
+    let mut drive = enabled(6);
+    set(&mut drive, "homing_method", 35);
+    set(&mut drive, "homing_offset", -7);
+    set(&mut drive, "controlword", 0x1F);
+    assert_ne!(status(&drive) & BIT_12, 0);
+    assert_eq!(get(&drive, "position_actual"), 7);
+
+    let mut drive = enabled(6);
+    drive.place_home_switch(None);
+    set(&mut drive, "homing_method", 17);
+    set(&mut drive, "controlword", 0x1F);
+    assert_eq!(status(&drive) & (BIT_12 | BIT_13), BIT_13);
+}
