@@ -10,8 +10,9 @@ use std::time::Duration;
 
 use drivebus::canopen::can::in_process::{InProcessBus, InProcessEndpoint};
 use drivebus::canopen::client::lss::BlockingLss;
-use drivebus::canopen::client::scan::scan;
-use drivebus::canopen::lss::{Command, IdentityWord, LssAddress, LssMode, NewNodeId};
+use drivebus::canopen::lss::{
+    Command, Fastscan, FastscanProgress, IdentityWord, LssAddress, LssMode, NewNodeId,
+};
 use drivebus::canopen::nmt::NmtCommand;
 use drivebus::canopen::{CanFrame, NodeId};
 use drivesim::canopen::{nodes, Node, NodeConfig};
@@ -44,49 +45,85 @@ fn serve(bus: &InProcessBus, mut nodes: Vec<Node>, stop: &Arc<AtomicBool>) -> Jo
     })
 }
 
-/// Fastscan steps of 20 ms: silence is an answer, so a step must outlast the simulator's
-/// slowest turn on a loaded machine (5 ms steps lost the node under a parallel build).
+/// The blocking master on a real clock; its answers come from nodes served by [`serve`].
 fn master(bus: &InProcessBus) -> BlockingLss<InProcessEndpoint> {
-    BlockingLss::new(bus.endpoint())
-        .with_timeout(500 * MS)
-        .with_fastscan_step(20 * MS)
+    BlockingLss::new(bus.endpoint()).with_timeout(500 * MS)
 }
 
 fn lss(node: &mut Node, command: Command) -> Vec<CanFrame> {
     node.handle(&command.encode(), Duration::ZERO)
 }
 
+/// The Fastscan step, in simulated time.
+const STEP: Duration = Duration::from_millis(10);
+
+/// `frame` delivered to every node at `now`: their answers.
+fn broadcast(nodes: &mut [Node], frame: &CanFrame, now: Duration) -> Vec<CanFrame> {
+    nodes
+        .iter_mut()
+        .flat_map(|n| n.handle(frame, now))
+        .collect()
+}
+
+/// An SDO upload request of 1018h sub 1 (vendor-ID) to node `id`.
+fn vendor_id_request(id: u16) -> CanFrame {
+    CanFrame::new(0x600 + id, &[0x40, 0x18, 0x10, 1, 0, 0, 0, 0]).unwrap()
+}
+
+/// Drivebus's Fastscan driven in lockstep with the nodes, sans-I/O, in simulated time: each
+/// request reaches every node and every answer is in before the step's time passes. In Fastscan
+/// silence is an answer, so on a real clock a step the simulator's thread answers late (a
+/// loaded machine) loses the node; here the outcome depends on the protocol only. (The blocking
+/// master on a real clock is covered by the CLI's `lss` test and python canopen's LssMaster.)
+fn fastscan(nodes: &mut [Node], now: &mut Duration) -> FastscanProgress {
+    let mut scan = Fastscan::new(STEP, *now);
+    loop {
+        while let Some(request) = scan.poll_transmit() {
+            for answer in broadcast(nodes, &request, *now) {
+                scan.handle(&answer, *now);
+            }
+        }
+        let Some(deadline) = scan.deadline() else {
+            return scan.progress();
+        };
+        *now = (*now).max(deadline);
+        scan.handle_timeout(*now);
+    }
+}
+
 #[test]
 fn fastscan_finds_two_unconfigured_swds_and_gives_them_ids_20_and_21() {
-    let bus = InProcessBus::new();
-    let stop = Arc::new(AtomicBool::new(false));
-    let nodes = vec![
+    let mut nodes = vec![
         node(swd(0x2222), 1).lss_unconfigured(),
         node(swd(0x1111), 2).lss_unconfigured(),
     ];
-    let server = serve(&bus, nodes, &stop);
-    let mut lss = master(&bus);
-    let all: Vec<NodeId> = (1..=127).map(NodeId).collect();
-    assert!(
-        scan(lss.bus_mut(), &all, 50 * MS).unwrap().is_empty(),
-        "silent before LSS"
-    );
-    assert_eq!(lss.identify_non_configured(), Ok(2));
+    let mut now = Duration::ZERO;
+    for id in [1, 2] {
+        let answers = broadcast(&mut nodes, &vendor_id_request(id), now);
+        assert!(answers.is_empty(), "silent before LSS");
+    }
+    let identify = Command::IdentifyNonConfigured.encode();
+    assert_eq!(broadcast(&mut nodes, &identify, now).len(), 2);
     let mut found = Vec::new();
     for id in [20, 21] {
-        let address = lss.fastscan().unwrap().expect("an unconfigured node");
-        lss.configure_node_id(id).unwrap();
-        lss.switch_global(LssMode::Waiting).unwrap();
+        let FastscanProgress::Found(address) = fastscan(&mut nodes, &mut now) else {
+            panic!("an unconfigured node is found");
+        };
+        let configure = Command::ConfigureNodeId(NewNodeId::new(id).unwrap()).encode();
+        let answers = broadcast(&mut nodes, &configure, now);
+        assert_eq!(answers.len(), 1, "only the node Fastscan selected answers");
+        let waiting = Command::SwitchGlobal(LssMode::Waiting).encode();
+        broadcast(&mut nodes, &waiting, now);
         found.push((address.serial, id));
     }
-    assert_eq!(lss.fastscan(), Ok(None));
-    let answered = scan(lss.bus_mut(), &all, 100 * MS).unwrap();
-    stop.store(true, Ordering::Relaxed);
-    server.join().unwrap();
+    assert_eq!(fastscan(&mut nodes, &mut now), FastscanProgress::NoneLeft);
     assert_eq!(found, [(0x1111, 20), (0x2222, 21)]);
-    let ids: Vec<u8> = answered.iter().map(|n| n.node.get()).collect();
-    assert_eq!(ids, [20, 21], "each answers SDO at its new id");
-    assert!(answered.iter().all(|n| n.vendor_id == Some(0x515)));
+    for id in [20, 21] {
+        let answers = broadcast(&mut nodes, &vendor_id_request(id), now);
+        assert_eq!(answers.len(), 1, "node {id} answers SDO at its new id");
+        assert_eq!(answers[0].id(), 0x580 + id);
+        assert_eq!(answers[0].data()[4..8], 0x515u32.to_le_bytes());
+    }
 }
 
 #[test]
