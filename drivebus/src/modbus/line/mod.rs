@@ -94,7 +94,7 @@ impl<B> ModbusLine<B> {
     /// A handle that panicked while holding it left no half-sent request behind (each request
     /// completes or fails inside one call), so the line stays usable.
     pub fn lock(&self) -> Result<LineGuard<'_, B>, BusError> {
-        park::block_on(self.lock_async())
+        park::park_until(self.lock_async())
     }
 
     /// [`lock`](Self::lock) for async tasks: waits without blocking the thread, on any executor.

@@ -21,12 +21,12 @@ impl Wake for Unpark {
     }
 }
 
-/// Polls `future` to completion, parking the thread between polls. Spurious unparks only
-/// cost a poll.
-pub(super) fn block_on<F: Future>(future: F) -> F::Output {
+/// Parks the thread until `turn` (the line's queue future: no I/O, no runtime) is ready.
+/// Spurious unparks only cost a poll.
+pub(super) fn park_until<F: Future>(turn: F) -> F::Output {
     let waker = Waker::from(Arc::new(Unpark(thread::current())));
     let mut cx = Context::from_waker(&waker);
-    let mut future = pin!(future);
+    let mut future = pin!(turn);
     loop {
         if let Poll::Ready(output) = future.as_mut().poll(&mut cx) {
             return output;
