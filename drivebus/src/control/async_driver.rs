@@ -1,5 +1,5 @@
 //! The async driver (feature `async`): walks a drive to a state over an async link, as the
-//! blocking `driver` does, with the same steps ([`walk`](super::walk)) and the same errors.
+//! blocking `driver` does, with the same steps ([`walk`]) and the same errors.
 //!
 //! Only the waiting differs. Nothing here reads a clock: the poll interval is slept on the
 //! application's [`Timer`], and the whole procedure runs [`within`] its time limit, so the deadline
