@@ -12,6 +12,8 @@
 //!   with its line;
 //! * [`network_file`] reads the network files of `drivegen network boot` (issue 31), each node
 //!   with its line;
+//! * [`gateway_file`] reads the configuration of `drivegen gateway` (issue 35), each drive with
+//!   its line;
 //! * [`names`] is the naming policy (description names to Rust identifiers) that validation,
 //!   the EDS reader and writer and the emitter share;
 //! * [`Builder`] is the `build.rs` entry point of drive crates.
@@ -23,6 +25,7 @@ pub mod diagnostic;
 pub mod diff;
 pub mod eds;
 pub mod emit;
+pub mod gateway_file;
 pub mod ir;
 pub mod load;
 mod mandatory_objects;

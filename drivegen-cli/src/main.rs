@@ -66,6 +66,9 @@ enum Command {
     /// Save a drive's configuration to a file, write it back, or compare it (exit code 0: done
     /// or equal, 1: different, 2: error).
     Config(commands::config::Args),
+    /// Expose drives to an MQTT broker: values retained with their units, writes from clients
+    /// through the checks of `write` (docs/gateway.md).
+    Gateway(commands::gateway::Args),
 }
 
 fn main() -> ExitCode {
@@ -94,6 +97,7 @@ fn main() -> ExitCode {
         Command::Config(args) => commands::config::run(args),
         Command::Lss(args) => commands::lss::run(args),
         Command::Network(args) => commands::network::run(args),
+        Command::Gateway(args) => commands::gateway::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

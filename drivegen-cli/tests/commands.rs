@@ -1,7 +1,6 @@
 //! The `drivegen` binary end to end against the simulator: help, read/write/watch by name with
 //! units, refusals before anything is sent, a dead bus, `sim` and `decode`.
 
-use std::io::{BufRead, BufReader};
 use std::net::TcpListener;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -275,28 +274,7 @@ fn watch_polls_until_the_count() {
 #[test]
 fn sim_announces_its_real_port_and_serves_until_stopped() {
     let lafert = lafert_path();
-    let mut child = Command::new(BIN)
-        .args([
-            "sim",
-            lafert.to_str().unwrap(),
-            "--modbus-tcp",
-            "127.0.0.1:0",
-            "--set",
-            "bus_dc_link=4950",
-        ])
-        .stdout(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut line = String::new();
-    BufReader::new(child.stdout.take().unwrap())
-        .read_line(&mut line)
-        .unwrap();
-    let addr = line
-        .trim()
-        .strip_prefix("listening on modbus-tcp ")
-        .and_then(|rest| rest.split_whitespace().next())
-        .unwrap_or_else(|| panic!("announcement: {line}"))
-        .to_string();
+    let (mut child, addr) = support::modbus_sim(&lafert, &["--set", "bus_dc_link=4950"]);
     assert!(!addr.ends_with(":0"), "the real port: {addr}");
     let output = drivegen(&[
         "read",

@@ -256,6 +256,34 @@ def clear_generated_seeds():
                     seed.unlink()
 
 
+def gateway_file_seeds():
+    """`drivegen gateway` files (docs/gateway.md): whole, cut short, a drive name unfit for a topic."""
+    text = GATEWAY_FILE.encode()
+    write("gateway_file", "gateway.toml", text)
+    write("gateway_file", "truncated.toml", text[: text.index(b"interval_ms") + 5])
+    write("gateway_file", "topic_name.toml", text.replace(b'"left"', b'"left/#"'))
+
+
+GATEWAY_FILE = """format = 1
+read_only = false
+
+[mqtt]
+host = "127.0.0.1"
+port = 1883
+username = "gateway"
+password_env = "GATEWAY_PASSWORD"
+
+[[drive]]
+name = "left"
+description = "../descriptions/lafert-smartris"
+bus = { modbus_tcp = "127.0.0.1:5020", unit = 3, timeout_ms = 200, rs232_loop = true }
+interval_ms = 100
+publish_every_poll = true
+parameters = ["bus_dc_link", "speed_ramp_up"]
+writable = ["speed_ramp_up"]
+"""
+
+
 if __name__ == "__main__":
     clear_generated_seeds()
     modbus_seeds()
@@ -268,3 +296,4 @@ if __name__ == "__main__":
     config_file_seeds()
     network_router_seeds()
     network_file_seeds()
+    gateway_file_seeds()

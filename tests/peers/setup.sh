@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Installs the independent test peers: socat (pty pairs) and a Python venv at the workspace root
-# with pinned pymodbus / pyserial / canopen / python-can / pyModbusTCP / cantools. Idempotent; a no-op when
-# already done.
+# Installs the independent test peers: socat (pty pairs), mosquitto (an MQTT broker and its
+# clients) and a Python venv at the workspace root with pinned pymodbus / pyserial / canopen /
+# python-can / pyModbusTCP / cantools. Idempotent; a no-op when already done.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
@@ -9,11 +9,16 @@ venv="$root/.venv"
 pins=(pymodbus==3.16.1 pyserial==3.5 canopen==2.4.1 python-can==4.6.1 pyModbusTCP==0.3.1 cantools==45.1.0)
 stamp="$venv/.drivegen-peers"
 
-if ! command -v socat >/dev/null 2>&1; then
+# socat for pty pairs; mosquitto (broker and clients) for the gateway's MQTT tests.
+missing=()
+command -v socat >/dev/null 2>&1 || missing+=(socat)
+command -v mosquitto >/dev/null 2>&1 || [ -x /usr/sbin/mosquitto ] || missing+=(mosquitto)
+command -v mosquitto_sub >/dev/null 2>&1 || missing+=(mosquitto-clients)
+if [ ${#missing[@]} -gt 0 ]; then
     sudo_cmd=()
     if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
     "${sudo_cmd[@]}" apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq socat >/dev/null
+    DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq "${missing[@]}" >/dev/null
 fi
 
 # The stamp records the exact pins, so changing a pin reinstalls and an unchanged venv is skipped.

@@ -7,6 +7,7 @@ pub mod decode;
 pub mod diff;
 pub mod dump;
 pub mod eds;
+pub mod gateway;
 pub mod generate;
 pub mod lss;
 pub mod network;

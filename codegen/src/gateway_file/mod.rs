@@ -1,0 +1,85 @@
+//! The configuration file `drivegen gateway` reads (docs/gateway.md): the MQTT broker to publish
+//! to, and each drive to expose, with its description, its bus (in the words of the CLI's bus
+//! options), the parameters to publish and the ones clients may write. This module is the file
+//! alone: text to [`GatewayFile`], every entry with the line it is on; resolving descriptions,
+//! parameters and bus options is the CLI's, before any bus is opened.
+
+mod error;
+mod read;
+#[cfg(test)]
+mod tests;
+
+pub use error::{GatewayFileError, GatewayFileErrorKind};
+pub use read::parse;
+
+/// The version of the file format this module reads (`format = 1`).
+pub const FORMAT_VERSION: u32 = 1;
+
+/// A gateway: where to publish, and the drives.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GatewayFile {
+    /// The `[mqtt]` table.
+    pub mqtt: MqttEntry,
+    /// Refuse every write, whatever the drives' `writable` lists say.
+    pub read_only: bool,
+    /// The `[[drive]]` entries, in the file's order.
+    pub drives: Vec<DriveEntry>,
+}
+
+/// The MQTT broker the gateway publishes to.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MqttEntry {
+    /// Its host (default `127.0.0.1`).
+    pub host: String,
+    /// Its port (default 1883).
+    pub port: u16,
+    /// The first topic level (default `drivegen`).
+    pub topic_prefix: String,
+    /// The user name to log in with, if the broker asks for one.
+    pub username: Option<String>,
+    /// The environment variable holding the password (kept out of the file).
+    pub password_env: Option<String>,
+}
+
+/// One `[[drive]]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DriveEntry {
+    /// Its name: the topic level after the prefix (letters, digits, `-` and `_`).
+    pub name: String,
+    /// Its description, as written (a path relative to the file, or absolute).
+    pub description: String,
+    /// How to reach it: the CLI's bus options without their `--` (`modbus_tcp = "HOST:PORT"`,
+    /// `unit = 3`, `can = "slcan:..."`, `node_id = 5`, `timeout_ms = 200`), in the file's order.
+    pub bus: Vec<BusOption>,
+    /// Milliseconds between polls (default 500).
+    pub interval_ms: u32,
+    /// Publish every poll (`true`), or only the values that changed (default).
+    pub publish_every_poll: bool,
+    /// The parameters to publish.
+    pub parameters: Vec<Named>,
+    /// The parameters clients may write (default none).
+    pub writable: Vec<Named>,
+    /// The line of its `[[drive]]` (1-based).
+    pub line: u32,
+}
+
+/// One bus option: its name (`modbus_tcp`) and its value as the command line would take it; a
+/// flag set to `true` has no value.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BusOption {
+    /// The option's name, with `_` where the command line has `-`.
+    pub name: String,
+    /// Its value; `None` for a flag.
+    pub value: Option<String>,
+    /// The line it is on (1-based).
+    pub line: u32,
+}
+
+/// A name with the line it is on.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Named {
+    /// The name.
+    pub name: String,
+    /// The line (1-based).
+    pub line: u32,
+}

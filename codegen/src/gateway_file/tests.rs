@@ -1,0 +1,123 @@
+use super::*;
+
+const GOOD: &str = r#"format = 1
+
+[mqtt]
+port = 18830
+username = "gateway"
+password_env = "GATEWAY_PASSWORD"
+
+[[drive]]
+name = "left-wheel"
+description = "lafert.toml"
+bus = { modbus_tcp = "127.0.0.1:5020", unit = 3, timeout_ms = 200 }
+interval_ms = 100
+parameters = ["bus_dc_link", "speed_setpoint"]
+writable = ["speed_setpoint"]
+
+[[drive]]
+name = "kinco"
+description = "/abs/kinco"
+bus = { kinco_rs232 = "/dev/ttyUSB0", rs232_loop = true, node_id = 2 }
+parameters = ["actual_velocity"]
+"#;
+
+#[test]
+fn a_whole_file_reads_with_defaults_and_lines() {
+    let file = parse(GOOD).unwrap();
+    assert_eq!(file.mqtt.host, "127.0.0.1");
+    assert_eq!(file.mqtt.port, 18830);
+    assert_eq!(file.mqtt.topic_prefix, "drivegen");
+    assert_eq!(file.mqtt.password_env.as_deref(), Some("GATEWAY_PASSWORD"));
+    assert!(!file.read_only);
+    let [left, kinco] = file.drives.as_slice() else {
+        panic!("two drives expected: {:?}", file.drives)
+    };
+    assert_eq!(left.name, "left-wheel");
+    assert_eq!(left.line, 8);
+    assert_eq!(left.interval_ms, 100);
+    let options: Vec<_> = left
+        .bus
+        .iter()
+        .map(|o| (o.name.as_str(), o.value.as_deref(), o.line))
+        .collect();
+    assert_eq!(
+        options,
+        [
+            ("modbus_tcp", Some("127.0.0.1:5020"), 11),
+            ("unit", Some("3"), 11),
+            ("timeout_ms", Some("200"), 11)
+        ]
+    );
+    assert_eq!(left.writable[0].name, "speed_setpoint");
+    assert_eq!(left.writable[0].line, 14);
+    assert_eq!(kinco.interval_ms, 500);
+    assert!(kinco.writable.is_empty());
+    assert_eq!(kinco.bus[1].name, "rs232_loop");
+    assert_eq!(kinco.bus[1].value, None);
+}
+
+fn refused(text: &str) -> GatewayFileError {
+    parse(text).expect_err("refused")
+}
+
+#[test]
+fn a_drive_name_twice_is_refused_at_its_second_entry() {
+    let text = format!(
+        "{GOOD}\n[[drive]]\nname = \"kinco\"\ndescription = \"x\"\nbus = {{ can = \"x\" }}\nparameters = [\"a\"]\n"
+    );
+    let error = refused(&text);
+    assert_eq!(
+        error.kind,
+        GatewayFileErrorKind::DuplicateDrive("kinco".into())
+    );
+    assert_eq!(error.line, Some(22));
+}
+
+#[test]
+fn a_name_that_is_not_one_topic_level_is_refused() {
+    let text = GOOD.replace("left-wheel", "left/+");
+    let error = refused(&text);
+    assert_eq!(error.line, Some(9));
+    assert!(error.to_string().contains("topic level"), "{error}");
+}
+
+#[test]
+fn shapes_out_of_range_are_refused_with_their_line() {
+    let cases = [
+        (GOOD.replace("port = 18830", "port = 70000"), 4, "port"),
+        (
+            GOOD.replace("interval_ms = 100", "interval_ms = 0"),
+            12,
+            "interval_ms",
+        ),
+        (GOOD.replace("unit = 3", "unit = [3]"), 11, "unit"),
+        (
+            GOOD.replace("parameters = [\"actual_velocity\"]", "parameters = []"),
+            16,
+            "parameters",
+        ),
+    ];
+    for (text, line, key) in cases {
+        let error = refused(&text);
+        assert_eq!(error.line, Some(line), "{key}: {error}");
+        assert!(error.to_string().contains(key), "{key}: {error}");
+    }
+}
+
+#[test]
+fn unknown_keys_missing_format_and_no_drives_are_refused() {
+    assert!(matches!(
+        refused(&GOOD.replace("interval_ms", "intervall_ms")).kind,
+        GatewayFileErrorKind::Syntax(_)
+    ));
+    assert_eq!(
+        refused(&GOOD.replace("format = 1", "")).kind,
+        GatewayFileErrorKind::MissingFormat
+    );
+    assert_eq!(refused("format = 1\n").kind, GatewayFileErrorKind::NoDrives);
+    assert_eq!(
+        refused(&GOOD.replace("format = 1", "format = 2")).kind,
+        GatewayFileErrorKind::UnsupportedFormat(2)
+    );
+}

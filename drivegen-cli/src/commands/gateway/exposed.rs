@@ -1,0 +1,186 @@
+//! A gateway file resolved against the descriptions it names: each drive's description loaded,
+//! its parameters found, its writable ones writable, its bus options read the way the command
+//! line reads them. Everything is checked here, before a bus or the broker is opened.
+
+use std::collections::BTreeSet;
+use std::path::Path;
+
+use clap::Parser;
+use drivegen::gateway_file::{self, BusOption, DriveEntry, MqttEntry, Named};
+use drivegen::ir::{Device, Parameter};
+
+use crate::connect::BusArgs;
+use crate::error::CliError;
+
+/// The gateway a file describes.
+pub struct Gateway {
+    /// The broker.
+    pub mqtt: MqttEntry,
+    /// Every write refused.
+    pub read_only: bool,
+    /// The drives, in the file's order.
+    pub drives: Vec<Drive>,
+}
+
+/// One drive the gateway exposes.
+pub struct Drive {
+    /// Its topic level.
+    pub name: String,
+    /// Its description.
+    pub device: Device,
+    /// How to reach it.
+    pub bus: BusArgs,
+    /// Milliseconds between polls.
+    pub interval_ms: u32,
+    /// Publish every poll rather than changes only.
+    pub publish_every_poll: bool,
+    /// The names of the parameters published, each in the description.
+    pub parameters: Vec<String>,
+    /// The names of the parameters clients may write, each writable in the description.
+    pub writable: Vec<String>,
+}
+
+/// The bus options alone, read by the command line's own parser.
+#[derive(Parser)]
+#[command(no_binary_name = true)]
+struct BusOnly {
+    #[command(flatten)]
+    bus: BusArgs,
+}
+
+impl Gateway {
+    /// Reads `path` and resolves every drive; the first problem is refused with the file, line
+    /// and reason.
+    pub fn load(path: &Path) -> Result<Self, CliError> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| CliError::Io(format!("cannot read {}: {e}", path.display())))?;
+        let at = |line: Option<u32>| match line {
+            Some(line) => format!("{}:{line}", path.display()),
+            None => path.display().to_string(),
+        };
+        let file = gateway_file::parse(&text)
+            .map_err(|e| CliError::Invalid(format!("{}: {}", at(e.line), e.kind_text())))?;
+        let folder = path.parent().unwrap_or(Path::new("."));
+        let drives = file
+            .drives
+            .iter()
+            .map(|entry| {
+                Drive::resolve(entry, folder)
+                    .map_err(|(line, why)| CliError::Invalid(format!("{}: {why}", at(Some(line)))))
+            })
+            .collect::<Result<_, _>>()?;
+        Ok(Self {
+            mqtt: file.mqtt,
+            read_only: file.read_only,
+            drives,
+        })
+    }
+
+    /// The broker password, from the environment variable the file names.
+    pub fn password(&self) -> Result<Option<String>, CliError> {
+        let Some(variable) = &self.mqtt.password_env else {
+            return Ok(None);
+        };
+        std::env::var(variable).map(Some).map_err(|_| {
+            CliError::Usage(format!(
+                "the gateway file's `password_env` names {variable}, which is not set"
+            ))
+        })
+    }
+}
+
+type Refusal = (u32, String);
+
+impl Drive {
+    fn resolve(entry: &DriveEntry, folder: &Path) -> Result<Self, Refusal> {
+        let path = folder.join(&entry.description);
+        let device = super::super::load(&path)
+            .map_err(|e| (entry.line, format!("drive `{}`: {e}", entry.name)))?;
+        let parameters = names(&device, &entry.parameters, |_| None)?;
+        let writable = names(&device, &entry.writable, |p| {
+            (!writable(p)).then(|| format!("`{}` is read-only in its description", p.name))
+        })?;
+        Ok(Self {
+            name: entry.name.clone(),
+            bus: bus_args(&entry.bus, entry.line)?,
+            device,
+            interval_ms: entry.interval_ms,
+            publish_every_poll: entry.publish_every_poll,
+            parameters,
+            writable,
+        })
+    }
+
+    /// The names clients may write: none when the whole gateway is read-only.
+    pub fn writable_names(&self, read_only: bool) -> BTreeSet<String> {
+        match read_only {
+            true => BTreeSet::new(),
+            false => self.writable.iter().cloned().collect(),
+        }
+    }
+
+    /// The parameter called `name` (every name here was found in the description at load).
+    pub fn parameter(&self, name: &str) -> Option<&Parameter> {
+        self.device.parameter(name)
+    }
+}
+
+/// The names, each found in `device` and passing `refuse`.
+fn names(
+    device: &Device,
+    named: &[Named],
+    refuse: impl Fn(&Parameter) -> Option<String>,
+) -> Result<Vec<String>, Refusal> {
+    named
+        .iter()
+        .map(|n| {
+            let parameter =
+                super::super::parameter(device, &n.name).map_err(|e| (n.line, e.to_string()))?;
+            match refuse(parameter) {
+                Some(why) => Err((n.line, why)),
+                None => Ok(n.name.clone()),
+            }
+        })
+        .collect()
+}
+
+/// Whether some protocol address of `parameter` takes writes.
+fn writable(parameter: &Parameter) -> bool {
+    let addresses = parameter.modbus.iter().map(|a| a.access.write);
+    let canopen = parameter.canopen.iter().map(|a| a.access.write);
+    let rs232 = parameter.rs232.iter().map(|a| a.access.write);
+    addresses.chain(canopen).chain(rs232).any(|w| w)
+}
+
+/// The bus options as the command line would take them: `modbus_tcp = "H:P"` is
+/// `--modbus-tcp H:P`, `rs232_loop = true` is `--rs232-loop`. A refusal points at the `bus`
+/// table (else at the drive's `line`).
+fn bus_args(options: &[BusOption], line: u32) -> Result<BusArgs, Refusal> {
+    let line = options.first().map_or(line, |o| o.line);
+    let mut argv = Vec::new();
+    for option in options {
+        argv.push(format!("--{}", option.name.replace('_', "-")));
+        argv.extend(option.value.clone());
+    }
+    let parsed = BusOnly::try_parse_from(&argv).map_err(|e| {
+        let why = e.to_string();
+        let first = why
+            .lines()
+            .next()
+            .unwrap_or("")
+            .trim_start_matches("error: ");
+        (line, format!("bus: {first}"))
+    })?;
+    let bus = parsed.bus;
+    if bus.unit.len() > 1 || bus.node_id.len() > 1 {
+        return Err((line, "bus: one drive per [[drive]]".into()));
+    }
+    let named = [&bus.modbus_tcp, &bus.serial, &bus.can, &bus.kinco_rs232];
+    if named.iter().all(|b| b.is_none()) {
+        return Err((
+            line,
+            "bus: name one of modbus_tcp, serial, can or kinco_rs232".into(),
+        ));
+    }
+    Ok(bus)
+}

@@ -1,0 +1,67 @@
+//! `drivegen gateway CONFIG.toml`: the drives a gateway file names, polled on their buses and
+//! published to an MQTT broker, with writes from MQTT clients through the checks of `drivegen
+//! write` (docs/gateway.md).
+//!
+//! A thread per drive owns its blocking session (the bus I/O); the MQTT side runs on a tokio
+//! runtime, a task per drive with its own connection so each drive has its own last will. The
+//! two meet through channels only, so no bus call ever blocks the runtime.
+
+mod exposed;
+mod mqtt;
+mod payload;
+mod poller;
+
+use std::path::PathBuf;
+
+use tokio::sync::watch;
+
+use crate::error::CliError;
+
+/// Arguments of `gateway`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The gateway file (docs/gateway.md): the broker, and each drive with its description,
+    /// bus, parameters and the parameters clients may write.
+    config: PathBuf,
+}
+
+/// Checks the whole file (descriptions, parameters, bus options) before any bus or broker is
+/// opened, then serves until SIGINT or SIGTERM, when each drive's status goes offline.
+pub fn run(args: Args) -> Result<(), CliError> {
+    let gateway = exposed::Gateway::load(&args.config)?;
+    let password = gateway.password()?;
+    init_logging();
+    let runtime = tokio::runtime::Builder::new_current_thread()
+        .enable_all()
+        .build()
+        .map_err(|e| CliError::Io(format!("cannot start the gateway's runtime: {e}")))?;
+    let (stop, stopped) = watch::channel(false);
+    std::thread::scope(|scope| {
+        let mut tasks = Vec::new();
+        for drive in &gateway.drives {
+            let (requests, pending) = std::sync::mpsc::channel();
+            let (reports, latest) = watch::channel(poller::Report::Starting);
+            let poll_stop = stopped.clone();
+            scope.spawn(move || poller::run(drive, &pending, &reports, &poll_stop));
+            tasks.push(mqtt::DriveTask {
+                topics: mqtt::Topics::new(&gateway.mqtt.topic_prefix, &drive.name),
+                writable: drive.writable_names(gateway.read_only),
+                publish_every_poll: drive.publish_every_poll,
+                latest,
+                requests,
+                stop: stopped.clone(),
+            });
+        }
+        // The pollers see the stop (or their dropped request channel) at their next wait and
+        // end; the scope joins them.
+        runtime.block_on(mqtt::serve(&gateway.mqtt, password, tasks, stop))
+    })
+}
+
+/// Log lines on standard error, info and above.
+fn init_logging() {
+    let _ = tracing_subscriber::fmt()
+        .with_writer(std::io::stderr)
+        .with_target(false)
+        .try_init();
+}

@@ -1,0 +1,366 @@
+//! `drivegen gateway` against a real broker (Debian's mosquitto, started here on a free
+//! loopback port) and a simulated Lafert drive on Modbus TCP; mosquitto_sub and mosquitto_pub
+//! are the independent clients.
+
+mod support;
+
+use std::io::{BufRead, BufReader};
+use std::net::{TcpListener, TcpStream};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::sync::mpsc::{self, Receiver};
+use std::time::{Duration, Instant};
+
+use support::{drivegen, stderr, BIN};
+
+/// Everything here answers within seconds; a spawned process gets this much to start.
+const WAIT: Duration = Duration::from_secs(20);
+
+fn lafert() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/lafert-smartris")
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("drivegen-gateway-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A child process killed when the test ends, passed or not.
+struct Running(Child);
+
+impl Drop for Running {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+fn free_port() -> u16 {
+    TcpListener::bind("127.0.0.1:0")
+        .unwrap()
+        .local_addr()
+        .unwrap()
+        .port()
+}
+
+/// mosquitto on 127.0.0.1:`port`, without persistence: a restart loses every retained message.
+fn broker(dir: &Path, port: u16) -> Running {
+    let conf = dir.join("mosquitto.conf");
+    std::fs::write(
+        &conf,
+        format!("listener {port} 127.0.0.1\nallow_anonymous true\npersistence false\n"),
+    )
+    .unwrap();
+    // Debian puts the broker in /usr/sbin, which a user's PATH may not hold.
+    let program = ["/usr/sbin/mosquitto", "/usr/local/sbin/mosquitto"]
+        .into_iter()
+        .find(|p| Path::new(p).exists())
+        .unwrap_or("mosquitto");
+    let child = Command::new(program)
+        .arg("-c")
+        .arg(&conf)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("mosquitto (apt install mosquitto mosquitto-clients; tests/peers/setup.sh does)");
+    let started = Instant::now();
+    while TcpStream::connect(("127.0.0.1", port)).is_err() {
+        assert!(
+            started.elapsed() < WAIT,
+            "mosquitto did not listen on {port}"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    Running(child)
+}
+
+/// The simulated Lafert on Modbus TCP, and its address.
+fn simulator() -> (Running, String) {
+    let (child, addr) = support::modbus_sim(&lafert(), &["--set", "bus_dc_link=4950"]);
+    (Running(child), addr)
+}
+
+/// `mosquitto_sub -v` on everything under `drivegen/`: each line `topic payload`.
+fn subscribe(port: u16) -> (Running, Receiver<String>) {
+    let mut child = Command::new("mosquitto_sub")
+        .args([
+            "-h",
+            "127.0.0.1",
+            "-p",
+            &port.to_string(),
+            "-v",
+            "-t",
+            "drivegen/#",
+        ])
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let out = child.stdout.take().unwrap();
+    let (lines, received) = mpsc::channel();
+    std::thread::spawn(move || {
+        for line in BufReader::new(out).lines().map_while(Result::ok) {
+            if lines.send(line).is_err() {
+                break;
+            }
+        }
+    });
+    (Running(child), received)
+}
+
+/// The first line whose topic is `topic` and whose payload passes `wanted`.
+fn expect(lines: &Receiver<String>, topic: &str, wanted: impl Fn(&str) -> bool) -> String {
+    let deadline = Instant::now() + WAIT;
+    let mut seen = Vec::new();
+    while let Some(left) = deadline.checked_duration_since(Instant::now()) {
+        let Ok(line) = lines.recv_timeout(left) else {
+            break;
+        };
+        if let Some(payload) = line.strip_prefix(topic).and_then(|p| p.strip_prefix(' ')) {
+            if wanted(payload) {
+                return payload.to_owned();
+            }
+        }
+        seen.push(line);
+    }
+    panic!("no {topic} as wanted; seen:\n{}", seen.join("\n"));
+}
+
+fn publish(port: u16, topic: &str, message: &str) {
+    let status = Command::new("mosquitto_pub")
+        .args([
+            "-h",
+            "127.0.0.1",
+            "-p",
+            &port.to_string(),
+            "-t",
+            topic,
+            "-m",
+            message,
+        ])
+        .status()
+        .unwrap();
+    assert!(status.success());
+}
+
+fn json(payload: &str) -> serde_json::Value {
+    serde_json::from_str(payload).unwrap_or_else(|e| panic!("{payload}: {e}"))
+}
+
+fn config(dir: &Path, port: u16, sim: &str) -> PathBuf {
+    let file = dir.join("gateway.toml");
+    std::fs::write(
+        &file,
+        format!(
+            r#"format = 1
+
+[mqtt]
+port = {port}
+
+[[drive]]
+name = "lafert"
+description = "{}"
+bus = {{ modbus_tcp = "{sim}", timeout_ms = 300 }}
+interval_ms = 100
+parameters = ["bus_dc_link", "speed_ramp_up"]
+writable = ["speed_ramp_up"]
+"#,
+            lafert().display()
+        ),
+    )
+    .unwrap();
+    file
+}
+
+#[test]
+fn values_writes_a_broker_restart_and_a_silent_drive_through_a_real_broker() {
+    let dir = scratch("live");
+    let port = free_port();
+    let mut mosquitto = broker(&dir, port);
+    let (mut sim, addr) = simulator();
+    let (_sub, lines) = subscribe(port);
+    let mut gateway = Running(
+        Command::new(BIN)
+            .arg("gateway")
+            .arg(config(&dir, port, &addr))
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap(),
+    );
+
+    // Values, retained, with their units and raw values.
+    let dc = json(&expect(&lines, "drivegen/lafert/bus_dc_link", |_| true));
+    assert_eq!(dc["value"], 49.5, "{dc}");
+    assert_eq!(dc["unit"], "V");
+    assert_eq!(dc["raw"], 4950);
+    assert!(
+        dc["time"].as_str().is_some_and(|t| t.ends_with('Z')),
+        "{dc}"
+    );
+    expect(&lines, "drivegen/lafert/status", |p| p == "online");
+
+    // A write through the checks of `drivegen write`, then one they refuse.
+    publish(
+        port,
+        "drivegen/lafert/speed_ramp_up/set",
+        r#"{"value": 1500}"#,
+    );
+    let done = json(&expect(
+        &lines,
+        "drivegen/lafert/speed_ramp_up/set/result",
+        |_| true,
+    ));
+    assert_eq!(done["ok"], true, "{done}");
+    expect(&lines, "drivegen/lafert/speed_ramp_up", |p| {
+        json(p)["raw"] == 1500
+    });
+    publish(
+        port,
+        "drivegen/lafert/speed_ramp_up/set",
+        r#"{"value": 40000}"#,
+    );
+    let refused = json(&expect(
+        &lines,
+        "drivegen/lafert/speed_ramp_up/set/result",
+        |_| true,
+    ));
+    assert_eq!(refused["ok"], false, "{refused}");
+    assert!(
+        refused["error"]
+            .as_str()
+            .unwrap()
+            .contains("outside the range"),
+        "{refused}"
+    );
+    // Not writable through the gateway, and not a set message: refused, nothing written.
+    publish(port, "drivegen/lafert/bus_dc_link/set", r#"{"value": 10}"#);
+    let not_writable = json(&expect(
+        &lines,
+        "drivegen/lafert/bus_dc_link/set/result",
+        |_| true,
+    ));
+    assert!(
+        not_writable["error"]
+            .as_str()
+            .unwrap()
+            .contains("not writable"),
+        "{not_writable}"
+    );
+    publish(port, "drivegen/lafert/speed_ramp_up/set", "fast please");
+    let garbled = json(&expect(
+        &lines,
+        "drivegen/lafert/speed_ramp_up/set/result",
+        |_| true,
+    ));
+    assert!(
+        garbled["error"].as_str().unwrap().contains("not JSON"),
+        "{garbled}"
+    );
+    let read = drivegen(&[
+        "read",
+        lafert().to_str().unwrap(),
+        "speed_ramp_up",
+        "--modbus-tcp",
+        &addr,
+    ]);
+    assert!(
+        support::stdout(&read).contains("1500 ms"),
+        "{}",
+        stderr(&read)
+    );
+
+    // A broker restarted without persistence lost the retained values: the gateway publishes
+    // them again once it has reconnected.
+    drop(mosquitto);
+    mosquitto = broker(&dir, port);
+    let (_again, relines) = subscribe(port);
+    let retained = json(&expect(&relines, "drivegen/lafert/bus_dc_link", |_| true));
+    assert_eq!(retained["raw"], 4950, "{retained}");
+
+    // A drive that stops answering goes offline with the reason; its value is not refreshed.
+    sim.0.kill().unwrap();
+    expect(&relines, "drivegen/lafert/status", |p| p == "offline");
+    let error = json(&expect(&relines, "drivegen/lafert/error", |p| {
+        !p.is_empty()
+    }));
+    assert!(error["error"].as_str().is_some(), "{error}");
+
+    // SIGTERM: a clean stop, the status offline.
+    let pid = gateway.0.id().to_string();
+    assert!(Command::new("kill")
+        .args(["-TERM", &pid])
+        .status()
+        .unwrap()
+        .success());
+    let started = Instant::now();
+    let exit = loop {
+        if let Some(exit) = gateway.0.try_wait().unwrap() {
+            break exit;
+        }
+        assert!(
+            started.elapsed() < WAIT,
+            "the gateway did not stop on SIGTERM"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    assert!(exit.success(), "{exit}");
+    drop(mosquitto);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_file_naming_an_unknown_parameter_is_refused_before_anything_opens() {
+    let dir = scratch("bad");
+    // No broker, no drive: the file is refused first.
+    let file = config(&dir, free_port(), "127.0.0.1:1");
+    let text = std::fs::read_to_string(&file).unwrap();
+    std::fs::write(
+        &file,
+        text.replace(
+            "\"speed_ramp_up\"]\nwritable",
+            "\"speed_ramp_upp\"]\nwritable",
+        ),
+    )
+    .unwrap();
+    let output = drivegen(&["gateway", file.to_str().unwrap()]);
+    assert!(!output.status.success());
+    let message = stderr(&output);
+    assert!(message.contains("gateway.toml:11"), "{message}");
+    assert!(
+        message.contains("speed_ramp_up"),
+        "the closest name: {message}"
+    );
+
+    std::fs::write(
+        &file,
+        text.replace(
+            "writable = [\"speed_ramp_up\"]",
+            "writable = [\"bus_dc_link\"]",
+        ),
+    )
+    .unwrap();
+    let output = drivegen(&["gateway", file.to_str().unwrap()]);
+    assert!(
+        stderr(&output).contains("read-only in its description"),
+        "{}",
+        stderr(&output)
+    );
+    assert!(
+        stderr(&output).contains("gateway.toml:12"),
+        "{}",
+        stderr(&output)
+    );
+
+    std::fs::write(
+        &file,
+        text.replace("timeout_ms = 300", "timeout_ms = \"soon\""),
+    )
+    .unwrap();
+    let output = drivegen(&["gateway", file.to_str().unwrap()]);
+    assert!(
+        stderr(&output).contains("gateway.toml:9: bus:"),
+        "{}",
+        stderr(&output)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

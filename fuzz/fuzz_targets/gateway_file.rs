@@ -1,0 +1,37 @@
+//! The gateway file reader (`drivegen::gateway_file::parse`) fed arbitrary text. Asserts that
+//! it never panics, that a file it accepts has at least one drive, drive names that are one
+//! topic level each once, a polling interval of at least 1 ms and lines within the text, and
+//! that a refusal's line is within the text.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    let lines = u32::try_from(text.lines().count().max(1) + 1).unwrap_or(u32::MAX);
+    let within = |line: u32| line >= 1 && line <= lines;
+    match drivegen::gateway_file::parse(text) {
+        Ok(file) => {
+            assert!(!file.drives.is_empty());
+            assert!(file.mqtt.port != 0);
+            for (i, drive) in file.drives.iter().enumerate() {
+                assert!(!drive.name.is_empty());
+                assert!(!drive.name.contains(['/', '+', '#']));
+                assert!(file.drives[..i].iter().all(|d| d.name != drive.name));
+                assert!(drive.interval_ms >= 1);
+                assert!(!drive.parameters.is_empty());
+                assert!(within(drive.line));
+                assert!(drive.bus.iter().all(|o| within(o.line)));
+                assert!(drive.parameters.iter().chain(&drive.writable).all(|n| within(n.line)));
+            }
+        }
+        Err(error) => {
+            if let Some(line) = error.line {
+                assert!(within(line), "line {line} of {lines}");
+            }
+            let _ = error.to_string();
+        }
+    }
+});
