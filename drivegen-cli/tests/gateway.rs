@@ -46,12 +46,14 @@ fn free_port() -> u16 {
 
 /// mosquitto on 127.0.0.1:`port`, without persistence: a restart loses every retained message.
 fn broker(dir: &Path, port: u16) -> Running {
+    broker_with(dir, port, "allow_anonymous true\n")
+}
+
+/// mosquitto on 127.0.0.1:`port` with `settings` (access rules), without persistence.
+fn broker_with(dir: &Path, port: u16, settings: &str) -> Running {
     let conf = dir.join("mosquitto.conf");
-    std::fs::write(
-        &conf,
-        format!("listener {port} 127.0.0.1\nallow_anonymous true\npersistence false\n"),
-    )
-    .unwrap();
+    let listener = format!("listener {port} 127.0.0.1\npersistence false\n");
+    std::fs::write(&conf, listener + settings).unwrap();
     // Debian puts the broker in /usr/sbin, which a user's PATH may not hold.
     let program = ["/usr/sbin/mosquitto", "/usr/local/sbin/mosquitto"]
         .into_iter()
@@ -83,6 +85,11 @@ fn simulator() -> (Running, String) {
 
 /// `mosquitto_sub -v` on everything under `drivegen/`: each line `topic payload`.
 fn subscribe(port: u16) -> (Running, Receiver<String>) {
+    subscribe_as(port, &[])
+}
+
+/// [`subscribe`] with mosquitto_sub's `login` options (`-u USER -P PASSWORD`).
+fn subscribe_as(port: u16, login: &[&str]) -> (Running, Receiver<String>) {
     let mut child = Command::new("mosquitto_sub")
         .args([
             "-h",
@@ -93,6 +100,7 @@ fn subscribe(port: u16) -> (Running, Receiver<String>) {
             "-t",
             "drivegen/#",
         ])
+        .args(login)
         .stdout(Stdio::piped())
         .spawn()
         .unwrap();
@@ -127,6 +135,10 @@ fn expect(lines: &Receiver<String>, topic: &str, wanted: impl Fn(&str) -> bool) 
 }
 
 fn publish(port: u16, topic: &str, message: &str) {
+    publish_as(port, &[], topic, message);
+}
+
+fn publish_as(port: u16, login: &[&str], topic: &str, message: &str) {
     let status = Command::new("mosquitto_pub")
         .args([
             "-h",
@@ -138,6 +150,7 @@ fn publish(port: u16, topic: &str, message: &str) {
             "-m",
             message,
         ])
+        .args(login)
         .status()
         .unwrap();
     assert!(status.success());
@@ -362,5 +375,114 @@ fn a_file_naming_an_unknown_parameter_is_refused_before_anything_opens() {
         "{}",
         stderr(&output)
     );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Users and what the broker lets each do: the gateway publishes and takes set messages, an
+/// operator may also write set messages, a viewer may only read.
+fn logins(dir: &Path) -> String {
+    let passwords = dir.join("passwords");
+    let users = [
+        ("gateway", "gw-secret"),
+        ("operator", "op-secret"),
+        ("viewer", "view-secret"),
+    ];
+    for (i, (user, password)) in users.into_iter().enumerate() {
+        let create: &[&str] = if i == 0 { &["-c"] } else { &[] };
+        let status = Command::new("mosquitto_passwd")
+            .args(create)
+            .arg("-b")
+            .arg(&passwords)
+            .args([user, password])
+            .status()
+            .unwrap();
+        assert!(status.success());
+    }
+    let acl = dir.join("acl");
+    std::fs::write(
+        &acl,
+        "user gateway\ntopic readwrite drivegen/#\n\n\
+         user operator\ntopic read drivegen/#\ntopic write drivegen/+/+/set\n\n\
+         user viewer\ntopic read drivegen/#\n",
+    )
+    .unwrap();
+    format!(
+        "allow_anonymous false\npassword_file {}\nacl_file {}\n",
+        passwords.display(),
+        acl.display()
+    )
+}
+
+/// The gateway of `file`, logging in as `gateway` with `password` (from the environment).
+fn gateway_with_password(file: &Path, password: &str) -> Running {
+    let text = std::fs::read_to_string(file).unwrap();
+    let login = "[mqtt]\nusername = \"gateway\"\npassword_env = \"DRIVEGEN_TEST_MQTT_PASSWORD\"\n";
+    std::fs::write(file, text.replace("[mqtt]\n", login)).unwrap();
+    Running(
+        Command::new(BIN)
+            .arg("gateway")
+            .arg(file)
+            .env("DRIVEGEN_TEST_MQTT_PASSWORD", password)
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap(),
+    )
+}
+
+#[test]
+fn a_broker_with_logins_takes_the_gateway_and_the_operator_not_the_viewer() {
+    let dir = scratch("logins");
+    let port = free_port();
+    let _mosquitto = broker_with(&dir, port, &logins(&dir));
+    let (_sim, addr) = simulator();
+    let viewer = ["-u", "viewer", "-P", "view-secret"];
+    let (_sub, lines) = subscribe_as(port, &viewer);
+    let _gateway = gateway_with_password(&config(&dir, port, &addr), "gw-secret");
+    expect(&lines, "drivegen/lafert/status", |p| p == "online");
+
+    // The broker drops the viewer's set message; the operator's goes through.
+    let topic = "drivegen/lafert/speed_ramp_up/set";
+    publish_as(port, &viewer, topic, r#"{"value": 1700}"#);
+    let operator = ["-u", "operator", "-P", "op-secret"];
+    publish_as(port, &operator, topic, r#"{"value": 1600}"#);
+    let result = json(&expect(
+        &lines,
+        "drivegen/lafert/speed_ramp_up/set/result",
+        |_| true,
+    ));
+    assert_eq!(
+        result["raw"], 1600,
+        "the first write is the operator's: {result}"
+    );
+    let lafert = lafert();
+    let read = drivegen(&[
+        "read",
+        lafert.to_str().unwrap(),
+        "speed_ramp_up",
+        "--modbus-tcp",
+        &addr,
+    ]);
+    assert!(
+        support::stdout(&read).contains("1600 ms"),
+        "{}",
+        stderr(&read)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_wrong_broker_password_is_logged_and_nothing_is_published() {
+    let dir = scratch("refused");
+    let port = free_port();
+    let _mosquitto = broker_with(&dir, port, &logins(&dir));
+    let (_sim, addr) = simulator();
+    let (_sub, lines) = subscribe_as(port, &["-u", "viewer", "-P", "view-secret"]);
+    let mut gateway = gateway_with_password(&config(&dir, port, &addr), "wrong");
+    std::thread::sleep(Duration::from_secs(2));
+    gateway.0.kill().unwrap();
+    let mut log = String::new();
+    std::io::Read::read_to_string(&mut gateway.0.stderr.take().unwrap(), &mut log).unwrap();
+    assert!(log.contains("no broker connection"), "{log}");
+    assert!(lines.try_recv().is_err(), "nothing published");
     let _ = std::fs::remove_dir_all(&dir);
 }

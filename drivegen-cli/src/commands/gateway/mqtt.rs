@@ -18,6 +18,7 @@ use crate::error::CliError;
 
 /// A drive's topics: `<prefix>/<drive>/...`.
 pub struct Topics {
+    drive: String,
     base: String,
 }
 
@@ -25,6 +26,7 @@ impl Topics {
     /// The topics of `drive` under `prefix`.
     pub fn new(prefix: &str, drive: &str) -> Self {
         Self {
+            drive: drive.to_owned(),
             base: format!("{prefix}/{drive}"),
         }
     }
@@ -146,19 +148,24 @@ impl DriveTask {
         let (client, mut events) = AsyncClient::new(options, capacity);
         let mut published = Published::default();
         let mut connected = false;
+        // The last connection error logged: a dead broker is logged once, not every second.
+        let mut failing: Option<String> = None;
         loop {
             tokio::select! {
                 event = events.poll() => match event {
                     Ok(Event::Incoming(Packet::ConnAck(_))) => {
                         connected = true;
-                        tracing::info!(drive = %self.topics.base, "connected to the broker");
+                        failing = None;
+                        tracing::info!(drive = %self.topics.drive, "connected to the broker");
                         self.on_connect(&client, &published);
                     }
                     Ok(Event::Incoming(Packet::Publish(set))) => self.on_set(&client, &set),
                     Ok(_) => {}
                     Err(e) => {
-                        if connected {
-                            tracing::warn!(drive = %self.topics.base, "broker connection lost: {e}");
+                        let why = e.to_string();
+                        if failing.as_ref() != Some(&why) {
+                            tracing::warn!(drive = %self.topics.drive, "no broker connection: {why}");
+                            failing = Some(why);
                         }
                         connected = false;
                         // rumqttc reconnects at the next poll; do not spin against a dead broker.
@@ -182,7 +189,7 @@ impl DriveTask {
 
     fn on_connect(&self, client: &AsyncClient, published: &Published) {
         if let Err(e) = client.try_subscribe(self.topics.set_filter(), QoS::AtLeastOnce) {
-            tracing::warn!(drive = %self.topics.base, "cannot subscribe to set messages: {e}");
+            tracing::warn!(drive = %self.topics.drive, "cannot subscribe to set messages: {e}");
         }
         publish_all(client, published.all(&self.topics));
     }
@@ -195,7 +202,7 @@ impl DriveTask {
         };
         let result_topic = self.topics.result(parameter);
         if !self.writable.contains(parameter) {
-            tracing::warn!(drive = %self.topics.base, parameter, "write refused: not writable through this gateway");
+            tracing::warn!(drive = %self.topics.drive, parameter, "write refused: not writable through this gateway");
             let refusal = serde_json::json!({
                 "ok": false,
                 "error": format!("`{parameter}` is not writable through this gateway"),
