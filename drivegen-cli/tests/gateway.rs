@@ -486,3 +486,104 @@ fn a_wrong_broker_password_is_logged_and_nothing_is_published() {
     assert!(lines.try_recv().is_err(), "nothing published");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A CA and a broker certificate for 127.0.0.1 signed by it, made with openssl in `dir`.
+fn certificates(dir: &Path) {
+    let openssl = |args: &[&str]| {
+        let output = Command::new("openssl")
+            .args(args)
+            .current_dir(dir)
+            .output()
+            .unwrap();
+        assert!(
+            output.status.success(),
+            "openssl {args:?}: {}",
+            stderr(&output)
+        );
+    };
+    let key = ["-newkey", "rsa:2048", "-nodes"];
+    openssl(
+        &[
+            &["req", "-x509"],
+            &key[..],
+            &[
+                "-keyout",
+                "ca.key",
+                "-out",
+                "ca.pem",
+                "-days",
+                "1",
+                "-subj",
+                "/CN=drivegen test CA",
+            ],
+        ]
+        .concat(),
+    );
+    std::fs::write(dir.join("san.ext"), "subjectAltName=IP:127.0.0.1\n").unwrap();
+    let request = [
+        "-keyout",
+        "broker.key",
+        "-out",
+        "broker.csr",
+        "-subj",
+        "/CN=127.0.0.1",
+    ];
+    openssl(&[&["req"], &key[..], &request].concat());
+    openssl(&[
+        "x509",
+        "-req",
+        "-in",
+        "broker.csr",
+        "-CA",
+        "ca.pem",
+        "-CAkey",
+        "ca.key",
+        "-CAcreateserial",
+        "-out",
+        "broker.pem",
+        "-days",
+        "1",
+        "-extfile",
+        "san.ext",
+    ]);
+    // mosquitto started as root reads its key after dropping to its own user.
+    let key_file = dir.join("broker.key");
+    let mut mode = std::fs::metadata(&key_file).unwrap().permissions();
+    std::os::unix::fs::PermissionsExt::set_mode(&mut mode, 0o644);
+    std::fs::set_permissions(&key_file, mode).unwrap();
+}
+
+#[test]
+fn tls_to_the_broker_with_the_ca_the_file_names() {
+    let dir = scratch("tls");
+    certificates(&dir);
+    let port = free_port();
+    let files = |name: &str| dir.join(name).display().to_string();
+    let settings = format!(
+        "allow_anonymous true\ncafile {}\ncertfile {}\nkeyfile {}\n",
+        files("ca.pem"),
+        files("broker.pem"),
+        files("broker.key")
+    );
+    let _mosquitto = broker_with(&dir, port, &settings);
+    let (_sim, addr) = simulator();
+    let (_sub, lines) = subscribe_as(port, &["--cafile", &files("ca.pem")]);
+    let file = config(&dir, port, &addr);
+    let text = std::fs::read_to_string(&file).unwrap();
+    std::fs::write(
+        &file,
+        text.replace("[mqtt]\n", "[mqtt]\nca_file = \"ca.pem\"\n"),
+    )
+    .unwrap();
+    let _gateway = Running(
+        Command::new(BIN)
+            .arg("gateway")
+            .arg(&file)
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap(),
+    );
+    let dc = json(&expect(&lines, "drivegen/lafert/bus_dc_link", |_| true));
+    assert_eq!(dc["raw"], 4950, "{dc}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -272,6 +272,9 @@ host = "127.0.0.1"
 port = 1883
 username = "gateway"
 password_env = "GATEWAY_PASSWORD"
+ca_file = "ca.pem"
+client_cert_file = "gw.pem"
+client_key_file = "gw.key"
 
 [[drive]]
 name = "left"

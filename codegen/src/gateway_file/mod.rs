@@ -39,6 +39,18 @@ pub struct MqttEntry {
     pub username: Option<String>,
     /// The environment variable holding the password (kept out of the file).
     pub password_env: Option<String>,
+    /// TLS to the broker, when the file names a CA.
+    pub tls: Option<TlsEntry>,
+}
+
+/// TLS to the broker: the CA that signed its certificate, and the gateway's own certificate when
+/// the broker asks for one. Paths as written (relative to the file, or absolute), PEM files.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TlsEntry {
+    /// `ca_file`.
+    pub ca_file: String,
+    /// `client_cert_file` and `client_key_file`, given together.
+    pub client: Option<(String, String)>,
 }
 
 /// One `[[drive]]`.

@@ -7,7 +7,7 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use super::error::{GatewayFileError, GatewayFileErrorKind as Kind};
-use super::{BusOption, DriveEntry, GatewayFile, MqttEntry, Named, FORMAT_VERSION};
+use super::{BusOption, DriveEntry, GatewayFile, MqttEntry, Named, TlsEntry, FORMAT_VERSION};
 use crate::toml_file::{self, in_file_order, line_of, Unreadable};
 
 #[derive(Deserialize)]
@@ -16,7 +16,7 @@ struct RawFile {
     format: Option<Spanned<i64>>,
     #[serde(default)]
     read_only: bool,
-    mqtt: Option<RawMqtt>,
+    mqtt: Option<Spanned<RawMqtt>>,
     #[serde(default)]
     drive: Vec<Spanned<RawDrive>>,
 }
@@ -29,6 +29,9 @@ struct RawMqtt {
     topic_prefix: Option<Spanned<String>>,
     username: Option<String>,
     password_env: Option<String>,
+    ca_file: Option<String>,
+    client_cert_file: Option<String>,
+    client_key_file: Option<String>,
 }
 
 #[derive(Deserialize)]
@@ -73,13 +76,20 @@ pub fn parse(text: &str) -> Result<GatewayFile, GatewayFileError> {
         drives.push(drive);
     }
     Ok(GatewayFile {
-        mqtt: mqtt(text, raw.mqtt.unwrap_or_default())?,
+        mqtt: mqtt(text, raw.mqtt)?,
         read_only: raw.read_only,
         drives,
     })
 }
 
-fn mqtt(text: &str, raw: RawMqtt) -> Result<MqttEntry, GatewayFileError> {
+fn mqtt(text: &str, raw: Option<Spanned<RawMqtt>>) -> Result<MqttEntry, GatewayFileError> {
+    let (line, raw) = match raw {
+        Some(spanned) => (
+            Some(line_of(text, spanned.span().start)),
+            spanned.into_inner(),
+        ),
+        None => (None, RawMqtt::default()),
+    };
     let port = match raw.port {
         None => 1883,
         Some(port) => u16::try_from(*port.get_ref())
@@ -91,12 +101,39 @@ fn mqtt(text: &str, raw: RawMqtt) -> Result<MqttEntry, GatewayFileError> {
         None => "drivegen".to_owned(),
         Some(prefix) => topic_level(text, prefix, "topic_prefix")?,
     };
+    let client = match (raw.client_cert_file, raw.client_key_file) {
+        (None, None) => None,
+        (Some(cert), Some(key)) => Some((cert, key)),
+        _ => {
+            return Err(GatewayFileError::at(
+                line,
+                Kind::Malformed {
+                    key: "client_cert_file".into(),
+                    expected: "client_cert_file and client_key_file together",
+                },
+            ))
+        }
+    };
+    let tls = match (raw.ca_file, client) {
+        (Some(ca_file), client) => Some(TlsEntry { ca_file, client }),
+        (None, None) => None,
+        (None, Some(_)) => {
+            return Err(GatewayFileError::at(
+                line,
+                Kind::Malformed {
+                    key: "ca_file".into(),
+                    expected: "the broker's CA (ca_file) beside a client certificate",
+                },
+            ))
+        }
+    };
     Ok(MqttEntry {
         host: raw.host.unwrap_or_else(|| "127.0.0.1".to_owned()),
         port,
         topic_prefix,
         username: raw.username,
         password_env: raw.password_env,
+        tls,
     })
 }
 

@@ -121,3 +121,21 @@ fn unknown_keys_missing_format_and_no_drives_are_refused() {
         GatewayFileErrorKind::UnsupportedFormat(2)
     );
 }
+
+#[test]
+fn tls_takes_a_ca_and_a_client_certificate_only_with_its_key() {
+    let with_tls = GOOD.replace(
+        "port = 18830\n",
+        "port = 18830\nca_file = \"ca.pem\"\nclient_cert_file = \"gw.pem\"\nclient_key_file = \"gw.key\"\n",
+    );
+    let tls = parse(&with_tls).unwrap().mqtt.tls.expect("tls");
+    assert_eq!(tls.ca_file, "ca.pem");
+    assert_eq!(tls.client, Some(("gw.pem".into(), "gw.key".into())));
+    assert_eq!(parse(GOOD).unwrap().mqtt.tls, None);
+    let no_key = with_tls.replace("client_key_file = \"gw.key\"\n", "");
+    let error = refused(&no_key);
+    assert_eq!(error.line, Some(3));
+    assert!(error.to_string().contains("together"), "{error}");
+    let no_ca = with_tls.replace("ca_file = \"ca.pem\"\n", "");
+    assert!(refused(&no_ca).to_string().contains("CA"));
+}

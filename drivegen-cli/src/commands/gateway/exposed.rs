@@ -16,10 +16,20 @@ use crate::error::CliError;
 pub struct Gateway {
     /// The broker.
     pub mqtt: MqttEntry,
+    /// TLS to the broker: the PEM files the file names, read.
+    pub tls: Option<Tls>,
     /// Every write refused.
     pub read_only: bool,
     /// The drives, in the file's order.
     pub drives: Vec<Drive>,
+}
+
+/// TLS to the broker, its PEM files read at load.
+pub struct Tls {
+    /// The CA that signed the broker's certificate.
+    pub ca: Vec<u8>,
+    /// The gateway's certificate and key, when the broker asks for one.
+    pub client: Option<(Vec<u8>, Vec<u8>)>,
 }
 
 /// One drive the gateway exposes.
@@ -69,8 +79,25 @@ impl Gateway {
                     .map_err(|(line, why)| CliError::Invalid(format!("{}: {why}", at(Some(line)))))
             })
             .collect::<Result<_, _>>()?;
+        let read = |name: &str| {
+            let path = folder.join(name);
+            std::fs::read(&path).map_err(|e| {
+                CliError::Io(format!("{}: cannot read {}: {e}", at(None), path.display()))
+            })
+        };
+        let tls = match &file.mqtt.tls {
+            None => None,
+            Some(entry) => Some(Tls {
+                ca: read(&entry.ca_file)?,
+                client: match &entry.client {
+                    None => None,
+                    Some((cert, key)) => Some((read(cert)?, read(key)?)),
+                },
+            }),
+        };
         Ok(Self {
             mqtt: file.mqtt,
+            tls,
             read_only: file.read_only,
             drives,
         })

@@ -31,6 +31,8 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let gateway = exposed::Gateway::load(&args.config)?;
     let password = gateway.password()?;
     init_logging();
+    // TLS through rustls on ring: the one provider compiled in, installed for the process.
+    let _ = rustls::crypto::ring::default_provider().install_default();
     let runtime = tokio::runtime::Builder::new_current_thread()
         .enable_all()
         .build()
@@ -54,7 +56,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         }
         // The pollers see the stop (or their dropped request channel) at their next wait and
         // end; the scope joins them.
-        runtime.block_on(mqtt::serve(&gateway.mqtt, password, tasks, stop))
+        runtime.block_on(mqtt::serve(&gateway, password, tasks, stop))
     })
 }
 

@@ -6,13 +6,14 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::sync::mpsc;
 use std::time::{Duration, SystemTime};
 
-use drivegen::gateway_file::MqttEntry;
 use rumqttc::{
     AsyncClient, Event, EventLoop, LastWill, MqttOptions, Outgoing, Packet, Publish, QoS,
+    TlsConfiguration, Transport,
 };
 use tokio::sync::{oneshot, watch};
 use tokio::task::JoinSet;
 
+use super::exposed::Gateway;
 use super::poller::{Report, SetRequest};
 use crate::error::CliError;
 
@@ -80,14 +81,15 @@ pub struct DriveTask {
 /// Runs every drive's task until SIGINT or SIGTERM, then sets `stop` and waits for each to
 /// publish its status offline and disconnect.
 pub async fn serve(
-    mqtt: &MqttEntry,
+    gateway: &Gateway,
     password: Option<String>,
     tasks: Vec<DriveTask>,
     stop: watch::Sender<bool>,
 ) -> Result<(), CliError> {
+    let mqtt = &gateway.mqtt;
     let mut running = JoinSet::new();
     for task in tasks {
-        let options = options(mqtt, password.as_deref(), &task);
+        let options = options(gateway, password.as_deref(), &task);
         running.spawn(task.run(options));
     }
     tracing::info!(broker = %format!("{}:{}", mqtt.host, mqtt.port), "serving");
@@ -109,7 +111,8 @@ async fn signal() -> Result<(), CliError> {
     }
 }
 
-fn options(mqtt: &MqttEntry, password: Option<&str>, task: &DriveTask) -> MqttOptions {
+fn options(gateway: &Gateway, password: Option<&str>, task: &DriveTask) -> MqttOptions {
+    let mqtt = &gateway.mqtt;
     let id = format!(
         "drivegen-{}-{}",
         task.topics.base.replace('/', "-"),
@@ -125,6 +128,13 @@ fn options(mqtt: &MqttEntry, password: Option<&str>, task: &DriveTask) -> MqttOp
     ));
     if let Some(user) = &mqtt.username {
         options.set_credentials(user.clone(), password.unwrap_or_default());
+    }
+    if let Some(tls) = &gateway.tls {
+        options.set_transport(Transport::tls_with_config(TlsConfiguration::Simple {
+            ca: tls.ca.clone(),
+            alpn: None,
+            client_auth: tls.client.clone(),
+        }));
     }
     options
 }
