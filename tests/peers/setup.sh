@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs the independent test peers: socat (pty pairs) and a Python venv at the workspace root
+# Installs the independent test peers: socat (pty pairs), chromium and tmux, and a Python venv at the workspace root
 # with pinned pymodbus / pyserial / canopen / python-can / pyModbusTCP / cantools. Idempotent; a no-op when
 # already done.
 set -euo pipefail
@@ -9,11 +9,17 @@ venv="$root/.venv"
 pins=(pymodbus==3.16.1 pyserial==3.5 canopen==2.4.1 python-can==4.6.1 pyModbusTCP==0.3.1 cantools==45.1.0)
 stamp="$venv/.drivegen-peers"
 
-if ! command -v socat >/dev/null 2>&1; then
+# socat: pty pairs; chromium: opens the HTML plots headless (drivegen-cli/tests/plot.rs); tmux:
+# runs the terminal scope `watch --tui` (drivegen-cli/tests/tui.rs).
+missing=()
+for tool in socat chromium tmux; do
+    command -v "$tool" >/dev/null 2>&1 || missing+=("$tool")
+done
+if [ "${#missing[@]}" -gt 0 ]; then
     sudo_cmd=()
     if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
     "${sudo_cmd[@]}" apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq socat >/dev/null
+    DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq "${missing[@]}" >/dev/null
 fi
 
 # The stamp records the exact pins, so changing a pin reinstalls and an unchanged venv is skipped.
