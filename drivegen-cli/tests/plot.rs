@@ -53,7 +53,10 @@ fn trace_plot(dir: &Path, name: &str) -> String {
         plot.to_str().unwrap(),
     ]);
     assert!(output.status.success(), "{}", stderr(&output));
-    assert!(stdout(&output).contains("write target_position"), "the lines still printed");
+    assert!(
+        stdout(&output).contains("write target_position"),
+        "the lines still printed"
+    );
     std::fs::read_to_string(plot).unwrap()
 }
 

@@ -34,6 +34,10 @@ pub struct Args {
     /// the HTML zooms), drawn again as the watch goes on. One drive only.
     #[arg(long, value_name = "FILE")]
     plot: Option<PathBuf>,
+    /// A live terminal scope instead of lines: a chart per parameter, `space` pauses, `q`
+    /// quits. One drive only.
+    #[arg(long, conflicts_with_all = ["json", "count", "plot"])]
+    tui: bool,
 }
 
 /// Polls until `--count` is reached or the process is interrupted: one drive a line per poll,
@@ -42,12 +46,18 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let device = super::load(&args.description)?;
     let parameters = super::read::resolve(&device, &args.parameters)?;
     crate::series::one_drive(&args.bus, args.plot.is_some(), "--plot")?;
+    crate::series::one_drive(&args.bus, args.tui, "--tui")?;
     let plot = args.plot.as_deref().map(PlotFile::create).transpose()?;
     let mut plot = plot.map(|file| Plotter::new(file, &device, "watch", &parameters));
     let mut drives = Drives::open(&args.bus, &device)?;
     let Some(session) = drives.single() else {
         return watch_each(&args, &device, &parameters, &mut drives);
     };
+    if args.tui {
+        let interval = Duration::from_millis(args.interval_ms);
+        let poll = || super::read::read_all(session, &device, &parameters);
+        return crate::series::tui::run(&device, &parameters, interval, poll);
+    }
     let widths: Vec<usize> = parameters.iter().map(|p| p.name.len().max(12)).collect();
     if !args.json {
         let header: Vec<String> = parameters

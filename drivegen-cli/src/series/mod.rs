@@ -9,6 +9,7 @@ pub mod html;
 pub mod plot_file;
 pub mod plotter;
 pub mod svg;
+pub mod tui;
 
 use std::collections::BTreeMap;
 
@@ -100,6 +101,15 @@ impl Recording {
             }
         };
         self.series[at].samples.push((time - origin, value));
+    }
+
+    /// Drops the samples taken before `time` (same origin as [`Recording::push`]): a rolling
+    /// window.
+    pub fn keep_since(&mut self, time: f64) {
+        let since = time - self.origin.unwrap_or(0.0);
+        for series in &mut self.series {
+            series.samples.retain(|(t, _)| *t >= since);
+        }
     }
 
     /// The series, in order.

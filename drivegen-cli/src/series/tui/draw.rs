@@ -1,0 +1,124 @@
+//! One frame of the scope: a header line (device, time, polls, running or paused, the keys) and
+//! a chart per parameter, titled with its latest value and unit, its value axis in that unit.
+
+use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::symbols::Marker;
+use ratatui::text::{Line, Span as Text};
+use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Paragraph};
+use ratatui::Frame;
+
+use super::{Scope, WINDOW_S};
+use crate::series::axis::{self, Span};
+use crate::series::Series;
+
+/// Series colours, in turn.
+const COLOURS: [Color; 6] = [
+    Color::Cyan,
+    Color::Yellow,
+    Color::Green,
+    Color::Magenta,
+    Color::LightRed,
+    Color::LightBlue,
+];
+
+/// Draws the whole scope.
+pub fn scope(frame: &mut Frame<'_>, scope: &Scope) {
+    let series = scope.series();
+    let mut rows = vec![Constraint::Length(1)];
+    rows.extend(series.iter().map(|_| Constraint::Fill(1)));
+    let areas = Layout::vertical(rows).split(frame.area());
+    frame.render_widget(header(scope), areas[0]);
+    for (i, (series, latest)) in series.iter().zip(&scope.latest).enumerate() {
+        chart(
+            frame,
+            areas[i + 1],
+            scope,
+            series,
+            latest,
+            COLOURS[i % COLOURS.len()],
+        );
+    }
+}
+
+/// The header line: what is watched, since when, and the keys.
+fn header(scope: &Scope) -> Paragraph<'static> {
+    let state = if scope.paused {
+        Text::styled(" PAUSED ", Style::new().fg(Color::Black).bg(Color::Yellow))
+    } else {
+        Text::styled(" running ", Style::new().fg(Color::Black).bg(Color::Green))
+    };
+    let mut spans = vec![
+        Text::styled(
+            format!("{} ", scope.title),
+            Style::new().add_modifier(Modifier::BOLD),
+        ),
+        state,
+        Text::raw(format!(
+            " t={:.1}s  polls={}  every {} ms  space: pause/resume  q: quit",
+            scope.time,
+            scope.polls,
+            scope.interval.as_millis()
+        )),
+    ];
+    if let Some(error) = &scope.error {
+        spans.push(Text::styled(
+            format!("  {error}"),
+            Style::new().fg(Color::Red),
+        ));
+    }
+    Paragraph::new(Line::from(spans))
+}
+
+/// One parameter's chart over the window, titled `name: latest value`.
+fn chart(
+    frame: &mut Frame<'_>,
+    area: Rect,
+    scope: &Scope,
+    series: &Series,
+    latest: &str,
+    colour: Color,
+) {
+    let title = format!(" {}: {latest} ", series.parameter);
+    let block = Block::bordered().title(title);
+    let end = scope.time.max(WINDOW_S);
+    let time = Span {
+        low: end - WINDOW_S,
+        high: end,
+    };
+    let values = Span::of(series.samples.iter().map(|p| p.1)).padded(0.05);
+    let dataset = Dataset::default()
+        .marker(Marker::Braille)
+        .graph_type(GraphType::Line)
+        .style(Style::new().fg(colour))
+        .data(&series.samples);
+    let unit = series.unit.clone().unwrap_or_default();
+    let chart = Chart::new(vec![dataset])
+        .block(block)
+        .x_axis(Axis::default().bounds([time.low, time.high]).labels([
+            axis::label(time.low, 0),
+            format!("{} s", axis::label(time.high, 0)),
+        ]))
+        .y_axis(
+            Axis::default()
+                .title(unit)
+                .bounds([values.low, values.high])
+                .labels([
+                    value_label(series, values.low),
+                    value_label(series, values.high),
+                ]),
+        );
+    frame.render_widget(chart, area);
+}
+
+/// A value axis label: an enumeration's name where the value is one, else the number.
+fn value_label(series: &Series, value: f64) -> String {
+    let named = series
+        .names
+        .get(&(value.round() as i64))
+        .filter(|_| value.fract() == 0.0);
+    named.cloned().unwrap_or_else(|| {
+        let decimals = if value.abs() >= 100.0 { 0 } else { 2 };
+        axis::label(value, decimals)
+    })
+}
