@@ -228,3 +228,56 @@ fn chromium_opens_the_html_plot_and_sees_every_series_without_a_console_error() 
     );
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+#[test]
+fn a_watch_plot_has_a_panel_per_parameter_asked_for_in_its_unit() {
+    let dir = scratch();
+    let swd = Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/ezwheel-swd");
+    let swd = swd.to_str().unwrap();
+    let can = format!(
+        "candump:exec:{} sim {swd} --can candump:stdio --node-id 4",
+        support::BIN
+    );
+    let plot = dir.join("watch.svg");
+    let output = drivegen(&[
+        "watch",
+        swd,
+        "statusword",
+        "position_actual_value",
+        "--can",
+        &can,
+        "--node-id",
+        "4",
+        "--timeout-ms",
+        "10000",
+        "--interval-ms",
+        "50",
+        "--count",
+        "3",
+        "--plot",
+        plot.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let svg = std::fs::read_to_string(&plot).unwrap();
+    let panels: Vec<&str> = svg
+        .lines()
+        .filter(|l| l.starts_with(r#"<g class="panel""#))
+        .collect();
+    assert_eq!(
+        panels,
+        [
+            r#"<g class="panel" data-parameter="statusword">"#,
+            r#"<g class="panel" data-parameter="position_actual_value">"#
+        ]
+    );
+    assert!(svg.contains(">position_actual_value (inc)</text>"), "{svg}");
+    let lines = svg.matches(r#"<path class="series""#).count();
+    assert_eq!(lines, 2, "{svg}");
+    // Three polls: a start and two more points.
+    let path = svg
+        .lines()
+        .find(|l| l.contains(r#"<path class="series" data-parameter="position_actual_value""#))
+        .unwrap();
+    assert_eq!(path.matches(" L").count(), 2, "{path}");
+    std::fs::remove_dir_all(dir).unwrap();
+}
