@@ -48,8 +48,14 @@ impl Span {
     }
 
     /// Where `value` sits in the range, 0 at `low` and 1 at `high`.
+    /// A range too wide for `f64` (values near its limits) puts everything in the middle.
     pub fn fraction(self, value: f64) -> f64 {
-        (value - self.low) / self.width()
+        let fraction = (value - self.low) / self.width();
+        if fraction.is_finite() {
+            fraction
+        } else {
+            0.5
+        }
     }
 }
 
@@ -57,6 +63,10 @@ impl Span {
 /// with the decimals that step needs.
 pub fn ticks(span: Span, wanted: usize) -> (Vec<f64>, usize) {
     let raw = span.width() / wanted.max(1) as f64;
+    if !raw.is_finite() || raw <= 0.0 {
+        // Too wide (or narrow) for round steps: the ends alone.
+        return (vec![span.low, span.high], 0);
+    }
     let power = 10f64.powf(raw.log10().floor());
     let step = [1.0, 2.0, 5.0, 10.0]
         .into_iter()
@@ -68,6 +78,10 @@ pub fn ticks(span: Span, wanted: usize) -> (Vec<f64>, usize) {
     // Ends within rounding of a tick keep it: 0.01 / 0.002 may come out as 4.999999.
     let first = (span.low / step - 1e-9).ceil() as i64;
     let last = (span.high / step + 1e-9).floor() as i64;
+    if last.saturating_sub(first) > 10 * wanted as i64 {
+        // Rounding at the limits of `f64` made a step that does not divide the span sensibly.
+        return (vec![span.low, span.high], decimals);
+    }
     let values = (first..=last).map(|i| i as f64 * step).collect();
     (values, decimals)
 }

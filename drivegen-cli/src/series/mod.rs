@@ -100,7 +100,11 @@ impl Recording {
                 self.series.len() - 1
             }
         };
-        self.series[at].samples.push((time - origin, value));
+        // A NaN or infinite reading (a float register can hold one) has no place on an axis;
+        // its parameter keeps its panel.
+        if value.is_finite() && time.is_finite() {
+            self.series[at].samples.push((time - origin, value));
+        }
     }
 
     /// Drops the samples taken before `time` (same origin as [`Recording::push`]): a rolling

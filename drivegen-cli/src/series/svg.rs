@@ -223,3 +223,46 @@ pub fn escape(text: &str) -> String {
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::series::Recording;
+    use proptest::prelude::*;
+
+    /// A description to resolve names in (`p` is not one of its parameters).
+    static DEVICE: std::sync::LazyLock<drivegen::ir::Device> = std::sync::LazyLock::new(|| {
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/kinco-fd");
+        drivegen::check(&path).device.unwrap()
+    });
+
+    fn recording(samples: &[(f64, f64)]) -> Recording {
+        let mut recording = Recording::default();
+        for (t, v) in samples {
+            recording.push(&DEVICE, "p", *t, *v);
+        }
+        recording
+    }
+
+    #[test]
+    fn a_series_without_numbers_still_has_its_panel() {
+        let svg = render(&[Series::unknown("name")]);
+        assert!(svg.contains(r#"<g class="panel" data-parameter="name">"#));
+        assert!(svg.contains("no numeric samples"));
+        let nan = recording(&[(0.0, f64::NAN), (1.0, f64::INFINITY)]);
+        assert!(render(nan.series()).contains("no numeric samples"));
+    }
+
+    proptest! {
+        /// Any values, the limits of `f64` and NaN among them: a document with numbers only.
+        #[test]
+        fn any_samples_give_a_document_without_nan_or_inf(
+            samples in proptest::collection::vec((any::<f64>(), any::<f64>()), 0..20)
+        ) {
+            let svg = render(recording(&samples).series());
+            prop_assert!(svg.ends_with("</svg>\n"));
+            prop_assert!(!svg.contains("NaN") && !svg.contains("inf"), "{}", svg);
+        }
+    }
+}
