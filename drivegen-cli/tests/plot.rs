@@ -214,6 +214,46 @@ fn chromium_opens_the_html_plot_and_sees_every_series_without_a_console_error() 
         );
     }
 
+    // Zoom: the page with a script of the test's own after ours that turns the wheel over the
+    // middle of the drawing (zoom in), then double clicks (everything again).
+    let page = std::fs::read_to_string(dir.join("trace.html")).unwrap();
+    let probe = r#"<script>
+const root = document.querySelector("svg.drivegen-plot");
+const plot = () => document.querySelector("svg.plot").getAttribute("viewBox");
+const box = root.getBoundingClientRect();
+const at = { clientX: box.left + box.width / 2, clientY: box.top + 50, bubbles: true, cancelable: true };
+root.dispatchEvent(new WheelEvent("wheel", Object.assign({ deltaY: -100 }, at)));
+document.documentElement.setAttribute("data-zoomed", plot());
+root.dispatchEvent(new MouseEvent("dblclick", at));
+document.documentElement.setAttribute("data-reset", plot());
+</script>
+</body>"#;
+    let zoom = dir.join("zoom.html");
+    std::fs::write(&zoom, page.replace("</body>", probe)).unwrap();
+    let (dom, log) = chromium(&dir, &zoom);
+    assert!(
+        console_lines(&log).is_empty(),
+        "console: {:?}",
+        console_lines(&log)
+    );
+    let attribute = |name: &str| {
+        let start = dom
+            .find(&format!("{name}=\""))
+            .unwrap_or_else(|| panic!("{name}: {dom}"));
+        let rest = &dom[start + name.len() + 2..];
+        rest[..rest.find('"').unwrap()].to_owned()
+    };
+    let width = |view: &str| view.split(' ').nth(2).unwrap().parse::<f64>().unwrap();
+    let (zoomed, reset) = (attribute("data-zoomed"), attribute("data-reset"));
+    assert!(
+        (width(&zoomed) - 0.008).abs() < 1e-9,
+        "the wheel zooms in to 80%: {zoomed}"
+    );
+    assert!(
+        (width(&reset) - 0.01).abs() < 1e-9,
+        "double click shows all: {reset}"
+    );
+
     // The check can fail: a page whose script throws is seen.
     let broken = dir.join("broken.html");
     std::fs::write(
