@@ -1,6 +1,7 @@
 //! `drivegen watch --tui` under tmux against a simulated SWD the bus spawns: the screen shows the
 //! parameter names, values and units; `space` freezes it and thaws it; `q` exits with status 0
-//! and gives the terminal back (the alternate screen left, raw mode off: `stty` says `icanon`).
+//! and gives the terminal back (the alternate screen left, raw mode off: `stty` says `icanon`),
+//! the `--plot` it drew alongside written.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -95,9 +96,10 @@ fn the_scope_shows_names_and_units_pauses_and_quits_restoring_the_terminal() {
     let sim = simulator(&dir, swd);
     let watch = format!(
         "{BIN} watch {swd} statusword position_actual_value --can candump:exec:{} --node-id 4 \
-         --timeout-ms {SIM_STARTUP_MS} --interval-ms 100 --tui; echo EXIT=$?; \
+         --timeout-ms {SIM_STARTUP_MS} --interval-ms 100 --tui --plot {}; echo EXIT=$?; \
          stty -a | tr ' ;' '\\n\\n' | grep -x -- '-*icanon'; sleep 60",
-        sim.display()
+        sim.display(),
+        dir.join("scope.svg").display()
     );
     let tmux = Tmux {
         socket: format!("drivegen-tui-{}", std::process::id()),

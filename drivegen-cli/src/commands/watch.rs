@@ -36,7 +36,7 @@ pub struct Args {
     plot: Option<PathBuf>,
     /// A live terminal scope instead of lines: a chart per parameter, `space` pauses, `q`
     /// quits. One drive only.
-    #[arg(long, conflicts_with_all = ["json", "count", "plot"])]
+    #[arg(long, conflicts_with_all = ["json", "count"])]
     tui: bool,
 }
 
@@ -56,7 +56,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     if args.tui {
         let interval = Duration::from_millis(args.interval_ms);
         let poll = || super::read::read_all(session, &device, &parameters);
-        return crate::series::tui::run(&device, &parameters, interval, poll);
+        return crate::series::tui::run(&device, &parameters, interval, plot, poll);
     }
     let widths: Vec<usize> = parameters.iter().map(|p| p.name.len().max(12)).collect();
     if !args.json {

@@ -15,6 +15,7 @@ use drivebus::interpret::Shown;
 use drivegen::ir::{Device, Parameter};
 use ratatui::crossterm::event::{self, Event, KeyCode, KeyEventKind, KeyModifiers};
 
+use super::plotter::Plotter;
 use super::{Recording, Series};
 use crate::error::CliError;
 
@@ -53,12 +54,29 @@ enum Key {
     Other,
 }
 
-/// Runs the scope until `q`: `poll` reads the parameters (in order) every `interval`.
+/// Runs the scope until `q`: `poll` reads the parameters (in order) every `interval`; every
+/// poll's values also go to `plot`, drawn a last time on the way out.
 pub fn run(
     device: &Device,
     parameters: &[&Parameter],
     interval: Duration,
+    mut plot: Option<Plotter<'_>>,
     mut poll: impl FnMut() -> Result<Vec<Shown>, CliError>,
+) -> Result<(), CliError> {
+    let scoped = scope(device, parameters, interval, &mut plot, &mut poll);
+    match plot {
+        Some(mut plot) => scoped.and(plot.finish()),
+        None => scoped,
+    }
+}
+
+/// The scope's loop; the terminal is given back when it returns, whichever way.
+fn scope(
+    device: &Device,
+    parameters: &[&Parameter],
+    interval: Duration,
+    plot: &mut Option<Plotter<'_>>,
+    poll: &mut impl FnMut() -> Result<Vec<Shown>, CliError>,
 ) -> Result<(), CliError> {
     let mut scope = Scope {
         title: device.device.name.clone(),
@@ -76,7 +94,11 @@ pub fn run(
     loop {
         if !scope.paused && Instant::now() >= due {
             scope.time = start.elapsed().as_secs_f64();
-            scope.take(device, parameters, poll());
+            let values = poll();
+            if let (Some(plot), Ok(values)) = (plot.as_mut(), &values) {
+                plot.poll(parameters, values, scope.time)?;
+            }
+            scope.take(device, parameters, values);
             due = Instant::now() + interval;
             if scope.polls == 1 {
                 // A simulator the bus spawned may have written to the terminal while starting:
