@@ -20,7 +20,8 @@ struct Tmux {
 impl Tmux {
     fn run(&self, args: &[&str]) -> Output {
         Command::new("tmux")
-            .args(["-L", &self.socket])
+            // Its own server, without the user's configuration.
+            .args(["-L", &self.socket, "-f", "/dev/null"])
             .args(args)
             .output()
             .unwrap_or_else(|e| panic!("tmux: {e}; {}", peer_support::SETUP_HINT))
