@@ -86,7 +86,8 @@ fn chart(
         low: end - WINDOW_S,
         high: end,
     };
-    let values = Span::of(series.samples.iter().map(|p| p.1)).padded(0.05);
+    let present = Span::of(series.samples.iter().map(|p| p.1));
+    let values = present.padded(0.05);
     let dataset = Dataset::default()
         .marker(Marker::Braille)
         .graph_type(GraphType::Line)
@@ -104,21 +105,19 @@ fn chart(
                 .title(unit)
                 .bounds([values.low, values.high])
                 .labels([
-                    value_label(series, values.low),
-                    value_label(series, values.high),
+                    value_label(series, present.low, values.low),
+                    value_label(series, present.high, values.high),
                 ]),
         );
     frame.render_widget(chart, area);
 }
 
-/// A value axis label: an enumeration's name where the value is one, else the number.
-fn value_label(series: &Series, value: f64) -> String {
-    let named = series
-        .names
-        .get(&(value.round() as i64))
-        .filter(|_| value.fract() == 0.0);
+/// A value axis label at an end of the axis: an enumeration's name of the value `present`
+/// nearest that end, else the number `at` the end.
+fn value_label(series: &Series, present: f64, at: f64) -> String {
+    let named = series.names.get(&(present.round() as i64));
     named.cloned().unwrap_or_else(|| {
-        let decimals = if value.abs() >= 100.0 { 0 } else { 2 };
-        axis::label(value, decimals)
+        let decimals = if at.abs() >= 100.0 { 0 } else { 2 };
+        axis::label(at, decimals)
     })
 }
