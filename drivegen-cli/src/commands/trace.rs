@@ -84,7 +84,8 @@ pub fn run(args: Args) -> Result<(), CliError> {
         None => FrameSource::live(&args.live, &device)?,
     };
     let mut out = Output::new(&args);
-    out.plot = plot.map(|file| Plotter::new(file, &device, "trace", &[]));
+    let live = args.capture.is_none();
+    out.plot = plot.map(|file| Plotter::new(file, &device, "trace", &[]).redrawn(live));
     let mut trace = Trace::new(&args, &device);
     for received in source {
         if out.closed {

@@ -5,6 +5,7 @@
 //! pushes `(time, value)` samples by parameter name; the writers only ever see [`Series`].
 
 pub mod axis;
+pub mod decimate;
 pub mod html;
 pub mod plot_file;
 pub mod plotter;

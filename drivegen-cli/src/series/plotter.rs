@@ -27,6 +27,8 @@ pub struct Plotter<'d> {
     started: Instant,
     /// The whole seconds of the first frame time: frame times are taken relative to it.
     epoch: Option<i64>,
+    /// Drawn again as the run goes, not only at the end.
+    redrawn: bool,
 }
 
 impl<'d> Plotter<'d> {
@@ -46,7 +48,15 @@ impl<'d> Plotter<'d> {
             drawn: None,
             started: Instant::now(),
             epoch: None,
+            redrawn: true,
         }
+    }
+
+    /// Whether the plot is drawn again as the run goes (the default): a live run wants it, a
+    /// capture read as fast as it decodes only needs its drawing at the end.
+    pub fn redrawn(mut self, redrawn: bool) -> Self {
+        self.redrawn = redrawn;
+        self
     }
 
     /// Adds a sample; `time` in seconds (any origin) or `None` for the time since the plot began.
@@ -88,7 +98,7 @@ impl<'d> Plotter<'d> {
 
     /// Draws the file if it was not drawn in the last [`REDRAW`].
     pub fn now_and_then(&mut self) -> Result<(), CliError> {
-        if self.drawn.is_some_and(|at| at.elapsed() < REDRAW) {
+        if !self.redrawn || self.drawn.is_some_and(|at| at.elapsed() < REDRAW) {
             return Ok(());
         }
         self.finish()

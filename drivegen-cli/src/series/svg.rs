@@ -9,6 +9,7 @@
 use std::fmt::Write;
 
 use super::axis::{self, Span};
+use super::decimate::decimate;
 use super::Series;
 
 /// The document's width in pixels.
@@ -108,7 +109,7 @@ fn panel(out: &mut String, series: &Series, top: f64, time: Span, colour: &str) 
         let _ = writeln!(
             out,
             r#"<path class="series" data-parameter="{name}" stroke="{colour}" vector-effect="non-scaling-stroke" d="{}"/>"#,
-            path(series, values)
+            path(series, time, values)
         );
         out.push_str("</svg>\n");
     }
@@ -178,11 +179,12 @@ fn time_labels(out: &mut String, top: f64, time: Span) {
 
 /// The line through the samples in data coordinates (seconds across, [`LEVELS`] down): straight
 /// between numbers, a step for an enumeration (it holds its value until the next sample).
-fn path(series: &Series, values: Span) -> String {
+fn path(series: &Series, time: Span, values: Span) -> String {
     let level = |v: f64| axis::label(LEVELS * (1.0 - values.fraction(v)), 2);
     let step = !series.names.is_empty();
     let mut d = String::new();
-    for (i, (t, v)) in series.samples.iter().enumerate() {
+    let points = decimate(&series.samples, time.low, time.high);
+    for (i, (t, v)) in points.iter().enumerate() {
         let (t, v) = (coordinate(*t), level(*v));
         match (i, step) {
             (0, _) => {
