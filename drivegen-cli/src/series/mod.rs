@@ -165,6 +165,17 @@ pub fn seconds(time: &str) -> Option<(i64, f64)> {
     Some((whole, fraction))
 }
 
+/// The Kinco description, loaded once for the tests of the series and their writers.
+#[cfg(test)]
+pub fn kinco() -> &'static Device {
+    static DEVICE: std::sync::LazyLock<Device> = std::sync::LazyLock::new(|| {
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/kinco-fd");
+        drivegen::check(&path).device.unwrap()
+    });
+    &DEVICE
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -232,17 +232,10 @@ mod tests {
     use crate::series::Recording;
     use proptest::prelude::*;
 
-    /// A description to resolve names in (`p` is not one of its parameters).
-    static DEVICE: std::sync::LazyLock<drivegen::ir::Device> = std::sync::LazyLock::new(|| {
-        let path =
-            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/kinco-fd");
-        drivegen::check(&path).device.unwrap()
-    });
-
     fn recording(samples: &[(f64, f64)]) -> Recording {
         let mut recording = Recording::default();
         for (t, v) in samples {
-            recording.push(&DEVICE, "p", *t, *v);
+            recording.push(crate::series::kinco(), "p", *t, *v);
         }
         recording
     }

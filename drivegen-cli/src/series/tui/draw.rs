@@ -121,3 +121,67 @@ fn value_label(series: &Series, present: f64, at: f64) -> String {
         axis::label(at, decimals)
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use std::time::Duration;
+
+    use ratatui::backend::TestBackend;
+    use ratatui::Terminal;
+
+    use super::*;
+    use crate::series::Recording;
+
+    /// The screen of a scope of Kinco's target position and mode, as text rows.
+    fn screen(paused: bool) -> String {
+        let device = crate::series::kinco();
+        let parameters = [
+            device.parameter("target_position").unwrap(),
+            device.parameter("modes_of_operation").unwrap(),
+        ];
+        let mut recording = Recording::of(device, &parameters);
+        for (t, position, mode) in [(0.0, 0.0, 1.0), (1.0, 25_000.0, 1.0), (2.0, 50_000.0, 6.0)] {
+            recording.push(device, "target_position", t, position);
+            recording.push(device, "modes_of_operation", t, mode);
+        }
+        let scope = Scope {
+            title: device.device.name.clone(),
+            interval: Duration::from_millis(500),
+            recording,
+            latest: vec!["50000 inc".into(), "homing".into()],
+            error: None,
+            polls: 3,
+            time: 2.0,
+            paused,
+        };
+        let mut terminal = Terminal::new(TestBackend::new(100, 30)).unwrap();
+        terminal.draw(|frame| super::scope(frame, &scope)).unwrap();
+        let buffer = terminal.backend().buffer();
+        let cells: Vec<&str> = buffer.content().iter().map(|c| c.symbol()).collect();
+        cells.chunks(100).map(|row| row.concat() + "\n").collect()
+    }
+
+    #[test]
+    fn each_chart_is_titled_with_its_value_and_unit_and_the_header_says_paused() {
+        let running = screen(false);
+        assert!(running.contains("target_position: 50000 inc"), "{running}");
+        assert!(running.contains("modes_of_operation: homing"), "{running}");
+        assert!(
+            running.contains("│inc"),
+            "the unit on the value axis: {running}"
+        );
+        assert!(
+            running.contains("homing") && running.contains("position"),
+            "{running}"
+        );
+        assert!(
+            running.contains(" running ") && running.contains("polls=3"),
+            "{running}"
+        );
+        let paused = screen(true);
+        assert!(
+            paused.contains(" PAUSED ") && !paused.contains(" running "),
+            "{paused}"
+        );
+    }
+}
