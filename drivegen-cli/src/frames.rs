@@ -4,7 +4,7 @@
 use drivebus::canopen::message::Message;
 use drivebus::canopen::sdo::AbortCode;
 use drivebus::canopen::CanFrame;
-use drivebus::interpret::{Engineering, Raw, Shown};
+use drivebus::interpret::Shown;
 use drivebus::trace::Event;
 use drivegen::ir::{Device, Parameter};
 
@@ -23,12 +23,7 @@ pub struct Sample {
 
 impl Sample {
     fn of(parameter: &Parameter, shown: Shown) -> Self {
-        let value = match (&shown.value, &shown.raw) {
-            (Engineering::Int(i), _) => Some(*i as f64),
-            (Engineering::Float(f), _) => Some(*f),
-            (_, Raw::Number(raw)) => Some(raw.as_f64()),
-            _ => None,
-        };
+        let value = crate::series::number(&shown);
         Self {
             parameter: parameter.name.clone(),
             text: shown.text,

@@ -11,6 +11,7 @@ mod frame_source;
 mod frames;
 mod identity_check;
 mod pdo_mappings;
+mod series;
 mod suggest;
 mod table;
 

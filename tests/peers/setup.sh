@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Installs the independent test peers: socat (pty pairs), mosquitto (an MQTT broker and its
-# clients) and a Python venv at the workspace root with pinned pymodbus / pyserial / canopen /
-# python-can / pyModbusTCP / cantools. Idempotent; a no-op when already done.
+# Installs the independent test peers: socat (pty pairs), chromium and tmux (the plots and the
+# terminal scope), mosquitto (an MQTT broker and its clients) and a Python venv at the workspace
+# root with pinned pymodbus / pyserial / canopen / python-can / pyModbusTCP / cantools.
+# Idempotent; a no-op when already done.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
@@ -9,12 +10,16 @@ venv="$root/.venv"
 pins=(pymodbus==3.16.1 pyserial==3.5 canopen==2.4.1 python-can==4.6.1 pyModbusTCP==0.3.1 cantools==45.1.0)
 stamp="$venv/.drivegen-peers"
 
-# socat for pty pairs; mosquitto (broker and clients) for the gateway's MQTT tests.
+# socat: pty pairs; chromium: opens the HTML plots headless (drivegen-cli/tests/plot.rs); tmux:
+# runs the terminal scope `watch --tui` (drivegen-cli/tests/tui.rs); mosquitto and its clients:
+# the gateway's broker (drivegen-cli/tests/gateway.rs; Debian puts the broker in /usr/sbin).
 missing=()
-command -v socat >/dev/null 2>&1 || missing+=(socat)
+for tool in socat chromium tmux mosquitto_sub; do
+    command -v "$tool" >/dev/null 2>&1 || missing+=("$tool")
+done
+missing=("${missing[@]/mosquitto_sub/mosquitto-clients}")
 command -v mosquitto >/dev/null 2>&1 || [ -x /usr/sbin/mosquitto ] || missing+=(mosquitto)
-command -v mosquitto_sub >/dev/null 2>&1 || missing+=(mosquitto-clients)
-if [ ${#missing[@]} -gt 0 ]; then
+if [ "${#missing[@]}" -gt 0 ]; then
     sudo_cmd=()
     if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
     "${sudo_cmd[@]}" apt-get update -qq

@@ -13,6 +13,8 @@ use serde_json::json;
 use crate::error::CliError;
 use crate::frame_source::{FrameSource, Received};
 use crate::frames::{Decoded, FrameDecoder};
+use crate::series::plot_file::PlotFile;
+use crate::series::plotter::Plotter;
 
 /// Arguments of `trace`.
 #[derive(Debug, clap::Args)]
@@ -47,6 +49,10 @@ pub struct Args {
     /// One JSON object per frame.
     #[arg(long)]
     json: bool,
+    /// Also draw the samples of the frames shown into FILE.svg or FILE.html (a panel per
+    /// parameter, in its unit; the HTML zooms).
+    #[arg(long, value_name = "FILE")]
+    plot: Option<PathBuf>,
 }
 
 /// Where a row stands in a captured window.
@@ -72,11 +78,14 @@ pub fn run(args: Args) -> Result<(), CliError> {
     if let Some(Trigger::Crosses { parameter, .. }) = &args.trigger {
         super::parameter(&device, parameter)?;
     }
+    let plot = args.plot.as_deref().map(PlotFile::create).transpose()?;
     let source = match &args.capture {
         Some(path) => FrameSource::capture(path)?,
         None => FrameSource::live(&args.live, &device)?,
     };
     let mut out = Output::new(&args);
+    let live = args.capture.is_none();
+    out.plot = plot.map(|file| Plotter::new(file, &device, "trace", &[]).redrawn(live));
     let mut trace = Trace::new(&args, &device);
     for received in source {
         if out.closed {
@@ -92,6 +101,9 @@ pub fn run(args: Args) -> Result<(), CliError> {
         }
     }
     trace.finish(&mut out)?;
+    if let Some(plot) = &mut out.plot {
+        plot.finish()?;
+    }
     if trace.bus_errors > 0 {
         eprintln!("the interface reported {} bus error(s)", trace.bus_errors);
     }
@@ -199,12 +211,13 @@ impl<'d> Trace<'d> {
     }
 }
 
-/// Rows as the chosen format prints them, to standard output as they come.
-struct Output {
+/// Rows as the chosen format prints them, to standard output as they come, and to the plot.
+struct Output<'d> {
     format: Format,
     out: std::io::Stdout,
     header_done: bool,
     closed: bool,
+    plot: Option<Plotter<'d>>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -214,7 +227,7 @@ enum Format {
     Json,
 }
 
-impl Output {
+impl Output<'_> {
     fn new(args: &Args) -> Self {
         let format = match (args.csv, args.json) {
             (true, _) => Format::Csv,
@@ -226,6 +239,7 @@ impl Output {
             out: std::io::stdout(),
             header_done: false,
             closed: false,
+            plot: None,
         }
     }
 
@@ -262,6 +276,9 @@ impl Output {
 
     fn row(&mut self, row: &Row, place: Option<Place>) -> Result<(), CliError> {
         let d = &row.decoded;
+        if let Some(plot) = &mut self.plot {
+            plot.frame(&row.time, &d.samples)?;
+        }
         match self.format {
             Format::Lines => self.write(&format!(
                 "{}  {}  {}  {}  {}",

@@ -8,6 +8,8 @@ use drivegen::ir::{Device, Parameter};
 use crate::connect::BusArgs;
 use crate::drives::{self, Drives, Outcome};
 use crate::error::CliError;
+use crate::series::plot_file::PlotFile;
+use crate::series::plotter::Plotter;
 
 /// Arguments of `watch`.
 #[derive(Debug, clap::Args)]
@@ -28,6 +30,14 @@ pub struct Args {
     /// Print one JSON object per poll.
     #[arg(long)]
     json: bool,
+    /// Also draw the values into FILE.svg or FILE.html (a panel per parameter, in its unit;
+    /// the HTML zooms), drawn again as the watch goes on. One drive only.
+    #[arg(long, value_name = "FILE")]
+    plot: Option<PathBuf>,
+    /// A live terminal scope instead of lines: a chart per parameter, `space` pauses, `q`
+    /// quits. One drive only.
+    #[arg(long, conflicts_with_all = ["json", "count"])]
+    tui: bool,
 }
 
 /// Polls until `--count` is reached or the process is interrupted: one drive a line per poll,
@@ -35,10 +45,19 @@ pub struct Args {
 pub fn run(args: Args) -> Result<(), CliError> {
     let device = super::load(&args.description)?;
     let parameters = super::read::resolve(&device, &args.parameters)?;
+    crate::series::one_drive(&args.bus, args.plot.is_some(), "--plot")?;
+    crate::series::one_drive(&args.bus, args.tui, "--tui")?;
+    let plot = args.plot.as_deref().map(PlotFile::create).transpose()?;
+    let mut plot = plot.map(|file| Plotter::new(file, &device, "watch", &parameters));
     let mut drives = Drives::open(&args.bus, &device)?;
     let Some(session) = drives.single() else {
         return watch_each(&args, &device, &parameters, &mut drives);
     };
+    if args.tui {
+        let interval = Duration::from_millis(args.interval_ms);
+        let poll = || super::read::read_all(session, &device, &parameters);
+        return crate::series::tui::run(&device, &parameters, interval, plot, poll);
+    }
     let widths: Vec<usize> = parameters.iter().map(|p| p.name.len().max(12)).collect();
     if !args.json {
         let header: Vec<String> = parameters
@@ -53,6 +72,9 @@ pub fn run(args: Args) -> Result<(), CliError> {
     while args.count.is_none_or(|n| polls < n) {
         let values = super::read::read_all(session, &device, &parameters)?;
         let elapsed = start.elapsed().as_secs_f64();
+        if let Some(plot) = &mut plot {
+            plot.poll(&parameters, &values, elapsed)?;
+        }
         if args.json {
             let fields = by_name(&parameters, &values);
             println!(
@@ -72,7 +94,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
             std::thread::sleep(Duration::from_millis(args.interval_ms));
         }
     }
-    Ok(())
+    plot.map_or(Ok(()), |mut plot| plot.finish())
 }
 
 /// Polls every drive until `--count` is reached or the process is interrupted. A drive that
