@@ -79,7 +79,8 @@ fn broker_with(dir: &Path, port: u16, settings: &str) -> Running {
 
 /// The simulated Lafert on Modbus TCP, and its address.
 fn simulator() -> (Running, String) {
-    let (child, addr) = support::modbus_sim(&lafert(), &["--set", "bus_dc_link=4950"]);
+    let sets = ["--set", "bus_dc_link=4950", "--set", "operation_mode=2"];
+    let (child, addr) = support::modbus_sim(&lafert(), &sets);
     (Running(child), addr)
 }
 
@@ -175,8 +176,8 @@ name = "lafert"
 description = "{}"
 bus = {{ modbus_tcp = "{sim}", timeout_ms = 300 }}
 interval_ms = 100
-parameters = ["bus_dc_link", "speed_ramp_up"]
-writable = ["speed_ramp_up"]
+parameters = ["bus_dc_link", "speed_ramp_up", "operation_mode"]
+writable = ["speed_ramp_up", "operation_mode"]
 "#,
             lafert().display()
         ),
@@ -192,10 +193,20 @@ fn values_writes_a_broker_restart_and_a_silent_drive_through_a_real_broker() {
     let mut mosquitto = broker(&dir, port);
     let (mut sim, addr) = simulator();
     let (_sub, lines) = subscribe(port);
+    // A second drive whose bus is dead: reported, and the first is served all the same.
+    let file = config(&dir, port, &addr);
+    let mut text = std::fs::read_to_string(&file).unwrap();
+    text += &format!(
+        "\n[[drive]]\nname = \"gone\"\ndescription = \"{}\"\n\
+         bus = {{ modbus_tcp = \"127.0.0.1:{}\", timeout_ms = 200 }}\nparameters = [\"bus_dc_link\"]\n",
+        lafert().display(),
+        free_port()
+    );
+    std::fs::write(&file, text).unwrap();
     let mut gateway = Running(
         Command::new(BIN)
             .arg("gateway")
-            .arg(config(&dir, port, &addr))
+            .arg(&file)
             .stderr(Stdio::null())
             .spawn()
             .unwrap(),
@@ -211,6 +222,38 @@ fn values_writes_a_broker_restart_and_a_silent_drive_through_a_real_broker() {
         "{dc}"
     );
     expect(&lines, "drivegen/lafert/status", |p| p == "online");
+    // An enum by name and raw value; a write by name.
+    let mode = json(&expect(&lines, "drivegen/lafert/operation_mode", |_| true));
+    assert_eq!(
+        (&mode["value"], &mode["raw"]),
+        (&"velocity".into(), &2.into()),
+        "{mode}"
+    );
+    publish(
+        port,
+        "drivegen/lafert/operation_mode/set",
+        r#"{"value": "torque"}"#,
+    );
+    let torque = json(&expect(
+        &lines,
+        "drivegen/lafert/operation_mode/set/result",
+        |_| true,
+    ));
+    assert_eq!(
+        (&torque["ok"], &torque["raw"]),
+        (&true.into(), &1.into()),
+        "{torque}"
+    );
+    expect(&lines, "drivegen/lafert/operation_mode", |p| {
+        json(p)["value"] == "torque"
+    });
+    // The dead bus: offline with the reason, nothing else of that drive.
+    expect(&lines, "drivegen/gone/status", |p| p == "offline");
+    let gone = json(&expect(&lines, "drivegen/gone/error", |_| true));
+    assert!(
+        gone["error"].as_str().unwrap().contains("cannot reach"),
+        "{gone}"
+    );
 
     // A write through the checks of `drivegen write`, then one they refuse.
     publish(
