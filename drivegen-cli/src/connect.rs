@@ -100,7 +100,11 @@ impl CanBus for DynCan {
 /// line): each session's request holds it for its whole exchange.
 type Shared<T> = Arc<Mutex<T>>;
 
-fn hold<T>(shared: &Shared<T>) -> MutexGuard<'_, T> {
+/// The CAN bus of CANopen sessions: SDO transfers and, beside them, every other frame.
+pub type SharedCan = Shared<BlockingSdo<DynCan>>;
+
+/// Holds a shared bus for one exchange.
+pub fn hold<T>(shared: &Shared<T>) -> MutexGuard<'_, T> {
     // Each exchange completes or fails inside one call: a panicked holder left nothing half-sent.
     shared.lock().unwrap_or_else(PoisonError::into_inner)
 }
@@ -426,6 +430,15 @@ impl<'d> Session<'d> {
     /// Which drive on the bus this is: `("unit", 3)`, `("node", 3)` or `("station", 3)`.
     pub fn drive(&self) -> (&'static str, u8) {
         self.link.drive()
+    }
+
+    /// The CAN bus and the node of a CANopen session (`watch --pdo` sends SYNC and takes TPDOs
+    /// on it); `None` on another protocol.
+    pub fn can(&self) -> Option<(SharedCan, NodeId)> {
+        match &self.link {
+            Link::CanOpen { sdo, node } => Some((Arc::clone(sdo), *node)),
+            _ => None,
+        }
     }
 
     /// Reads the raw bytes of each parameter through the run-time interpreter: over Modbus with

@@ -1,0 +1,259 @@
+//! `drivegen watch --pdo` end to end against the simulated ez-Wheel SWD over CANopen (candump
+//! lines over TCP through socat, so the simulated drive outlives the CLI and every frame on the
+//! bus is recorded): the values arrive by TPDO, no SDO frame is on the bus while watching, and
+//! after the watch (ended by its count or by SIGINT) the TPDO objects hold what they held before.
+
+use std::io::{BufRead, BufReader};
+use std::net::TcpListener;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::sync::{Arc, Mutex};
+use std::thread;
+use std::time::Duration;
+
+use drivebus::canopen::can::candump::CandumpBus;
+use drivebus::canopen::{CanBus, CanFrame, NodeId};
+use drivebus::BusError;
+use drivesim::canopen::{nodes, Node, NodeConfig};
+use drivesim::Simulator;
+
+const BIN: &str = env!("CARGO_BIN_EXE_drivegen");
+/// The SWD's node id out of the box.
+const NODE: u8 = 0x10;
+/// SDO requests to and answers from the node.
+const SDO_IDS: [u16; 2] = [0x600 + NODE as u16, 0x580 + NODE as u16];
+const SYNC: u16 = 0x080;
+
+fn swd() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/ezwheel-swd")
+}
+
+/// Every frame on the bus, in order.
+type Log = Arc<Mutex<Vec<CanFrame>>>;
+
+/// A bus that records what passes both ways.
+struct Recorded<B> {
+    bus: B,
+    log: Log,
+}
+
+impl<B: CanBus> CanBus for Recorded<B> {
+    fn send(&mut self, frame: &CanFrame) -> Result<(), BusError> {
+        self.log.lock().unwrap().push(*frame);
+        self.bus.send(frame)
+    }
+    fn recv(&mut self, timeout: Duration) -> Result<Option<CanFrame>, BusError> {
+        let frame = self.bus.recv(timeout)?;
+        if let Some(frame) = &frame {
+            self.log.lock().unwrap().push(*frame);
+        }
+        Ok(frame)
+    }
+}
+
+/// Serves `sim` as the SWD's node to one CLI run after another, recording the bus; returns the
+/// bus options and the log.
+fn serve(sim: &Simulator) -> (Vec<String>, Log) {
+    let listener = TcpListener::bind("127.0.0.1:0").unwrap();
+    let addr = listener.local_addr().unwrap();
+    let sim = sim.clone();
+    let log = Log::default();
+    let recorded = Arc::clone(&log);
+    thread::spawn(move || {
+        for stream in listener.incoming() {
+            let Ok(stream) = stream else { return };
+            let config = NodeConfig {
+                node: NodeId(NODE),
+                heartbeat: None,
+            };
+            let mut node = Node::new(sim.clone(), config, sim.variant());
+            let bus = CandumpBus::new(stream.try_clone().unwrap(), stream);
+            let mut bus = Recorded {
+                bus,
+                log: Arc::clone(&recorded),
+            };
+            // The run ends when the CLI closes the connection.
+            let _ = nodes::run(std::slice::from_mut(&mut node), &mut bus);
+        }
+    });
+    let bus = vec![
+        "--can".into(),
+        format!("candump:exec:socat - TCP:{addr}"),
+        "--timeout-ms".into(),
+        "10000".into(),
+    ];
+    (bus, log)
+}
+
+/// The simulated SWD with a position to see.
+fn simulated() -> Simulator {
+    let sim = Simulator::load(swd()).unwrap();
+    sim.preset("position_actual_value", 1234).unwrap();
+    sim
+}
+
+/// The raw values of every TPDO communication and mapping object (1800h-1BFFh) the drive has.
+fn tpdo_objects(sim: &Simulator) -> Vec<(String, Option<i128>)> {
+    let device = drivegen::check(&swd()).device.unwrap();
+    let names = device
+        .parameters
+        .iter()
+        .filter(|p| {
+            p.canopen
+                .iter()
+                .any(|a| (0x1800..0x1C00).contains(&a.index))
+        })
+        .map(|p| p.name.clone());
+    sim.with(|drive| {
+        let store = drive.store();
+        names
+            .map(|name| {
+                let value = store.id(&name).and_then(|id| store.int(id));
+                (name, value)
+            })
+            .collect()
+    })
+}
+
+fn watch_args(extra: &[&str]) -> Vec<String> {
+    let mut args: Vec<String> = ["watch", swd().to_str().unwrap()]
+        .iter()
+        .chain(extra)
+        .map(|s| s.to_string())
+        .collect();
+    args.extend(["--pdo", "--start", "--interval-ms", "20"].map(String::from));
+    args
+}
+
+fn text(output: &Output) -> String {
+    format!(
+        "stdout:\n{}\nstderr:\n{}",
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr)
+    )
+}
+
+/// The frames from the first SYNC to the last frame before the SDO traffic that follows the
+/// last SYNC (the restore): the watching.
+fn while_watching(log: &[CanFrame]) -> &[CanFrame] {
+    let first = log.iter().position(|f| f.id() == SYNC).expect("a SYNC");
+    let last = log.iter().rposition(|f| f.id() == SYNC).unwrap();
+    let end = log[last..]
+        .iter()
+        .position(|f| SDO_IDS.contains(&f.id()))
+        .map_or(log.len(), |i| last + i);
+    &log[first..end]
+}
+
+#[test]
+fn values_arrive_by_pdo_with_no_sdo_while_watching_and_the_tpdo_is_restored() {
+    let sim = simulated();
+    let before = tpdo_objects(&sim);
+    let (bus, log) = serve(&sim);
+    let mut args = watch_args(&[
+        "position_actual_value",
+        "error_register",
+        "--count",
+        "5",
+        "--csv",
+    ]);
+    args.extend(bus);
+    let output = Command::new(BIN).args(&args).output().unwrap();
+    assert!(output.status.success(), "{}", text(&output));
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    let mut lines = stdout.lines();
+    assert_eq!(
+        lines.next(),
+        Some("time [s],position_actual_value [inc],error_register"),
+        "{stdout}"
+    );
+    let rows: Vec<&str> = lines.collect();
+    assert_eq!(rows.len(), 5, "{stdout}");
+    for row in &rows {
+        assert!(row.ends_with(",1234,(none)"), "{stdout}");
+    }
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("TPDO 2 mapped for the watch"), "{stderr}");
+    let log = log.lock().unwrap();
+    let watching = while_watching(&log);
+    let syncs = watching.iter().filter(|f| f.id() == SYNC).count();
+    let tpdos = watching
+        .iter()
+        .filter(|f| f.id() == 0x280 + u16::from(NODE))
+        .count();
+    assert_eq!((syncs, tpdos), (5, 5), "a TPDO 2 per SYNC: {watching:?}");
+    let sdo = watching
+        .iter()
+        .filter(|f| SDO_IDS.contains(&f.id()))
+        .count();
+    assert_eq!(sdo, 0, "no SDO frame while watching: {watching:?}");
+    // The mapping was written before (SDO downloads to 1A01h) and restored after.
+    let mapping_writes = log
+        .iter()
+        .filter(|f| f.id() == SDO_IDS[0] && f.data()[1..3] == [0x01, 0x1A])
+        .count();
+    assert!(
+        mapping_writes >= 4,
+        "written and restored: {mapping_writes}"
+    );
+    assert_eq!(tpdo_objects(&sim), before, "the TPDOs as they were");
+}
+
+#[test]
+fn sigint_ends_the_watch_and_restores_the_tpdo() {
+    let sim = simulated();
+    let before = tpdo_objects(&sim);
+    let (bus, _log) = serve(&sim);
+    let mut args = watch_args(&["position_actual_value", "error_register"]);
+    args.extend(bus);
+    let mut child = Command::new(BIN)
+        .args(&args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdout = BufReader::new(child.stdout.take().unwrap());
+    // The header and three samples: the watch is running, the TPDO reprogrammed.
+    for _ in 0..4 {
+        let mut line = String::new();
+        stdout.read_line(&mut line).unwrap();
+        assert!(!line.is_empty(), "the watch ended early");
+    }
+    assert_ne!(tpdo_objects(&sim), before, "TPDO 2 mapped while watching");
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let status = child.wait().unwrap();
+    let mut stderr = String::new();
+    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut stderr).unwrap();
+    assert!(status.success(), "{status}: {stderr}");
+    assert_eq!(
+        tpdo_objects(&sim),
+        before,
+        "the TPDOs as they were: {stderr}"
+    );
+}
+
+#[test]
+fn a_parameter_that_cannot_be_mapped_is_refused_before_anything_is_written() {
+    let sim = simulated();
+    let before = tpdo_objects(&sim);
+    let (bus, log) = serve(&sim);
+    let mut args = watch_args(&["position_actual_value", "controlword", "node_id"]);
+    args.extend(bus);
+    let output = Command::new(BIN).args(&args).output().unwrap();
+    assert!(!output.status.success(), "{}", text(&output));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains("controlword: the description lets 6040h:00h be mapped into RPDOs only"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("node_id: the description lets 2101h:00h be mapped into no PDO"),
+        "{stderr}"
+    );
+    assert!(log.lock().unwrap().is_empty(), "nothing sent");
+    assert_eq!(tpdo_objects(&sim), before);
+}
