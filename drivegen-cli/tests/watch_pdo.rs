@@ -28,8 +28,8 @@ fn swd() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/ezwheel-swd")
 }
 
-/// Every frame on the bus, in order.
-type Log = Arc<Mutex<Vec<CanFrame>>>;
+/// Every frame on the bus, in order, each with whether the CLI sent it (else the node did).
+type Log = Arc<Mutex<Vec<(bool, CanFrame)>>>;
 
 /// A bus that records what passes both ways.
 struct Recorded<B> {
@@ -39,13 +39,13 @@ struct Recorded<B> {
 
 impl<B: CanBus> CanBus for Recorded<B> {
     fn send(&mut self, frame: &CanFrame) -> Result<(), BusError> {
-        self.log.lock().unwrap().push(*frame);
+        self.log.lock().unwrap().push((false, *frame));
         self.bus.send(frame)
     }
     fn recv(&mut self, timeout: Duration) -> Result<Option<CanFrame>, BusError> {
         let frame = self.bus.recv(timeout)?;
         if let Some(frame) = &frame {
-            self.log.lock().unwrap().push(*frame);
+            self.log.lock().unwrap().push((true, *frame));
         }
         Ok(frame)
     }
@@ -174,14 +174,17 @@ fn values_arrive_by_pdo_with_no_sdo_while_watching_and_the_tpdo_is_restored() {
     }
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(stderr.contains("TPDO 2 mapped for the watch"), "{stderr}");
-    let log = log.lock().unwrap();
+    let log: Vec<CanFrame> = log.lock().unwrap().iter().map(|(_, f)| *f).collect();
     let watching = while_watching(&log);
     let syncs = watching.iter().filter(|f| f.id() == SYNC).count();
     let tpdos = watching
         .iter()
         .filter(|f| f.id() == 0x280 + u16::from(NODE))
         .count();
-    assert_eq!((syncs, tpdos), (5, 5), "a TPDO 2 per SYNC: {watching:?}");
+    // SYNCs go out on schedule while answers are on their way: one more may have gone out
+    // before the fifth answer came.
+    assert!(syncs >= 5, "{watching:?}");
+    assert_eq!(tpdos, syncs, "a TPDO 2 per SYNC: {watching:?}");
     let sdo = watching
         .iter()
         .filter(|f| SDO_IDS.contains(&f.id()))
@@ -254,6 +257,8 @@ fn a_parameter_that_cannot_be_mapped_is_refused_before_anything_is_written() {
         stderr.contains("node_id: the description lets 2101h:00h be mapped into no PDO"),
         "{stderr}"
     );
-    assert!(log.lock().unwrap().is_empty(), "nothing sent");
+    // The node's boot-up message may be on the bus; nothing from the CLI is.
+    let sent = log.lock().unwrap().iter().filter(|(cli, _)| *cli).count();
+    assert_eq!(sent, 0, "nothing sent");
     assert_eq!(tpdo_objects(&sim), before);
 }

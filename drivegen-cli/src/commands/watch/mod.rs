@@ -7,6 +7,7 @@ mod output_csv;
 mod output_json;
 mod output_lines;
 mod pdo_plan;
+mod pdo_slots;
 pub mod sample;
 mod source_pdo;
 mod source_poll;

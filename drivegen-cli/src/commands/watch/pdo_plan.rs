@@ -187,7 +187,8 @@ fn reuse(held: &TpdoConfig, entries: &[MappedObject], trigger: Trigger) -> Optio
     // Without sub-index 2 a TPDO is event-driven (type 255, the CiA 301 default).
     let transmission_type = held.transmission_type.unwrap_or(255);
     let sent = match trigger {
-        Trigger::Sync => (1..=240).contains(&transmission_type),
+        // Every SYNC: a sample per SYNC (types 2-240 would skip SYNCs).
+        Trigger::Sync => transmission_type == 1,
         Trigger::EventTimer(_) => {
             transmission_type >= 254 && held.event_timer.is_some_and(|t| t > 0)
         }

@@ -13,6 +13,7 @@ use drivegen::ir::{Device, Parameter};
 
 use super::interrupt::Interrupt;
 use super::pdo_plan::{self, Choice, Trigger};
+use super::pdo_slots::Slots;
 use super::sample::{Sample, Source};
 use super::tpdo_config::TpdoConfig;
 use crate::connect::{hold, SharedCan};
@@ -52,7 +53,11 @@ pub struct PdoWatch<'d> {
     settings: Settings,
     interrupt: Interrupt,
     start: Instant,
-    next_sync: Option<Instant>,
+    slots: Slots,
+    /// When the next SYNC is due (SYNC mode).
+    next_sync: Instant,
+    /// Since when no sample was given (event-timer mode: a silence that long is a timeout).
+    quiet_since: Instant,
     started: bool,
     samples: u64,
 }
@@ -86,20 +91,24 @@ impl<'d> PdoWatch<'d> {
                 restore: None,
             });
         }
+        let now = Instant::now();
         let mut watch = Self {
             bus,
             device,
             parameters: parameters.to_vec(),
+            slots: Slots::new(nodes.len(), settings.trigger != Trigger::Sync),
             nodes,
             settings,
             interrupt,
-            start: Instant::now(),
-            next_sync: None,
+            start: now,
+            next_sync: now,
+            quiet_since: now,
             started: false,
             samples: 0,
         };
         watch.program()?;
-        watch.start = Instant::now();
+        let now = Instant::now();
+        (watch.start, watch.next_sync, watch.quiet_since) = (now, now, now);
         Ok(watch)
     }
 
@@ -154,30 +163,47 @@ impl<'d> PdoWatch<'d> {
         first_error.map_or(Ok(()), Err)
     }
 
-    /// Waits for each node's TPDO until `deadline`: its payload, or `None` for a node that sent
-    /// none. `None` overall when interrupted.
-    fn collect(&mut self, deadline: Instant) -> Result<Option<Vec<Option<Vec<u8>>>>, CliError> {
-        let mut payloads: Vec<Option<Vec<u8>>> = vec![None; self.nodes.len()];
-        while payloads.iter().any(Option::is_none) {
-            if self.interrupt.raised() {
-                return Ok(None);
+    /// Sends a SYNC if one is due (SYNC mode), then waits on the bus until the next is due,
+    /// the oldest slot times out, or a short nap passed, filling a slot with the TPDO that came.
+    fn turn(&mut self) -> Result<(), CliError> {
+        let now = Instant::now();
+        let mut wake = now + NAP;
+        if self.settings.trigger == Trigger::Sync {
+            if now >= self.next_sync {
+                let sync =
+                    CanFrame::new(cob::SYNC, &[]).map_err(|e| CliError::Io(e.to_string()))?;
+                hold(&self.bus)
+                    .send(&sync)
+                    .map_err(|e| CliError::Io(format!("SYNC: {e}")))?;
+                self.slots.sync(now, self.time(now));
+                // On schedule; after a stall, one interval from now rather than a burst.
+                self.next_sync = (self.next_sync + self.settings.interval).max(now);
             }
-            let now = Instant::now();
-            if now >= deadline {
-                break;
-            }
-            let frame = hold(&self.bus).recv((deadline - now).min(NAP));
-            let frame = frame.map_err(|e| CliError::Io(format!("CAN bus: {e}")))?;
-            let Some(frame) = frame else { continue };
-            let node = self
-                .nodes
-                .iter()
-                .position(|n| !frame.is_remote() && n.choice.can_id() == frame.id());
-            if let Some(i) = node {
-                payloads[i] = Some(frame.data().to_vec());
-            }
+            wake = wake.min(self.next_sync);
         }
-        Ok(Some(payloads))
+        if let Some(deadline) = self.slots.deadline(self.settings.timeout) {
+            wake = wake.min(deadline);
+        }
+        let wait = wake.saturating_duration_since(Instant::now());
+        let frame = hold(&self.bus).recv(wait);
+        let frame = frame.map_err(|e| CliError::Io(format!("CAN bus: {e}")))?;
+        let Some(frame) = frame else {
+            return Ok(());
+        };
+        let node = self
+            .nodes
+            .iter()
+            .position(|n| !frame.is_remote() && n.choice.can_id() == frame.id());
+        if let Some(i) = node {
+            let at = Instant::now();
+            self.slots.fill(i, frame.data().to_vec(), at, self.time(at));
+        }
+        Ok(())
+    }
+
+    /// Seconds from the start of the watch to `at`.
+    fn time(&self, at: Instant) -> f64 {
+        at.duration_since(self.start).as_secs_f64()
     }
 
     /// A node's values from its TPDO payload, or why there are none.
@@ -215,33 +241,30 @@ impl<'d> PdoWatch<'d> {
 
 impl Source for PdoWatch<'_> {
     fn next(&mut self) -> Result<Option<Sample>, CliError> {
-        if self.settings.trigger == Trigger::Sync {
-            if let Some(due) = self.next_sync {
-                if !self.interrupt.sleep_until(due) {
-                    return Ok(None);
+        let (time, payloads) = loop {
+            if self.interrupt.raised() {
+                return Ok(None);
+            }
+            let now = Instant::now();
+            if let Some(ready) = self.slots.ready(now, self.settings.timeout) {
+                break ready;
+            }
+            let by_event = self.settings.trigger != Trigger::Sync;
+            if by_event && self.slots.deadline(self.settings.timeout).is_none() {
+                // Nothing came at all for a timeout: every node is late.
+                if now.duration_since(self.quiet_since) >= self.settings.timeout {
+                    break (self.time(now), vec![None; self.nodes.len()]);
                 }
             }
-            let sync = CanFrame::new(cob::SYNC, &[]).map_err(|e| CliError::Io(e.to_string()))?;
-            hold(&self.bus)
-                .send(&sync)
-                .map_err(|e| CliError::Io(format!("SYNC: {e}")))?;
-            // The next SYNC one interval after this one; when a node was late, one interval
-            // after its TPDO came.
-            self.next_sync = Some(Instant::now() + self.settings.interval);
-        }
-        let time = self.start.elapsed().as_secs_f64();
-        let Some(payloads) = self.collect(Instant::now() + self.settings.timeout)? else {
-            return Ok(None);
+            self.turn()?;
         };
+        self.quiet_since = Instant::now();
         let drives = self
             .nodes
             .iter()
             .zip(payloads)
             .map(|(node, payload)| self.outcome(node, payload))
             .collect();
-        if let Some(due) = &mut self.next_sync {
-            *due = (*due).max(Instant::now());
-        }
         self.samples += 1;
         Ok(Some(Sample { time, drives }))
     }
