@@ -83,6 +83,11 @@ pub fn run(args: Args) -> Result<(), CliError> {
         let mut source = Poll::new(&mut drives, &device, &parameters, interval, interrupt);
         return watch(args.count, &layout, &mut source, output.as_mut());
     }
+    if args.interval_ms == 0 {
+        return Err(CliError::Usage(
+            "--pdo: give --interval-ms of at least 1 (a SYNC every interval)".into(),
+        ));
+    }
     let trigger = match args.event_timer {
         false => Trigger::Sync,
         true => Trigger::EventTimer(u16::try_from(args.interval_ms).map_err(|_| {

@@ -23,6 +23,9 @@ use crate::error::CliError;
 /// Longest single wait on the bus: how late a Ctrl-C is noticed at most while waiting.
 const NAP: Duration = Duration::from_millis(20);
 
+/// The most SYNC intervals the watch makes up for after it was held up.
+const CATCH_UP: u32 = 4;
+
 /// How the watch runs.
 #[derive(Debug, Clone, Copy)]
 pub struct Settings {
@@ -176,8 +179,13 @@ impl<'d> PdoWatch<'d> {
                     .send(&sync)
                     .map_err(|e| CliError::Io(format!("SYNC: {e}")))?;
                 self.slots.sync(now, self.time(now));
-                // On schedule; after a stall, one interval from now rather than a burst.
-                self.next_sync = (self.next_sync + self.settings.interval).max(now);
+                // On schedule: a SYNC sent late (a wake-up the system delayed) does not move
+                // the next ones, so the rate holds; after a stall of more than a few intervals
+                // the schedule starts again from now rather than sending a burst.
+                self.next_sync += self.settings.interval;
+                if self.next_sync + CATCH_UP * self.settings.interval < now {
+                    self.next_sync = now;
+                }
             }
             wake = wake.min(self.next_sync);
         }
