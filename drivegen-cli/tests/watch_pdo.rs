@@ -1,7 +1,8 @@
-//! `drivegen watch --pdo` end to end against the simulated ez-Wheel SWD over CANopen (candump
-//! lines over TCP through socat, so the simulated drive outlives the CLI and every frame on the
-//! bus is recorded): the values arrive by TPDO, no SDO frame is on the bus while watching, and
-//! after the watch (ended by its count or by SIGINT) the TPDO objects hold what they held before.
+//! `drivegen watch --pdo` end to end against the simulated ez-Wheel SWD (at SYNC) and Kinco FD
+//! (by event timer) over CANopen (candump lines over TCP through socat, so the simulated drive
+//! outlives the CLI and every frame on the bus is recorded): the values arrive by TPDO, no SDO
+//! frame is on the bus while watching, and after the watch (ended by its count or by SIGINT) the
+//! TPDO objects hold what they held before.
 
 use std::io::{BufRead, BufReader};
 use std::net::TcpListener;
@@ -24,8 +25,14 @@ const NODE: u8 = 0x10;
 const SDO_IDS: [u16; 2] = [0x600 + NODE as u16, 0x580 + NODE as u16];
 const SYNC: u16 = 0x080;
 
+fn description(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../descriptions")
+        .join(name)
+}
+
 fn swd() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/ezwheel-swd")
+    description("ezwheel-swd")
 }
 
 /// Every frame on the bus, in order, each with whether the CLI sent it (else the node did).
@@ -54,6 +61,11 @@ impl<B: CanBus> CanBus for Recorded<B> {
 /// Serves `sim` as the SWD's node to one CLI run after another, recording the bus; returns the
 /// bus options and the log.
 fn serve(sim: &Simulator) -> (Vec<String>, Log) {
+    serve_as(sim, NODE)
+}
+
+/// Serves `sim` as node `id`.
+fn serve_as(sim: &Simulator, id: u8) -> (Vec<String>, Log) {
     let listener = TcpListener::bind("127.0.0.1:0").unwrap();
     let addr = listener.local_addr().unwrap();
     let sim = sim.clone();
@@ -63,7 +75,7 @@ fn serve(sim: &Simulator) -> (Vec<String>, Log) {
         for stream in listener.incoming() {
             let Ok(stream) = stream else { return };
             let config = NodeConfig {
-                node: NodeId(NODE),
+                node: NodeId(id),
                 heartbeat: None,
             };
             let mut node = Node::new(sim.clone(), config, sim.variant());
@@ -92,9 +104,14 @@ fn simulated() -> Simulator {
     sim
 }
 
-/// The raw values of every TPDO communication and mapping object (1800h-1BFFh) the drive has.
+/// The raw values of every TPDO communication and mapping object (1800h-1BFFh) the SWD has.
 fn tpdo_objects(sim: &Simulator) -> Vec<(String, Option<i128>)> {
-    let device = drivegen::check(&swd()).device.unwrap();
+    tpdo_objects_of(sim, &swd())
+}
+
+/// The same of the drive `path` describes.
+fn tpdo_objects_of(sim: &Simulator, path: &Path) -> Vec<(String, Option<i128>)> {
+    let device = drivegen::check(path).device.unwrap();
     let names = device
         .parameters
         .iter()
@@ -261,4 +278,68 @@ fn a_parameter_that_cannot_be_mapped_is_refused_before_anything_is_written() {
     let sent = log.lock().unwrap().iter().filter(|(cli, _)| *cli).count();
     assert_eq!(sent, 0, "nothing sent");
     assert_eq!(tpdo_objects(&sim), before);
+}
+
+#[test]
+fn by_event_timer_no_sync_and_no_sdo_go_out_while_watching() {
+    let kinco = description("kinco-fd");
+    let sim = Simulator::load(&kinco).unwrap();
+    let before = tpdo_objects_of(&sim, &kinco);
+    let (bus, log) = serve_as(&sim, 1);
+    let output = Command::new(BIN)
+        .arg("watch")
+        .arg(&kinco)
+        .args([
+            "statusword",
+            "position_actual",
+            "--pdo",
+            "--event-timer",
+            "--start",
+        ])
+        .args(["--interval-ms", "5", "--count", "4", "--json"])
+        .args(bus)
+        .output()
+        .unwrap();
+    assert!(output.status.success(), "{}", text(&output));
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    let samples: Vec<serde_json::Value> = stdout
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(samples.len(), 4, "{stdout}");
+    let statusword = sim.with(|drive| {
+        let store = drive.store();
+        store.int(store.id("statusword").unwrap()).unwrap()
+    });
+    for sample in &samples {
+        let raw = &sample["values"]["statusword"]["raw"];
+        assert_eq!(raw.as_i64().map(i128::from), Some(statusword), "{stdout}");
+        assert!(
+            sample["values"]["position_actual"]["raw"].is_i64(),
+            "{stdout}"
+        );
+    }
+    let log = log.lock().unwrap();
+    let from_cli: Vec<CanFrame> = log
+        .iter()
+        .filter(|(cli, _)| *cli)
+        .map(|(_, f)| *f)
+        .collect();
+    assert!(
+        !from_cli.iter().any(|f| f.id() == SYNC),
+        "no SYNC by event timer"
+    );
+    // From the NMT Start to the NMT Enter Pre-Operational, the CLI sends nothing.
+    let nmt: Vec<usize> = (0..from_cli.len())
+        .filter(|&i| from_cli[i].id() == 0)
+        .collect();
+    assert_eq!(nmt.len(), 2, "start and back: {from_cli:?}");
+    assert_eq!(nmt[1], nmt[0] + 1, "nothing between: {from_cli:?}");
+    let tpdos = log.iter().filter(|(_, f)| f.id() == 0x181).count();
+    assert!(tpdos >= 4, "TPDO 1 by event timer: {tpdos}");
+    assert_eq!(
+        tpdo_objects_of(&sim, &kinco),
+        before,
+        "the TPDOs as they were"
+    );
 }
