@@ -15,12 +15,17 @@ const NAP: Duration = Duration::from_millis(20);
 pub struct Interrupt(Arc<AtomicBool>);
 
 impl Interrupt {
-    /// Catches SIGINT and SIGTERM from now on.
+    /// Catches SIGINT and SIGTERM from now on. A second one ends the process at once (exit
+    /// code 1), for a drive that does not answer while its configuration is restored.
     pub fn catch() -> Result<Self, CliError> {
         let flag = Arc::new(AtomicBool::new(false));
         for signal in [signal_hook::consts::SIGINT, signal_hook::consts::SIGTERM] {
-            signal_hook::flag::register(signal, Arc::clone(&flag))
-                .map_err(|e| CliError::Io(format!("cannot catch signal {signal}: {e}")))?;
+            let caught =
+                |e: std::io::Error| CliError::Io(format!("cannot catch signal {signal}: {e}"));
+            // The shutdown first: it looks at the flag before the second handler sets it.
+            signal_hook::flag::register_conditional_shutdown(signal, 1, Arc::clone(&flag))
+                .map_err(caught)?;
+            signal_hook::flag::register(signal, Arc::clone(&flag)).map_err(caught)?;
         }
         Ok(Self(flag))
     }
