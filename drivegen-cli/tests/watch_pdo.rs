@@ -343,3 +343,44 @@ fn by_event_timer_no_sync_and_no_sdo_go_out_while_watching() {
         "the TPDOs as they were"
     );
 }
+
+/// The SWD's TPDO identifiers do not follow its node id (TPDO 3 is 390h on every node): of two
+/// nodes, the second gets a TPDO of its own for the watch.
+#[test]
+fn two_nodes_with_the_same_tpdo_identifiers_are_watched_apart() {
+    let sim = format!(
+        "candump:exec:{BIN} sim {} --can candump:stdio --node-id 16 --node-id 17",
+        swd().display()
+    );
+    let output = Command::new(BIN)
+        .args(watch_args(&[
+            "statusword",
+            "position_actual_value",
+            "--count",
+            "3",
+            "--csv",
+        ]))
+        .args(["--can", &sim, "--node-id", "16", "--node-id", "17"])
+        .args(["--timeout-ms", "10000"])
+        .output()
+        .unwrap();
+    assert!(output.status.success(), "{}", text(&output));
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    let rows: Vec<&str> = stdout.lines().skip(1).collect();
+    assert_eq!(rows.len(), 3, "{stdout}");
+    for row in rows {
+        assert!(
+            row.ends_with(",switch_on_disabled,0,switch_on_disabled,0"),
+            "{stdout}"
+        );
+    }
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains("node 17: TPDO 2 mapped for the watch"),
+        "{stderr}"
+    );
+    assert!(
+        !stderr.contains("node 16: TPDO"),
+        "node 16's TPDO 3 as it is: {stderr}"
+    );
+}

@@ -111,14 +111,19 @@ pub fn described_tpdos(device: &Device) -> Vec<u16> {
 
 /// The TPDO of `node` to watch `entries` on, among its TPDOs as they are now (`held`): one that
 /// already sends them as `trigger` wants, else the last not valid one that can be set so, else
-/// the last one that can, reprogrammed. `Err` says why none can.
+/// the last one that can, reprogrammed; never one on a CAN identifier in `taken` (the other
+/// watched nodes' TPDOs: a drive whose TPDO identifiers do not follow its node id sends on
+/// the same identifier as its twin). `Err` says why none can.
 pub fn choose(
     held: &[TpdoConfig],
     entries: &[MappedObject],
     trigger: Trigger,
     node: NodeId,
+    taken: &[u16],
 ) -> Result<Choice, String> {
-    if let Some(choice) = held.iter().find_map(|t| reuse(t, entries, trigger)) {
+    let free = |choice: &Choice| !taken.contains(&choice.can_id());
+    let reused = held.iter().filter_map(|t| reuse(t, entries, trigger));
+    if let Some(choice) = reused.filter(free).next() {
         return Ok(choice);
     }
     let unused = held.iter().rev().filter(|t| !t.is_valid());
@@ -126,7 +131,14 @@ pub fn choose(
     let mut why = String::from("the description declares no TPDO to map into");
     for target in unused.chain(used) {
         match reprogram(target, entries, trigger, node) {
-            Ok(choice) => return Ok(choice),
+            Ok(choice) if free(&choice) => return Ok(choice),
+            Ok(choice) => {
+                why = format!(
+                    "TPDO {} would go out on CAN id {:03X}h, which another watched node uses",
+                    target.number,
+                    choice.can_id()
+                )
+            }
             Err(reason) => why = reason,
         }
     }
@@ -228,11 +240,17 @@ mod tests {
             tpdo(1, 0x181, vec![STATUSWORD]),
             tpdo(3, 0x381, vec![STATUSWORD, VELOCITY]),
         ];
-        let choice = choose(&held, &[VELOCITY], Trigger::Sync, NodeId(1)).unwrap();
+        let choice = choose(&held, &[VELOCITY], Trigger::Sync, NodeId(1), &[]).unwrap();
         assert_eq!(
             (choice.watched.number, choice.saved, choice.offsets),
             (3, None, vec![2])
         );
+        // On an identifier another node's TPDO uses: TPDO 1 (the last one) is reprogrammed.
+        let twin = choose(&held, &[VELOCITY], Trigger::Sync, NodeId(1), &[0x381]).unwrap();
+        assert_eq!((twin.watched.number, twin.can_id()), (1, 0x181));
+        let both = [0x381, 0x181];
+        let why = choose(&held, &[VELOCITY], Trigger::Sync, NodeId(1), &both).unwrap_err();
+        assert!(why.contains("another watched node"), "{why}");
     }
 
     #[test]
@@ -248,6 +266,7 @@ mod tests {
             &[VELOCITY, STATUSWORD],
             Trigger::EventTimer(5),
             NodeId(1),
+            &[],
         )
         .unwrap();
         assert_eq!(choice.saved, Some(unused));
@@ -260,10 +279,10 @@ mod tests {
 
     #[test]
     fn no_tpdo_or_no_event_timer_is_a_reason() {
-        assert!(choose(&[], &[VELOCITY], Trigger::Sync, NodeId(1)).is_err());
+        assert!(choose(&[], &[VELOCITY], Trigger::Sync, NodeId(1), &[]).is_err());
         let mut held = tpdo(1, 0x181, vec![]);
         held.event_timer = None;
-        let why = choose(&[held], &[VELOCITY], Trigger::EventTimer(5), NodeId(1)).unwrap_err();
+        let why = choose(&[held], &[VELOCITY], Trigger::EventTimer(5), NodeId(1), &[]).unwrap_err();
         assert!(why.contains("no event timer"), "{why}");
     }
 }

@@ -84,10 +84,11 @@ impl<'d> PdoWatch<'d> {
         let mut nodes = Vec::with_capacity(ids.len());
         for id in ids {
             let held = read_tpdos(&bus, id, &described)?;
-            let choice =
-                pdo_plan::choose(&held, &entries, settings.trigger, id).map_err(|why| {
-                    CliError::Usage(format!("cannot watch node {} by PDO: {why}", id.0))
-                })?;
+            let taken: Vec<u16> = nodes.iter().map(|n: &Node| n.choice.can_id()).collect();
+            let choice = pdo_plan::choose(&held, &entries, settings.trigger, id, &taken);
+            let choice = choice.map_err(|why| {
+                CliError::Usage(format!("cannot watch node {} by PDO: {why}", id.0))
+            })?;
             nodes.push(Node {
                 id,
                 choice,
