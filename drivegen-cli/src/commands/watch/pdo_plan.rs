@@ -122,8 +122,8 @@ pub fn choose(
     taken: &[u16],
 ) -> Result<Choice, String> {
     let free = |choice: &Choice| !taken.contains(&choice.can_id());
-    let reused = held.iter().filter_map(|t| reuse(t, entries, trigger));
-    if let Some(choice) = reused.filter(free).next() {
+    let mut reused = held.iter().filter_map(|t| reuse(t, entries, trigger));
+    if let Some(choice) = reused.find(free) {
         return Ok(choice);
     }
     let unused = held.iter().rev().filter(|t| !t.is_valid());
