@@ -570,7 +570,9 @@ pub fn can_backend(
 /// too); a write is still checked against the limits before anything is sent.
 pub fn warn_node_relative_defaults(device: &Device, node: u8) {
     for line in node_relative_default_warnings(device, node) {
-        eprintln!("{line}");
+        // One write a line: a simulator relay started by this process shares its stderr and
+        // warns at the same time, and `eprintln!` writes the line and its break apart.
+        let _ = std::io::Write::write_all(&mut std::io::stderr(), format!("{line}\n").as_bytes());
     }
 }
 
