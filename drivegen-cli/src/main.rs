@@ -12,6 +12,7 @@ mod frame_source;
 mod frames;
 mod identity_check;
 mod lines;
+mod objects;
 mod pdo_mappings;
 mod suggest;
 mod table;
