@@ -49,7 +49,8 @@ pub struct Args {
     #[arg(long)]
     csv: bool,
     /// CANopen: take the values from a TPDO instead of SDO polls, with no SDO request while
-    /// watching. A TPDO that already carries the parameters (sent on SYNC) is used as it is;
+    /// watching. A TPDO that already carries the parameters (sent at every SYNC, or by its
+    /// event timer with --event-timer) is used as it is;
     /// otherwise the parameters are mapped into one of the described TPDOs (an unused one
     /// first), and its configuration, read first, is written back when the watch ends (Ctrl-C
     /// included). The watch sends a SYNC every --interval-ms.

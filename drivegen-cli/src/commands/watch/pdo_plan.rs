@@ -40,13 +40,16 @@ impl Choice {
         (self.watched.cob_id & BASE_ID) as u16
     }
 
-    /// The payload bytes the watched parameters need.
+    /// The payload bytes the TPDO's mapping takes (bit-packed entries of a drive's own TPDO
+    /// included, rounded up), so every watched parameter's bytes lie within a payload this long.
     pub fn payload_len(&self) -> usize {
-        self.watched
+        let bits: usize = self
+            .watched
             .entries
             .iter()
-            .map(|e| usize::from(e.bits) / 8)
-            .sum()
+            .map(|e| usize::from(e.bits))
+            .sum();
+        bits.div_ceil(8)
     }
 }
 
@@ -275,6 +278,17 @@ mod tests {
         assert_eq!(choice.watched.event_timer, Some(5));
         assert_eq!(choice.offsets, [0, 4]);
         assert_eq!(choice.payload_len(), 6);
+    }
+
+    #[test]
+    fn a_bit_packed_tpdo_needs_its_whole_payload() {
+        let flags = [
+            MappedObject::new(0x2000, 1, 1),
+            MappedObject::new(0x2000, 2, 7),
+        ];
+        let held = [tpdo(1, 0x181, [&flags[..], &[STATUSWORD]].concat())];
+        let choice = choose(&held, &[STATUSWORD], Trigger::Sync, NodeId(1), &[]).unwrap();
+        assert_eq!((choice.payload_len(), choice.offsets), (3, vec![1]));
     }
 
     #[test]
