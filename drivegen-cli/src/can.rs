@@ -200,11 +200,18 @@ pub fn open(
             let program = words
                 .next()
                 .ok_or_else(|| CliError::Usage("candump:exec: needs a command".into()))?;
-            let mut child = Command::new(program)
+            let mut command_line = Command::new(program);
+            command_line
                 .args(words)
                 .stdin(Stdio::piped())
                 .stdout(Stdio::piped())
-                .stderr(Stdio::inherit())
+                .stderr(Stdio::inherit());
+            // Its own process group: a Ctrl-C at the terminal reaches the CLI only, which still
+            // needs the relay to restore what it changed on the drive (`watch --pdo`) before it
+            // stops the relay.
+            #[cfg(unix)]
+            std::os::unix::process::CommandExt::process_group(&mut command_line, 0);
+            let mut child = command_line
                 .spawn()
                 .map_err(|e| CliError::Io(format!("cannot start `{command}`: {e}")))?;
             let bus = CandumpBus::from_child(&mut child)

@@ -100,7 +100,11 @@ impl CanBus for DynCan {
 /// line): each session's request holds it for its whole exchange.
 type Shared<T> = Arc<Mutex<T>>;
 
-fn hold<T>(shared: &Shared<T>) -> MutexGuard<'_, T> {
+/// The CAN bus of CANopen sessions: SDO transfers and, beside them, every other frame.
+pub type SharedCan = Shared<BlockingSdo<DynCan>>;
+
+/// Holds a shared bus for one exchange.
+pub fn hold<T>(shared: &Shared<T>) -> MutexGuard<'_, T> {
     // Each exchange completes or fails inside one call: a panicked holder left nothing half-sent.
     shared.lock().unwrap_or_else(PoisonError::into_inner)
 }
@@ -428,6 +432,15 @@ impl<'d> Session<'d> {
         self.link.drive()
     }
 
+    /// The CAN bus and the node of a CANopen session (`watch --pdo` sends SYNC and takes TPDOs
+    /// on it); `None` on another protocol.
+    pub fn can(&self) -> Option<(SharedCan, NodeId)> {
+        match &self.link {
+            Link::CanOpen { sdo, node } => Some((Arc::clone(sdo), *node)),
+            _ => None,
+        }
+    }
+
     /// Reads the raw bytes of each parameter through the run-time interpreter: over Modbus with
     /// the fewest requests the device's limits allow (sent together with `--max-in-flight`),
     /// over CANopen and RS-232 an upload each.
@@ -557,7 +570,9 @@ pub fn can_backend(
 /// too); a write is still checked against the limits before anything is sent.
 pub fn warn_node_relative_defaults(device: &Device, node: u8) {
     for line in node_relative_default_warnings(device, node) {
-        eprintln!("{line}");
+        // One write a line: a simulator relay started by this process shares its stderr and
+        // warns at the same time, and `eprintln!` writes the line and its break apart.
+        let _ = std::io::Write::write_all(&mut std::io::stderr(), format!("{line}\n").as_bytes());
     }
 }
 

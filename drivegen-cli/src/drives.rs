@@ -33,6 +33,16 @@ impl<'d> Drives<'d> {
         }
     }
 
+    /// The sessions, one a drive, in order.
+    pub fn sessions(&self) -> &[Session<'d>] {
+        &self.sessions
+    }
+
+    /// Each drive: `("unit", 3)`, `("node", 5)`.
+    pub fn ids(&self) -> Vec<(&'static str, u8)> {
+        self.sessions.iter().map(Session::drive).collect()
+    }
+
     /// How many drives there are.
     pub fn len(&self) -> usize {
         self.sessions.len()

@@ -8,6 +8,7 @@ use drivebus::interpret::Shown;
 use drivebus::trace::Event;
 use drivegen::ir::{Device, Parameter};
 
+use crate::objects::Objects;
 use crate::pdo_mappings::PdoMappings;
 
 /// A parameter value a frame carries.
@@ -22,7 +23,7 @@ pub struct Sample {
 }
 
 impl Sample {
-    fn of(parameter: &Parameter, shown: Shown) -> Self {
+    pub(crate) fn of(parameter: &Parameter, shown: Shown) -> Self {
         let value = crate::series::number(&shown);
         Self {
             parameter: parameter.name.clone(),
@@ -31,7 +32,7 @@ impl Sample {
         }
     }
 
-    fn unknown(index: u16, subindex: u8, bytes: &[u8]) -> Self {
+    pub(crate) fn unknown(index: u16, subindex: u8, bytes: &[u8]) -> Self {
         Self {
             parameter: format!("{index:04X}:{subindex:02X}"),
             text: format!("{bytes:02X?}"),
@@ -77,7 +78,7 @@ impl Decoded {
 /// Decodes frames in bus order, learning PDO mappings from the SDO writes it sees.
 #[derive(Debug)]
 pub struct FrameDecoder<'d> {
-    device: &'d Device,
+    objects: Objects<'d>,
     mappings: PdoMappings,
 }
 
@@ -85,7 +86,7 @@ impl<'d> FrameDecoder<'d> {
     /// A decoder for a bus of drives `device` describes.
     pub fn new(device: &'d Device) -> Self {
         Self {
-            device,
+            objects: Objects::new(device),
             mappings: PdoMappings::default(),
         }
     }
@@ -102,7 +103,7 @@ impl<'d> FrameDecoder<'d> {
     }
 
     fn describe(&self, message: Message) -> Decoded {
-        let device = self.device;
+        let objects = &self.objects;
         let line = |node: Option<u8>, kind, what: String, value: String| Decoded {
             node: node.map_or(String::new(), |n| n.to_string()),
             kind,
@@ -114,14 +115,14 @@ impl<'d> FrameDecoder<'d> {
         };
         match message {
             Message::SdoRequest { node, data } => {
-                let (what, value, sample) = sdo_request(device, &data);
+                let (what, value, sample) = sdo_request(objects, &data);
                 Decoded {
                     samples: sample.into_iter().collect(),
                     ..line(Some(node.0), "sdo →", what, value)
                 }
             }
             Message::SdoResponse { node, data } => {
-                let (what, value, sample) = sdo_response(device, &message, &data);
+                let (what, value, sample) = sdo_response(objects, &message, &data);
                 Decoded {
                     samples: sample.into_iter().collect(),
                     ..line(Some(node.0), "sdo ←", what, value)
@@ -150,7 +151,7 @@ impl<'d> FrameDecoder<'d> {
                     format!("{:#06X}", emcy.code),
                     format!(
                         "{} (register {:#04x})",
-                        emcy_name(device, emcy.code),
+                        objects.emcy_name(emcy.code).unwrap_or("unknown code"),
                         emcy.register.bits()
                     ),
                 )
@@ -177,7 +178,7 @@ impl<'d> FrameDecoder<'d> {
                 let what = format!("{kind:?}{number}");
                 match self
                     .mappings
-                    .decode(device, node.0, kind, number, frame.data())
+                    .decode(objects, node.0, kind, number, frame.data())
                 {
                     Some(samples) => Decoded {
                         samples,
@@ -215,14 +216,6 @@ impl Decoded {
     }
 }
 
-/// A sample of the parameter at `index:subindex` from its raw bytes.
-pub fn sample(device: &Device, index: u16, subindex: u8, bytes: &[u8]) -> Sample {
-    match find(device, index, subindex) {
-        Some(p) => Sample::of(p, drivebus::interpret::show(device, p, bytes)),
-        None => Sample::unknown(index, subindex, bytes),
-    }
-}
-
 /// The object and value of an expedited download request.
 fn expedited_download(data: &[u8; 8]) -> Option<(u16, u8, &[u8])> {
     if data[0] >> 5 != 1 || data[0] & 0b10 == 0 {
@@ -237,28 +230,15 @@ fn expedited_download(data: &[u8; 8]) -> Option<(u16, u8, &[u8])> {
     Some((index, subindex, &data[4..4 + len]))
 }
 
-/// The parameter at `index:subindex`, by name, or the address.
-fn object_name(device: &Device, index: u16, subindex: u8) -> String {
-    find(device, index, subindex).map_or(format!("{index:04X}:{subindex:02X}"), |p| p.name.clone())
-}
-
-fn find(device: &Device, index: u16, subindex: u8) -> Option<&Parameter> {
-    device.parameters.iter().find(|p| {
-        p.canopen
-            .iter()
-            .any(|a| a.index == index && a.subindex == subindex)
-    })
-}
-
 fn mux(data: &[u8; 8]) -> (u16, u8) {
     (u16::from_le_bytes([data[1], data[2]]), data[3])
 }
 
-fn sdo_request(device: &Device, data: &[u8; 8]) -> (String, String, Option<Sample>) {
+fn sdo_request(objects: &Objects<'_>, data: &[u8; 8]) -> (String, String, Option<Sample>) {
     let (index, subindex) = mux(data);
-    let name = object_name(device, index, subindex);
+    let name = objects.name(index, subindex);
     if let Some((index, subindex, bytes)) = expedited_download(data) {
-        let sample = sample(device, index, subindex, bytes);
+        let sample = objects.sample(index, subindex, bytes);
         return (format!("write {name}"), sample.text.clone(), Some(sample));
     }
     let (what, value) = match data[0] >> 5 {
@@ -271,20 +251,20 @@ fn sdo_request(device: &Device, data: &[u8; 8]) -> (String, String, Option<Sampl
 }
 
 fn sdo_response(
-    device: &Device,
+    objects: &Objects<'_>,
     message: &Message,
     data: &[u8; 8],
 ) -> (String, String, Option<Sample>) {
     if let Some(v) = message.expedited_value() {
-        let sample = sample(device, v.index, v.subindex, &v.bytes[..v.len as usize]);
+        let sample = objects.sample(v.index, v.subindex, &v.bytes[..v.len as usize]);
         return (
-            object_name(device, v.index, v.subindex),
+            objects.name(v.index, v.subindex),
             sample.text.clone(),
             Some(sample),
         );
     }
     let (index, subindex) = mux(data);
-    let name = object_name(device, index, subindex);
+    let name = objects.name(index, subindex);
     let (what, value) = match data[0] >> 5 {
         3 => (format!("{name} written"), "ok".into()),
         4 => (format!("abort {name}"), abort(data)),
@@ -296,15 +276,4 @@ fn sdo_response(
 fn abort(data: &[u8; 8]) -> String {
     let code = u32::from_le_bytes([data[4], data[5], data[6], data[7]]);
     format!("{code:#010X} {}", AbortCode::from_u32(code).meaning())
-}
-
-/// The name of an EMCY code in the description's error-code enumeration, if it has one.
-fn emcy_name(device: &Device, code: u16) -> String {
-    device
-        .enums
-        .iter()
-        .filter(|e| e.name.contains("error"))
-        .flat_map(|e| e.values.iter())
-        .find(|v| v.value == i64::from(code))
-        .map_or("unknown code".into(), |v| v.name.clone())
 }

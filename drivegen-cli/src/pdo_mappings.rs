@@ -4,9 +4,9 @@
 use std::collections::HashMap;
 
 use drivebus::canopen::pdo::{MappedObject, PdoKind};
-use drivegen::ir::{Device, Direction};
 
-use crate::frames::{sample, Sample};
+use crate::frames::Sample;
+use crate::objects::Objects;
 
 /// First RPDO and TPDO mapping objects.
 const RPDO_MAPPING: u16 = 0x1600;
@@ -53,20 +53,16 @@ impl PdoMappings {
     /// it: the mapping seen in the capture, else the one the description declares for the PDO.
     pub fn decode(
         &self,
-        device: &Device,
+        objects: &Objects<'_>,
         node: u8,
         kind: PdoKind,
         number: u8,
         payload: &[u8],
     ) -> Option<Vec<Sample>> {
         let transmit = kind == PdoKind::Transmit;
-        let declared;
         let entries = match self.maps.get(&(node, transmit, u16::from(number))) {
-            Some(learned) => learned,
-            None => {
-                declared = declared_mapping(device, transmit, number)?;
-                &declared
-            }
+            Some(learned) => learned.as_slice(),
+            None => objects.declared_mapping(transmit, number)?,
         };
         let mut bit = 0usize;
         let mut values = Vec::with_capacity(entries.len());
@@ -76,23 +72,10 @@ impl PdoMappings {
             }
             let bytes = payload.get(bit / 8..bit / 8 + usize::from(entry.bits) / 8)?;
             bit += usize::from(entry.bits);
-            values.push(sample(device, entry.index, entry.subindex, bytes));
+            values.push(objects.sample(entry.index, entry.subindex, bytes));
         }
         Some(values)
     }
-}
-
-/// The mapping the description declares for a PDO (`[[pdo]]`), if any.
-fn declared_mapping(device: &Device, transmit: bool, number: u8) -> Option<Vec<MappedObject>> {
-    let direction = if transmit {
-        Direction::Tx
-    } else {
-        Direction::Rx
-    };
-    let (pdo, _) = device
-        .pdos()
-        .find(|(p, d)| p.direction == direction && d.number == u16::from(number))?;
-    pdo.mapped_objects(device)
 }
 
 #[cfg(test)]
@@ -106,6 +89,7 @@ mod tests {
             "/../descriptions/lafert-smartris"
         );
         let device = drivegen::check(std::path::Path::new(path)).device.unwrap();
+        let device = Objects::new(&device);
         let mut maps = PdoMappings::default();
         maps.learn(1, 0x1A00, 0, &[0]);
         maps.learn(1, 0x1A00, 1, &0x6041_0010u32.to_le_bytes());

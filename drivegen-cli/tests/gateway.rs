@@ -4,6 +4,7 @@
 
 mod support;
 
+use std::cell::RefCell;
 use std::io::{BufRead, BufReader};
 use std::net::{TcpListener, TcpStream};
 use std::path::{Path, PathBuf};
@@ -85,12 +86,12 @@ fn simulator() -> (Running, String) {
 }
 
 /// `mosquitto_sub -v` on everything under `drivegen/`: each line `topic payload`.
-fn subscribe(port: u16) -> (Running, Receiver<String>) {
+fn subscribe(port: u16) -> (Running, Lines) {
     subscribe_as(port, &[])
 }
 
 /// [`subscribe`] with mosquitto_sub's `login` options (`-u USER -P PASSWORD`).
-fn subscribe_as(port: u16, login: &[&str]) -> (Running, Receiver<String>) {
+fn subscribe_as(port: u16, login: &[&str]) -> (Running, Lines) {
     let mut child = Command::new("mosquitto_sub")
         .args([
             "-h",
@@ -114,25 +115,49 @@ fn subscribe_as(port: u16, login: &[&str]) -> (Running, Receiver<String>) {
             }
         }
     });
-    (Running(child), received)
+    let lines = Lines {
+        received,
+        unmatched: RefCell::default(),
+    };
+    (Running(child), lines)
 }
 
-/// The first line whose topic is `topic` and whose payload passes `wanted`.
-fn expect(lines: &Receiver<String>, topic: &str, wanted: impl Fn(&str) -> bool) -> String {
+/// What a subscriber printed: lines not yet matched are kept, so messages of several drives
+/// (whose order between drives is not fixed) can be expected in any order.
+struct Lines {
+    received: Receiver<String>,
+    unmatched: RefCell<Vec<String>>,
+}
+
+impl Lines {
+    /// Nothing was printed so far.
+    fn none_yet(&self) -> bool {
+        self.unmatched.borrow().is_empty() && self.received.try_recv().is_err()
+    }
+}
+
+/// The payload of the first line not matched before whose topic is `topic` and whose payload
+/// passes `wanted`.
+fn expect(lines: &Lines, topic: &str, wanted: impl Fn(&str) -> bool) -> String {
+    let payload_of = |line: &str| {
+        let payload = line.strip_prefix(topic)?.strip_prefix(' ')?;
+        wanted(payload).then(|| payload.to_owned())
+    };
+    let mut unmatched = lines.unmatched.borrow_mut();
+    if let Some(i) = unmatched.iter().position(|l| payload_of(l).is_some()) {
+        return payload_of(&unmatched.remove(i)).unwrap_or_default();
+    }
     let deadline = Instant::now() + WAIT;
-    let mut seen = Vec::new();
     while let Some(left) = deadline.checked_duration_since(Instant::now()) {
-        let Ok(line) = lines.recv_timeout(left) else {
+        let Ok(line) = lines.received.recv_timeout(left) else {
             break;
         };
-        if let Some(payload) = line.strip_prefix(topic).and_then(|p| p.strip_prefix(' ')) {
-            if wanted(payload) {
-                return payload.to_owned();
-            }
+        match payload_of(&line) {
+            Some(payload) => return payload,
+            None => unmatched.push(line),
         }
-        seen.push(line);
     }
-    panic!("no {topic} as wanted; seen:\n{}", seen.join("\n"));
+    panic!("no {topic} as wanted; unmatched:\n{}", unmatched.join("\n"));
 }
 
 fn publish(port: u16, topic: &str, message: &str) {
@@ -221,14 +246,15 @@ fn values_writes_a_broker_restart_and_a_silent_drive_through_a_real_broker() {
         dc["time"].as_str().is_some_and(|t| t.ends_with('Z')),
         "{dc}"
     );
-    expect(&lines, "drivegen/lafert/status", |p| p == "online");
-    // An enum by name and raw value; a write by name.
+    // An enum by name and raw value (published after the values before it, then the status).
     let mode = json(&expect(&lines, "drivegen/lafert/operation_mode", |_| true));
     assert_eq!(
         (&mode["value"], &mode["raw"]),
         (&"velocity".into(), &2.into()),
         "{mode}"
     );
+    expect(&lines, "drivegen/lafert/status", |p| p == "online");
+    // A write by name.
     publish(
         port,
         "drivegen/lafert/operation_mode/set",
@@ -364,60 +390,74 @@ fn values_writes_a_broker_restart_and_a_silent_drive_through_a_real_broker() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// `text` with `from` replaced by `to`; `from` must be there (else the test would check an
+/// unchanged file).
+fn replaced(text: &str, from: &str, to: &str) -> String {
+    assert!(text.contains(from), "`{from}` is not in:\n{text}");
+    text.replace(from, to)
+}
+
+/// `drivegen gateway FILE` for a file it must refuse: its stderr, once it has exited (a
+/// gateway that starts instead is killed and fails the test).
+fn refusal(file: &Path) -> String {
+    let mut child = Command::new(BIN)
+        .arg("gateway")
+        .arg(file)
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let started = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if started.elapsed() > WAIT {
+            child.kill().unwrap();
+            panic!("the gateway started instead of refusing its file");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let output = child.wait_with_output().unwrap();
+    assert!(!output.status.success());
+    stderr(&output)
+}
+
 #[test]
 fn a_file_naming_an_unknown_parameter_is_refused_before_anything_opens() {
     let dir = scratch("bad");
     // No broker, no drive: the file is refused first.
     let file = config(&dir, free_port(), "127.0.0.1:1");
     let text = std::fs::read_to_string(&file).unwrap();
-    std::fs::write(
-        &file,
-        text.replace(
-            "\"speed_ramp_up\"]\nwritable",
-            "\"speed_ramp_upp\"]\nwritable",
-        ),
-    )
-    .unwrap();
-    let output = drivegen(&["gateway", file.to_str().unwrap()]);
-    assert!(!output.status.success());
-    let message = stderr(&output);
+    let unknown = replaced(
+        &text,
+        "\"operation_mode\"]\nwritable",
+        "\"operation_mod\"]\nwritable",
+    );
+    std::fs::write(&file, unknown).unwrap();
+    let message = refusal(&file);
     assert!(message.contains("gateway.toml:11"), "{message}");
     assert!(
-        message.contains("speed_ramp_up"),
+        message.contains("operation_mode"),
         "the closest name: {message}"
     );
 
-    std::fs::write(
-        &file,
-        text.replace(
-            "writable = [\"speed_ramp_up\"]",
-            "writable = [\"bus_dc_link\"]",
-        ),
-    )
-    .unwrap();
-    let output = drivegen(&["gateway", file.to_str().unwrap()]);
-    assert!(
-        stderr(&output).contains("read-only in its description"),
-        "{}",
-        stderr(&output)
+    let read_only = replaced(
+        &text,
+        "writable = [\"speed_ramp_up\"",
+        "writable = [\"bus_dc_link\"",
     );
+    std::fs::write(&file, read_only).unwrap();
+    let message = refusal(&file);
     assert!(
-        stderr(&output).contains("gateway.toml:12"),
-        "{}",
-        stderr(&output)
+        message.contains("read-only in its description"),
+        "{message}"
     );
+    assert!(message.contains("gateway.toml:12"), "{message}");
 
     std::fs::write(
         &file,
-        text.replace("timeout_ms = 300", "timeout_ms = \"soon\""),
+        replaced(&text, "timeout_ms = 300", "timeout_ms = \"soon\""),
     )
     .unwrap();
-    let output = drivegen(&["gateway", file.to_str().unwrap()]);
-    assert!(
-        stderr(&output).contains("gateway.toml:9: bus:"),
-        "{}",
-        stderr(&output)
-    );
+    let message = refusal(&file);
+    assert!(message.contains("gateway.toml:9: bus:"), "{message}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -526,7 +566,7 @@ fn a_wrong_broker_password_is_logged_and_nothing_is_published() {
     let mut log = String::new();
     std::io::Read::read_to_string(&mut gateway.0.stderr.take().unwrap(), &mut log).unwrap();
     assert!(log.contains("no broker connection"), "{log}");
-    assert!(lines.try_recv().is_err(), "nothing published");
+    assert!(lines.none_yet(), "nothing published");
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -1,8 +1,8 @@
 //! The simulated node's PDOs, sans-I/O, on the Kinco description (TPDO1 = position and
 //! statusword, type 254, inhibit 1 ms; RPDO1 = target position, mode and controlword, type 254):
 //! TPDOs go out only while Operational, on change past the inhibit time or every n-th SYNC as the
-//! drive's objects say when it starts; RPDOs write through the drive's checks, at once or at the
-//! next SYNC.
+//! drive's objects say when it starts (or at once, for a PDO reconfigured while Operational);
+//! RPDOs write through the drive's checks, at once or at the next SYNC.
 
 use std::time::Duration;
 
@@ -133,4 +133,28 @@ fn an_invalid_pdo_is_silent_and_a_short_rpdo_is_not_processed() {
         "{:?}",
         node.pdos().skipped()
     );
+}
+
+#[test]
+fn a_tpdo_remapped_while_operational_takes_the_new_mapping_at_once() {
+    let (sim, mut node) = node();
+    start(&mut node, ms(0));
+    assert_eq!(node.poll_pdo(ms(1)).len(), 1, "TPDO1 as described");
+    // The CiA 301 sequence, while Operational: disable, type 1 (every SYNC), remap to the
+    // statusword alone, enable.
+    sdo_write(&mut node, 0x1800, 1, 0x8000_0181, 4);
+    sdo_write(&mut node, 0x1800, 2, 1, 1);
+    sdo_write(&mut node, 0x1A00, 0, 0, 1);
+    sdo_write(&mut node, 0x1A00, 1, 0x6041_0010, 4);
+    sdo_write(&mut node, 0x1A00, 0, 1, 1);
+    assert!(
+        node.handle(&frame(SYNC, &[]), ms(2)).is_empty(),
+        "disabled meanwhile"
+    );
+    sdo_write(&mut node, 0x1800, 1, 0x181, 4);
+    assert!(node.poll_pdo(ms(3)).is_empty(), "not event-driven any more");
+    let sent = node.handle(&frame(SYNC, &[]), ms(4));
+    assert_eq!(sent.len(), 1, "at the SYNC");
+    let statusword = int(&sim, "statusword") as u16;
+    assert_eq!(sent[0].data(), statusword.to_le_bytes());
 }

@@ -3,16 +3,17 @@
 //! before and after it; table, CSV or JSON lines.
 
 use std::collections::BTreeSet;
-use std::io::Write;
 use std::path::PathBuf;
 
 use drivebus::trace::{Armed, Captured, Trigger, Window};
 use drivegen::ir::Device;
 use serde_json::json;
 
+use crate::csv;
 use crate::error::CliError;
 use crate::frame_source::{FrameSource, Received};
 use crate::frames::{Decoded, FrameDecoder};
+use crate::lines::Lines;
 use crate::series::plot_file::PlotFile;
 use crate::series::plotter::Plotter;
 
@@ -88,7 +89,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     out.plot = plot.map(|file| Plotter::new(file, &device, "trace", &[]).redrawn(live));
     let mut trace = Trace::new(&args, &device);
     for received in source {
-        if out.closed {
+        if out.out.is_closed() {
             break;
         }
         match received? {
@@ -214,9 +215,8 @@ impl<'d> Trace<'d> {
 /// Rows as the chosen format prints them, to standard output as they come, and to the plot.
 struct Output<'d> {
     format: Format,
-    out: std::io::Stdout,
+    out: Lines,
     header_done: bool,
-    closed: bool,
     plot: Option<Plotter<'d>>,
 }
 
@@ -236,25 +236,15 @@ impl Output<'_> {
         };
         Self {
             format,
-            out: std::io::stdout(),
+            out: Lines::stdout(),
             header_done: false,
-            closed: false,
             plot: None,
         }
     }
 
     /// Writes a line; a reader that went away (a closed pipe) ends the output quietly.
     fn write(&mut self, line: &str) -> Result<(), CliError> {
-        if self.closed {
-            return Ok(());
-        }
-        match writeln!(self.out.lock(), "{line}") {
-            Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {
-                self.closed = true;
-                Ok(())
-            }
-            other => other.map_err(|e| CliError::Io(format!("standard output: {e}"))),
-        }
+        self.out.write(line)
     }
 
     fn window_header(&mut self, window: usize, captured: &Captured<Row>) -> Result<(), CliError> {
@@ -292,8 +282,7 @@ impl Output<'_> {
                 let (window, at) =
                     place.map_or((String::new(), ""), |p| (p.window.to_string(), p.at));
                 let fields = [&window, at, &row.time, &d.node, d.kind, &d.what, &d.value];
-                let line: Vec<String> = fields.iter().map(|f| csv_field(f)).collect();
-                self.write(&line.join(","))
+                self.write(&csv::record(&fields))
             }
             Format::Json => {
                 let samples: serde_json::Map<String, serde_json::Value> = d
@@ -317,14 +306,5 @@ impl Output<'_> {
                 self.write(&line.to_string())
             }
         }
-    }
-}
-
-/// A CSV field, quoted where it holds a comma, a quote or a line break (RFC 4180).
-fn csv_field(text: &str) -> String {
-    if text.contains([',', '"', '\n', '\r']) {
-        format!("\"{}\"", text.replace('"', "\"\""))
-    } else {
-        text.to_owned()
     }
 }

@@ -185,7 +185,14 @@ impl Node {
         if frame.id() == cob::SDO_RX + u16::from(self.config.node.0)
             && self.state != NmtState::Stopped
         {
-            return self.sdo.handle(frame);
+            let answer = self.sdo.handle(frame);
+            if self.state == NmtState::Operational && writes_pdo_object(frame) {
+                // As on a drive, a PDO whose configuration changes while Operational (disabled,
+                // remapped, enabled again) takes the change at once, not at the next start.
+                let pdos = &mut self.pdos;
+                self.sim.with(|drive| pdos.configure(drive.store()));
+            }
+            return answer;
         }
         Vec::new()
     }
@@ -340,5 +347,17 @@ impl Node {
         out.extend(self.poll_pdo(now));
         out.extend(self.poll_srdo(now));
         out
+    }
+}
+
+/// Whether `frame` is an SDO request that starts a download (expedited or not) to a PDO
+/// communication or mapping object (1400h-1BFFh).
+fn writes_pdo_object(frame: &CanFrame) -> bool {
+    const INITIATE_DOWNLOAD: u8 = 1;
+    match frame.data() {
+        [command, lo, hi, ..] if command >> 5 == INITIATE_DOWNLOAD => {
+            (0x1400..0x1C00).contains(&u16::from_le_bytes([*lo, *hi]))
+        }
+        _ => false,
     }
 }

@@ -2,8 +2,9 @@
 //! its parameters found, its writable ones writable, its bus options read the way the command
 //! line reads them. Everything is checked here, before a bus or the broker is opened.
 
-use std::collections::BTreeSet;
-use std::path::Path;
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use clap::Parser;
 use drivegen::gateway_file::{self, BusOption, DriveEntry, MqttEntry, Named};
@@ -36,8 +37,9 @@ pub struct Tls {
 pub struct Drive {
     /// Its topic level.
     pub name: String,
-    /// Its description.
-    pub device: Device,
+    /// Its description, shared with the other drives the same file describes (100 drives of
+    /// one family hold one copy).
+    pub device: Arc<Device>,
     /// How to reach it.
     pub bus: BusArgs,
     /// Milliseconds between polls.
@@ -71,11 +73,12 @@ impl Gateway {
         let file = gateway_file::parse(&text)
             .map_err(|e| CliError::Invalid(format!("{}: {}", at(e.line), e.kind_text())))?;
         let folder = path.parent().unwrap_or(Path::new("."));
+        let mut loaded = Descriptions::default();
         let drives = file
             .drives
             .iter()
             .map(|entry| {
-                Drive::resolve(entry, folder)
+                Drive::resolve(entry, folder, &mut loaded)
                     .map_err(|(line, why)| CliError::Invalid(format!("{}: {why}", at(Some(line)))))
             })
             .collect::<Result<_, _>>()?;
@@ -118,11 +121,24 @@ impl Gateway {
 
 type Refusal = (u32, String);
 
+/// The descriptions loaded so far, by path: each loaded and checked once.
+type Descriptions = BTreeMap<PathBuf, Arc<Device>>;
+
 impl Drive {
-    fn resolve(entry: &DriveEntry, folder: &Path) -> Result<Self, Refusal> {
+    fn resolve(
+        entry: &DriveEntry,
+        folder: &Path,
+        loaded: &mut Descriptions,
+    ) -> Result<Self, Refusal> {
         let path = folder.join(&entry.description);
-        let device = super::super::load(&path)
-            .map_err(|e| (entry.line, format!("drive `{}`: {e}", entry.name)))?;
+        let device = match loaded.get(&path) {
+            Some(device) => Arc::clone(device),
+            None => {
+                let device = super::super::load(&path)
+                    .map_err(|e| (entry.line, format!("drive `{}`: {e}", entry.name)))?;
+                Arc::clone(loaded.entry(path).or_insert(Arc::new(device)))
+            }
+        };
         let parameters = names(&device, &entry.parameters, |_| None)?;
         let writable = names(&device, &entry.writable, |p| {
             (!writable(p)).then(|| format!("`{}` is read-only in its description", p.name))
