@@ -168,6 +168,7 @@ fn python_nodes_are_booted_a_foreign_one_left_alone() {
             revision: None,
         },
         heartbeat: Some(Duration::from_millis(200)),
+        pdos: vec![],
         writes: vec![BootWrite {
             index: 0x2003,
             subindex: 0,
