@@ -38,7 +38,7 @@ fn plan() -> NodeBoot {
         pdos: vec![PdoSetup {
             kind: PdoKind::Transmit,
             number: 1,
-            cob_id: PdoSetup::default_cob_id(PdoKind::Transmit, 1, NODE).unwrap(),
+            cob_id: PdoSetup::default_cob_id(PdoKind::Transmit, 1, NODE.get()).unwrap(),
             transmission_type: Some(254),
             inhibit_time: None,
             event_timer: Some(20),

@@ -11,7 +11,7 @@ mod read;
 mod tests;
 
 pub use error::{NetworkFileError, NetworkFileErrorKind};
-pub use pdo_check::{check_pdos, CheckedPdo};
+pub use pdo_check::check_pdos;
 pub use read::parse;
 
 use crate::ir::Direction;

@@ -3,36 +3,16 @@
 //! every mapped parameter exists, is PDO-mappable in the PDO's direction and fits, and the
 //! mapping fits the PDO (64 bits) and the drive's mapping object. Each refusal names the line.
 
-use drivebus_model::canopen::{mapping_bits, predefined_pdo_cob_id, MappedObject};
+use drivebus_model::canopen::{mapping_bits, MappedObject, PdoKind, PdoSetup};
 
 use super::error::{NetworkFileError, NetworkFileErrorKind as Kind};
 use super::{NodeEntry, PdoEntry};
 use crate::ir::{pdo_bits, Device, Direction, Parameter, Pdo};
 
-/// A PDO of the network file the drive can take, ready to configure.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct CheckedPdo {
-    /// TPDO or RPDO.
-    pub direction: Direction,
-    /// PDO number.
-    pub number: u16,
-    /// COB-ID: as given, or the predefined connection set's.
-    pub cob_id: u32,
-    /// Transmission type (sub 2), if it is to be set.
-    pub transmission_type: Option<u8>,
-    /// Inhibit time in 100 µs (sub 3), if it is to be set.
-    pub inhibit_time: Option<u16>,
-    /// Event timer in ms (sub 5), if it is to be set.
-    pub event_timer: Option<u16>,
-    /// The mapping object's entries, in payload order.
-    pub entries: Vec<MappedObject>,
-    /// The line of its table.
-    pub line: u32,
-}
-
-/// `node`'s PDOs checked against `device`, its description; the first that the drive cannot
-/// take is refused with its line and why.
-pub fn check_pdos(node: &NodeEntry, device: &Device) -> Result<Vec<CheckedPdo>, NetworkFileError> {
+/// `node`'s PDOs checked against `device`, its description, and ready to configure (in the
+/// order of [`NodeEntry::pdos`], a COB-ID given or from the predefined connection set); the
+/// first that the drive cannot take is refused with its line and why.
+pub fn check_pdos(node: &NodeEntry, device: &Device) -> Result<Vec<PdoSetup>, NetworkFileError> {
     let objects = Objects::of(device);
     node.pdos
         .iter()
@@ -45,7 +25,7 @@ fn check(
     pdo: &PdoEntry,
     device: &Device,
     objects: &Objects,
-) -> Result<CheckedPdo, NetworkFileError> {
+) -> Result<PdoSetup, NetworkFileError> {
     let refuse = |line: u32, kind: Kind| NetworkFileError::at(Some(line), kind);
     let (communication, mapping) = indices(pdo.direction, pdo.number);
     if !objects.has(communication, 1) {
@@ -75,9 +55,13 @@ fn check(
             ));
         }
     }
+    let kind = match pdo.direction {
+        Direction::Tx => PdoKind::Transmit,
+        Direction::Rx => PdoKind::Receive,
+    };
     let cob_id = pdo
         .cob_id
-        .or_else(|| predefined_pdo_cob_id(pdo.direction == Direction::Tx, pdo.number, node))
+        .or_else(|| PdoSetup::default_cob_id(kind, pdo.number, node))
         .ok_or_else(|| refuse(pdo.line, Kind::PdoNoCobId { pdo: label(pdo) }))?;
     let entries = pdo
         .mapping
@@ -108,15 +92,14 @@ fn check(
             },
         ));
     }
-    Ok(CheckedPdo {
-        direction: pdo.direction,
+    Ok(PdoSetup {
+        kind,
         number: pdo.number,
         cob_id,
         transmission_type: pdo.transmission_type,
         inhibit_time: pdo.inhibit_time,
         event_timer: pdo.event_timer,
         entries,
-        line: pdo.line,
     })
 }
 

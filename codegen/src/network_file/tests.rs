@@ -135,8 +135,8 @@ fn pdos_are_read_and_checked_against_the_description() {
         ]
     );
     assert_eq!(
-        (checked[1].direction, checked[1].cob_id),
-        (Direction::Rx, 0x305)
+        (checked[1].kind, checked[1].cob_id),
+        (drivebus_model::canopen::PdoKind::Receive, 0x305)
     );
 }
 

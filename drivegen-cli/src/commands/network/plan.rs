@@ -6,11 +6,9 @@
 use std::path::{Path, PathBuf};
 
 use drivebus::canopen::network::boot::{ExpectedIdentity, NodeBoot, PdoSetup};
-use drivebus::canopen::pdo::PdoKind;
 use drivebus::canopen::NodeId;
-use drivegen::ir::Direction;
 use drivegen::ir::{Device, Parameter};
-use drivegen::network_file::{self, CheckedPdo, NetworkFileError, NodeEntry};
+use drivegen::network_file::{self, NetworkFileError, NodeEntry};
 
 use crate::error::CliError;
 
@@ -86,14 +84,10 @@ fn planned(folder: &Path, entry: NodeEntry) -> Result<Planned, (u32, String)> {
             ),
         ));
     };
-    let pdos = network_file::check_pdos(&entry, &device)
-        .map_err(|e| {
-            let line = e.line.unwrap_or(entry.line);
-            (line, format!("node {}: {}", entry.id, reason(&e)))
-        })?
-        .iter()
-        .map(setup)
-        .collect();
+    let pdos = network_file::check_pdos(&entry, &device).map_err(|e| {
+        let line = e.line.unwrap_or(entry.line);
+        (line, format!("node {}: {}", entry.id, reason(&e)))
+    })?;
     let mut writes = Vec::new();
     for boot in &entry.parameters {
         let at = |why: String| {
@@ -118,22 +112,6 @@ fn planned(folder: &Path, entry: NodeEntry) -> Result<Planned, (u32, String)> {
         pdos,
         writes,
     })
-}
-
-/// A checked PDO as the boot procedure configures it.
-fn setup(pdo: &CheckedPdo) -> PdoSetup {
-    PdoSetup {
-        kind: match pdo.direction {
-            Direction::Tx => PdoKind::Transmit,
-            Direction::Rx => PdoKind::Receive,
-        },
-        number: pdo.number,
-        cob_id: pdo.cob_id,
-        transmission_type: pdo.transmission_type,
-        inhibit_time: pdo.inhibit_time,
-        event_timer: pdo.event_timer,
-        entries: pdo.entries.clone(),
-    }
 }
 
 /// What is wrong, without the `line N: ` the refusal gives apart.

@@ -5,7 +5,8 @@
 
 use std::vec::Vec;
 
-use super::{BootWrite, NodeBoot, PdoSetup};
+use super::{pdo, BootWrite, NodeBoot};
+use crate::canopen::pdo::PdoSetup;
 use crate::error::BusError;
 
 /// A value an object must hold, and the bits of it that count.
@@ -69,17 +70,16 @@ impl Item {
 
     /// A PDO: its whole configuration sequence where any of its objects differs.
     pub fn pdo(setup: &PdoSetup) -> Result<Self, BusError> {
-        let checks = setup
-            .target()?
+        let checks = pdo::target(setup)?
             .into_iter()
             .map(|write| Expected {
-                bits: setup.compared_bits(write.index, write.subindex),
+                bits: pdo::compared_bits(setup, write.index, write.subindex),
                 write,
             })
             .collect();
         Ok(Self {
             checks,
-            writes: setup.writes()?,
+            writes: pdo::writes(setup)?,
         })
     }
 }

@@ -49,10 +49,10 @@ mod item;
 mod pdo;
 mod procedure;
 
+pub use crate::canopen::pdo::PdoSetup;
 #[cfg(feature = "async")]
 pub use async_boot::boot_node_async;
 pub use blocking::{boot_all, boot_node};
-pub use pdo::PdoSetup;
 pub use procedure::{Action, BootProcedure};
 
 use core::fmt;

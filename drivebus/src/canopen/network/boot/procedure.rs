@@ -269,10 +269,10 @@ mod tests {
     use std::vec;
     use std::vec::Vec;
 
-    use super::super::{BootWrite, ExpectedIdentity, PdoSetup};
+    use super::super::{BootWrite, ExpectedIdentity};
     use super::*;
     use crate::canopen::address::NodeId;
-    use crate::canopen::pdo::{MappedObject, PdoKind};
+    use crate::canopen::pdo::{MappedObject, PdoKind, PdoSetup};
     use crate::canopen::sdo::AbortCode;
 
     fn plan() -> NodeBoot {
