@@ -18,20 +18,11 @@ pub fn run(args: BootArgs) -> Result<(), CliError> {
     let devices: Vec<_> = planned.iter().map(|p| &p.device).collect();
     let (network, relay) = open(&args.bus, &devices)?;
     let timeout = args.bus.timeout();
-    let lines: Vec<(bool, String)> = std::thread::scope(|scope| {
-        let running: Vec<_> = planned
-            .iter()
-            .map(|node| scope.spawn(|| boot(&network, node, timeout)))
-            .collect();
-        running
+    let lines: Vec<(bool, String)> =
+        crate::at_once::at_once(&planned, |node| boot(&network, node, timeout))
             .into_iter()
-            .map(|thread| {
-                thread
-                    .join()
-                    .unwrap_or((false, "the boot thread failed".to_owned()))
-            })
-            .collect()
-    });
+            .map(|done| done.unwrap_or((false, "the boot thread failed".to_owned())))
+            .collect();
     drop(network);
     stop(relay);
     for (_, line) in &lines {
