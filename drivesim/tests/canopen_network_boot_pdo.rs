@@ -8,13 +8,12 @@ mod network_support;
 use std::time::Duration;
 
 use drivebus::canopen::can::in_process::InProcessBus;
-use drivebus::canopen::network::boot::{boot_node, BootWrite, NodeBoot, PdoSetup};
+use drivebus::canopen::network::boot::boot_node;
 use drivebus::canopen::network::{Network, NetworkEvent};
-use drivebus::canopen::pdo::{MappedObject, PdoKind};
 use drivebus::canopen::{CanBus, NodeId};
 use drivesim::canopen::{Node, NodeConfig};
 use drivesim::Simulator;
-use network_support::Serving;
+use network_support::{kinco_boot, Serving};
 
 const KINCO: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../descriptions/kinco-fd");
 const TIMEOUT: Duration = Duration::from_millis(1000);
@@ -28,32 +27,6 @@ fn kinco() -> (Simulator, Node) {
     };
     let node = Node::new(sim.clone(), config, None);
     (sim, node)
-}
-
-/// Heartbeat 100 ms; TPDO1 = statusword (6041h, 16 bits) and mode display (6061h, 8 bits),
-/// type 254, every 20 ms; profile speed (6081h) = 1234 raw.
-fn plan() -> NodeBoot {
-    NodeBoot {
-        heartbeat: Some(Duration::from_millis(100)),
-        pdos: vec![PdoSetup {
-            kind: PdoKind::Transmit,
-            number: 1,
-            cob_id: PdoSetup::default_cob_id(PdoKind::Transmit, 1, NODE.get()).unwrap(),
-            transmission_type: Some(254),
-            inhibit_time: None,
-            event_timer: Some(20),
-            entries: vec![
-                MappedObject::new(0x6041, 0, 16),
-                MappedObject::new(0x6061, 0, 8),
-            ],
-        }],
-        writes: vec![BootWrite {
-            index: 0x6081,
-            subindex: 0,
-            data: 1234u32.to_le_bytes().to_vec(),
-        }],
-        ..NodeBoot::new(NODE)
-    }
 }
 
 fn int(sim: &Simulator, name: &str) -> i128 {
@@ -83,7 +56,7 @@ fn the_boot_configures_a_tpdo_that_then_arrives_and_a_second_boot_writes_nothing
     let network = Network::new(bus.endpoint());
     let events = network.subscribe(NODE, 256);
 
-    let plan = plan();
+    let plan = kinco_boot::plan(NODE);
     let first = boot_node(&network, &plan, TIMEOUT);
     assert_eq!(first.result, Ok(()));
     assert_eq!((first.written, first.unchanged), (3, 0));
