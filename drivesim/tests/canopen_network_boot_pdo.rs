@@ -1,7 +1,8 @@
 //! Network boot with PDOs against a simulated Kinco on one bus: the boot configures TPDO1
 //! (statusword and mode display, event timer 20 ms) between the heartbeat and the boot
 //! parameters, through `PdoConfig`; once started the node sends that TPDO with the mapped
-//! values. Booting again compares first and sends no SDO download at all.
+//! values. Booting again compares first and sends no SDO download at all. A PDO write the node
+//! refuses ends the boot with the PDO's step and the abort.
 
 mod network_support;
 
@@ -91,4 +92,38 @@ fn the_boot_configures_a_tpdo_that_then_arrives_and_a_second_boot_writes_nothing
         0,
         "a second boot sends no download"
     );
+}
+
+#[test]
+fn a_pdo_the_node_refuses_ends_the_boot_with_its_step_and_abort_code() {
+    use drivebus::canopen::network::boot::{BootError, BootStep};
+    use drivebus::canopen::pdo::{MappedObject, PdoKind, PdoSetup};
+
+    let bus = InProcessBus::new();
+    let (_sim, node) = kinco();
+    let _nodes = Serving::start(vec![node], bus.endpoint());
+    let network = Network::new(bus.endpoint());
+    let mut plan = kinco_boot::plan(NODE);
+    // The Kinco's RPDO1 has no event timer (1400h sub 5): the node refuses that write. (The
+    // network file's check refuses it before anything is sent; a raw plan reaches the node.)
+    plan.pdos.push(PdoSetup {
+        kind: PdoKind::Receive,
+        number: 1,
+        cob_id: 0x203,
+        transmission_type: Some(254),
+        inhibit_time: None,
+        event_timer: Some(10),
+        entries: vec![MappedObject::new(0x6040, 0, 16)],
+    });
+    let report = boot_node(&network, &plan, TIMEOUT);
+    match report.result {
+        Err(BootError::Step {
+            step: BootStep::Pdo(1),
+            error: drivebus::BusError::SdoAbort {
+                index, subindex, ..
+            },
+        }) => assert_eq!((index, subindex), (0x1400, 5)),
+        other => panic!("expected RPDO1's event timer refused: {other:?}"),
+    }
+    assert_eq!(report.written, 2, "the heartbeat and TPDO1, before RPDO1");
 }
