@@ -1,6 +1,7 @@
 //! Several drives on one bus, for `read` and `watch` with a repeated `--unit` or `--node-id`:
 //! a session each on one connection (CANopen nodes through the network manager, read at once;
-//! Modbus units one after the other), shown as one table with a column per drive. A drive that fails shows its error in its column; the others still show.
+//! Modbus units one after the other), shown as one table with a column per drive. A drive that
+//! fails shows its error in its column; the others still show.
 
 use drivebus::interpret::Shown;
 use drivegen::ir::{Device, Parameter};
