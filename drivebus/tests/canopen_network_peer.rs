@@ -2,7 +2,8 @@
 //! LocalNodes (ids 1-8, one relay process, candump stdio) read at once through one `Network`,
 //! a missing ninth node timing out alone, an EMCY raised by a write reaching its own node's
 //! subscriber only, a node whose heartbeat the manager watches started by NMT for all, and
-//! python nodes booted by `network::boot` (a foreign and a missing one left alone).
+//! python nodes booted by `network::boot` with a TPDO (python holds the PDO objects it wrote; a
+//! second boot writes nothing; a foreign and a missing one left alone).
 #![cfg(feature = "canopen")]
 
 mod support;
@@ -155,8 +156,9 @@ fn an_emcy_reaches_its_own_node_and_nmt_all_starts_a_watched_node() {
 #[test]
 fn python_nodes_are_booted_a_foreign_one_left_alone() {
     use drivebus::canopen::network::boot::{
-        boot_all, BootError, BootWrite, ExpectedIdentity, NodeBoot,
+        boot_all, BootError, BootWrite, ExpectedIdentity, NodeBoot, PdoSetup,
     };
+    use drivebus::canopen::pdo::{MappedObject, PdoKind};
 
     let (_peers, network, events) = start();
     // The EDS's identity: vendor-ID 0DD0h, product code 1.
@@ -168,6 +170,16 @@ fn python_nodes_are_booted_a_foreign_one_left_alone() {
             revision: None,
         },
         heartbeat: Some(Duration::from_millis(200)),
+        // TPDO1: 2003h (u32), every 100 ms; the EDS gives 1800h sub 1, 2, 5 and 1A00h sub 0-4.
+        pdos: vec![PdoSetup {
+            kind: PdoKind::Transmit,
+            number: 1,
+            cob_id: 0x180 + u32::from(id),
+            transmission_type: Some(254),
+            inhibit_time: None,
+            event_timer: Some(100),
+            entries: vec![MappedObject::new(0x2003, 0, 32)],
+        }],
         writes: vec![BootWrite {
             index: 0x2003,
             subindex: 0,
@@ -192,6 +204,35 @@ fn python_nodes_are_booted_a_foreign_one_left_alone() {
         let mut out = [0u8; 4];
         sdo.upload(NodeId(id), 0x2003, 0, &mut out).unwrap();
         assert_eq!(u32::from_le_bytes(out), expected, "node {id}");
+    }
+    // python holds the PDO objects the boot wrote.
+    let mut sdo = network.node(NodeId(1)).with_timeout(TIMEOUT);
+    for (index, subindex, expected) in [
+        (0x1800, 1, 0x181),
+        (0x1800, 5, 100),
+        (0x1A00, 0, 1),
+        (0x1A00, 1, 0x2003_0020),
+    ] {
+        let mut out = [0u8; 4];
+        let len = sdo.upload(NodeId(1), index, subindex, &mut out).unwrap();
+        let mut value = [0u8; 4];
+        value[..len].copy_from_slice(&out[..len]);
+        assert_eq!(
+            u32::from_le_bytes(value),
+            expected,
+            "{index:04X}h sub {subindex}"
+        );
+    }
+    // A second boot finds every item in place and writes nothing.
+    let again = boot_all(&network, &plans[..2], TIMEOUT);
+    for report in &again {
+        assert_eq!(report.result, Ok(()));
+        assert_eq!(
+            (report.written, report.unchanged),
+            (0, 3),
+            "node {}",
+            report.node.get()
+        );
     }
     // Node 1 runs: the heartbeat it was given reports it operational.
     let seen = events_until(&events[0], NetworkEvent::State(NmtState::Operational));

@@ -6,7 +6,6 @@ use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 use std::time::Duration;
 
 use clap::Args;
-use drivebus::canopen::client::BlockingSdo;
 use drivebus::canopen::{CanBus, CanFrame, CanOpenLink, NodeId};
 use drivebus::interpret::{self, InterpretError, Variant};
 use drivebus::modbus::client::SerialStream;
@@ -19,7 +18,9 @@ use drivebus::BusError;
 use drivegen::ir::{Device, Parameter};
 
 use crate::can::{self, CanSettings};
+use crate::can_sdo::CanSdo;
 use crate::error::CliError;
+use drivebus::canopen::client::BlockingSdo;
 
 /// How to reach the drive.
 #[derive(Debug, Args, Clone)]
@@ -120,7 +121,7 @@ enum Link<'d> {
         limits: ModbusLimits<'d>,
     },
     CanOpen {
-        sdo: Shared<BlockingSdo<DynCan>>,
+        sdo: CanSdo,
         node: NodeId,
     },
     Rs232 {
@@ -189,13 +190,37 @@ impl<'d> Session<'d> {
     /// reports (see [`open`](Self::open)). The sessions share the connection: each request
     /// holds it for its exchange.
     pub fn open_each(args: &BusArgs, device: &'d Device) -> Result<Vec<Self>, CliError> {
+        Self::open_sharing(args, device, true)
+    }
+
+    /// [`open_each`](Self::open_each), the CANopen nodes all on one SDO client with the bus
+    /// itself at hand ([`can`](Self::can)), never through a network manager: for `watch --pdo`,
+    /// which sends SYNCs and NMT and takes TPDOs beside the transfers.
+    pub fn open_each_on_one_client(
+        args: &BusArgs,
+        device: &'d Device,
+    ) -> Result<Vec<Self>, CliError> {
+        Self::open_sharing(args, device, false)
+    }
+
+    /// The sessions, several CANopen nodes through a network manager when `concurrent`.
+    fn open_sharing(
+        args: &BusArgs,
+        device: &'d Device,
+        concurrent: bool,
+    ) -> Result<Vec<Self>, CliError> {
         let ids = drive_ids(args, device)?;
-        let first = Self::connect(args, device, ids[0])?;
-        let mut sessions = Vec::with_capacity(ids.len());
-        for &id in &ids {
-            let mut session = first.to(id, device)?;
-            session.variant = session.detect_variant(args.variant.as_deref(), device)?;
-            sessions.push(session);
+        let first = Self::connect(args, device, ids[0], concurrent && ids.len() > 1)?;
+        let mut sessions = ids
+            .iter()
+            .map(|&id| first.to(id, device))
+            .collect::<Result<Vec<_>, _>>()?;
+        let named = args.variant.as_deref();
+        let variants = each(&mut sessions, |session| {
+            session.detect_variant(named, device)
+        });
+        for (session, variant) in sessions.iter_mut().zip(variants) {
+            session.variant = variant?;
         }
         Ok(sessions)
     }
@@ -210,9 +235,10 @@ impl<'d> Session<'d> {
             },
             Link::CanOpen { sdo, .. } => {
                 warn_node_relative_defaults(device, id);
+                let node = node_id(id)?;
                 Link::CanOpen {
-                    sdo: Arc::clone(sdo),
-                    node: node_id(id)?,
+                    sdo: sdo.to(node),
+                    node,
                 }
             }
             Link::Rs232 { bus, .. } => Link::Rs232 {
@@ -295,7 +321,12 @@ impl<'d> Session<'d> {
     }
 
     /// Opens the bus the options name, talking to the drive at `id`.
-    fn connect(args: &BusArgs, device: &'d Device, id: u8) -> Result<Self, CliError> {
+    fn connect(
+        args: &BusArgs,
+        device: &'d Device,
+        id: u8,
+        several: bool,
+    ) -> Result<Self, CliError> {
         let timeout = Duration::from_millis(args.timeout_ms);
         if let Some(addr) = &args.modbus_tcp {
             let config = TcpConfig {
@@ -324,12 +355,9 @@ impl<'d> Session<'d> {
                 baud: args.baud.unwrap_or(can::DEFAULT_SLCAN_BAUD),
             };
             let (bus, relay) = can_backend(backend, settings)?;
-            let sdo = BlockingSdo::new(DynCan(bus)).with_timeout(timeout);
+            let sdo = CanSdo::open(DynCan(bus), node, timeout, several);
             return Ok(Self::new(
-                Link::CanOpen {
-                    sdo: Arc::new(Mutex::new(sdo)),
-                    node,
-                },
+                Link::CanOpen { sdo, node },
                 format!("CANopen {backend}"),
                 relay.map(|child| Arc::new(Relay(child))),
             ));
@@ -417,6 +445,12 @@ impl<'d> Session<'d> {
         }
     }
 
+    /// Whether this session's requests may run beside other drives' (CANopen nodes through
+    /// the network manager).
+    pub fn concurrent(&self) -> bool {
+        matches!(&self.link, Link::CanOpen { sdo, .. } if sdo.concurrent())
+    }
+
     /// The variant the session reads and writes in.
     pub fn variant(&self) -> &Variant {
         &self.variant
@@ -433,10 +467,14 @@ impl<'d> Session<'d> {
     }
 
     /// The CAN bus and the node of a CANopen session (`watch --pdo` sends SYNC and takes TPDOs
-    /// on it); `None` on another protocol.
+    /// on it); `None` on another protocol, or when the bus is a network manager's (see
+    /// [`open_each_on_one_client`](Self::open_each_on_one_client)).
     pub fn can(&self) -> Option<(SharedCan, NodeId)> {
         match &self.link {
-            Link::CanOpen { sdo, node } => Some((Arc::clone(sdo), *node)),
+            Link::CanOpen {
+                sdo: CanSdo::Alone(sdo),
+                node,
+            } => Some((Arc::clone(sdo), *node)),
             _ => None,
         }
     }
@@ -452,11 +490,9 @@ impl<'d> Session<'d> {
                 variant,
                 parameters,
             ),
-            Link::CanOpen { sdo, node } => interpret::read_raw(
-                &mut CanOpenLink::new(&mut *hold(sdo), *node),
-                variant,
-                parameters,
-            ),
+            Link::CanOpen { sdo, node } => sdo.with(|sdo| {
+                interpret::read_raw(&mut CanOpenLink::new(sdo, *node), variant, parameters)
+            }),
             Link::Rs232 { bus, station } => interpret::read_raw(
                 &mut Rs232Link::new(&mut *hold(bus), *station),
                 variant,
@@ -483,13 +519,10 @@ impl<'d> Session<'d> {
                 parameter,
                 bytes,
             ),
-            Link::CanOpen { sdo, node } => interpret::write_checked(
-                device,
-                &mut CanOpenLink::new(&mut *hold(sdo), *node),
-                variant,
-                parameter,
-                bytes,
-            ),
+            Link::CanOpen { sdo, node } => sdo.with(|sdo| {
+                let mut link = CanOpenLink::new(sdo, *node);
+                interpret::write_checked(device, &mut link, variant, parameter, bytes)
+            }),
             Link::Rs232 { bus, station } => interpret::write_checked(
                 device,
                 &mut Rs232Link::new(&mut *hold(bus), *station),
@@ -627,6 +660,21 @@ fn non_empty(given: &[u8], default: Option<u8>) -> Vec<u8> {
 /// A CANopen node id, 1..=127.
 fn node_id(id: u8) -> Result<NodeId, CliError> {
     NodeId::new(id).ok_or_else(|| CliError::Usage("give a CANopen --node-id (1..=127)".into()))
+}
+
+/// `work` done for every session: at once, a thread each, where the sessions are
+/// [`concurrent`](Session::concurrent), else one after the other. The results in order.
+pub fn each<'d, R: Send>(
+    sessions: &mut [Session<'d>],
+    work: impl Fn(&mut Session<'d>) -> R + Sync,
+) -> Vec<R> {
+    if !sessions.iter().all(Session::concurrent) {
+        return sessions.iter_mut().map(work).collect();
+    }
+    crate::at_once::at_once(sessions.iter_mut(), work)
+        .into_iter()
+        .map(|done| done.unwrap_or_else(|panic| std::panic::resume_unwind(panic)))
+        .collect()
 }
 
 /// The bus at `place` and the drive `link` talks to, for messages.

@@ -1,6 +1,7 @@
 //! Several drives on one bus, for `read` and `watch` with a repeated `--unit` or `--node-id`:
-//! a session each on one connection, read drive by drive, shown as one table with a column per
-//! drive. A drive that fails shows its error in its column; the others still show.
+//! a session each on one connection (CANopen nodes through the network manager, read at once;
+//! Modbus units one after the other), shown as one table with a column per drive. A drive that
+//! fails shows its error in its column; the others still show.
 
 use drivebus::interpret::Shown;
 use drivegen::ir::{Device, Parameter};
@@ -22,6 +23,14 @@ impl<'d> Drives<'d> {
     pub fn open(args: &BusArgs, device: &'d Device) -> Result<Self, CliError> {
         Ok(Self {
             sessions: Session::open_each(args, device)?,
+        })
+    }
+
+    /// Opens them on one SDO client with the CAN bus at hand (see
+    /// [`Session::open_each_on_one_client`]).
+    pub fn open_on_one_client(args: &BusArgs, device: &'d Device) -> Result<Self, CliError> {
+        Ok(Self {
+            sessions: Session::open_each_on_one_client(args, device)?,
         })
     }
 
@@ -59,15 +68,14 @@ impl<'d> Drives<'d> {
             .collect()
     }
 
-    /// Reads `parameters` from every drive, in order. One after the other: the sessions share
-    /// the connection, and over Modbus one line carries one request at a time anyway. This is
-    /// the one place to read CANopen nodes concurrently once a network manager shares the CAN
-    /// bus between them.
+    /// Reads `parameters` from every drive. CANopen nodes at once through the network manager
+    /// that shares the CAN bus (a node that does not answer costs its own timeout, not the
+    /// others'); Modbus units and RS-232 stations one after the other: one line carries one
+    /// request at a time anyway.
     pub fn read_each(&mut self, device: &Device, parameters: &[&Parameter]) -> Vec<Outcome> {
-        self.sessions
-            .iter_mut()
-            .map(|session| read::read_all(session, device, parameters))
-            .collect()
+        crate::connect::each(&mut self.sessions, |session| {
+            read::read_all(session, device, parameters)
+        })
     }
 
     /// Each drive's outcome as JSON: `{"unit": 3, "values": ...}` or `{"unit": 5, "error": ...}`,

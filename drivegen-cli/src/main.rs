@@ -1,7 +1,9 @@
 //! The `drivegen` command-line tool: validate and inspect descriptions, generate drive crates,
 //! simulate a drive, and read, write, watch or decode a drive's values by parameter name.
 
+mod at_once;
 mod can;
+mod can_sdo;
 mod codec;
 mod commands;
 mod connect;

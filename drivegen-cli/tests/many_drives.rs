@@ -1,7 +1,8 @@
 //! `read` and `watch` with a repeated `--unit` / `--node-id` (issue 31 item 4): several drives on
 //! one bus, one table with a column per drive; a drive that fails shows its error in its column,
 //! the others still show, and the exit code says whether every drive answered. Against the
-//! simulator: Lafert drives behind one Modbus TCP gateway, ez-Wheel SWD nodes on one CAN bus.
+//! simulator: Lafert drives behind one Modbus TCP gateway, ez-Wheel SWD nodes on one CAN bus
+//! (read at once through the network manager: missing nodes cost one timeout together).
 
 use std::path::Path;
 use std::process::Output;
@@ -230,6 +231,49 @@ fn read_shows_a_column_per_canopen_node_and_the_missing_one_fails() {
     assert!(
         vendor[2].starts_with("error: ") && vendor[2].contains("node 6"),
         "{text}"
+    );
+}
+
+#[test]
+fn canopen_nodes_are_read_at_once_so_missing_nodes_cost_one_timeout() {
+    let fixture = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../drivesim/tests/fixtures/network_node.toml")
+        .display()
+        .to_string();
+    let can =
+        format!("candump:exec:{BIN} sim {fixture} --can candump:stdio --node-id 1 --node-id 2");
+    const TIMEOUT_MS: u64 = 1500;
+    let timeout = TIMEOUT_MS.to_string();
+    let mut args = vec![
+        "read",
+        &fixture,
+        "setpoint",
+        "--can",
+        &can,
+        "--timeout-ms",
+        &timeout,
+    ];
+    // Two nodes answer, four do not: one after the other that would take four timeouts.
+    for node in ["1", "2", "7", "8", "9", "10"] {
+        args.extend(["--node-id", node]);
+    }
+    let started = std::time::Instant::now();
+    let read = drivegen(&args);
+    let took = started.elapsed();
+    assert_eq!(read.status.code(), Some(1), "{}", stderr(&read));
+    let text = stdout(&read);
+    let setpoint = row(&text, "setpoint");
+    assert!(
+        setpoint[1].starts_with("100") && setpoint[2].starts_with("100"),
+        "{text}"
+    );
+    assert!(
+        setpoint[3..].iter().all(|cell| cell.starts_with("error: ")),
+        "{text}"
+    );
+    assert!(
+        took < std::time::Duration::from_millis(3 * TIMEOUT_MS),
+        "four missing nodes took {took:?}: not read at once"
     );
 }
 

@@ -27,10 +27,15 @@ fn folder(test: &str) -> PathBuf {
     dir
 }
 
-/// Writes the network file `text` (with `FIXTURE` replaced by the fixture's path).
+/// Writes the network file `text` (with `FIXTURE` replaced by the fixture's path, `KINCO` by
+/// the Kinco description's).
 fn network_file(test: &str, text: &str) -> String {
     let path = folder(test).join("net.toml");
-    std::fs::write(&path, text.replace("FIXTURE", &fixture())).unwrap();
+    let kinco = Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/kinco-fd");
+    let text = text
+        .replace("FIXTURE", &fixture())
+        .replace("KINCO", &kinco.display().to_string());
+    std::fs::write(&path, text).unwrap();
     path.display().to_string()
 }
 
@@ -83,7 +88,7 @@ fn a_network_boots_and_every_node_is_reported_on_its_line() {
     assert_eq!(
         out.lines().collect::<Vec<_>>(),
         [
-            "node   1 (Network Node): booted, 1 parameter(s) written, started",
+            "node   1 (Network Node): booted, 2 written, 0 unchanged, started",
             "node   2 (Network Node): foreign identity: 1018h sub 2 is 0x00000008, expected 0x00000007; left alone",
             "node   3 (Network Node): no answer to the probe: not on the bus; left alone",
         ]
@@ -153,6 +158,16 @@ fn bad_network_files_are_refused_with_the_file_and_line() {
             ":7: node 1: setpoint: ",
         ),
         (
+            "absent_pdo",
+            "format = 1\n[[node]]\nid = 1\ndescription = \"FIXTURE\"\n[[node.tpdo]]\nnumber = 1\nmapping = [\"setpoint\"]\n",
+            ":5: node 1: the drive has no TPDO 1: its description has no object 1800h",
+        ),
+        (
+            "unmappable",
+            "format = 1\n[[node]]\nid = 1\ndescription = \"KINCO\"\n[[node.tpdo]]\nnumber = 1\nmapping = [\n  \"statusword\",\n  \"profile_speed\",\n]\n",
+            ":9: node 1: PDO mapping: `profile_speed` cannot be mapped into a TPDO",
+        ),
+        (
             "duplicate",
             "format = 1\n[[node]]\nid = 1\ndescription = \"FIXTURE\"\n[[node]]\nid = 1\ndescription = \"FIXTURE\"\n",
             ":5: node 1 appears twice",
@@ -168,4 +183,40 @@ fn bad_network_files_are_refused_with_the_file_and_line() {
         assert!(err.contains("(nothing was sent)"), "{test}: {err}");
         let _ = std::fs::remove_dir_all(folder(test));
     }
+}
+
+#[test]
+fn a_boot_configures_the_pdos_of_the_file() {
+    let file = network_file(
+        "pdo",
+        "format = 1\n[[node]]\nid = 1\ndescription = \"KINCO\"\n\
+         [[node.tpdo]]\nnumber = 1\ntransmission_type = 254\nevent_timer = 50\n\
+         mapping = [\"statusword\", \"modes_of_operation_display\"]\n",
+    );
+    let kinco = Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/kinco-fd");
+    let can = format!(
+        "candump:exec:{BIN} sim {} --can candump:stdio --node-id 1",
+        kinco.display()
+    );
+    // 10 s: the simulator loads its description while the first request waits.
+    let boot = drivegen(&[
+        "network",
+        "boot",
+        &file,
+        "--can",
+        &can,
+        "--timeout-ms",
+        "10000",
+    ]);
+    let out = String::from_utf8_lossy(&boot.stdout);
+    assert!(
+        boot.status.success(),
+        "{out}{}",
+        String::from_utf8_lossy(&boot.stderr)
+    );
+    assert!(
+        out.trim_end()
+            .ends_with("booted, 1 written, 0 unchanged, started"),
+        "the TPDO written: {out}"
+    );
 }

@@ -59,6 +59,7 @@ fn plan(id: u8, setpoint: i16) -> NodeBoot {
             revision: None,
         },
         heartbeat: Some(Duration::from_millis(200)),
+        pdos: vec![],
         writes: vec![BootWrite {
             index: 0x2000,
             subindex: 0,
@@ -145,9 +146,22 @@ fn a_network_boots_leaving_missing_foreign_and_refusing_nodes_reported() {
         "the foreign node was not started"
     );
 
-    // Again: the same reports, the same values.
+    // Again: the same results, the same values, and nothing written where the node holds it.
     let again = boot_all(&network, &plans, TIMEOUT);
-    assert_eq!(again, reports);
+    let outcome = |r: &drivebus::canopen::network::boot::BootReport| (r.node, r.result.clone());
+    assert_eq!(
+        again.iter().map(outcome).collect::<Vec<_>>(),
+        reports.iter().map(outcome).collect::<Vec<_>>()
+    );
+    let counts: Vec<_> = [&reports[0], &again[0], &again[3]]
+        .iter()
+        .map(|r| (r.written, r.unchanged))
+        .collect();
+    assert_eq!(
+        counts,
+        [(2, 0), (0, 2), (0, 2)],
+        "node 1 written then unchanged; node 4 unchanged up to its refused write (tried again)"
+    );
     assert_eq!([setpoint(&network, 1), setpoint(&network, 2)], [10, 20]);
 }
 

@@ -1,6 +1,7 @@
 //! The network file reader (`drivegen::network_file::parse`) fed arbitrary text. Asserts that
 //! it never panics, that a file it accepts has at least one node, node ids 1-127 each once,
-//! and lines within the text, and that a refusal's line is within the text.
+//! PDO numbers 1-512 and 11-bit COB-IDs, and lines within the text, and that a refusal's line
+//! is within the text.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
@@ -19,6 +20,12 @@ fuzz_target!(|data: &[u8]| {
                 assert!(!std::mem::replace(&mut seen[usize::from(node.id)], true));
                 assert!(node.line >= 1 && node.line <= lines);
                 assert!(node.parameters.iter().all(|p| p.line >= 1 && p.line <= lines));
+                for pdo in &node.pdos {
+                    assert!((1..=512).contains(&pdo.number));
+                    assert!(pdo.cob_id.is_none_or(|c| c & !0x4000_0000 <= 0x7FF));
+                    assert!(pdo.line >= 1 && pdo.line <= lines);
+                    assert!(pdo.mapping.iter().all(|m| m.line >= 1 && m.line <= lines));
+                }
             }
         }
         Err(error) => {

@@ -225,6 +225,22 @@ def network_file_seeds():
     write("network_file", "network.toml", text)
     write("network_file", "truncated.toml", text[: text.index(b"heartbeat_ms") + 5])
     write("network_file", "node_id_0.toml", text.replace(b"id = 5", b"id = 0"))
+    write("network_file", "pdos.toml", (NETWORK_FILE + NETWORK_PDOS).encode())
+
+
+NETWORK_PDOS = """
+[[node.tpdo]]
+number = 1
+transmission_type = 254
+event_timer = 50
+inhibit_time = 10
+mapping = ["statusword", "modes_of_operation_display"]
+
+[[node.rpdo]]
+number = 5
+cob_id = 0x2A6
+mapping = ["controlword"]
+"""
 
 
 NETWORK_FILE = """format = 1

@@ -82,6 +82,18 @@ def master_of_simulator(binary, sim_args, channel, scenario, prepare=None,
         bus.shutdown()
 
 
+def master_on_stdio(name, eds, node_id):
+    """A python canopen master of the node at the other end of this process's stdio (see
+    `relay_stdio`): the virtual bus `name-PID`, the network on it and the node `node_id` with
+    the object dictionary `eds`."""
+    channel = f"{name}-{os.getpid()}"
+    bus = can.Bus(interface="virtual", channel=channel)
+    network = canopen.Network()
+    network.connect(interface="virtual", channel=channel)
+    relay_stdio(bus)
+    return bus, network, network.add_node(node_id, eds)
+
+
 def relay_stdio(bus):
     """Copies frames between this process's stdio (candump compact lines) and `bus`: for a master
     whose node is the process at the other end of its pipes (a test running the simulated node)."""

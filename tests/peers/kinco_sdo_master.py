@@ -11,14 +11,11 @@ values and an abort. Exits 0 on success; prints the failed check on stderr and e
 """
 
 import logging
-import os
 import sys
 
-import can
-import canopen
 
 from canopen.sdo.exceptions import SdoAbortedError
-from canopen_relay import relay_stdio
+from canopen_relay import master_on_stdio
 
 
 def aborted(action):
@@ -48,12 +45,7 @@ def scenario(node):
 def main():
     logging.basicConfig(level=logging.ERROR)
     eds, node_id = sys.argv[1], int(sys.argv[2], 0)
-    channel = f"kinco-sdo-master-{os.getpid()}"
-    bus = can.Bus(interface="virtual", channel=channel)
-    network = canopen.Network()
-    network.connect(interface="virtual", channel=channel)
-    relay_stdio(bus)
-    node = network.add_node(node_id, eds)
+    _, network, node = master_on_stdio("kinco-sdo-master", eds, node_id)
     try:
         scenario(node)
     except AssertionError as failed:

@@ -7,7 +7,10 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use super::error::{NetworkFileError, NetworkFileErrorKind as Kind};
-use super::{BootParameter, ExpectedIdentity, NetworkFile, NodeEntry, FORMAT_VERSION};
+use super::{
+    BootParameter, ExpectedIdentity, MappedName, NetworkFile, NodeEntry, PdoEntry, FORMAT_VERSION,
+};
+use crate::ir::Direction;
 use crate::toml_file::{self, in_file_order, line_of, Unreadable};
 
 #[derive(Deserialize)]
@@ -27,7 +30,22 @@ struct RawNode {
     heartbeat_ms: Option<Spanned<i64>>,
     start: Option<bool>,
     #[serde(default)]
+    tpdo: Vec<Spanned<RawPdo>>,
+    #[serde(default)]
+    rpdo: Vec<Spanned<RawPdo>>,
+    #[serde(default)]
     parameters: BTreeMap<Spanned<String>, toml::Value>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawPdo {
+    number: Spanned<i64>,
+    cob_id: Option<Spanned<i64>>,
+    transmission_type: Option<Spanned<i64>>,
+    inhibit_time: Option<Spanned<i64>>,
+    event_timer: Option<Spanned<i64>>,
+    mapping: Vec<Spanned<String>>,
 }
 
 #[derive(Deserialize)]
@@ -89,15 +107,102 @@ fn node(text: &str, line: u32, raw: RawNode) -> Result<NodeEntry, NetworkFileErr
         None => ExpectedIdentity::default(),
         Some(spanned) => identity(line_of(text, spanned.span().start), spanned.get_ref())?,
     };
+    let tpdos = raw.tpdo.into_iter().map(|p| (Direction::Tx, p));
+    let rpdos = raw.rpdo.into_iter().map(|p| (Direction::Rx, p));
+    let pdos = tpdos
+        .chain(rpdos)
+        .map(|(direction, spanned)| pdo(text, direction, spanned))
+        .collect::<Result<_, _>>()?;
     Ok(NodeEntry {
         id,
         description: raw.description,
         identity,
         heartbeat_ms,
         start: raw.start.unwrap_or(true),
+        pdos,
         parameters: parameters(text, raw.parameters)?,
         line,
     })
+}
+
+/// One PDO table, each number in its range (the description's checks come later).
+fn pdo(
+    text: &str,
+    direction: Direction,
+    spanned: Spanned<RawPdo>,
+) -> Result<PdoEntry, NetworkFileError> {
+    let line = line_of(text, spanned.span().start);
+    let raw = spanned.into_inner();
+    let number: u16 = ranged(text, "number", &raw.number, "a PDO number, 1-512")?;
+    if !(1..=512).contains(&number) {
+        let at = line_of(text, raw.number.span().start);
+        return Err(malformed(at, "number", "a PDO number, 1-512"));
+    }
+    let cob_id = optional(
+        text,
+        "cob_id",
+        raw.cob_id.as_ref(),
+        "an 11-bit COB-ID (bit 30 may be set)",
+    )?
+    .filter(|c: &u32| c & !0x4000_0000 <= 0x7FF);
+    if raw.cob_id.is_some() && cob_id.is_none() {
+        let at = raw
+            .cob_id
+            .as_ref()
+            .map_or(line, |c| line_of(text, c.span().start));
+        return Err(malformed(
+            at,
+            "cob_id",
+            "an 11-bit COB-ID (bit 30 may be set)",
+        ));
+    }
+    Ok(PdoEntry {
+        direction,
+        number,
+        cob_id,
+        transmission_type: optional(
+            text,
+            "transmission_type",
+            raw.transmission_type.as_ref(),
+            "0-255",
+        )?,
+        inhibit_time: optional(
+            text,
+            "inhibit_time",
+            raw.inhibit_time.as_ref(),
+            "0-65535 (100 µs)",
+        )?,
+        event_timer: optional(text, "event_timer", raw.event_timer.as_ref(), "0-65535 ms")?,
+        mapping: raw
+            .mapping
+            .into_iter()
+            .map(|name| MappedName {
+                line: line_of(text, name.span().start),
+                name: name.into_inner(),
+            })
+            .collect(),
+        line,
+    })
+}
+
+/// `value` as a `T`, or refused at its line.
+fn ranged<T: TryFrom<i64>>(
+    text: &str,
+    key: &str,
+    value: &Spanned<i64>,
+    expected: &'static str,
+) -> Result<T, NetworkFileError> {
+    T::try_from(*value.get_ref())
+        .map_err(|_| malformed(line_of(text, value.span().start), key, expected))
+}
+
+fn optional<T: TryFrom<i64>>(
+    text: &str,
+    key: &str,
+    value: Option<&Spanned<i64>>,
+    expected: &'static str,
+) -> Result<Option<T>, NetworkFileError> {
+    value.map(|v| ranged(text, key, v, expected)).transpose()
 }
 
 fn identity(line: u32, raw: &RawIdentity) -> Result<ExpectedIdentity, NetworkFileError> {

@@ -25,7 +25,9 @@ use super::link::SdoBus;
 use crate::error::{BusError, ValueError};
 use crate::parameter::Parameter;
 
-pub use drivebus_model::canopen::{mapping_bits, mapping_fits, MappedObject};
+#[cfg(feature = "std")]
+pub use drivebus_model::canopen::PdoSetup;
+pub use drivebus_model::canopen::{mapping_bits, mapping_fits, MappedObject, PdoKind};
 
 /// A value that can be carried in a PDO entry.
 pub trait PdoValue: Sized {
@@ -288,15 +290,6 @@ const fn mask(bits: u8) -> u64 {
     }
 }
 
-/// Which way a PDO goes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum PdoKind {
-    /// RPDO: master → node (0x1400.. / 0x1600..).
-    Receive,
-    /// TPDO: node → master (0x1800.. / 0x1A00..).
-    Transmit,
-}
-
 /// A PDO configuration to apply over SDO.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct PdoConfig<'a> {
@@ -426,6 +419,22 @@ impl<'a> PdoConfig<'a> {
                 .await?;
         }
         Ok(())
+    }
+}
+
+#[cfg(feature = "std")]
+impl<'a> From<&'a PdoSetup> for PdoConfig<'a> {
+    /// The configuration of an owned [`PdoSetup`] (a network boot's).
+    fn from(setup: &'a PdoSetup) -> Self {
+        Self {
+            kind: setup.kind,
+            number: setup.number,
+            cob_id: setup.cob_id,
+            transmission_type: setup.transmission_type,
+            inhibit_time: setup.inhibit_time,
+            event_timer: setup.event_timer,
+            entries: &setup.entries,
+        }
     }
 }
 

@@ -1,5 +1,9 @@
 //! The simulated nodes the network manager's tests run on one bus.
 
+// Not every test binary that shares this module boots a Kinco.
+#[allow(dead_code)]
+pub mod kinco_boot;
+
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::thread::JoinHandle;

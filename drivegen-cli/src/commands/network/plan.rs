@@ -1,13 +1,14 @@
 //! A network file checked against its descriptions before anything is sent: each node's
-//! description loaded, each boot parameter found, writable over CANopen and its value parsed.
-//! Every refusal names the file and the line.
+//! description loaded, its PDOs checked (`network_file::check_pdos`: the drive has the PDO and
+//! can map every parameter), each boot parameter found, writable over CANopen and its value
+//! parsed. Every refusal names the file and the line.
 
 use std::path::{Path, PathBuf};
 
-use drivebus::canopen::network::boot::{ExpectedIdentity, NodeBoot};
+use drivebus::canopen::network::boot::{ExpectedIdentity, NodeBoot, PdoSetup};
 use drivebus::canopen::NodeId;
 use drivegen::ir::{Device, Parameter};
-use drivegen::network_file::{self, NodeEntry};
+use drivegen::network_file::{self, NetworkFileError, NodeEntry};
 
 use crate::error::CliError;
 
@@ -17,13 +18,15 @@ pub struct Planned {
     pub entry: NodeEntry,
     /// Its description.
     pub device: Device,
+    /// The PDOs to configure, checked.
+    pub pdos: Vec<PdoSetup>,
     /// The raw values to write: the parameter's name, its encoded value and its line.
     pub writes: Vec<(String, Vec<u8>, u32)>,
 }
 
 impl Planned {
-    /// The boot procedure's part: probe, identity, heartbeat (the parameters and the start are
-    /// written through the interpreter afterwards).
+    /// The boot procedure's part: probe, identity, heartbeat, PDOs (the parameters and the
+    /// start are written through the interpreter afterwards).
     pub fn procedure(&self) -> NodeBoot {
         let identity = self.entry.identity;
         NodeBoot {
@@ -37,6 +40,7 @@ impl Planned {
                 .entry
                 .heartbeat_ms
                 .map(|ms| std::time::Duration::from_millis(u64::from(ms))),
+            pdos: self.pdos.clone(),
             writes: Vec::new(),
             start: false,
         }
@@ -57,15 +61,7 @@ pub fn plan(file: &Path) -> Result<Vec<Planned>, CliError> {
         reason,
     };
     let text = std::fs::read_to_string(file).map_err(|e| refuse(None, e.to_string()))?;
-    let parsed = network_file::parse(&text).map_err(|e| {
-        let mut reason = e.to_string();
-        if let Some(line) = e.line {
-            reason = reason
-                .trim_start_matches(&format!("line {line}: "))
-                .to_owned();
-        }
-        refuse(e.line, reason)
-    })?;
+    let parsed = network_file::parse(&text).map_err(|e| refuse(e.line, reason(&e)))?;
     let folder = file.parent().unwrap_or(Path::new("."));
     parsed
         .nodes
@@ -88,6 +84,10 @@ fn planned(folder: &Path, entry: NodeEntry) -> Result<Planned, (u32, String)> {
             ),
         ));
     };
+    let pdos = network_file::check_pdos(&entry, &device).map_err(|e| {
+        let line = e.line.unwrap_or(entry.line);
+        (line, format!("node {}: {}", entry.id, reason(&e)))
+    })?;
     let mut writes = Vec::new();
     for boot in &entry.parameters {
         let at = |why: String| {
@@ -109,6 +109,18 @@ fn planned(folder: &Path, entry: NodeEntry) -> Result<Planned, (u32, String)> {
     Ok(Planned {
         entry,
         device,
+        pdos,
         writes,
     })
+}
+
+/// What is wrong, without the `line N: ` the refusal gives apart.
+fn reason(error: &NetworkFileError) -> String {
+    let shown = error.to_string();
+    match error.line {
+        Some(line) => shown
+            .trim_start_matches(&format!("line {line}: "))
+            .to_owned(),
+        None => shown,
+    }
 }

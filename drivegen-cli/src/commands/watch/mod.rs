@@ -90,7 +90,11 @@ pub fn run(args: Args) -> Result<(), CliError> {
     // Created before the bus opens: a path that cannot be written is refused first.
     let plot = args.plot.as_deref().map(PlotFile::create).transpose()?;
     let plot = plot.map(|file| Plotter::new(file, &device, "watch", &parameters));
-    let mut drives = Drives::open(&args.bus, &device)?;
+    // `--pdo` sends SYNC and NMT beside its transfers: its nodes share one client on the bus.
+    let mut drives = match args.pdo {
+        true => Drives::open_on_one_client(&args.bus, &device)?,
+        false => Drives::open(&args.bus, &device)?,
+    };
     let interrupt = Interrupt::catch()?;
     let layout = Layout {
         parameters: &parameters,

@@ -37,6 +37,8 @@ pub fn boot_all<B: Send>(
                         step: super::BootStep::Probe,
                         error: BusError::Closed,
                     }),
+                    written: 0,
+                    unchanged: 0,
                 })
             })
             .collect()

@@ -1,8 +1,9 @@
 //! Network boot (CiA 302 in spirit), one node at a time and many at once: probe the node,
-//! check its identity (1018h), set its heartbeat (1017h), write its boot parameters, start it.
-//! A missing node or one with a foreign identity is reported and left alone; a node that
-//! aborts a step is reported with the step and the abort code; the other nodes still boot.
-//! Running it again on a booted network writes the same values and changes nothing.
+//! check its identity (1018h), set its heartbeat (1017h), configure its PDOs, write its boot
+//! parameters, start it. A missing node or one with a foreign identity is reported and left
+//! alone; a node that aborts a step is reported with the step and the abort code; the other
+//! nodes still boot. Every configuration item is read and compared first and written only
+//! where it differs, so booting a booted network again sends no download.
 //!
 //! [`BootProcedure`] is the sans-I/O procedure: it says what to ask of the node next and is
 //! told how that went. [`boot_node`] and [`boot_all`] drive it over a [`Network`](super::Network)
@@ -44,8 +45,11 @@ macro_rules! drive_boot {
 #[cfg(feature = "async")]
 mod async_boot;
 mod blocking;
+mod item;
+mod pdo;
 mod procedure;
 
+pub use crate::canopen::pdo::PdoSetup;
 #[cfg(feature = "async")]
 pub use async_boot::boot_node_async;
 pub use blocking::{boot_all, boot_node};
@@ -102,6 +106,9 @@ pub struct NodeBoot {
     /// Its heartbeat producer time (1017h), if one is to be set; the manager then watches the
     /// heartbeat with [`consumer_timeout`].
     pub heartbeat: Option<Duration>,
+    /// The PDOs to configure, in this order, after the heartbeat and before the boot
+    /// parameters.
+    pub pdos: Vec<PdoSetup>,
     /// The boot parameters, written in this order.
     pub writes: Vec<BootWrite>,
     /// Send NMT Start to the node at the end.
@@ -115,6 +122,7 @@ impl NodeBoot {
             node,
             identity: ExpectedIdentity::default(),
             heartbeat: None,
+            pdos: Vec::new(),
             writes: Vec::new(),
             start: true,
         }
@@ -136,6 +144,8 @@ pub enum BootStep {
     Identity(u8),
     /// Setting the heartbeat producer time (1017h).
     Heartbeat,
+    /// The PDO of this position in [`NodeBoot::pdos`] (disable, map, enable).
+    Pdo(usize),
     /// The boot parameter of this position in [`NodeBoot::writes`].
     Write(usize),
     /// NMT Start.
@@ -148,6 +158,7 @@ impl fmt::Display for BootStep {
             Self::Probe => f.write_str("probe (1000h)"),
             Self::Identity(sub) => write!(f, "identity check (1018h sub {sub})"),
             Self::Heartbeat => f.write_str("heartbeat producer time (1017h)"),
+            Self::Pdo(n) => write!(f, "PDO configuration {}", n + 1),
             Self::Write(n) => write!(f, "boot parameter {}", n + 1),
             Self::Start => f.write_str("NMT start"),
         }
@@ -213,4 +224,9 @@ pub struct BootReport {
     pub device_type: Option<u32>,
     /// Booted, or why not.
     pub result: Result<(), BootError>,
+    /// The configuration items (heartbeat, PDOs, boot parameters) written because the node
+    /// held another value.
+    pub written: usize,
+    /// The configuration items the node already held: read, compared, not written.
+    pub unchanged: usize,
 }

@@ -1,5 +1,6 @@
 //! The sans-I/O boot of one node: which request comes next, given how the last one went.
 
+use super::item::Item;
 use super::{BootError, BootReport, BootStep, NodeBoot};
 use crate::canopen::nmt::NmtCommand;
 use crate::error::BusError;
@@ -30,28 +31,40 @@ pub enum Action<'a> {
     Finished,
 }
 
-/// The boot of one node as a sequence of requests.
+/// Where the current item (heartbeat, PDO, boot parameter) is: comparing its objects, or
+/// writing them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Phase {
+    Check(usize),
+    Write(usize),
+}
+
+/// The boot of one node as a sequence of requests. Each configuration item is read and
+/// compared before it is written, and written only where the node does not hold it already.
 #[derive(Debug, Clone)]
 pub struct BootProcedure<'a> {
     plan: &'a NodeBoot,
     step: BootStep,
+    item: Item,
+    phase: Phase,
     device_type: Option<u32>,
     outcome: Option<Result<(), BootError>>,
-    heartbeat_ms: [u8; 2],
+    written: usize,
+    unchanged: usize,
 }
 
 impl<'a> BootProcedure<'a> {
     /// The boot `plan` describes, not started.
     pub fn new(plan: &'a NodeBoot) -> Self {
-        let ms = plan
-            .heartbeat
-            .map_or(0, |p| u16::try_from(p.as_millis()).unwrap_or(u16::MAX));
         Self {
             plan,
             step: BootStep::Probe,
+            item: Item::default(),
+            phase: Phase::Check(0),
             device_type: None,
             outcome: None,
-            heartbeat_ms: ms.to_le_bytes(),
+            written: 0,
+            unchanged: 0,
         }
     }
 
@@ -69,20 +82,28 @@ impl<'a> BootProcedure<'a> {
                 index: 0x1018,
                 subindex,
             },
-            BootStep::Heartbeat => Action::Write {
-                index: 0x1017,
-                subindex: 0,
-                data: &self.heartbeat_ms,
-            },
-            BootStep::Write(n) => {
-                let write = &self.plan.writes[n];
+            BootStep::Heartbeat | BootStep::Pdo(_) | BootStep::Write(_) => self.item_action(),
+            BootStep::Start => Action::Nmt(NmtCommand::Start),
+        }
+    }
+
+    fn item_action(&self) -> Action<'_> {
+        match self.phase {
+            Phase::Check(j) => {
+                let write = &self.item.checks[j].write;
+                Action::Read {
+                    index: write.index,
+                    subindex: write.subindex,
+                }
+            }
+            Phase::Write(j) => {
+                let write = &self.item.writes[j];
                 Action::Write {
                     index: write.index,
                     subindex: write.subindex,
                     data: &write.data,
                 }
             }
-            BootStep::Start => Action::Nmt(NmtCommand::Start),
         }
     }
 
@@ -102,19 +123,52 @@ impl<'a> BootProcedure<'a> {
                 })),
                 _ => self.advance(),
             },
+            (BootStep::Heartbeat | BootStep::Pdo(_) | BootStep::Write(_), value) => {
+                self.compared(value)
+            }
             (step, Err(error)) => self.finish(Err(BootError::Step { step, error })),
             (_, Ok(_)) => self.advance(),
         }
     }
 
-    /// How the last [`Action::Write`] went.
-    pub fn wrote(&mut self, result: Result<(), BusError>) {
-        match result {
-            Ok(()) => self.advance(),
+    /// An item's object read back: the next check if it holds its value, the writes if not
+    /// (or if the node refused the read: the write then says why, or sets it).
+    fn compared(&mut self, value: Result<u32, BusError>) {
+        let Phase::Check(j) = self.phase else {
+            return;
+        };
+        match value {
+            Ok(found) if self.item.checks[j].holds(found) => {
+                if j + 1 < self.item.checks.len() {
+                    self.phase = Phase::Check(j + 1);
+                } else {
+                    self.unchanged += 1;
+                    self.advance();
+                }
+            }
+            Ok(_) | Err(BusError::SdoAbort { .. }) => self.phase = Phase::Write(0),
             Err(error) => self.finish(Err(BootError::Step {
                 step: self.step,
                 error,
             })),
+        }
+    }
+
+    /// How the last [`Action::Write`] went.
+    pub fn wrote(&mut self, result: Result<(), BusError>) {
+        if let Err(error) = result {
+            return self.finish(Err(BootError::Step {
+                step: self.step,
+                error,
+            }));
+        }
+        match self.phase {
+            Phase::Write(j) if j + 1 < self.item.writes.len() => self.phase = Phase::Write(j + 1),
+            Phase::Write(_) => {
+                self.written += 1;
+                self.advance();
+            }
+            Phase::Check(_) => self.advance(),
         }
     }
 
@@ -134,6 +188,8 @@ impl<'a> BootProcedure<'a> {
             node: self.plan.node,
             device_type: self.device_type,
             result: self.outcome.clone().unwrap_or(Err(unfinished)),
+            written: self.written,
+            unchanged: self.unchanged,
         }
     }
 
@@ -149,15 +205,34 @@ impl<'a> BootProcedure<'a> {
         self.outcome = Some(outcome);
     }
 
-    /// Moves to the next step the plan asks for; after the last one the boot is done.
+    /// Moves to the next step the plan asks for and loads its item; after the last one the
+    /// boot is done.
     fn advance(&mut self) {
         let mut next = self.following(self.step);
         while let Some(step) = next.filter(|s| !self.wanted(*s)) {
             next = self.following(step);
         }
-        match next {
-            Some(step) => self.step = step,
-            None => self.finish(Ok(())),
+        let Some(step) = next else {
+            return self.finish(Ok(()));
+        };
+        self.step = step;
+        let item = match step {
+            BootStep::Heartbeat => Ok(Item::heartbeat(self.plan)),
+            BootStep::Pdo(n) => Item::pdo(&self.plan.pdos[n]),
+            BootStep::Write(n) => Ok(Item::single(self.plan.writes[n].clone())),
+            // Not an item: its answer moves on (`wrote` in `Phase::Check`).
+            _ => Ok(Item::default()),
+        };
+        match item {
+            Ok(item) => {
+                let unreadable = item.checks.is_empty() && !item.writes.is_empty();
+                self.phase = match unreadable {
+                    true => Phase::Write(0),
+                    false => Phase::Check(0),
+                };
+                self.item = item;
+            }
+            Err(error) => self.finish(Err(BootError::Step { step, error })),
         }
     }
 
@@ -167,7 +242,9 @@ impl<'a> BootProcedure<'a> {
             BootStep::Probe => BootStep::Identity(1),
             BootStep::Identity(sub) if sub < 3 => BootStep::Identity(sub + 1),
             BootStep::Identity(_) => BootStep::Heartbeat,
-            BootStep::Heartbeat => BootStep::Write(0),
+            BootStep::Heartbeat => BootStep::Pdo(0),
+            BootStep::Pdo(n) if n + 1 < self.plan.pdos.len() => BootStep::Pdo(n + 1),
+            BootStep::Pdo(_) => BootStep::Write(0),
             BootStep::Write(n) if n + 1 < self.plan.writes.len() => BootStep::Write(n + 1),
             BootStep::Write(_) => BootStep::Start,
             BootStep::Start => return None,
@@ -179,6 +256,7 @@ impl<'a> BootProcedure<'a> {
             BootStep::Probe => true,
             BootStep::Identity(sub) => self.plan.identity.entry(sub).is_some(),
             BootStep::Heartbeat => self.plan.heartbeat.is_some(),
+            BootStep::Pdo(n) => n < self.plan.pdos.len(),
             BootStep::Write(n) => n < self.plan.writes.len(),
             BootStep::Start => self.plan.start,
         }
@@ -194,6 +272,7 @@ mod tests {
     use super::super::{BootWrite, ExpectedIdentity};
     use super::*;
     use crate::canopen::address::NodeId;
+    use crate::canopen::pdo::{MappedObject, PdoKind, PdoSetup};
     use crate::canopen::sdo::AbortCode;
 
     fn plan() -> NodeBoot {
@@ -205,6 +284,7 @@ mod tests {
                 revision: Some(2),
             },
             heartbeat: Some(core::time::Duration::from_millis(100)),
+            pdos: vec![],
             writes: vec![BootWrite {
                 index: 0x2000,
                 subindex: 0,
@@ -242,20 +322,23 @@ mod tests {
     fn a_node_is_probed_checked_configured_and_started() {
         let plan = plan();
         let mut procedure = BootProcedure::new(&plan);
-        let log = run(&mut procedure, &[Ok(0x192), Ok(0x515), Ok(2)]);
+        let log = run(&mut procedure, &[Ok(0x192), Ok(0x515), Ok(2), Ok(0), Ok(0)]);
         assert_eq!(
             log,
             [
                 "read 1000:0",
                 "read 1018:1",
                 "read 1018:3",
+                "read 1017:0",
                 "write 1017 [100, 0]",
+                "read 2000:0",
                 "write 2000 [1, 2]",
                 "Start"
             ]
         );
         let report = procedure.report();
         assert_eq!((report.device_type, report.result), (Some(0x192), Ok(())));
+        assert_eq!((report.written, report.unchanged), (2, 0));
         assert_eq!(
             procedure.heartbeat_watch(),
             Some(core::time::Duration::from_millis(250))
@@ -285,10 +368,12 @@ mod tests {
     fn an_aborted_write_is_reported_with_its_step_and_code() {
         let plan = plan();
         let mut procedure = BootProcedure::new(&plan);
-        for value in [Ok(0x192), Ok(0x515), Ok(2)] {
+        for value in [Ok(0x192), Ok(0x515), Ok(2), Ok(0)] {
             procedure.read(value);
         }
         procedure.wrote(Ok(()));
+        procedure.read(Ok(0x0102)); // another value: written
+        assert!(matches!(procedure.action(), Action::Write { .. }));
         let abort = BusError::SdoAbort {
             index: 0x2000,
             subindex: 0,
@@ -303,6 +388,101 @@ mod tests {
                 error: abort
             })
         );
+    }
+
+    #[test]
+    fn what_the_node_holds_already_is_not_written() {
+        let mut plan = plan();
+        plan.pdos.push(PdoSetup {
+            kind: PdoKind::Transmit,
+            number: 1,
+            cob_id: 0x184,
+            transmission_type: Some(254),
+            inhibit_time: None,
+            event_timer: None,
+            entries: vec![MappedObject::new(0x6041, 0, 16)],
+        });
+        let mut procedure = BootProcedure::new(&plan);
+        // The node holds heartbeat 100 ms, TPDO1 as planned (its COB-ID with bit 30 set, as
+        // devices report it) and 2000h = 0201h.
+        let held = [
+            Ok(0x192),
+            Ok(0x515),
+            Ok(2),
+            Ok(100),
+            Ok(0x4000_0184),
+            Ok(254),
+            Ok(1),
+        ];
+        let log = run(
+            &mut procedure,
+            &[&held[..], &[Ok(0x6041_0010), Ok(0x0201)]].concat(),
+        );
+        assert!(log.iter().all(|l| !l.starts_with("write")), "{log:?}");
+        let report = procedure.report();
+        assert_eq!(
+            (report.result, report.written, report.unchanged),
+            (Ok(()), 0, 3)
+        );
+    }
+
+    #[test]
+    fn a_pdo_that_differs_in_one_object_is_configured_whole() {
+        let mut plan = plan();
+        plan.heartbeat = None;
+        plan.writes.clear();
+        plan.pdos.push(PdoSetup {
+            kind: PdoKind::Receive,
+            number: 2,
+            cob_id: 0x304,
+            transmission_type: None,
+            inhibit_time: None,
+            event_timer: None,
+            entries: vec![MappedObject::new(0x6040, 0, 16)],
+        });
+        let mut procedure = BootProcedure::new(&plan);
+        // The COB-ID is the same, the count differs: disable, map, enable.
+        let log = run(
+            &mut procedure,
+            &[Ok(0x192), Ok(0x515), Ok(2), Ok(0x304), Ok(2)],
+        );
+        assert_eq!(
+            &log[3..],
+            [
+                "read 1401:1",
+                "read 1601:0",
+                "write 1401 [4, 3, 0, 128]",
+                "write 1601 [0]",
+                "write 1601 [16, 0, 64, 96]",
+                "write 1601 [1]",
+                "write 1401 [4, 3, 0, 0]",
+                "Start"
+            ]
+        );
+        assert_eq!(procedure.report().written, 1);
+    }
+
+    #[test]
+    fn a_refused_pdo_write_is_reported_with_the_pdo_step() {
+        let mut plan = plan();
+        plan.pdos.push(PdoSetup {
+            kind: PdoKind::Transmit,
+            number: 600,
+            cob_id: 0x184,
+            transmission_type: None,
+            inhibit_time: None,
+            event_timer: None,
+            entries: vec![],
+        });
+        let mut procedure = BootProcedure::new(&plan);
+        run(&mut procedure, &[Ok(0x192), Ok(0x515), Ok(2), Ok(100)]);
+        assert!(matches!(
+            procedure.report().result,
+            Err(BootError::Step {
+                step: BootStep::Pdo(0),
+                error: BusError::Unsupported(_)
+            })
+        ));
     }
 
     #[test]
