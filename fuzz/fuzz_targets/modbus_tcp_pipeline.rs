@@ -49,6 +49,10 @@ impl embedded_io_async::Write for Sink {
     async fn write(&mut self, buf: &[u8]) -> Result<usize, Infallible> {
         Ok(buf.len())
     }
+
+    async fn flush(&mut self) -> Result<(), Infallible> {
+        Ok(())
+    }
 }
 
 /// A timer that never fires: an in-memory stream ends every wait first.
