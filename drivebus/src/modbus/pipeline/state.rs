@@ -64,7 +64,12 @@ impl<R, W> State<R, W> {
         if let Some(closed) = &self.closed {
             return Err(closed.clone());
         }
-        // At most 65,535 others are in flight, so a free id is found.
+        if self.slots.len() > usize::from(u16::MAX) {
+            return Err(BusError::Unsupported(
+                "65,536 requests in flight on one connection",
+            ));
+        }
+        // Fewer than 65,536 are in flight, so a free id is found.
         let mut transaction = self.next_transaction;
         while self.slots.iter().any(|s| s.transaction == transaction) {
             transaction = transaction.wrapping_add(1);
