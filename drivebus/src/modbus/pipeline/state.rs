@@ -137,3 +137,61 @@ impl<R, W> State<R, W> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn state() -> State<(), ()> {
+        State {
+            slots: Vec::new(),
+            next_transaction: 0xFFFF,
+            writer: Some(()),
+            reader: None,
+            closed: None,
+        }
+    }
+
+    #[test]
+    fn transaction_ids_wrap_and_skip_the_ones_in_flight() {
+        let mut state = state();
+        assert_eq!(state.open_slot(UnitId(1)), Ok(0xFFFF));
+        assert_eq!(state.open_slot(UnitId(1)), Ok(0));
+        state.next_transaction = 0xFFFF;
+        assert_eq!(
+            state.open_slot(UnitId(1)),
+            Ok(1),
+            "0xFFFF and 0 are in flight"
+        );
+        state.close_slot(0);
+        state.next_transaction = 0;
+        assert_eq!(state.open_slot(UnitId(1)), Ok(0), "given up, free again");
+    }
+
+    #[test]
+    fn an_answer_is_filed_only_for_its_request() {
+        let mut state = state();
+        let tid = state.open_slot(UnitId(3)).unwrap();
+        let pdu = [0x03, 2, 0x12, 0x34];
+        // Not sent yet: an answer cannot be its own.
+        state.deliver(tid, UnitId(3), &pdu);
+        assert_eq!(state.slot(tid).unwrap().answered, None);
+        state.slot(tid).unwrap().phase = Phase::Awaiting;
+        // Another transaction's, another unit's: dropped.
+        state.deliver(tid.wrapping_add(1), UnitId(3), &pdu);
+        state.deliver(tid, UnitId(4), &pdu);
+        assert_eq!(state.slot(tid).unwrap().answered, None);
+        state.deliver(tid, UnitId(3), &pdu);
+        let slot = state.slot(tid).unwrap();
+        assert_eq!(slot.answered, Some(4));
+        assert_eq!(slot.pdu[..4], pdu);
+    }
+
+    #[test]
+    fn a_closed_pipeline_refuses_new_requests_with_its_reason() {
+        let mut state = state();
+        state.close(BusError::Closed);
+        state.close(BusError::Timeout);
+        assert_eq!(state.open_slot(UnitId(1)), Err(BusError::Closed));
+    }
+}
