@@ -130,23 +130,7 @@ fn async_own_client(load: Load<'_>) -> PerRead {
 fn tasks_on_line(load: Load<'_>) -> PerRead {
     let rt = runtime();
     let line = ModbusLine::new(async_client(&rt, load.addr));
-    load.measure(|| {
-        rt.block_on(async {
-            let tasks: Vec<_> = (1..=load.units)
-                .map(|unit| {
-                    let mut drive = Smartris::modbus_async(line.clone(), UnitId(unit));
-                    tokio::spawn(async move {
-                        for _ in 0..load.reads {
-                            assert_eq!(drive.bus_dc_link().read().await, Ok(EXPECTED));
-                        }
-                    })
-                })
-                .collect();
-            for task in tasks {
-                task.await.unwrap();
-            }
-        })
-    })
+    tasks_sharing(&rt, line, load)
 }
 
 fn tasks_pipelined(load: Load<'_>) -> PerRead {
@@ -157,12 +141,22 @@ fn tasks_pipelined(load: Load<'_>) -> PerRead {
             &AsyncClientConfig::default(),
         ))
         .unwrap();
+    tasks_sharing(&rt, pipeline, load)
+}
+
+/// Units 1..=N, each a task on its own clone of `bus`, R reads each; local tasks on the
+/// current-thread runtime (a generic bus's futures are not known to be `Send`).
+fn tasks_sharing<B>(rt: &tokio::runtime::Runtime, bus: B, load: Load<'_>) -> PerRead
+where
+    B: drivebus::modbus::AsyncRegisterBus + Clone + 'static,
+{
+    let local = tokio::task::LocalSet::new();
     load.measure(|| {
-        rt.block_on(async {
+        local.block_on(rt, async {
             let tasks: Vec<_> = (1..=load.units)
                 .map(|unit| {
-                    let mut drive = Smartris::modbus_async(pipeline.clone(), UnitId(unit));
-                    tokio::spawn(async move {
+                    let mut drive = Smartris::modbus_async(bus.clone(), UnitId(unit));
+                    tokio::task::spawn_local(async move {
                         for _ in 0..load.reads {
                             assert_eq!(drive.bus_dc_link().read().await, Ok(EXPECTED));
                         }

@@ -7,53 +7,14 @@
 //! refused answer, or the end of the stream (`Closed`), after which every read is `Closed`.
 #![no_main]
 
-use core::convert::Infallible;
-use core::future::Future;
-use core::pin::pin;
-use core::task::{Context, Poll, Waker};
 use core::time::Duration;
 
 use drivebus::asynch::Timer;
 use drivebus::modbus::pipeline::TcpPipeline;
 use drivebus::modbus::{AsyncRegisterBus, Table, UnitId};
 use drivebus::BusError;
+use fuzz::chunks::{now, Chunks};
 use libfuzzer_sys::fuzz_target;
-
-/// The server's side in memory: at most `chunk` bytes per read.
-struct Chunks<'a> {
-    data: &'a [u8],
-    chunk: usize,
-}
-
-impl embedded_io_async::ErrorType for Chunks<'_> {
-    type Error = Infallible;
-}
-
-impl embedded_io_async::Read for Chunks<'_> {
-    async fn read(&mut self, buf: &mut [u8]) -> Result<usize, Infallible> {
-        let n = self.chunk.min(buf.len()).min(self.data.len());
-        buf[..n].copy_from_slice(&self.data[..n]);
-        self.data = &self.data[n..];
-        Ok(n)
-    }
-}
-
-/// Requests go nowhere.
-struct Sink;
-
-impl embedded_io_async::ErrorType for Sink {
-    type Error = Infallible;
-}
-
-impl embedded_io_async::Write for Sink {
-    async fn write(&mut self, buf: &[u8]) -> Result<usize, Infallible> {
-        Ok(buf.len())
-    }
-
-    async fn flush(&mut self) -> Result<(), Infallible> {
-        Ok(())
-    }
-}
 
 /// A timer that never fires: an in-memory stream ends every wait first.
 struct Never;
@@ -61,14 +22,6 @@ struct Never;
 impl Timer for Never {
     async fn sleep(&self, _: Duration) {
         core::future::pending::<()>().await;
-    }
-}
-
-/// Polls once: nothing here may wait.
-fn now<F: Future>(future: F) -> F::Output {
-    match pin!(future).poll(&mut Context::from_waker(Waker::noop())) {
-        Poll::Ready(output) => output,
-        Poll::Pending => panic!("a read waited on an in-memory stream"),
     }
 }
 
@@ -81,11 +34,17 @@ fuzz_target!(|input: &[u8]| {
         chunk: usize::from(chunk & 0x3F) + 1,
     };
     let count = usize::from(*count % 125) + 1;
-    let mut pipeline = TcpPipeline::new(reader, Sink, Never, Duration::from_secs(1));
+    // Requests go nowhere.
+    let requests = Chunks {
+        data: &[],
+        chunk: 1,
+    };
+    let mut pipeline = TcpPipeline::new(reader, requests, Never, Duration::from_secs(1));
     let mut closed = false;
     for start in 0..8u16 {
         let mut out = [0u16; 125];
-        let outcome = now(pipeline.read_registers(UnitId(1), Table::Holding, start, &mut out[..count]));
+        let outcome =
+            now(pipeline.read_registers(UnitId(1), Table::Holding, start, &mut out[..count]));
         if closed {
             assert_eq!(outcome, Err(BusError::Closed), "closed for good");
         }
