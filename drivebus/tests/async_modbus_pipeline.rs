@@ -8,7 +8,7 @@ use std::time::Duration;
 
 use drivebus::modbus::async_client::AsyncClientConfig;
 use drivebus::modbus::pipeline::TokioPipeline;
-use drivebus::modbus::{AsyncRegisterBus, Table, UnitId};
+use drivebus::modbus::{AsyncRegisterBus, RegisterRead, Table, UnitId};
 use drivebus::BusError;
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::{TcpListener, TcpStream};
@@ -47,6 +47,25 @@ fn value_of(address: u16) -> u16 {
     address * 10
 }
 
+/// Reads `n` requests before answering any (so they were in flight at once; each with its own
+/// transaction id), then answers them last first, in one write.
+async fn all_then_last_first(stream: &mut TcpStream, n: usize) {
+    let mut requests = Vec::new();
+    for _ in 0..n {
+        requests.push(request(stream).await.unwrap());
+    }
+    let mut tids: Vec<_> = requests.iter().map(|(tid, _)| *tid).collect();
+    tids.sort_unstable();
+    tids.dedup();
+    assert_eq!(tids.len(), n, "each request has its own transaction id");
+    let answers: Vec<u8> = requests
+        .iter()
+        .rev()
+        .flat_map(|&(tid, address)| answer(tid, value_of(address)))
+        .collect();
+    stream.write_all(&answers).await.unwrap();
+}
+
 async fn pipeline(address: &str, timeout: Duration) -> TokioPipeline {
     let config = AsyncClientConfig {
         timeout,
@@ -69,20 +88,7 @@ async fn requests_of_several_tasks_are_in_flight_at_once_and_matched_by_transact
         let mut stream = accept(&listener).await;
         for _round in 0..20 {
             // All four requests are read before any is answered: they are in flight at once.
-            let mut requests = Vec::new();
-            for _ in 0..4 {
-                requests.push(request(&mut stream).await.unwrap());
-            }
-            let mut tids: Vec<_> = requests.iter().map(|(tid, _)| *tid).collect();
-            tids.dedup();
-            assert_eq!(tids.len(), 4, "each request has its own transaction id");
-            // Answered last first, in one write.
-            let answers: Vec<u8> = requests
-                .iter()
-                .rev()
-                .flat_map(|&(tid, address)| answer(tid, value_of(address)))
-                .collect();
-            stream.write_all(&answers).await.unwrap();
+            all_then_last_first(&mut stream, 4).await;
         }
     });
     let bus = pipeline(&address, Duration::from_secs(5)).await;
@@ -174,4 +180,30 @@ async fn a_connection_closed_under_pending_requests_fails_each_of_them() {
     // And every later request.
     assert_eq!(read(bus.clone(), 0).await, Err(BusError::Closed));
     server.await.unwrap();
+}
+
+#[tokio::test]
+async fn one_handles_batch_is_in_flight_at_once_and_matched_by_transaction_id() {
+    let (listener, address) = listener().await;
+    let server = tokio::spawn(async move {
+        let mut stream = accept(&listener).await;
+        // The batch's three reads all arrive before any answer.
+        all_then_last_first(&mut stream, 3).await;
+        stream
+    });
+    let mut bus = pipeline(&address, Duration::from_secs(5)).await;
+    let (mut a, mut b, mut c) = ([0u16], [0u16], [0u16]);
+    let mut reads = [
+        RegisterRead::new(Table::Holding, 0x10, &mut a),
+        RegisterRead::new(Table::Holding, 0x11, &mut b),
+        RegisterRead::new(Table::Holding, 0x12, &mut c),
+    ];
+    bus.read_register_batch(UNIT, &mut reads).await.unwrap();
+    assert!(reads.iter().all(|read| read.done));
+    assert_eq!(
+        (a, b, c),
+        ([value_of(0x10)], [value_of(0x11)], [value_of(0x12)])
+    );
+    assert_eq!(bus.in_flight(), 0);
+    drop(server.await.unwrap());
 }

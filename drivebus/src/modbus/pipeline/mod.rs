@@ -20,9 +20,11 @@
 //!   reading ends at its timeout).
 //!
 //! The pipeline is an [`AsyncRegisterBus`]: a generated drive handle works on a clone unchanged
-//! (`Smartris::new_async(ModbusLink::new(pipeline.clone(), ..))`). Requests are not repeated
+//! (`Smartris::new_async(ModbusLink::new(pipeline.clone(), ..))`), and a handle's batch
+//! (`read_many`) has its reads in flight at once as well (`batch.rs`). Requests are not repeated
 //! (no retry policy): with several in flight, a repeat could overtake a later request.
 
+mod batch;
 mod state;
 #[cfg(feature = "tokio")]
 mod tokio;
@@ -41,7 +43,7 @@ use super::async_client::{count, stream_error};
 use super::in_flight::drop_front;
 use super::pdu::{decode_registers, decode_response, Request, MAX_PDU};
 use super::tcp::{encode_request, Header, HEADER_LEN, MAX_ADU};
-use super::{AsyncRegisterBus, Table, UnitId};
+use super::{AsyncRegisterBus, RegisterRead, Table, UnitId};
 use crate::asynch::{within, Timer};
 use crate::error::BusError;
 
@@ -384,5 +386,15 @@ impl<R: Read, W: Write, T: Timer> AsyncRegisterBus for TcpPipeline<R, W, T> {
             decode_response(&request, pdu).map(drop)
         })
         .await
+    }
+
+    /// The batch's reads are in flight at once (a window of [`MAX_IN_FLIGHT`](super::MAX_IN_FLIGHT)
+    /// at a time), their answers matched by transaction id.
+    async fn read_register_batch(
+        &mut self,
+        unit: UnitId,
+        reads: &mut [RegisterRead<'_>],
+    ) -> Result<(), BusError> {
+        self.read_batch(unit, reads).await
     }
 }
