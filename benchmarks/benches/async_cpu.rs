@@ -118,6 +118,15 @@ fn main() {
     let rounds = numbers.get(1).copied().unwrap_or(5) as usize;
     let sim = Simulator::start(Path::new(env!("CARGO_BIN_EXE_mbap-sim")), 1).unwrap();
     let addr = &sim.addrs[0];
+    // `ASYNC_CPU_ONLY=<variant index>`: that variant alone, once, nothing printed; for counting
+    // its system calls and wake-ups per read (`strace -c`, `perf stat`), the server aside.
+    if let Some(only) = std::env::var("ASYNC_CPU_ONLY")
+        .ok()
+        .and_then(|i| i.parse::<usize>().ok())
+    {
+        VARIANTS[only.min(VARIANTS.len() - 1)].1(addr, reads);
+        return;
+    }
     let load_before = load_average();
     // One warm-up read loop each (connections, page faults, the server's first task).
     for (_, variant) in VARIANTS {

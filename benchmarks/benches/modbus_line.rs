@@ -8,7 +8,9 @@
 //! * N handles, units 1..=N, each in its own thread on clones of one `ModbusLine`, R reads each
 //!   (`N units, N threads, line`);
 //! * the async twins: one task on the `AsyncTcpClient`, and N tasks on clones of one
-//!   `ModbusLine` over it, on a current-thread tokio runtime.
+//!   `ModbusLine` over it, on a current-thread tokio runtime;
+//! * N tasks on clones of one `TokioPipeline` (issue 30 item 5): their requests in flight at
+//!   once on one connection; printed also as a ratio to the N tasks through the line.
 //!
 //! A line carries one request at a time, so N units cannot beat one unit's rate: the target is
 //! the same time per read (ratio 1), i.e. sharing costs nothing. Wall and process CPU time per
@@ -22,6 +24,7 @@ use std::time::{Duration, Instant};
 use benchmarks::process::{load_average, process_cpu, Simulator};
 use drivebus::modbus::async_client::{AsyncClientConfig, AsyncTcpClient};
 use drivebus::modbus::client::{ModbusTcpClient, TcpConfig};
+use drivebus::modbus::pipeline::TokioPipeline;
 use drivebus::modbus::{ModbusLine, UnitId};
 use drivebus::units::Volts;
 use lafert_smartris::Smartris;
@@ -127,12 +130,33 @@ fn async_own_client(load: Load<'_>) -> PerRead {
 fn tasks_on_line(load: Load<'_>) -> PerRead {
     let rt = runtime();
     let line = ModbusLine::new(async_client(&rt, load.addr));
+    tasks_sharing(&rt, line, load)
+}
+
+fn tasks_pipelined(load: Load<'_>) -> PerRead {
+    let rt = runtime();
+    let pipeline = rt
+        .block_on(TokioPipeline::connect(
+            load.addr,
+            &AsyncClientConfig::default(),
+        ))
+        .unwrap();
+    tasks_sharing(&rt, pipeline, load)
+}
+
+/// Units 1..=N, each a task on its own clone of `bus`, R reads each; local tasks on the
+/// current-thread runtime (a generic bus's futures are not known to be `Send`).
+fn tasks_sharing<B>(rt: &tokio::runtime::Runtime, bus: B, load: Load<'_>) -> PerRead
+where
+    B: drivebus::modbus::AsyncRegisterBus + Clone + 'static,
+{
+    let local = tokio::task::LocalSet::new();
     load.measure(|| {
-        rt.block_on(async {
+        local.block_on(rt, async {
             let tasks: Vec<_> = (1..=load.units)
                 .map(|unit| {
-                    let mut drive = Smartris::modbus_async(line.clone(), UnitId(unit));
-                    tokio::spawn(async move {
+                    let mut drive = Smartris::modbus_async(bus.clone(), UnitId(unit));
+                    tokio::task::spawn_local(async move {
                         for _ in 0..load.reads {
                             assert_eq!(drive.bus_dc_link().read().await, Ok(EXPECTED));
                         }
@@ -148,13 +172,19 @@ fn tasks_on_line(load: Load<'_>) -> PerRead {
 
 type Variant = (&'static str, fn(Load<'_>) -> PerRead);
 
-const VARIANTS: [Variant; 5] = [
+const VARIANTS: [Variant; 6] = [
     ("one unit, own client", own_client),
     ("one unit, line", one_on_line),
     ("N units, N threads, line", threads_on_line),
     ("async: one unit, own client", async_own_client),
     ("async: N units, N tasks, line", tasks_on_line),
+    ("async: N units, N tasks, pipelined", tasks_pipelined),
 ];
+
+/// The index of the async N tasks serialised through a line.
+const LINE_TASKS: usize = 4;
+/// The index of the async N tasks pipelined on one connection.
+const PIPELINED_TASKS: usize = 5;
 
 fn us(d: Duration) -> f64 {
     d.as_nanos() as f64 / 1000.0
@@ -218,4 +248,17 @@ fn main() {
             median(per_round)
         );
     }
+    // Pipelining across handles (issue 30 item 5): the same N tasks, their requests in flight
+    // at once on one connection instead of one after the other through a line.
+    let pipelined: Vec<f64> = results[PIPELINED_TASKS]
+        .iter()
+        .zip(&results[LINE_TASKS])
+        .map(|(p, l)| us(p.wall) / us(l.wall))
+        .collect();
+    let shown: Vec<String> = pipelined.iter().map(|r| format!("{r:.2}")).collect();
+    println!(
+        "\nwall per read, N tasks pipelined / N tasks through a line, per round: {}; median **{:.2}**",
+        shown.join(", "),
+        median(pipelined)
+    );
 }

@@ -7,53 +7,12 @@
 //! reach the end (`UnexpectedEof`) within as many receives as there are bytes.
 #![no_main]
 
-use core::convert::Infallible;
-use core::future::Future;
-use core::pin::pin;
-use core::task::{Context, Poll, Waker};
-
 use drivebus::canopen::can::async_candump::AsyncCandumpBus;
 use drivebus::canopen::can::async_slcan::AsyncSlcanBus;
 use drivebus::canopen::can::AsyncCanBus;
 use drivebus::BusError;
+use fuzz::chunks::{now, Chunks};
 use libfuzzer_sys::fuzz_target;
-
-/// An in-memory stream handing out at most `chunk` bytes per read; writes go nowhere.
-struct Chunks<'a> {
-    data: &'a [u8],
-    chunk: usize,
-}
-
-impl embedded_io_async::ErrorType for Chunks<'_> {
-    type Error = Infallible;
-}
-
-impl embedded_io_async::Read for Chunks<'_> {
-    async fn read(&mut self, buf: &mut [u8]) -> Result<usize, Infallible> {
-        let n = self.chunk.min(buf.len()).min(self.data.len());
-        buf[..n].copy_from_slice(&self.data[..n]);
-        self.data = &self.data[n..];
-        Ok(n)
-    }
-}
-
-impl embedded_io_async::Write for Chunks<'_> {
-    async fn write(&mut self, buf: &[u8]) -> Result<usize, Infallible> {
-        Ok(buf.len())
-    }
-
-    async fn flush(&mut self) -> Result<(), Infallible> {
-        Ok(())
-    }
-}
-
-/// Polls once: an in-memory stream never makes a receive wait.
-fn now<F: Future>(future: F) -> F::Output {
-    match pin!(future).poll(&mut Context::from_waker(Waker::noop())) {
-        Poll::Ready(output) => output,
-        Poll::Pending => panic!("a receive waited on an in-memory stream"),
-    }
-}
 
 /// Receives until the end of the stream, which must come within `bound` receives.
 fn drain(bound: usize, mut receive: impl FnMut() -> Result<(), BusError>) {

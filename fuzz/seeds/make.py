@@ -263,6 +263,22 @@ target_speed = "100 rpm"
 """
 
 
+def modbus_tcp_pipeline_seeds():
+    """Answers to the pipeline's reads of one register (transaction ids from 1): in order, last
+    first, behind a stale answer, split one byte a read, and an exception."""
+
+    def answer(tid, value, unit=1):
+        return struct.pack(">HHHBBBH", tid, 0, 5, unit, 0x03, 2, value)
+
+    in_order = b"".join(answer(t, t * 10) for t in range(1, 9))
+    write("modbus_tcp_pipeline", "in_order", bytes([63, 0]) + in_order)
+    write("modbus_tcp_pipeline", "one_byte_a_read", bytes([0, 0]) + in_order)
+    write("modbus_tcp_pipeline", "stale_first",
+          bytes([63, 0]) + answer(0xFFFF, 1) + answer(1, 2, unit=2) + in_order)
+    write("modbus_tcp_pipeline", "exception",
+          bytes([7, 0]) + struct.pack(">HHHBBB", 1, 0, 3, 1, 0x83, 0x02) + in_order[11:])
+
+
 def clear_generated_seeds():
     """Removes the seeds this script writes; the others (`KEPT_PREFIXES`) stay."""
     for target in SEEDS.iterdir():
@@ -316,3 +332,4 @@ if __name__ == "__main__":
     network_router_seeds()
     network_file_seeds()
     gateway_file_seeds()
+    modbus_tcp_pipeline_seeds()

@@ -4,6 +4,7 @@
 #![deny(missing_docs)]
 
 pub mod can_input;
+pub mod chunks;
 pub mod cursor;
 pub mod generated;
 pub mod modbus_request;

@@ -39,6 +39,8 @@ mod in_flight;
 mod line;
 mod link;
 pub mod pdu;
+#[cfg(all(feature = "async", feature = "std"))]
+pub mod pipeline;
 pub mod planner;
 pub mod retry;
 #[cfg(feature = "modbus-core")]

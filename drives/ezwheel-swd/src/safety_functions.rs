@@ -247,11 +247,66 @@ impl<B: SdoBus> Swd<CanOpenLink<B>> {
         instance: u8,
         values: &[SafetyValue],
     ) -> Result<u16, SafetyWriteError> {
-        if let Some(reason) = self.device().write_refusal() {
-            return Err(SafetyWriteError::WritesRefused(reason));
-        }
+        writes_allowed(self.device())?;
         let link = self.device().link_mut();
-        let node = link.node();
-        write_safety_function(link.bus_mut(), node, state, function, instance, values)
+        write_safety_function_on(link, state, function, instance, values)
+    }
+}
+
+/// `Err` while `device` refuses writes (`verify_identity` found another drive): checked before
+/// any frame of a safety write.
+fn writes_allowed<L>(device: &drivebus::Device<L>) -> Result<(), SafetyWriteError> {
+    device.write_refusal().map_or(Ok(()), |reason| {
+        Err(SafetyWriteError::WritesRefused(reason))
+    })
+}
+
+/// [`write_safety_function`] to the node of `link`.
+fn write_safety_function_on<B: SdoBus>(
+    link: &mut CanOpenLink<B>,
+    state: NmtState,
+    function: &FunctionSignature,
+    instance: u8,
+    values: &[SafetyValue],
+) -> Result<u16, SafetyWriteError> {
+    let node = link.node();
+    write_safety_function(link.bus_mut(), node, state, function, instance, values)
+}
+
+// Async items without a `cfg` of this crate: they exist when drivebus has `async`, as the
+// generated async handle does (the other drive crates write theirs the same way).
+drivebus::if_async! {
+    impl<B: drivebus::canopen::AsyncSdoBus> Swd<drivebus::asynch::Async<CanOpenLink<B>>> {
+        /// [`Swd::write_safety_function`] on the async handle: the same refusals before any frame
+        /// is sent, the same writes, read-back and signature write, each awaited. The values are
+        /// made with [`SafetyValue::of_async`].
+        ///
+        /// ```no_run
+        /// # use drivebus::canopen::{nmt::NmtState, srdo::SafetyValue, AsyncSdoBus, CanOpenLink};
+        /// # use drivebus::asynch::Async;
+        /// # use drivebus::units::Rpm;
+        /// # async fn f<B: AsyncSdoBus>(drive: &mut ezwheel_swd::Swd<Async<CanOpenLink<B>>>) -> Result<(), Box<dyn std::error::Error>> {
+        /// use drivebus::indexed::At;
+        /// use ezwheel_swd::params::SlsaPositiveVelocityLimitRun;
+        /// use ezwheel_swd::safety_functions::SLSA;
+        /// let limit = SafetyValue::of_async::<At<SlsaPositiveVelocityLimitRun, 3>, _>(drive.device(), Rpm(500.0)).await?;
+        /// let signature = drive
+        ///     .write_safety_function_async(NmtState::PreOperational, &SLSA, 3, &[limit])
+        ///     .await?;
+        /// # Ok(()) }
+        /// ```
+        pub async fn write_safety_function_async(
+            &mut self,
+            state: NmtState,
+            function: &FunctionSignature,
+            instance: u8,
+            values: &[SafetyValue],
+        ) -> Result<u16, SafetyWriteError> {
+            writes_allowed(self.device())?;
+            let link = self.device().link_mut().get_mut();
+            let node = link.node();
+            let bus = link.bus_mut();
+            drivebus::canopen::srdo::write_safety_function_async(bus, node, state, function, instance, values).await
+        }
     }
 }

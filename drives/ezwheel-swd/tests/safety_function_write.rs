@@ -10,10 +10,12 @@
 mod support;
 
 use drivebus::canopen::nmt::NmtState;
-use drivebus::canopen::srdo::{write_safety_function, SafetyValue, SafetyWriteError};
+use drivebus::canopen::srdo::{
+    write_safety_function, write_safety_function_async, SafetyValue, SafetyWriteError,
+};
 use drivebus::canopen::{NodeId, SdoBus};
 use drivebus::indexed::At;
-use drivebus::testing::SdoRecorder;
+use drivebus::testing::{now, Immediate, SdoRecorder};
 use drivebus::units::{Milliseconds, Rpm};
 use drivebus::{BusError, WriteRefusal};
 use ezwheel_swd::params::{SlsaPositiveVelocityLimitRun, SlsaTimeToPositiveVelocityMonitoringRun};
@@ -214,6 +216,138 @@ fn a_handle_that_refuses_writes_refuses_the_safety_write() {
     );
     assert_eq!(
         drive.device().link_mut().bus_mut().frames.len(),
+        frames_before
+    );
+}
+
+#[test]
+fn slsa3_awaited_is_written_and_signed_as_the_blocking_write_does() {
+    let (mut drive, _running) = support::simulated_swd::start();
+    let node = NodeId(support::simulated_swd::NODE);
+    let values = [
+        SafetyValue::of::<SlsaPositiveVelocityLimit3, _>(drive.device(), Rpm(450.0)).unwrap(),
+        SafetyValue::of::<SlsaTimeToPositiveVelocityMonitoring3, _>(
+            drive.device(),
+            Milliseconds(80.0),
+        )
+        .unwrap(),
+    ];
+    let bus = drive.device().link_mut().bus_mut();
+    // The async write, over the simulated drive's bus answered at once.
+    let written = now(write_safety_function_async(
+        &mut Immediate(WithNamedAsZero(bus)),
+        node,
+        NmtState::PreOperational,
+        &SLSA,
+        3,
+        &values,
+    ))
+    .expect("the immediate bus never waits")
+    .unwrap();
+
+    assert_eq!(
+        drive.slsa_positive_velocity_limit(3).read().unwrap(),
+        Rpm(450.0)
+    );
+    assert_eq!(drive.slsa_signature(3).read_raw().unwrap(), written);
+    let bus = drive.device().link_mut().bus_mut();
+    let expected = crc16_ccitt(&slsa3_signed_bytes(&mut WithNamedAsZero(bus), node));
+    assert_eq!(written, expected);
+    // The blocking write of the same values finds the same signature.
+    let bus = drive.device().link_mut().bus_mut();
+    let again = write_safety_function(
+        &mut WithNamedAsZero(bus),
+        node,
+        NmtState::PreOperational,
+        &SLSA,
+        3,
+        &values,
+    );
+    assert_eq!(again, Ok(written));
+}
+
+#[tokio::test]
+async fn the_async_handle_writes_over_slcan_and_stops_where_the_drive_has_no_object() {
+    let (mut blocking, running) = support::simulated_swd::start();
+    let mut drive = support::simulated_swd::async_swd(&running.sim).await;
+    // The values are scaled over the async link.
+    let limit = SafetyValue::of_async::<SlsaPositiveVelocityLimit3, _>(drive.device(), Rpm(500.0))
+        .await
+        .unwrap();
+    assert_eq!(
+        Ok(limit),
+        SafetyValue::of::<SlsaPositiveVelocityLimit3, _>(blocking.device(), Rpm(500.0))
+    );
+
+    // Refused before anything is sent, as on the blocking handle.
+    assert_eq!(
+        drive
+            .write_safety_function_async(NmtState::Operational, &SLSA, 3, &[limit])
+            .await,
+        Err(SafetyWriteError::NotPreOperational {
+            state: NmtState::Operational
+        })
+    );
+    assert_eq!(
+        drive
+            .write_safety_function_async(NmtState::PreOperational, &SLSA, 2, &[limit])
+            .await,
+        Err(SafetyWriteError::NotSigned {
+            function: "SLSa",
+            index: 0x3052,
+            subindex: 3
+        })
+    );
+    assert_eq!(
+        blocking.slsa_positive_velocity_limit(3).read(),
+        Ok(Rpm(0.0))
+    );
+
+    // The value is written; the read-back stops at 6600h, which the simulated drive does not
+    // have (the manual only names it), so the signature is not written.
+    let stopped = drive
+        .write_safety_function_async(NmtState::PreOperational, &SLSA, 3, &[limit])
+        .await;
+    assert!(
+        matches!(
+            stopped,
+            Err(SafetyWriteError::Bus {
+                index: 0x6600,
+                subindex: 0,
+                ..
+            })
+        ),
+        "{stopped:?}"
+    );
+    assert_eq!(
+        blocking.slsa_positive_velocity_limit(3).read(),
+        Ok(Rpm(500.0))
+    );
+    assert_eq!(blocking.slsa_signature(3).read_raw(), Ok(0));
+}
+
+#[test]
+fn a_handle_that_refuses_writes_refuses_the_async_safety_write() {
+    let mut drive = Swd::canopen_async(Immediate(SdoRecorder::default()), NodeId(0x10));
+    let value = now(SafetyValue::of_async::<SlsaPositiveVelocityLimit3, _>(
+        drive.device(),
+        Rpm(500.0),
+    ))
+    .unwrap()
+    .unwrap();
+    let reason = WriteRefusal::IdentityMismatch {
+        parameter: "vendor_id",
+        expected: &[0x515],
+        found: 0x99,
+    };
+    drive.device().refuse_writes(reason);
+    let frames_before = drive.device().link_mut().0.bus_mut().0.frames.len();
+    assert_eq!(
+        now(drive.write_safety_function_async(NmtState::PreOperational, &SLSA, 3, &[value])),
+        Some(Err(SafetyWriteError::WritesRefused(reason)))
+    );
+    assert_eq!(
+        drive.device().link_mut().0.bus_mut().0.frames.len(),
         frames_before
     );
 }

@@ -3,7 +3,9 @@
 //! sharing the line (drivesim serving units 1 to 4 on one RTU byte stream; unit 5 is absent,
 //! as a drive that is off), and against an independent implementation, pymodbus serving units
 //! 1 to 4 of a Lafert-like map on one RTU line (tests/peers/modbus_server.py `--units`). Every
-//! value read is checked against the drive it came from.
+//! value read is checked against the drive it came from. The same four tasks also share one
+//! pipelined Modbus TCP connection (`TokioPipeline`, issue 30 item 5), to the drivesim gateway and
+//! to pyModbusTCP (tests/peers/pipelining_server.py), their requests in flight at once.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Barrier};
@@ -12,8 +14,9 @@ use std::time::Duration;
 
 use drivebus::modbus::async_client::{AsyncClientConfig, AsyncRtuClient, AsyncTcpClient};
 use drivebus::modbus::client::{SerialConfig, SerialRtuClient};
+use drivebus::modbus::pipeline::TokioPipeline;
 use drivebus::modbus::retry::RetryPolicy;
-use drivebus::modbus::{ModbusLine, UnitId};
+use drivebus::modbus::{AsyncRegisterBus, ModbusLine, Table, UnitId};
 use drivebus::units::{Rpm, Volts};
 use drivebus::BusError;
 use drivesim::modbus::tcp::TcpServer;
@@ -151,12 +154,13 @@ fn async_config() -> AsyncClientConfig {
     }
 }
 
-/// Runs `work` for each unit from a task of its own over `line`, and reads the absent unit
-/// meanwhile: every unit's work completes, and only the absent unit's read times out.
-async fn tasks_share<B, W, F>(line: ModbusLine<B>, work: W)
+/// Runs `work` for each unit from a task of its own over `line` (a `ModbusLine`, or a pipelined
+/// connection), and reads the absent unit meanwhile: every unit's work completes, and only the
+/// absent unit's read times out.
+async fn tasks_share<B, W, F>(line: B, work: W)
 where
-    B: drivebus::modbus::AsyncRegisterBus + 'static,
-    W: Fn(ModbusLine<B>, u8) -> F,
+    B: drivebus::modbus::AsyncRegisterBus + Clone + 'static,
+    W: Fn(B, u8) -> F,
     F: std::future::Future<Output = ()> + 'static,
 {
     let local = tokio::task::LocalSet::new();
@@ -186,7 +190,7 @@ where
 }
 
 /// Reads and writes unit `unit`'s values on the simulated drives, checking each.
-async fn exercise_async<B: drivebus::modbus::AsyncRegisterBus>(line: ModbusLine<B>, unit: u8) {
+async fn exercise_async<B: drivebus::modbus::AsyncRegisterBus>(line: B, unit: u8) {
     let mut drive = Smartris::modbus_async(line, UnitId(unit));
     for round in 0..10 {
         assert_eq!(
@@ -216,8 +220,77 @@ async fn four_drives_behind_one_modbus_tcp_gateway_from_four_tasks() {
     tasks_share(ModbusLine::new(client), exercise_async).await;
 }
 
+#[tokio::test]
+async fn four_drives_behind_one_modbus_tcp_gateway_pipelined_from_four_tasks() {
+    let server = TcpServer::gateway(drives(), "127.0.0.1:0").unwrap();
+    let pipeline = TokioPipeline::connect(server.local_addr(), &async_config())
+        .await
+        .unwrap();
+    tasks_share(pipeline.clone(), exercise_async).await;
+    assert_eq!(
+        pipeline.in_flight(),
+        0,
+        "the absent unit's request gave up its slot"
+    );
+}
+
 #[path = "support/pymodbus_server.rs"]
 mod pymodbus_server;
+
+/// Unit `unit`'s values on pymodbus, written and read back three times through `line`.
+async fn exercise_pymodbus<B: drivebus::modbus::AsyncRegisterBus>(line: B, unit: u8) {
+    let mut drive = Smartris::modbus_async(line, UnitId(unit));
+    for _ in 0..3 {
+        drive
+            .modbus_address()
+            .write(u16::from(unit) + 10)
+            .await
+            .unwrap();
+        let volts = drive.bus_dc_link().read().await.unwrap();
+        let address = drive.modbus_address().read().await;
+        check_pymodbus_unit(unit, address, volts);
+    }
+}
+
+#[tokio::test]
+async fn four_handles_on_one_pipelined_connection_to_pymodbustcp_from_four_tasks() {
+    // pyModbusTCP, an independent implementation that answers pipelined requests (pymodbus
+    // 3.16.1 answers only the first frame of a segment); one register map for every unit id.
+    let server = pymodbus_server::start_pipelining_server();
+    let config = AsyncClientConfig {
+        timeout: Duration::from_secs(2),
+        ..async_config()
+    };
+    let pipeline = TokioPipeline::connect(&server.address, &config)
+        .await
+        .unwrap();
+    let tasks: Vec<_> = UNITS
+        .map(|unit| {
+            let mut bus = pipeline.clone();
+            tokio::spawn(async move {
+                let register = 0x40 + u16::from(unit);
+                for round in 0..10u16 {
+                    // A typed read: input 0x0064 holds 0x1000 + 0x64 (41.96 V).
+                    let mut drive = Smartris::modbus_async(bus.clone(), UnitId(unit));
+                    assert_eq!(drive.bus_dc_link().read().await, Ok(Volts(41.96)));
+                    // A register of this task's own, written and read back.
+                    let value = 1000 * u16::from(unit) + round;
+                    bus.write_register(UnitId(unit), register, value)
+                        .await
+                        .unwrap();
+                    let mut back = [0u16];
+                    bus.read_registers(UnitId(unit), Table::Holding, register, &mut back)
+                        .await
+                        .unwrap();
+                    assert_eq!(back, [value], "unit {unit}, round {round}");
+                }
+            })
+        })
+        .into();
+    for task in tasks {
+        task.await.expect("every request answered");
+    }
+}
 
 /// Unit `unit`'s pymodbus map: its own id in 0x0028 (`modbus_address`), the shared DC link
 /// voltage in input 0x0064.
@@ -278,18 +351,5 @@ async fn four_pymodbus_units_behind_one_rtu_gateway_from_four_tasks() {
     let client = AsyncRtuClient::connect(&server.address, config)
         .await
         .unwrap();
-    tasks_share(ModbusLine::new(client), |line, unit| async move {
-        let mut drive = Smartris::modbus_async(line, UnitId(unit));
-        for _ in 0..3 {
-            drive
-                .modbus_address()
-                .write(u16::from(unit) + 10)
-                .await
-                .unwrap();
-            let volts = drive.bus_dc_link().read().await.unwrap();
-            let address = drive.modbus_address().read().await;
-            check_pymodbus_unit(unit, address, volts);
-        }
-    })
-    .await;
+    tasks_share(ModbusLine::new(client), exercise_pymodbus).await;
 }

@@ -33,6 +33,7 @@
 mod complement;
 mod config;
 mod consumer;
+mod function_write;
 pub use drivebus_model::canopen::srdo::mapping;
 mod producer;
 pub mod safety_function;
@@ -45,6 +46,8 @@ pub use config::{SrdoCommunication, SrdoConfig, SrdoDirection, MAX_SRDO};
 pub use consumer::SrdoConsumer;
 pub use drivebus_model::canopen::srdo::{SrdoCobIds, SrdoError, SrdoTiming};
 pub use producer::SrdoProducer;
+#[cfg(feature = "async")]
+pub use safety_function::write_safety_function_async;
 pub use safety_function::{
     function_signature, write_safety_function, FunctionSignature, SafetyFunctionParameter,
     SafetyValue, Signed,

@@ -17,6 +17,9 @@
 //! tables state — each object's little-endian bytes at the listed width, in the listed order,
 //! objects the tables call non-existent as zeros.
 
+use core::ops::RangeInclusive;
+
+use super::function_write::{FunctionWrite, Step};
 use super::safety_write::SafetyWriteError;
 use super::signature::SIGNATURE_CRC;
 use crate::canopen::address::{NodeId, ObjectAddress};
@@ -28,6 +31,7 @@ use crate::device::{named, Device};
 use crate::error::{Error, ValueError};
 use crate::link::Link;
 use crate::parameter::{Readable, ValueOf};
+use crate::scale::Scale;
 use crate::value::WireValue;
 
 /// A safety-function parameter: readable, never plainly writable, written only through
@@ -81,6 +85,26 @@ pub enum Signed {
 }
 
 impl Signed {
+    /// The objects this entry signs in the signature of function `function`: the object's
+    /// index (`None` for an absent one), the sub-indices in order, the width signed.
+    fn run(&self, function: u8) -> (Option<u16>, RangeInclusive<u8>, u8) {
+        match *self {
+            Self::Each {
+                index,
+                first,
+                last,
+                bytes,
+            } => (Some(index), first..=last, bytes),
+            Self::OfFunction { index, bytes } => (Some(index), function..=function, bytes),
+            Self::One {
+                index,
+                subindex,
+                bytes,
+            } => (Some(index), subindex..=subindex, bytes),
+            Self::Absent { bytes } => (None, 0..=0, bytes),
+        }
+    }
+
     /// Whether this entry signs `index`:`subindex` in the signature of function `function`.
     fn covers(&self, function: u8, index: u16, subindex: u8) -> bool {
         match *self {
@@ -117,7 +141,7 @@ pub struct FunctionSignature {
 
 impl FunctionSignature {
     /// The sub-index of instance `function`'s signature, if the function has that instance.
-    fn stored_at(&self, function: u8) -> Option<u8> {
+    pub(super) fn stored_at(&self, function: u8) -> Option<u8> {
         match self.instances {
             0 => (function == 0).then_some(0),
             n => (1..=n).contains(&function).then_some(function),
@@ -129,6 +153,53 @@ impl FunctionSignature {
         self.signed
             .iter()
             .any(|s| s.covers(function, index, subindex))
+    }
+}
+
+/// One object a signature signs, in table order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct SignedObject {
+    /// Index and sub-index; `None` for an object the table says does not exist (zeros).
+    pub(super) object: Option<(u16, u8)>,
+    /// Bytes signed.
+    pub(super) bytes: u8,
+}
+
+/// The objects the signature of one function instance signs, in order: each table entry
+/// unrolled into its sub-indices.
+#[derive(Debug, Clone)]
+pub(super) struct SignedObjects<'a> {
+    entries: core::slice::Iter<'a, Signed>,
+    function: u8,
+    run: Option<(Option<u16>, RangeInclusive<u8>, u8)>,
+}
+
+impl<'a> SignedObjects<'a> {
+    /// The objects the signature of instance `function` of `signature` signs.
+    pub(super) fn new(signature: &'a FunctionSignature, function: u8) -> Self {
+        Self {
+            entries: signature.signed.iter(),
+            function,
+            run: None,
+        }
+    }
+}
+
+impl Iterator for SignedObjects<'_> {
+    type Item = SignedObject;
+
+    fn next(&mut self) -> Option<SignedObject> {
+        loop {
+            if let Some((index, subindices, bytes)) = &mut self.run {
+                if let Some(subindex) = subindices.next() {
+                    return Some(SignedObject {
+                        object: index.map(|index| (index, subindex)),
+                        bytes: *bytes,
+                    });
+                }
+            }
+            self.run = Some(self.entries.next()?.run(self.function));
+        }
     }
 }
 
@@ -148,6 +219,29 @@ impl SafetyValue {
         L: Link<Protocol = CanOpen>,
     {
         let scale = P::read_scale(device)?;
+        Self::scaled::<P>(value, scale)
+    }
+
+    /// [`SafetyValue::of`] on an async handle (feature `async`): the run-time factors are read
+    /// over its async link. Nothing is written.
+    #[cfg(feature = "async")]
+    pub async fn of_async<P, L>(
+        device: &mut Device<crate::asynch::Async<L>>,
+        value: impl ValueOf<P>,
+    ) -> Result<Self, Error>
+    where
+        P: SafetyFunctionParameter,
+        L: crate::asynch::AsyncLink<Protocol = CanOpen>,
+    {
+        let scale = device.scale(P::read_scale).await?;
+        Self::scaled::<P>(value, scale)
+    }
+
+    /// `value` of `P` at `scale`, range-checked and encoded for `P`'s object.
+    fn scaled<P: SafetyFunctionParameter>(
+        value: impl ValueOf<P>,
+        scale: Scale,
+    ) -> Result<Self, Error> {
         let raw = P::encode(value.into_value(), scale).map_err(named::<P>)?;
         P::check(&raw).map_err(named::<P>)?;
         let object = P::OBJECT;
@@ -181,6 +275,11 @@ impl SafetyValue {
     pub fn data(&self) -> &[u8] {
         self.write.data()
     }
+
+    /// The SDO write of this value.
+    pub(super) fn write(&self) -> SdoWrite {
+        self.write
+    }
 }
 
 /// The signature of instance `function` of `signature` over the values `read` returns for each
@@ -193,36 +292,14 @@ pub fn function_signature<E>(
 ) -> Result<u16, E> {
     let mut digest = SIGNATURE_CRC.digest();
     let mut buf = [0u8; 4];
-    // An absent object reads as zeros; the others as the drive (or the caller) gives them.
-    let mut sign = |object: Option<(u16, u8)>, bytes: u8| -> Result<(), E> {
-        let out = &mut buf[..usize::from(bytes.min(4))];
+    for signed in SignedObjects::new(signature, function) {
+        // An absent object reads as zeros; the others as the drive (or the caller) gives them.
+        let out = &mut buf[..usize::from(signed.bytes.min(4))];
         out.fill(0);
-        if let Some((index, subindex)) = object {
+        if let Some((index, subindex)) = signed.object {
             read(index, subindex, out)?;
         }
         digest.update(out);
-        Ok(())
-    };
-    for signed in signature.signed {
-        match *signed {
-            Signed::Each {
-                index,
-                first,
-                last,
-                bytes,
-            } => {
-                for subindex in first..=last {
-                    sign(Some((index, subindex)), bytes)?;
-                }
-            }
-            Signed::OfFunction { index, bytes } => sign(Some((index, function)), bytes)?,
-            Signed::One {
-                index,
-                subindex,
-                bytes,
-            } => sign(Some((index, subindex)), bytes)?,
-            Signed::Absent { bytes } => sign(None, bytes)?,
-        }
     }
     Ok(digest.finalize())
 }
@@ -244,47 +321,43 @@ pub fn write_safety_function<B: SdoBus + ?Sized>(
     function: u8,
     values: &[SafetyValue],
 ) -> Result<u16, SafetyWriteError> {
-    if state != NmtState::PreOperational {
-        return Err(SafetyWriteError::NotPreOperational { state });
+    let mut plan = FunctionWrite::new(state, signature, function, values)?;
+    loop {
+        let answer = match plan.next_step() {
+            Step::Write(w) => bus
+                .download(node, w.index, w.subindex, w.data())
+                .map(|()| 0),
+            Step::Read { index, subindex } => bus.upload(node, index, subindex, plan.buffer()),
+            Step::Done(signature) => return Ok(signature),
+        };
+        plan.answered(answer)?;
     }
-    let stored_at = signature
-        .stored_at(function)
-        .ok_or(SafetyWriteError::NoSuchFunction {
-            function: signature.name,
-            instance: function,
-        })?;
-    if let Some(unsigned) = values
-        .iter()
-        .find(|v| !signature.covers(function, v.write.index, v.write.subindex))
-    {
-        return Err(SafetyWriteError::NotSigned {
-            function: signature.name,
-            index: unsigned.write.index,
-            subindex: unsigned.write.subindex,
-        });
+}
+
+/// [`write_safety_function`] over an async SDO client (feature `async`): the same refusals
+/// before any frame and the same writes and reads in the same order, each awaited. A future
+/// dropped mid-way stops the sequence as a failed write does: the signature is not written.
+#[cfg(feature = "async")]
+pub async fn write_safety_function_async<B: crate::canopen::link::AsyncSdoBus + ?Sized>(
+    bus: &mut B,
+    node: NodeId,
+    state: NmtState,
+    signature: &FunctionSignature,
+    function: u8,
+    values: &[SafetyValue],
+) -> Result<u16, SafetyWriteError> {
+    let mut plan = FunctionWrite::new(state, signature, function, values)?;
+    loop {
+        let answer = match plan.next_step() {
+            Step::Write(w) => bus
+                .download(node, w.index, w.subindex, w.data())
+                .await
+                .map(|()| 0),
+            Step::Read { index, subindex } => {
+                bus.upload(node, index, subindex, plan.buffer()).await
+            }
+            Step::Done(signature) => return Ok(signature),
+        };
+        plan.answered(answer)?;
     }
-    let failed = |index, subindex| {
-        move |cause| SafetyWriteError::Bus {
-            index,
-            subindex,
-            cause,
-        }
-    };
-    for value in values {
-        let w = &value.write;
-        bus.download(node, w.index, w.subindex, w.data())
-            .map_err(failed(w.index, w.subindex))?;
-    }
-    let crc = function_signature(signature, function, |index, subindex, out| {
-        let mut read = [0u8; 8];
-        let len = bus
-            .upload(node, index, subindex, &mut read)
-            .map_err(failed(index, subindex))?;
-        let take = len.min(out.len());
-        out[..take].copy_from_slice(&read[..take]);
-        Ok(())
-    })?;
-    bus.download(node, signature.index, stored_at, &crc.to_le_bytes())
-        .map_err(failed(signature.index, stored_at))?;
-    Ok(crc)
 }

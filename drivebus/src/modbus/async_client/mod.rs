@@ -368,7 +368,7 @@ impl<S: Read + Write, F: Framing> Io<S, F> {
 const MAX_DRAIN: usize = 4 * RX_CAPACITY;
 
 /// A stream's error as a bus error.
-fn stream_error(error: impl embedded_io_async::Error) -> BusError {
+pub(super) fn stream_error(error: impl embedded_io_async::Error) -> BusError {
     #[cfg(feature = "std")]
     {
         use embedded_io_async::ErrorKind as Kind;
@@ -394,7 +394,8 @@ fn stream_error(error: impl embedded_io_async::Error) -> BusError {
     }
 }
 
-fn count(items: usize) -> Result<u16, BusError> {
+/// A register count as a Modbus quantity.
+pub(super) fn count(items: usize) -> Result<u16, BusError> {
     u16::try_from(items).map_err(|_| BusError::Unsupported("item count outside the Modbus limits"))
 }
 

@@ -4,12 +4,18 @@
 // Each test binary uses a part of the double.
 #![allow(dead_code)]
 
+use std::net::TcpListener;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::thread::JoinHandle;
 use std::time::Duration;
 
+use drivebus::asynch::{Async, TokioTimer};
+use drivebus::canopen::async_client::AsyncSdo;
+use drivebus::canopen::can::async_slcan::AsyncSlcanBus;
 use drivebus::canopen::can::in_process::{InProcessBus, InProcessEndpoint};
+use drivebus::canopen::can::slcan::SlcanBus;
+use drivebus::canopen::can::tokio_adapters::TokioIo;
 use drivebus::canopen::client::BlockingSdo;
 use drivebus::canopen::{CanOpenLink, NodeId};
 use drivesim::canopen::{Node, NodeConfig};
@@ -72,4 +78,30 @@ pub fn start() -> (SimulatedSwd, Running) {
             sim,
         },
     )
+}
+
+/// The generated handle over the async SDO client on SLCAN over TCP.
+pub type AsyncSwd =
+    Swd<Async<CanOpenLink<AsyncSdo<AsyncSlcanBus<TokioIo<tokio::net::TcpStream>>, TokioTimer>>>>;
+
+/// Serves `sim` as a CANopen node on SLCAN over a loopback port, in a thread that ends when the
+/// client hangs up; returns the async handle connected to it.
+pub async fn async_swd(sim: &Simulator) -> AsyncSwd {
+    let listener = TcpListener::bind("127.0.0.1:0").unwrap();
+    let address = listener.local_addr().unwrap();
+    let sim = sim.clone();
+    std::thread::spawn(move || {
+        let (stream, _) = listener.accept().unwrap();
+        let mut bus = SlcanBus::tcp(stream).unwrap();
+        let config = NodeConfig {
+            node: NodeId(NODE),
+            heartbeat: None,
+        };
+        let mut node = Node::new(sim.clone(), config, sim.variant());
+        // Ends with an error once the client hung up; that is how a test ends.
+        let _ = node.run(&mut bus);
+    });
+    let bus = AsyncSlcanBus::connect(address).await.unwrap();
+    let sdo = AsyncSdo::new(bus, TokioTimer).with_timeout(Duration::from_millis(500));
+    Swd::canopen_async(sdo, NodeId(NODE))
 }

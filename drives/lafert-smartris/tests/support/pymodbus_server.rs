@@ -37,11 +37,24 @@ pub fn start_server_with(options: &[&str]) -> Server {
 
 /// Starts `modbus_server.py <mode>` (`tcp`, `rtu-over-tcp`) with extra options.
 pub fn start_mode(mode: &str, options: &[&str]) -> Server {
+    let mut args = vec![mode];
+    args.extend_from_slice(options);
+    start_script("modbus_server.py", &args)
+}
+
+/// Starts `pipelining_server.py` (pyModbusTCP: it answers requests sent back to back in one
+/// write, which pymodbus 3.16.1 does not), a Lafert-like map for every unit id.
+#[allow(dead_code)] // one test file pipelines
+pub fn start_pipelining_server() -> Server {
+    start_script("pipelining_server.py", &[])
+}
+
+/// Starts `tests/peers/<script> args...` and reads the port it prints once listening.
+fn start_script(script: &str, args: &[&str]) -> Server {
     let python = python();
     let mut child = Command::new(&python)
-        .arg(workspace_root().join("tests/peers/modbus_server.py"))
-        .arg(mode)
-        .args(options)
+        .arg(workspace_root().join("tests/peers").join(script))
+        .args(args)
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())
         .stderr(Stdio::inherit())
