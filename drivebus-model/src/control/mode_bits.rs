@@ -8,6 +8,12 @@
 pub const PROFILE_POSITION: i8 = 1;
 /// Mode of operation 6: homing (hm).
 pub const HOMING: i8 = 6;
+/// Mode of operation 8: cyclic synchronous position (csp).
+pub const CYCLIC_SYNC_POSITION: i8 = 8;
+/// Mode of operation 9: cyclic synchronous velocity (csv).
+pub const CYCLIC_SYNC_VELOCITY: i8 = 9;
+/// Mode of operation 10: cyclic synchronous torque (cst).
+pub const CYCLIC_SYNC_TORQUE: i8 = 10;
 
 /// Controlword bit 4 — pp: new set-point (taken on the rising edge); hm: homing operation start.
 pub const NEW_SET_POINT: u16 = 1 << 4;
@@ -24,7 +30,10 @@ pub const TARGET_REACHED: u16 = 1 << 10;
 pub const SET_POINT_ACKNOWLEDGE: u16 = 1 << 12;
 /// Statusword bit 12 in homing mode: homing attained.
 pub const HOMING_ATTAINED: u16 = 1 << 12;
-/// Statusword bit 13 — pp: following error; hm: homing error.
+/// Statusword bit 12 in the cyclic synchronous modes: the drive follows the command value (the
+/// set points the master sends each SYNC); clear, it ignores them (CiA 402-2, csp/csv/cst).
+pub const FOLLOWS_COMMAND: u16 = 1 << 12;
+/// Statusword bit 13 — pp and csp: following error; hm: homing error.
 pub const FOLLOWING_ERROR: u16 = 1 << 13;
 /// Statusword bit 13 in homing mode: homing error.
 pub const HOMING_ERROR: u16 = 1 << 13;

@@ -20,13 +20,20 @@
 //!   ([`Shared::home_switch`] `None`) homing fails at once with bit 13. The simulated search goes
 //!   straight to the switch, whatever side the method starts on.
 //! * A quick stop decelerates with 6085h; out of operation enabled the load stands where it is.
+//! * Cyclic synchronous position (mode 8): each target position (607Ah) written in operation
+//!   enabled (an RPDO taken at a SYNC) is reached at an even speed over one interpolation period
+//!   (60C2h: sub 1 × 10^sub 2 s; without one, at once); statusword bit 12 says the drive follows
+//!   the command value, bit 13 is the following error as in profile position (CiA 402-2, csp).
+//! * Cyclic synchronous velocity and torque (modes 9, 10): bit 12 says the drive follows; in
+//!   velocity the motor follows the target velocity (60FFh) as in the other velocity modes.
 //! * In other modes the position integrates the velocity actual value the motor shows (606Ch).
 
 use std::time::Duration;
 
 use drivebus::control::cia402::HALT_BIT;
 use drivebus::control::mode_bits::{
-    CHANGE_IMMEDIATELY, FOLLOWING_ERROR, HOMING, HOMING_ATTAINED, HOMING_ERROR, NEW_SET_POINT,
+    CHANGE_IMMEDIATELY, CYCLIC_SYNC_POSITION, CYCLIC_SYNC_TORQUE, CYCLIC_SYNC_VELOCITY,
+    FOLLOWING_ERROR, FOLLOWS_COMMAND, HOMING, HOMING_ATTAINED, HOMING_ERROR, NEW_SET_POINT,
     PROFILE_POSITION, RELATIVE, SET_POINT_ACKNOWLEDGE, TARGET_REACHED,
 };
 
@@ -55,6 +62,16 @@ struct Objects {
     homing_speed: Option<ParamId>,
     homing_acceleration: Option<ParamId>,
     home_offset: Option<ParamId>,
+    interpolation_value: Option<ParamId>,
+    interpolation_index: Option<ParamId>,
+}
+
+/// A cyclic synchronous position set-point being reached: the speed that reaches it in one
+/// interpolation period, and the set-point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Segment {
+    velocity: f64,
+    end: f64,
 }
 
 /// Where a homing run is.
@@ -83,6 +100,8 @@ pub struct Axis {
     /// Seconds the following error has been beyond its window.
     beyond_window: f64,
     controlword: u16,
+    /// The cyclic synchronous position set-point in progress.
+    segment: Option<Segment>,
 }
 
 /// The CiA 402 state coding of operation enabled and quick stop active (statusword bits 0-3, 5, 6).
@@ -115,6 +134,8 @@ impl Axis {
             homing_speed: object(store, 0x6099, 1),
             homing_acceleration: at(0x609A),
             home_offset: at(0x607C),
+            interpolation_value: object(store, 0x60C2, 1),
+            interpolation_index: object(store, 0x60C2, 2),
             actuals,
         };
         if ids.actuals.is_empty() || (ids.target.is_none() && ids.homing_method.is_none()) {
@@ -136,6 +157,7 @@ impl Axis {
             homing: Homing::Idle,
             beyond_window: 0.0,
             controlword: 0,
+            segment: None,
         }
     }
 
@@ -187,6 +209,51 @@ impl Axis {
         self.acknowledged = true;
     }
 
+    /// The interpolation period (60C2h) in seconds; 0 without one.
+    fn interpolation_period(&self, store: &Store) -> f64 {
+        let value = Self::value(store, self.ids.interpolation_value).unwrap_or(0.0);
+        let index = Self::value(store, self.ids.interpolation_index).unwrap_or(-3.0);
+        value * 10f64.powi(index as i32)
+    }
+
+    /// A cyclic synchronous position set-point (607Ah written in mode 8): reached at an even
+    /// speed over one interpolation period.
+    fn take_cyclic_set_point(&mut self, store: &Store) {
+        let end = Self::value(store, self.ids.target).unwrap_or(0.0);
+        let period = self.interpolation_period(store);
+        let velocity = if period > 0.0 {
+            (end - self.demand.position) / period
+        } else {
+            0.0
+        };
+        self.segment = Some(Segment { velocity, end });
+        if period <= 0.0 {
+            self.demand.position = end;
+        }
+    }
+
+    /// Moves the demand along the set-point in progress for `seconds`, standing on its end.
+    fn follow_segment(&mut self, seconds: f64) {
+        let Some(segment) = self.segment else {
+            self.demand.velocity = 0.0;
+            return;
+        };
+        let step = segment.velocity * seconds;
+        let to_go = segment.end - self.demand.position;
+        if step.abs() >= to_go.abs() || segment.velocity == 0.0 {
+            self.demand = Kinematics {
+                position: segment.end,
+                velocity: 0.0,
+            };
+            self.segment = None;
+        } else {
+            self.demand = Kinematics {
+                position: self.demand.position + step,
+                velocity: segment.velocity,
+            };
+        }
+    }
+
     /// Starts homing (rising edge of bit 4 in homing mode).
     fn start_homing(&mut self, store: &Store, shared: &mut Shared) {
         let method = Self::value(store, self.ids.homing_method).map_or(0, |m| m as i128);
@@ -226,6 +293,7 @@ impl Axis {
             self.target = self.actual;
             self.moving = false;
             self.pending = None;
+            self.segment = None;
             if self.homing == Homing::Searching {
                 self.homing = Homing::Idle;
             }
@@ -238,6 +306,9 @@ impl Axis {
             Heading::Stop
         } else if self.controlword & HALT_BIT != 0 {
             Heading::Stop
+        } else if mode == CYCLIC_SYNC_POSITION {
+            self.follow_segment(seconds);
+            return;
         } else if mode == PROFILE_POSITION && self.moving {
             Heading::To(self.target)
         } else if mode == HOMING && self.homing == Homing::Searching {
@@ -306,6 +377,10 @@ impl Axis {
                     | bit(self.homing == Homing::Attained, HOMING_ATTAINED)
                     | bit(self.homing == Homing::Failed, HOMING_ERROR)
             }
+            CYCLIC_SYNC_POSITION => {
+                bit(true, FOLLOWS_COMMAND) | bit(following_error, FOLLOWING_ERROR)
+            }
+            CYCLIC_SYNC_VELOCITY | CYCLIC_SYNC_TORQUE => FOLLOWS_COMMAND,
             _ => 0,
         }
     }
@@ -321,7 +396,7 @@ impl Axis {
         let mode = self.mode(store);
         if let (Some(id), true) = (
             self.ids.velocity_actual,
-            mode == PROFILE_POSITION || mode == HOMING,
+            matches!(mode, PROFILE_POSITION | HOMING | CYCLIC_SYNC_POSITION),
         ) {
             store.set_int(id, self.demand.velocity.round() as i128);
         }
@@ -364,6 +439,10 @@ impl Behaviour for Axis {
                 self.acknowledged = false;
             }
             self.controlword = word;
+        }
+        let enabled = self.state(store) == OPERATION_ENABLED;
+        if Some(id) == self.ids.target && enabled && self.mode(store) == CYCLIC_SYNC_POSITION {
+            self.take_cyclic_set_point(store);
         }
         self.advance(store, shared, 0.0);
     }
