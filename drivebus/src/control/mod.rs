@@ -19,6 +19,10 @@
 //!   (set-point handshake, target reached, following and homing errors).
 //! * `motion_driver` and `motion_error` (std) — their blocking shell behind `drive.move_to(..)`
 //!   and `drive.home(..)`, and its typed errors.
+//! * [`cyclic`] — the cyclic synchronous modes (csp, csv, cst) as a pure planner per axis: the
+//!   RPDO content for each SYNC from the TPDO feedback and the next trajectory sample.
+//! * `cyclic_driver` (feature `canopen`) — its blocking shell on the network manager: SYNC
+//!   producer, RPDOs sent, TPDOs subscribed, cycle timing measured.
 //! * [`objects`] — the traits generated crates implement to hand their parameters to the driver.
 //! * [`walk`] — what a driver decides between two polls (the next command, or the error a
 //!   deadline ends the walk with), without I/O: the steps both drivers take.
@@ -31,6 +35,11 @@
 pub mod async_driver;
 pub mod cia402;
 mod control_error;
+#[cfg(feature = "std")]
+pub mod cycle_stats;
+pub mod cyclic;
+#[cfg(feature = "canopen")]
+pub mod cyclic_driver;
 #[cfg(feature = "server")]
 pub mod device;
 #[cfg(feature = "std")]
