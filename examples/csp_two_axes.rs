@@ -71,6 +71,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         period: PERIOD,
         quirks: Quirks::STANDARD,
         enable_within: Duration::from_secs(1),
+        feedback_within: Duration::from_millis(100),
     };
     let mut run = CyclicRun::start(&network, &links, config)?;
     let cycles = (duration / PERIOD.as_secs_f64()).ceil() as u64;

@@ -256,6 +256,15 @@ def clear_generated_seeds():
                     seed.unlink()
 
 
+def cyclic_feedback_seeds():
+    """A CSP axis enabled through its RPDO, then following (statusword, position TPDOs)."""
+    tpdos = [(0x0250, 0), (0x0237, 0), (0x1237, 10_000), (0x3237, 0)]
+    data = bytearray([0x80])
+    for status, actual in tpdos:
+        data += bytes([6]) + struct.pack("<Hi", status, actual)
+    write("cyclic_feedback", "enable_then_follow", data)
+
+
 if __name__ == "__main__":
     clear_generated_seeds()
     modbus_seeds()
@@ -268,3 +277,4 @@ if __name__ == "__main__":
     config_file_seeds()
     network_router_seeds()
     network_file_seeds()
+    cyclic_feedback_seeds()

@@ -49,6 +49,10 @@ pub struct CyclicConfig {
     pub quirks: Quirks,
     /// The longest the axes may take to reach operation enabled.
     pub enable_within: Duration,
+    /// The longest an axis may stay silent before the run fails with
+    /// [`CyclicError::FeedbackLost`]: some periods, more on a machine that is not real-time
+    /// (SYNCs whose feedback came late are counted as missed cycles meanwhile).
+    pub feedback_within: Duration,
 }
 
 /// Why a cyclic run failed.
@@ -63,7 +67,7 @@ pub enum CyclicError {
         /// The last emergency the node sent during the run, if any (the fault's cause).
         emcy: Option<Emcy>,
     },
-    /// An axis sent no TPDO for three periods.
+    /// An axis sent no TPDO within `feedback_within`.
     FeedbackLost {
         /// The silent node.
         node: NodeId,
@@ -98,7 +102,7 @@ impl fmt::Display for CyclicError {
                 }
             }
             CyclicError::FeedbackLost { node } => {
-                write!(f, "node {} sent no TPDO for three periods", node.0)
+                write!(f, "node {} stopped sending its TPDO", node.0)
             }
             CyclicError::EnableTimeout { node } => {
                 write!(f, "node {} did not reach operation enabled in time", node.0)
@@ -265,7 +269,7 @@ impl<'n, B> CyclicRun<'n, B> {
     /// Waits for every axis's TPDO of this SYNC; a TPDO queued behind a newer one is passed
     /// over (the newest is the state now).
     fn receive(&mut self) -> Result<(), CyclicError> {
-        let timeout = self.config.period * 3;
+        let timeout = self.config.feedback_within;
         for axis in &mut self.axes {
             let mut fresh = false;
             loop {
