@@ -26,15 +26,21 @@
 //!   the command value, bit 13 is the following error as in profile position (CiA 402-2, csp).
 //! * Cyclic synchronous velocity and torque (modes 9, 10): bit 12 says the drive follows; in
 //!   velocity the motor follows the target velocity (60FFh) as in the other velocity modes.
+//! * Profile velocity (mode 3): target reached (bit 10) while the motor's speed stands on its
+//!   setpoint, speed zero (bit 12) while it is 0. Profile torque (mode 4): target reached while
+//!   the torque load's demand stands on the target torque ([`torque`](super::torque)).
 //! * In other modes the position integrates the velocity actual value the motor shows (606Ch).
 
 use std::time::Duration;
+
+use drivegen::ir::SpeedPhase;
 
 use drivebus::control::cia402::HALT_BIT;
 use drivebus::control::mode_bits::{
     CHANGE_IMMEDIATELY, CYCLIC_SYNC_POSITION, CYCLIC_SYNC_TORQUE, CYCLIC_SYNC_VELOCITY,
     FOLLOWING_ERROR, FOLLOWS_COMMAND, HOMING, HOMING_ATTAINED, HOMING_ERROR, NEW_SET_POINT,
-    PROFILE_POSITION, RELATIVE, SET_POINT_ACKNOWLEDGE, TARGET_REACHED,
+    PROFILE_POSITION, PROFILE_TORQUE, PROFILE_VELOCITY, RELATIVE, SET_POINT_ACKNOWLEDGE,
+    SPEED_ZERO, TARGET_REACHED,
 };
 
 use super::trajectory::{Heading, Kinematics, Profile};
@@ -358,7 +364,7 @@ impl Axis {
     }
 
     /// The mode-specific statusword bits 10, 12 and 13.
-    fn mode_bits(&self, store: &Store, following_error: bool) -> u16 {
+    fn mode_bits(&self, store: &Store, shared: &Shared, following_error: bool) -> u16 {
         if self.state(store) != OPERATION_ENABLED {
             return 0;
         }
@@ -381,6 +387,12 @@ impl Axis {
                 bit(true, FOLLOWS_COMMAND) | bit(following_error, FOLLOWING_ERROR)
             }
             CYCLIC_SYNC_VELOCITY | CYCLIC_SYNC_TORQUE => FOLLOWS_COMMAND,
+            PROFILE_VELOCITY => {
+                let speed = Self::value(store, self.ids.velocity_actual).unwrap_or(0.0);
+                let at_target = matches!(shared.phase, Some(SpeedPhase::Steady | SpeedPhase::Zero));
+                bit(at_target || halted, TARGET_REACHED) | bit(speed == 0.0, SPEED_ZERO)
+            }
+            PROFILE_TORQUE => bit(shared.torque_reached || halted, TARGET_REACHED),
             _ => 0,
         }
     }
@@ -400,7 +412,7 @@ impl Axis {
         ) {
             store.set_int(id, self.demand.velocity.round() as i128);
         }
-        shared.mode_bits = self.mode_bits(store, following_error);
+        shared.mode_bits = self.mode_bits(store, shared, following_error);
     }
 
     fn advance(&mut self, store: &mut Store, shared: &mut Shared, seconds: f64) {
