@@ -99,3 +99,119 @@ fn drive_disabled() -> Drive {
     set(&mut drive, "modes_of_operation", 8);
     drive
 }
+
+mod over_canopen {
+    //! The runtime's cyclic driver against two simulated axes on one in-process bus.
+
+    use std::time::Duration;
+
+    use drivebus::canopen::can::in_process::InProcessBus;
+    use drivebus::canopen::network::Network;
+    use drivebus::canopen::nmt::NmtCommand;
+    use drivebus::canopen::NodeId;
+    use drivebus::control::cyclic::{CyclicFailure, CyclicMode};
+    use drivebus::control::cyclic_driver::{AxisLink, CyclicConfig, CyclicError, CyclicRun};
+    use drivebus::control::Quirks;
+    use drivesim::canopen::{InProcessNode, NodeConfig};
+    use drivesim::Simulator;
+
+    use super::AXIS;
+
+    const LINKS: [AxisLink; 2] = [
+        AxisLink {
+            node: NodeId(1),
+            rpdo_cob_id: 0x201,
+            tpdo: 1,
+        },
+        AxisLink {
+            node: NodeId(2),
+            rpdo_cob_id: 0x202,
+            tpdo: 1,
+        },
+    ];
+
+    fn config(mode: CyclicMode) -> CyclicConfig {
+        CyclicConfig {
+            mode,
+            period: Duration::from_millis(4),
+            quirks: Quirks::STANDARD,
+            enable_within: Duration::from_secs(2),
+            feedback_within: Duration::from_secs(1),
+        }
+    }
+
+    fn axes() -> (Vec<Simulator>, InProcessBus, InProcessNode) {
+        let sims: Vec<Simulator> = (0..2).map(|_| Simulator::load(AXIS).unwrap()).collect();
+        let bus = InProcessBus::new();
+        let nodes = sims
+            .iter()
+            .zip(LINKS)
+            .map(|(sim, link)| {
+                let config = NodeConfig {
+                    node: link.node,
+                    heartbeat: None,
+                };
+                (sim.clone(), config)
+            })
+            .collect();
+        let running = InProcessNode::serve(&bus, nodes);
+        (sims, bus, running)
+    }
+
+    fn int(sim: &Simulator, name: &str) -> i128 {
+        sim.with(|d| d.store().int(d.store().id(name).unwrap()).unwrap())
+    }
+
+    #[test]
+    fn a_mode_an_axis_does_not_list_is_refused_before_anything_is_sent() {
+        let (sims, bus, _running) = axes();
+        sims[1].preset("supported_drive_modes", 0x0180).unwrap();
+        let network = Network::new(bus.endpoint());
+        network.nmt(NmtCommand::Start, None).unwrap();
+        let error = CyclicRun::start(&network, &LINKS, config(CyclicMode::Torque)).unwrap_err();
+        assert_eq!(
+            error,
+            CyclicError::Axis {
+                node: NodeId(2),
+                failure: CyclicFailure::ModeNotSupported {
+                    mode: CyclicMode::Torque,
+                    supported: 0x0180
+                },
+                emcy: None
+            }
+        );
+        for sim in &sims {
+            assert_eq!(int(sim, "modes_of_operation"), 0, "no mode written");
+        }
+    }
+
+    #[test]
+    fn two_axes_follow_and_a_blocked_load_stops_the_run_with_a_following_error() {
+        let (sims, bus, _running) = axes();
+        let network = Network::new(bus.endpoint());
+        network.nmt(NmtCommand::Start, None).unwrap();
+        let mut run = CyclicRun::start(&network, &LINKS, config(CyclicMode::Position)).unwrap();
+        run.run(50, |cycle, _| (cycle as i32 + 1) * 100).unwrap();
+        // The last TPDO shows the axis on one of the last set points (100 apart), or on its
+        // way between them when a SYNC came early.
+        for feedback in run.feedback() {
+            assert!((4_500..=5_000).contains(&feedback.actual), "{feedback:?}");
+        }
+        sims[0].with(|d| d.block_load(true));
+        let error = run.run(100, |cycle, _| 5_000 + (cycle as i32 + 1) * 200);
+        assert!(
+            matches!(
+                error,
+                Err(CyclicError::Axis {
+                    node: NodeId(1),
+                    failure: CyclicFailure::FollowingError { .. },
+                    ..
+                })
+            ),
+            "{error:?}"
+        );
+        // Quick-stopped: quick stop active (or further on), no longer operation enabled.
+        let status = int(&sims[0], "statusword") as u16;
+        assert_ne!(status & 0x6F, 0x27, "{status:#06X}");
+    }
+}

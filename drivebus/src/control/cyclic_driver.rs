@@ -20,6 +20,7 @@ use std::vec::Vec;
 
 use super::cycle_stats::CycleStats;
 use super::cyclic::{Command, CyclicAxis, CyclicFailure, CyclicMode, Feedback};
+use super::position::operation_enabled;
 use super::quirks::Quirks;
 use super::Millis;
 use crate::canopen::emcy::Emcy;
@@ -303,14 +304,22 @@ impl<'n, B> CyclicRun<'n, B> {
         Ok(())
     }
 
-    /// Quick-stops every axis (holding its set point) and waits for the drives to take it at
-    /// the next SYNC; SYNC goes on until the run is dropped.
+    /// Quick-stops every axis (holding its set point) and waits, up to `feedback_within`, for
+    /// every TPDO to show it left operation enabled (a TPDO already queued may predate the
+    /// stop); SYNC goes on until the run is dropped.
     pub fn stop(&mut self) {
         for axis in &self.axes {
             // A bus that fails now has nothing more to stop.
             let _ = send(self.network, axis, axis.planner.stop(axis.last));
         }
-        let _ = self.receive();
+        let until = Instant::now() + self.config.feedback_within;
+        while Instant::now() < until
+            && self
+                .axes
+                .iter()
+                .any(|a| operation_enabled(a.last.statusword))
+            && self.receive().is_ok()
+        {}
     }
 }
 
