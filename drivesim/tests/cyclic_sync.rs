@@ -214,4 +214,23 @@ mod over_canopen {
         let status = int(&sims[0], "statusword") as u16;
         assert_ne!(status & 0x6F, 0x27, "{status:#06X}");
     }
+
+    #[test]
+    fn csv_runs_both_axes_at_the_target_velocity_through_rpdo_2() {
+        let (_sims, bus, _running) = axes();
+        let network = Network::new(bus.endpoint());
+        network.nmt(NmtCommand::Start, None).unwrap();
+        let links = LINKS.map(|link| AxisLink {
+            rpdo_cob_id: 0x300 + u16::from(link.node.0),
+            ..link
+        });
+        let mut run = CyclicRun::start(&network, &links, config(CyclicMode::Velocity)).unwrap();
+        let start: Vec<i32> = run.feedback().iter().map(|f| f.actual).collect();
+        run.run(50, |_, _| 50_000).unwrap();
+        for (feedback, start) in run.feedback().iter().zip(start) {
+            // 50 000 units/s for at least 50 periods of 4 ms: 10 000 or more.
+            assert!(feedback.actual - start >= 9_000, "{feedback:?}");
+        }
+        run.stop();
+    }
 }
