@@ -196,3 +196,37 @@ fn homing_on_the_current_position_is_at_once_and_without_a_switch_fails() {
     set(&mut drive, "controlword", 0x1F);
     assert_eq!(status(&drive) & (BIT_12 | BIT_13), BIT_13);
 }
+
+#[test]
+fn profile_velocity_reports_target_reached_at_the_setpoint_and_speed_zero_at_rest() {
+    let mut drive = enabled(3);
+    assert_ne!(status(&drive) & BIT_12, 0, "speed zero");
+    set(&mut drive, "target_velocity", 100_000);
+    assert_eq!(status(&drive) & TARGET_REACHED, 0, "accelerating");
+    run_until(&mut drive, 5.0, |d| status(d) & TARGET_REACHED != 0);
+    assert_eq!(get(&drive, "velocity_actual_value"), 100_000);
+    assert_eq!(status(&drive) & BIT_12, 0, "moving");
+}
+
+#[test]
+fn profile_torque_drives_the_load_and_reports_target_reached() {
+    let mut drive = enabled(4);
+    set(&mut drive, "target_torque", 10);
+    assert_ne!(
+        status(&drive) & TARGET_REACHED,
+        0,
+        "no torque slope: at once"
+    );
+    drive.tick(Duration::from_secs(3));
+    let speed = get(&drive, "velocity_actual_value");
+    // 10 units × 1000 / 2 per second: settles at 5000.
+    assert!((4_900..=5_000).contains(&speed), "{speed}");
+    assert!(get(&drive, "position_actual") > 5_000, "the load moved");
+    set(&mut drive, "controlword", 0x06);
+    drive.tick(Duration::from_millis(10));
+    assert_eq!(
+        get(&drive, "velocity_actual_value"),
+        0,
+        "no torque out of enabled"
+    );
+}

@@ -317,6 +317,13 @@ publish_every_poll = true
 parameters = ["bus_dc_link", "speed_ramp_up"]
 writable = ["speed_ramp_up"]
 """
+def cyclic_feedback_seeds():
+    """A CSP axis enabled through its RPDO, then following (statusword, position TPDOs)."""
+    tpdos = [(0x0250, 0), (0x0237, 0), (0x1237, 10_000), (0x3237, 0)]
+    data = bytearray([0x80])
+    for status, actual in tpdos:
+        data += bytes([6]) + struct.pack("<Hi", status, actual)
+    write("cyclic_feedback", "enable_then_follow", data)
 
 
 if __name__ == "__main__":
@@ -333,3 +340,4 @@ if __name__ == "__main__":
     network_file_seeds()
     gateway_file_seeds()
     modbus_tcp_pipeline_seeds()
+    cyclic_feedback_seeds()

@@ -6,8 +6,18 @@
 
 /// Mode of operation 1: profile position (pp).
 pub const PROFILE_POSITION: i8 = 1;
+/// Mode of operation 3: profile velocity (pv).
+pub const PROFILE_VELOCITY: i8 = 3;
+/// Mode of operation 4: profile torque (tq).
+pub const PROFILE_TORQUE: i8 = 4;
 /// Mode of operation 6: homing (hm).
 pub const HOMING: i8 = 6;
+/// Mode of operation 8: cyclic synchronous position (csp).
+pub const CYCLIC_SYNC_POSITION: i8 = 8;
+/// Mode of operation 9: cyclic synchronous velocity (csv).
+pub const CYCLIC_SYNC_VELOCITY: i8 = 9;
+/// Mode of operation 10: cyclic synchronous torque (cst).
+pub const CYCLIC_SYNC_TORQUE: i8 = 10;
 
 /// Controlword bit 4 — pp: new set-point (taken on the rising edge); hm: homing operation start.
 pub const NEW_SET_POINT: u16 = 1 << 4;
@@ -18,13 +28,22 @@ pub const CHANGE_IMMEDIATELY: u16 = 1 << 5;
 pub const RELATIVE: u16 = 1 << 6;
 
 /// Statusword bit 10: target reached (pp: on the target within the position window; hm: homing
-/// ended or halted).
+/// ended or halted; pv: at the target velocity within the velocity window; tq: at the target
+/// torque).
 pub const TARGET_REACHED: u16 = 1 << 10;
 /// Statusword bit 12 — pp: set-point acknowledge; hm: homing attained.
 pub const SET_POINT_ACKNOWLEDGE: u16 = 1 << 12;
 /// Statusword bit 12 in homing mode: homing attained.
 pub const HOMING_ATTAINED: u16 = 1 << 12;
-/// Statusword bit 13 — pp: following error; hm: homing error.
+/// Statusword bit 12 in profile velocity mode: the speed is zero (within the velocity threshold
+/// 606Fh).
+pub const SPEED_ZERO: u16 = 1 << 12;
+/// Statusword bit 13 in profile velocity mode: maximum slippage error.
+pub const MAX_SLIPPAGE: u16 = 1 << 13;
+/// Statusword bit 12 in the cyclic synchronous modes: the drive follows the command value (the
+/// set points the master sends each SYNC); clear, it ignores them (CiA 402-2, csp/csv/cst).
+pub const FOLLOWS_COMMAND: u16 = 1 << 12;
+/// Statusword bit 13 — pp and csp: following error; hm: homing error.
 pub const FOLLOWING_ERROR: u16 = 1 << 13;
 /// Statusword bit 13 in homing mode: homing error.
 pub const HOMING_ERROR: u16 = 1 << 13;

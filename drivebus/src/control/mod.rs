@@ -17,8 +17,15 @@
 //! * [`mode_bits`] — the controlword and statusword bits of profile position and homing.
 //! * [`position`] and [`homing`] — a profile position move and a homing run as pure planners
 //!   (set-point handshake, target reached, following and homing errors).
-//! * `motion_driver` and `motion_error` (std) — their blocking shell behind `drive.move_to(..)`
-//!   and `drive.home(..)`, and its typed errors.
+//! * [`profile_target`] — a new target in profile velocity or profile torque as a pure planner
+//!   (halt cleared, target reached, maximum slippage).
+//! * `motion_driver` and `motion_error` (std) — their blocking shell behind `drive.move_to(..)`,
+//!   `drive.home(..)`, `drive.run_at_velocity(..)` and `drive.apply_torque(..)`, and its typed
+//!   errors.
+//! * [`cyclic`] — the cyclic synchronous modes (csp, csv, cst) as a pure planner per axis: the
+//!   RPDO content for each SYNC from the TPDO feedback and the next trajectory sample.
+//! * `cyclic_driver` (feature `canopen`) — its blocking shell on the network manager: SYNC
+//!   producer, RPDOs sent, TPDOs subscribed, cycle timing measured.
 //! * [`objects`] — the traits generated crates implement to hand their parameters to the driver.
 //! * [`walk`] — what a driver decides between two polls (the next command, or the error a
 //!   deadline ends the walk with), without I/O: the steps both drivers take.
@@ -31,6 +38,11 @@
 pub mod async_driver;
 pub mod cia402;
 mod control_error;
+#[cfg(feature = "std")]
+pub mod cycle_stats;
+pub mod cyclic;
+#[cfg(feature = "canopen")]
+pub mod cyclic_driver;
 #[cfg(feature = "server")]
 pub mod device;
 #[cfg(feature = "std")]
@@ -45,6 +57,7 @@ pub mod motion_driver;
 pub mod motion_error;
 pub mod objects;
 pub mod position;
+pub mod profile_target;
 pub use drivebus_model::control::quirks;
 pub mod walk;
 
@@ -52,7 +65,8 @@ pub use cia402::{Blocker, Cia402Planner, State, Step, Target, Waiting};
 pub use control_error::{ControlError, StuckReason};
 pub use machine::{Machine, Plan, StateDef, StatePattern, TransitionDef, TransitionKind};
 pub use objects::{
-    Cia402Modes, Cia402Objects, HomingObjects, ProfilePositionObjects, VendorMachine,
+    Cia402Modes, Cia402Objects, HomingObjects, ProfilePositionObjects, ProfileTorqueObjects,
+    ProfileVelocityObjects, VendorMachine,
 };
 pub use quirks::{Quirk, Quirks};
 

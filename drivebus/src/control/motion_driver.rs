@@ -1,4 +1,5 @@
-//! The blocking shell of the motion planners: a profile position move and a homing run, each
+//! The blocking shell of the motion planners: a profile position move, a homing run and a new
+//! target in profile velocity or torque, each
 //! refused before anything is sent when it cannot be made (not operation enabled, a target
 //! outside the software limits, a homing method the description does not list), then driven by
 //! polling the statusword until done, failed or the deadline. A following error, homing error or
@@ -9,10 +10,14 @@ use std::thread;
 
 use super::driver::{set_mode, Instant, POLL_INTERVAL};
 use super::homing::{HomingPlanner, HomingStep};
-use super::mode_bits::{HOMING, PROFILE_POSITION};
+use super::mode_bits::{HOMING, PROFILE_POSITION, PROFILE_TORQUE, PROFILE_VELOCITY};
 use super::motion_error::MotionError;
-use super::objects::{HomingObjects, ProfilePositionObjects};
+use super::objects::{
+    Cia402Modes, Cia402Objects, HomingObjects, ProfilePositionObjects, ProfileTorqueObjects,
+    ProfileVelocityObjects,
+};
 use super::position::{operation_enabled, Move, MovePlanner, MoveStep, SoftLimits};
+use super::profile_target::{ProfileTarget, TargetPlanner};
 use crate::device::Device;
 use crate::link::Link;
 use crate::parameter::{FromWire, OpenEnum, Readable, Writable};
@@ -78,6 +83,97 @@ where
             MoveStep::Done => Poll::Done,
             MoveStep::Failed(failure) => Poll::Fail(MotionError::of_move(failure, status)),
         }
+    })?;
+    Ok(device.read_raw::<O::PositionActual>()?)
+}
+
+/// Runs at `velocity` (60FFh, in the drive's velocity units) in profile velocity mode
+/// (switching to it first) and returns the velocity actual value once the drive reports target
+/// reached (bit 10) before `deadline`. Refused before anything is sent unless the drive is
+/// operation enabled; a maximum slippage error or time out halts the axis and is returned. The
+/// axis goes on running at the velocity: halt it, or call again with 0, to stop.
+pub fn run_at_velocity<O, L>(
+    device: &mut Device<L>,
+    velocity: i32,
+    deadline: Instant,
+) -> Result<i32, MotionError>
+where
+    O: ProfileVelocityObjects,
+    L: Link,
+    O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
+    O::Statusword: Readable<L::Protocol>,
+    O::ModesOfOperation: Writable<L::Protocol>,
+    O::ModesOfOperationDisplay: Readable<L::Protocol>,
+    O::TargetVelocity: Writable<L::Protocol>,
+    O::VelocityActual: Readable<L::Protocol>,
+{
+    enter::<O, L>(device, PROFILE_VELOCITY, deadline)?;
+    device.write_raw::<O::TargetVelocity>(velocity)?;
+    target::<O, L>(device, ProfileTarget::Velocity, deadline)?;
+    Ok(device.read_raw::<O::VelocityActual>()?)
+}
+
+/// Applies `torque` (6071h, in the drive's torque units) in profile torque mode (switching to
+/// it first) and returns once the drive reports target reached (bit 10) before `deadline`.
+/// Refused before anything is sent unless the drive is operation enabled; a time out halts the
+/// axis and is returned.
+pub fn apply_torque<O, L>(
+    device: &mut Device<L>,
+    torque: i16,
+    deadline: Instant,
+) -> Result<(), MotionError>
+where
+    O: ProfileTorqueObjects,
+    L: Link,
+    O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
+    O::Statusword: Readable<L::Protocol>,
+    O::ModesOfOperation: Writable<L::Protocol>,
+    O::ModesOfOperationDisplay: Readable<L::Protocol>,
+    O::TargetTorque: Writable<L::Protocol>,
+{
+    enter::<O, L>(device, PROFILE_TORQUE, deadline)?;
+    device.write_raw::<O::TargetTorque>(torque)?;
+    target::<O, L>(device, ProfileTarget::Torque, deadline)
+}
+
+/// Refuses unless the drive is operation enabled, then switches to `mode`.
+fn enter<O, L>(device: &mut Device<L>, mode: i8, deadline: Instant) -> Result<(), MotionError>
+where
+    O: Cia402Modes,
+    L: Link,
+    O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
+    O::Statusword: Readable<L::Protocol>,
+    O::ModesOfOperation: Writable<L::Protocol>,
+    O::ModesOfOperationDisplay: Readable<L::Protocol>,
+{
+    enabled::<O, L>(device)?;
+    set_mode::<O, L>(device, O::Mode::from_raw(mode, FromWire(())), deadline)?;
+    Ok(())
+}
+
+/// Drives a [`TargetPlanner`] until target reached.
+fn target<O, L>(
+    device: &mut Device<L>,
+    target: ProfileTarget,
+    deadline: Instant,
+) -> Result<(), MotionError>
+where
+    O: Cia402Objects,
+    L: Link,
+    O::Controlword: Writable<L::Protocol>,
+    O::Statusword: Readable<L::Protocol>,
+{
+    let mut planner = TargetPlanner::new(target);
+    let halt = planner.halt();
+    run::<O, L>(device, deadline, halt, |status| {
+        match planner.next(status) {
+            MoveStep::Send(controlword) => Poll::Send(controlword),
+            MoveStep::Wait => Poll::Wait,
+            MoveStep::Done => Poll::Done,
+            MoveStep::Failed(failure) => {
+                Poll::Fail(MotionError::of_target(target, failure, status))
+            }
+        }
     })
 }
 
@@ -117,7 +213,8 @@ where
             HomingStep::Done => Poll::Done,
             HomingStep::Failed(failure) => Poll::Fail(MotionError::of_homing(failure, status)),
         }
-    })
+    })?;
+    Ok(device.read_raw::<O::PositionActual>()?)
 }
 
 /// A planner's answer to a statusword, as the poll loop acts on it.
@@ -128,26 +225,24 @@ enum Poll {
     Fail(MotionError),
 }
 
-/// Reads the statusword and acts on `next`'s answer until done (returning the actual position)
-/// or failed; a failure the drive does not stop on by itself, or the deadline, writes `halt`
-/// first.
+/// Reads the statusword and acts on `next`'s answer until done or failed; a failure the drive
+/// does not stop on by itself, or the deadline, writes `halt` first.
 fn run<O, L>(
     device: &mut Device<L>,
     deadline: Instant,
     halt: u16,
     mut next: impl FnMut(u16) -> Poll,
-) -> Result<i32, MotionError>
+) -> Result<(), MotionError>
 where
-    O: ProfilePositionObjects,
+    O: Cia402Objects,
     L: Link,
     O::Controlword: Writable<L::Protocol>,
     O::Statusword: Readable<L::Protocol>,
-    O::PositionActual: Readable<L::Protocol>,
 {
     loop {
         let status = device.read_raw::<O::Statusword>()?;
         match next(status) {
-            Poll::Done => return Ok(device.read_raw::<O::PositionActual>()?),
+            Poll::Done => return Ok(()),
             Poll::Send(controlword) => {
                 device.write_raw::<O::Controlword>(controlword)?;
                 continue;

@@ -6,6 +6,7 @@ use core::fmt;
 use super::driver::ControlError;
 use super::homing::HomingFailure;
 use super::position::{MoveFailure, SoftLimits};
+use super::profile_target::{is_slippage, ProfileTarget};
 use crate::error::Error;
 
 /// A failed move or homing run.
@@ -30,6 +31,12 @@ pub enum MotionError {
     },
     /// The following error exceeded its window (statusword bit 13); the move was halted.
     FollowingError {
+        /// The statusword that reported it.
+        status: u16,
+    },
+    /// The drive reported a maximum slippage error in profile velocity (statusword bit 13);
+    /// the axis was halted.
+    MaxSlippage {
         /// The statusword that reported it.
         status: u16,
     },
@@ -75,9 +82,19 @@ impl MotionError {
         matches!(
             self,
             MotionError::FollowingError { .. }
+                | MotionError::MaxSlippage { .. }
                 | MotionError::HomingError { .. }
                 | MotionError::Timeout { .. }
         )
+    }
+
+    /// The error of a failed change of target in profile velocity or torque.
+    pub fn of_target(target: ProfileTarget, failure: MoveFailure, status: u16) -> Self {
+        if is_slippage(target, failure) {
+            MotionError::MaxSlippage { status }
+        } else {
+            Self::of_move(failure, status)
+        }
     }
 
     /// The error of a failed homing run, reported by `status`.
@@ -121,6 +138,10 @@ impl fmt::Display for MotionError {
             MotionError::FollowingError { status } => write!(
                 f,
                 "following error (status {status:#06x}); the move was halted"
+            ),
+            MotionError::MaxSlippage { status } => write!(
+                f,
+                "maximum slippage error (status {status:#06x}); the axis was halted"
             ),
             MotionError::HomingError { status } => {
                 write!(f, "homing error (status {status:#06x}); homing was halted")

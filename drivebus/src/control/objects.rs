@@ -61,3 +61,20 @@ pub trait HomingObjects: Cia402Modes {
     /// Homing method (6098h).
     type HomingMethod: Parameter<Raw = i8, Value = Self::Method>;
 }
+
+/// The profile velocity objects of a CiA 402 drive whose modes list profile velocity (3):
+/// drivegen implements it when the description has the target velocity (60FFh) and the velocity
+/// actual value (606Ch).
+pub trait ProfileVelocityObjects: Cia402Modes {
+    /// Target velocity (60FFh).
+    type TargetVelocity: Parameter<Raw = i32>;
+    /// Velocity actual value (606Ch).
+    type VelocityActual: Parameter<Raw = i32>;
+}
+
+/// The profile torque objects of a CiA 402 drive whose modes list profile torque (4): drivegen
+/// implements it when the description has the target torque (6071h).
+pub trait ProfileTorqueObjects: Cia402Modes {
+    /// Target torque (6071h).
+    type TargetTorque: Parameter<Raw = i16>;
+}

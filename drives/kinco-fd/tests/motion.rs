@@ -171,3 +171,36 @@ fn homes_and_moves_over_rs232() {
     assert_eq!(drive.home(HomingMethod::METHOD33, soon(5)).unwrap(), 0);
     assert_eq!(drive.move_to(Move::to(50_000), soon(5)).unwrap(), 50_000);
 }
+
+#[test]
+fn runs_at_a_velocity_then_applies_a_torque() {
+    let (mut drive, running) = enabled();
+    let speed = drive.run_at_velocity(100_000, soon(5)).unwrap();
+    assert_eq!(speed, 100_000, "target reached at the set velocity");
+    assert_eq!(drive.modes_of_operation_display().read_raw().unwrap(), 3);
+    drive.apply_torque(10, soon(5)).unwrap();
+    assert_eq!(drive.modes_of_operation_display().read_raw().unwrap(), 4);
+    // The simulated load settles at 1000 / 2 velocity units per torque unit.
+    std::thread::sleep(Duration::from_millis(500));
+    let speed = running.sim.with(|d| {
+        let id = d.store().id("velocity_actual_value").unwrap();
+        d.store().int(id).unwrap()
+    });
+    assert!(speed > 0, "the torque moves the load: {speed}");
+}
+
+#[test]
+fn velocity_and_torque_are_refused_unless_operation_enabled() {
+    let (mut drive, _running) = start();
+    let refused = drive.run_at_velocity(1_000, soon(1)).unwrap_err();
+    assert!(
+        matches!(refused, MotionError::NotOperationEnabled { .. }),
+        "{refused}"
+    );
+    let refused = drive.apply_torque(5, soon(1)).unwrap_err();
+    assert!(
+        matches!(refused, MotionError::NotOperationEnabled { .. }),
+        "{refused}"
+    );
+    assert_eq!(drive.target_torque().read_raw().unwrap(), 0, "nothing sent");
+}

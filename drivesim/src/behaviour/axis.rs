@@ -20,14 +20,27 @@
 //!   ([`Shared::home_switch`] `None`) homing fails at once with bit 13. The simulated search goes
 //!   straight to the switch, whatever side the method starts on.
 //! * A quick stop decelerates with 6085h; out of operation enabled the load stands where it is.
+//! * Cyclic synchronous position (mode 8): each target position (607Ah) written in operation
+//!   enabled (an RPDO taken at a SYNC) is reached at an even speed over one interpolation period
+//!   (60C2h: sub 1 × 10^sub 2 s; without one, at once); statusword bit 12 says the drive follows
+//!   the command value, bit 13 is the following error as in profile position (CiA 402-2, csp).
+//! * Cyclic synchronous velocity and torque (modes 9, 10): bit 12 says the drive follows; in
+//!   velocity the motor follows the target velocity (60FFh) as in the other velocity modes.
+//! * Profile velocity (mode 3): target reached (bit 10) while the motor's speed stands on its
+//!   setpoint, speed zero (bit 12) while it is 0. Profile torque (mode 4): target reached while
+//!   the torque load's demand stands on the target torque ([`torque`](super::torque)).
 //! * In other modes the position integrates the velocity actual value the motor shows (606Ch).
 
 use std::time::Duration;
 
+use drivegen::ir::SpeedPhase;
+
 use drivebus::control::cia402::HALT_BIT;
 use drivebus::control::mode_bits::{
-    CHANGE_IMMEDIATELY, FOLLOWING_ERROR, HOMING, HOMING_ATTAINED, HOMING_ERROR, NEW_SET_POINT,
-    PROFILE_POSITION, RELATIVE, SET_POINT_ACKNOWLEDGE, TARGET_REACHED,
+    CHANGE_IMMEDIATELY, CYCLIC_SYNC_POSITION, CYCLIC_SYNC_TORQUE, CYCLIC_SYNC_VELOCITY,
+    FOLLOWING_ERROR, FOLLOWS_COMMAND, HOMING, HOMING_ATTAINED, HOMING_ERROR, NEW_SET_POINT,
+    PROFILE_POSITION, PROFILE_TORQUE, PROFILE_VELOCITY, RELATIVE, SET_POINT_ACKNOWLEDGE,
+    SPEED_ZERO, TARGET_REACHED,
 };
 
 use super::trajectory::{Heading, Kinematics, Profile};
@@ -55,6 +68,16 @@ struct Objects {
     homing_speed: Option<ParamId>,
     homing_acceleration: Option<ParamId>,
     home_offset: Option<ParamId>,
+    interpolation_value: Option<ParamId>,
+    interpolation_index: Option<ParamId>,
+}
+
+/// A cyclic synchronous position set-point being reached: the speed that reaches it in one
+/// interpolation period, and the set-point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Segment {
+    velocity: f64,
+    end: f64,
 }
 
 /// Where a homing run is.
@@ -83,6 +106,8 @@ pub struct Axis {
     /// Seconds the following error has been beyond its window.
     beyond_window: f64,
     controlword: u16,
+    /// The cyclic synchronous position set-point in progress.
+    segment: Option<Segment>,
 }
 
 /// The CiA 402 state coding of operation enabled and quick stop active (statusword bits 0-3, 5, 6).
@@ -115,6 +140,8 @@ impl Axis {
             homing_speed: object(store, 0x6099, 1),
             homing_acceleration: at(0x609A),
             home_offset: at(0x607C),
+            interpolation_value: object(store, 0x60C2, 1),
+            interpolation_index: object(store, 0x60C2, 2),
             actuals,
         };
         if ids.actuals.is_empty() || (ids.target.is_none() && ids.homing_method.is_none()) {
@@ -136,6 +163,7 @@ impl Axis {
             homing: Homing::Idle,
             beyond_window: 0.0,
             controlword: 0,
+            segment: None,
         }
     }
 
@@ -187,6 +215,51 @@ impl Axis {
         self.acknowledged = true;
     }
 
+    /// The interpolation period (60C2h) in seconds; 0 without one.
+    fn interpolation_period(&self, store: &Store) -> f64 {
+        let value = Self::value(store, self.ids.interpolation_value).unwrap_or(0.0);
+        let index = Self::value(store, self.ids.interpolation_index).unwrap_or(-3.0);
+        value * 10f64.powi(index as i32)
+    }
+
+    /// A cyclic synchronous position set-point (607Ah written in mode 8): reached at an even
+    /// speed over one interpolation period.
+    fn take_cyclic_set_point(&mut self, store: &Store) {
+        let end = Self::value(store, self.ids.target).unwrap_or(0.0);
+        let period = self.interpolation_period(store);
+        let velocity = if period > 0.0 {
+            (end - self.demand.position) / period
+        } else {
+            0.0
+        };
+        self.segment = Some(Segment { velocity, end });
+        if period <= 0.0 {
+            self.demand.position = end;
+        }
+    }
+
+    /// Moves the demand along the set-point in progress for `seconds`, standing on its end.
+    fn follow_segment(&mut self, seconds: f64) {
+        let Some(segment) = self.segment else {
+            self.demand.velocity = 0.0;
+            return;
+        };
+        let step = segment.velocity * seconds;
+        let to_go = segment.end - self.demand.position;
+        if step.abs() >= to_go.abs() || segment.velocity == 0.0 {
+            self.demand = Kinematics {
+                position: segment.end,
+                velocity: 0.0,
+            };
+            self.segment = None;
+        } else {
+            self.demand = Kinematics {
+                position: self.demand.position + step,
+                velocity: segment.velocity,
+            };
+        }
+    }
+
     /// Starts homing (rising edge of bit 4 in homing mode).
     fn start_homing(&mut self, store: &Store, shared: &mut Shared) {
         let method = Self::value(store, self.ids.homing_method).map_or(0, |m| m as i128);
@@ -226,6 +299,7 @@ impl Axis {
             self.target = self.actual;
             self.moving = false;
             self.pending = None;
+            self.segment = None;
             if self.homing == Homing::Searching {
                 self.homing = Homing::Idle;
             }
@@ -238,6 +312,9 @@ impl Axis {
             Heading::Stop
         } else if self.controlword & HALT_BIT != 0 {
             Heading::Stop
+        } else if mode == CYCLIC_SYNC_POSITION {
+            self.follow_segment(seconds);
+            return;
         } else if mode == PROFILE_POSITION && self.moving {
             Heading::To(self.target)
         } else if mode == HOMING && self.homing == Homing::Searching {
@@ -287,7 +364,7 @@ impl Axis {
     }
 
     /// The mode-specific statusword bits 10, 12 and 13.
-    fn mode_bits(&self, store: &Store, following_error: bool) -> u16 {
+    fn mode_bits(&self, store: &Store, shared: &Shared, following_error: bool) -> u16 {
         if self.state(store) != OPERATION_ENABLED {
             return 0;
         }
@@ -306,6 +383,16 @@ impl Axis {
                     | bit(self.homing == Homing::Attained, HOMING_ATTAINED)
                     | bit(self.homing == Homing::Failed, HOMING_ERROR)
             }
+            CYCLIC_SYNC_POSITION => {
+                bit(true, FOLLOWS_COMMAND) | bit(following_error, FOLLOWING_ERROR)
+            }
+            CYCLIC_SYNC_VELOCITY | CYCLIC_SYNC_TORQUE => FOLLOWS_COMMAND,
+            PROFILE_VELOCITY => {
+                let speed = Self::value(store, self.ids.velocity_actual).unwrap_or(0.0);
+                let at_target = matches!(shared.phase, Some(SpeedPhase::Steady | SpeedPhase::Zero));
+                bit(at_target || halted, TARGET_REACHED) | bit(speed == 0.0, SPEED_ZERO)
+            }
+            PROFILE_TORQUE => bit(shared.torque_reached || halted, TARGET_REACHED),
             _ => 0,
         }
     }
@@ -321,11 +408,11 @@ impl Axis {
         let mode = self.mode(store);
         if let (Some(id), true) = (
             self.ids.velocity_actual,
-            mode == PROFILE_POSITION || mode == HOMING,
+            matches!(mode, PROFILE_POSITION | HOMING | CYCLIC_SYNC_POSITION),
         ) {
             store.set_int(id, self.demand.velocity.round() as i128);
         }
-        shared.mode_bits = self.mode_bits(store, following_error);
+        shared.mode_bits = self.mode_bits(store, shared, following_error);
     }
 
     fn advance(&mut self, store: &mut Store, shared: &mut Shared, seconds: f64) {
@@ -364,6 +451,10 @@ impl Behaviour for Axis {
                 self.acknowledged = false;
             }
             self.controlword = word;
+        }
+        let enabled = self.state(store) == OPERATION_ENABLED;
+        if Some(id) == self.ids.target && enabled && self.mode(store) == CYCLIC_SYNC_POSITION {
+            self.take_cyclic_set_point(store);
         }
         self.advance(store, shared, 0.0);
     }

@@ -19,6 +19,7 @@ pub mod motor;
 pub mod ramp;
 pub mod srdo_validity;
 pub mod state_machine;
+pub mod torque;
 pub mod trajectory;
 pub mod write_lock;
 
@@ -67,6 +68,9 @@ pub struct Shared {
     pub load_blocked: bool,
     /// Where the simulated home switch is.
     pub home_switch: HomeSwitch,
+    /// In profile torque mode: the torque demand stands on the target torque (set by the
+    /// torque load, shown by the axis as statusword bit 10).
+    pub torque_reached: bool,
 }
 
 /// Where the simulated home switch is, in position units as the drive counts them now; `None`:
@@ -137,6 +141,10 @@ pub fn for_device(store: &mut Store) -> Vec<Box<dyn Behaviour>> {
         behaviours.push(Box::new(b));
     }
     if let Some(b) = motor::Motor::detect(store) {
+        behaviours.push(Box::new(b));
+    }
+    // After the motor: in profile torque the load's speed replaces the motor's.
+    if let Some(b) = torque::TorqueLoad::detect(store) {
         behaviours.push(Box::new(b));
     }
     // After the motor: in the positioning modes the axis shows the speed, in the others it

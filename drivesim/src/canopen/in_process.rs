@@ -23,19 +23,31 @@ impl InProcessNode {
     pub fn start(sim: Simulator, config: NodeConfig) -> (InProcessEndpoint, InProcessNode) {
         let bus = InProcessBus::new();
         let client = bus.endpoint();
+        let running = Self::serve(&bus, vec![(sim, config)]);
+        (client, running)
+    }
+
+    /// Serves several simulated nodes on `bus` from one thread, as drives share a real bus:
+    /// each answers for its own node id and sees the others' frames. A master takes its own
+    /// endpoint of `bus`.
+    pub fn serve(bus: &InProcessBus, nodes: Vec<(Simulator, NodeConfig)>) -> InProcessNode {
         let mut endpoint = bus.endpoint();
         let stop = Arc::new(AtomicBool::new(false));
         let flag = Arc::clone(&stop);
         let thread = std::thread::spawn(move || {
-            let mut node = Node::new(sim.clone(), config, sim.variant());
+            let mut nodes: Vec<Node> = nodes
+                .into_iter()
+                .map(|(sim, config)| Node::new(sim.clone(), config, sim.variant()))
+                .collect();
             // An in-process bus does not fail; the loop ends when the node is dropped.
-            let _ = node.run_while(&mut endpoint, || !flag.load(Ordering::Relaxed));
+            let _ = super::nodes::run_while(&mut nodes, &mut endpoint, || {
+                !flag.load(Ordering::Relaxed)
+            });
         });
-        let running = InProcessNode {
+        InProcessNode {
             stop,
             thread: Some(thread),
-        };
-        (client, running)
+        }
     }
 }
 

@@ -2,13 +2,20 @@
 //! (issue 32): `move_to` when the modes enum lists profile position (1) and the drive has the
 //! target position (607Ah) and a position actual value (6064h, else 6063h); `home` when the
 //! modes list homing (6) and the homing method (6098h) is an enum of the methods the drive
-//! lists. A drive without them has no such method: calling it does not compile.
+//! lists; `run_at_velocity` when the modes list profile velocity (3) and the drive has the
+//! target velocity (60FFh) and the velocity actual value (606Ch); `apply_torque` when the modes
+//! list profile torque (4) and the drive has the target torque (6071h). A drive without them has
+//! no such method: calling it does not compile.
 
-use drivebus_model::control::mode_bits::{HOMING, PROFILE_POSITION};
+use drivebus_model::control::mode_bits::{
+    HOMING, PROFILE_POSITION, PROFILE_TORQUE, PROFILE_VELOCITY,
+};
 use proc_macro2::{Ident, TokenStream};
 use quote::quote;
 
 use super::ident;
+
+mod targets;
 use crate::ir::{DataType, Device, Parameter};
 use crate::names;
 
@@ -88,6 +95,23 @@ impl Shared<'_> {
 
 /// The motion impls and methods of `handle`; empty where the description lacks the objects.
 pub fn emit(device: &Device, handle: &Ident, control: &Ident, status: &Ident) -> TokenStream {
+    let position = position(device, handle, control, status);
+    let targets = targets::emit(device, handle, control, status);
+    quote! {
+        #position
+        #targets
+    }
+}
+
+/// The markers of the modes of operation (6060h) and their display (6061h).
+fn modes(device: &Device) -> Option<(Ident, Ident)> {
+    let request = object(device, 0x6060, 0, DataType::Signed(1))?;
+    let display = object(device, 0x6061, 0, DataType::Signed(1))?;
+    Some((marker(request), marker(display)))
+}
+
+/// `move_to` and `home`.
+fn position(device: &Device, handle: &Ident, control: &Ident, status: &Ident) -> TokenStream {
     if !lists_mode(device, PROFILE_POSITION) {
         return TokenStream::new();
     }
@@ -100,9 +124,7 @@ pub fn emit(device: &Device, handle: &Ident, control: &Ident, status: &Ident) ->
         return TokenStream::new();
     };
     let (target, actual) = (marker(target), marker(actual));
-    let request = marker(object(device, 0x6060, 0, DataType::Signed(1)).expect("listed modes"));
-    let display = object(device, 0x6061, 0, DataType::Signed(1)).map(marker);
-    let Some(display) = display else {
+    let Some((request, display)) = modes(device) else {
         return TokenStream::new();
     };
     let (read_limits, limit_bounds) = limits(device);

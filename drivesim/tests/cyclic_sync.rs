@@ -1,0 +1,236 @@
+//! The simulated axis in the cyclic synchronous modes, on the example CiA 402 axis: in CSP each
+//! target position is reached evenly over one interpolation period (60C2h), statusword bit 12
+//! says the drive follows, bit 13 a following error; in CSV the position integrates the target
+//! velocity. Time is advanced by hand.
+
+use std::time::Duration;
+
+use drivesim::Drive;
+
+const AXIS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/csp_axis");
+
+const FOLLOWS: u16 = 1 << 12;
+const FOLLOWING_ERROR: u16 = 1 << 13;
+
+fn drive() -> Drive {
+    let checked = drivegen::check(std::path::Path::new(AXIS));
+    let report = checked.render();
+    Drive::new(checked.device.unwrap_or_else(|| panic!("{report}")))
+}
+
+fn set(drive: &mut Drive, name: &str, value: i64) {
+    let id = drive.store().id(name).unwrap_or_else(|| panic!("{name}"));
+    let width = drive.store().bytes(id).len();
+    drive
+        .write(id, &value.to_le_bytes()[..width])
+        .unwrap_or_else(|e| panic!("{name} = {value}: {e:?}"));
+}
+
+fn get(drive: &Drive, name: &str) -> i128 {
+    let id = drive.store().id(name).unwrap();
+    drive.store().int(id).unwrap()
+}
+
+fn enabled(mode: i64) -> Drive {
+    let mut drive = drive();
+    set(&mut drive, "modes_of_operation", mode);
+    for word in [0x06, 0x07, 0x0F] {
+        set(&mut drive, "controlword", word);
+    }
+    drive
+}
+
+const MS: Duration = Duration::from_millis(1);
+
+#[test]
+fn csp_reaches_each_set_point_evenly_over_the_interpolation_period() {
+    let mut drive = enabled(8);
+    let status = get(&drive, "statusword") as u16;
+    assert_eq!(status & 0x6F, 0x27, "operation enabled: {status:#06X}");
+    assert_ne!(status & FOLLOWS, 0, "follows the command value");
+    // The period is 4 ms: 400 units at 100 000 units/s.
+    set(&mut drive, "target_position", 400);
+    drive.tick(2 * MS);
+    assert_eq!(get(&drive, "position_actual_value"), 200, "half way");
+    assert_eq!(get(&drive, "velocity_actual_value"), 100_000);
+    drive.tick(3 * MS);
+    assert_eq!(get(&drive, "position_actual_value"), 400, "stands on it");
+    assert_eq!(get(&drive, "velocity_actual_value"), 0);
+    set(&mut drive, "target_position", 0);
+    drive.tick(4 * MS);
+    assert_eq!(get(&drive, "position_actual_value"), 0);
+    assert_eq!(get(&drive, "statusword") as u16 & FOLLOWING_ERROR, 0);
+}
+
+#[test]
+fn csp_reports_a_following_error_beyond_its_window_and_time_out() {
+    let mut drive = enabled(8);
+    drive.block_load(true);
+    // 5 000 units away: beyond the 2 000 window for longer than 10 ms.
+    set(&mut drive, "target_position", 5_000);
+    drive.tick(4 * MS);
+    drive.tick(4 * MS);
+    assert_eq!(
+        get(&drive, "statusword") as u16 & FOLLOWING_ERROR,
+        0,
+        "within time out"
+    );
+    drive.tick(8 * MS);
+    assert_ne!(get(&drive, "statusword") as u16 & FOLLOWING_ERROR, 0);
+}
+
+#[test]
+fn csv_integrates_the_target_velocity_and_nothing_moves_unless_enabled() {
+    let mut drive = enabled(9);
+    assert_ne!(get(&drive, "statusword") as u16 & FOLLOWS, 0);
+    set(&mut drive, "target_velocity", 10_000);
+    drive.tick(Duration::from_millis(100));
+    let position = get(&drive, "position_actual_value");
+    assert!((990..=1_010).contains(&position), "{position}");
+
+    let mut idle = drive_disabled();
+    set(&mut idle, "target_position", 400);
+    idle.tick(4 * MS);
+    assert_eq!(get(&idle, "position_actual_value"), 0);
+}
+
+fn drive_disabled() -> Drive {
+    let mut drive = drive();
+    set(&mut drive, "modes_of_operation", 8);
+    drive
+}
+
+mod over_canopen {
+    //! The runtime's cyclic driver against two simulated axes on one in-process bus.
+
+    use std::time::Duration;
+
+    use drivebus::canopen::can::in_process::InProcessBus;
+    use drivebus::canopen::network::Network;
+    use drivebus::canopen::nmt::NmtCommand;
+    use drivebus::canopen::NodeId;
+    use drivebus::control::cyclic::{CyclicFailure, CyclicMode};
+    use drivebus::control::cyclic_driver::{AxisLink, CyclicConfig, CyclicError, CyclicRun};
+    use drivebus::control::Quirks;
+    use drivesim::canopen::{InProcessNode, NodeConfig};
+    use drivesim::Simulator;
+
+    use super::AXIS;
+
+    const LINKS: [AxisLink; 2] = [
+        AxisLink {
+            node: NodeId(1),
+            rpdo_cob_id: 0x201,
+            tpdo: 1,
+        },
+        AxisLink {
+            node: NodeId(2),
+            rpdo_cob_id: 0x202,
+            tpdo: 1,
+        },
+    ];
+
+    fn config(mode: CyclicMode) -> CyclicConfig {
+        CyclicConfig {
+            mode,
+            period: Duration::from_millis(4),
+            quirks: Quirks::STANDARD,
+            enable_within: Duration::from_secs(2),
+            feedback_within: Duration::from_secs(1),
+        }
+    }
+
+    fn axes() -> (Vec<Simulator>, InProcessBus, InProcessNode) {
+        let sims: Vec<Simulator> = (0..2).map(|_| Simulator::load(AXIS).unwrap()).collect();
+        let bus = InProcessBus::new();
+        let nodes = sims
+            .iter()
+            .zip(LINKS)
+            .map(|(sim, link)| {
+                let config = NodeConfig {
+                    node: link.node,
+                    heartbeat: None,
+                };
+                (sim.clone(), config)
+            })
+            .collect();
+        let running = InProcessNode::serve(&bus, nodes);
+        (sims, bus, running)
+    }
+
+    fn int(sim: &Simulator, name: &str) -> i128 {
+        sim.with(|d| d.store().int(d.store().id(name).unwrap()).unwrap())
+    }
+
+    #[test]
+    fn a_mode_an_axis_does_not_list_is_refused_before_anything_is_sent() {
+        let (sims, bus, _running) = axes();
+        sims[1].preset("supported_drive_modes", 0x0180).unwrap();
+        let network = Network::new(bus.endpoint());
+        network.nmt(NmtCommand::Start, None).unwrap();
+        let error = CyclicRun::start(&network, &LINKS, config(CyclicMode::Torque)).unwrap_err();
+        assert_eq!(
+            error,
+            CyclicError::Axis {
+                node: NodeId(2),
+                failure: CyclicFailure::ModeNotSupported {
+                    mode: CyclicMode::Torque,
+                    supported: 0x0180
+                },
+                emcy: None
+            }
+        );
+        for sim in &sims {
+            assert_eq!(int(sim, "modes_of_operation"), 0, "no mode written");
+        }
+    }
+
+    #[test]
+    fn two_axes_follow_and_a_blocked_load_stops_the_run_with_a_following_error() {
+        let (sims, bus, _running) = axes();
+        let network = Network::new(bus.endpoint());
+        network.nmt(NmtCommand::Start, None).unwrap();
+        let mut run = CyclicRun::start(&network, &LINKS, config(CyclicMode::Position)).unwrap();
+        run.run(50, |cycle, _| (cycle as i32 + 1) * 100).unwrap();
+        // The last TPDO shows the axis on one of the last set points (100 apart), or on its
+        // way between them when a SYNC came early.
+        for feedback in run.feedback() {
+            assert!((4_500..=5_000).contains(&feedback.actual), "{feedback:?}");
+        }
+        sims[0].with(|d| d.block_load(true));
+        let error = run.run(100, |cycle, _| 5_000 + (cycle as i32 + 1) * 200);
+        assert!(
+            matches!(
+                error,
+                Err(CyclicError::Axis {
+                    node: NodeId(1),
+                    failure: CyclicFailure::FollowingError { .. },
+                    ..
+                })
+            ),
+            "{error:?}"
+        );
+        // Quick-stopped: quick stop active (or further on), no longer operation enabled.
+        let status = int(&sims[0], "statusword") as u16;
+        assert_ne!(status & 0x6F, 0x27, "{status:#06X}");
+    }
+
+    #[test]
+    fn csv_runs_both_axes_at_the_target_velocity_through_rpdo_2() {
+        let (_sims, bus, _running) = axes();
+        let network = Network::new(bus.endpoint());
+        network.nmt(NmtCommand::Start, None).unwrap();
+        let links = LINKS.map(|link| AxisLink {
+            rpdo_cob_id: 0x300 + u16::from(link.node.0),
+            ..link
+        });
+        let mut run = CyclicRun::start(&network, &links, config(CyclicMode::Velocity)).unwrap();
+        let start: Vec<i32> = run.feedback().iter().map(|f| f.actual).collect();
+        run.run(50, |_, _| 50_000).unwrap();
+        for (feedback, start) in run.feedback().iter().zip(start) {
+            // 50 000 units/s for at least 50 periods of 4 ms: 10 000 or more.
+            assert!(feedback.actual - start >= 9_000, "{feedback:?}");
+        }
+        run.stop();
+    }
+}
