@@ -26,19 +26,22 @@ impl Span {
             return Self { low, high };
         }
         let half = if low == 0.0 { 1.0 } else { low.abs() / 10.0 };
-        Self {
-            low: low - half,
-            high: high + half,
-        }
+        Self::within_f64(low - half, high + half)
     }
 
     /// The range widened by `fraction` of its width at each end: a line at its extreme stays
     /// clear of the panel's frame.
     pub fn padded(self, fraction: f64) -> Self {
         let pad = self.width() * fraction;
+        Self::within_f64(self.low - pad, self.high + pad)
+    }
+
+    /// `[low, high]` with ends that widening pushed past the limits of `f64` (values near
+    /// them) brought back to the largest finite values.
+    fn within_f64(low: f64, high: f64) -> Self {
         Self {
-            low: self.low - pad,
-            high: self.high + pad,
+            low: low.max(f64::MIN),
+            high: high.min(f64::MAX),
         }
     }
 

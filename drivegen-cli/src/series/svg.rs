@@ -249,6 +249,15 @@ mod tests {
         assert!(render(nan.series()).contains("no numeric samples"));
     }
 
+    #[test]
+    fn one_value_near_the_limit_of_f64_gives_finite_ticks() {
+        // Found by the property below: widening a flat line at -1.78e308 went past -f64::MAX.
+        for value in [-1.775_761_216_070_330_2e308, f64::MAX, f64::MIN] {
+            let svg = render(recording(&[(0.0, value)]).series());
+            assert!(!svg.contains("inf") && !svg.contains("NaN"), "{svg}");
+        }
+    }
+
     proptest! {
         /// Any values, the limits of `f64` and NaN among them: a document with numbers only.
         #[test]
