@@ -6,12 +6,12 @@ mod support;
 
 use std::cell::RefCell;
 use std::io::{BufRead, BufReader};
-use std::net::{TcpListener, TcpStream};
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
+use std::process::{Command, Stdio};
 use std::sync::mpsc::{self, Receiver};
 use std::time::{Duration, Instant};
 
+use peer_support::{mosquitto, Process};
 use support::{drivegen, stderr, BIN};
 
 /// Everything here answers within seconds; a spawned process gets this much to start.
@@ -27,71 +27,40 @@ fn scratch(name: &str) -> PathBuf {
     dir
 }
 
-/// A child process killed when the test ends, passed or not.
-struct Running(Child);
-
-impl Drop for Running {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
+/// mosquitto on 127.0.0.1:`port`, anonymous clients allowed.
+fn broker(dir: &Path, port: u16) -> Process {
+    mosquitto::start(dir, port, "allow_anonymous true\n")
 }
 
-fn free_port() -> u16 {
-    TcpListener::bind("127.0.0.1:0")
-        .unwrap()
-        .local_addr()
-        .unwrap()
-        .port()
+/// A drivegen process of the test's, killed when dropped.
+fn spawned(command: &mut Command) -> Process {
+    Process::new(command.spawn().unwrap())
 }
 
-/// mosquitto on 127.0.0.1:`port`, without persistence: a restart loses every retained message.
-fn broker(dir: &Path, port: u16) -> Running {
-    broker_with(dir, port, "allow_anonymous true\n")
-}
-
-/// mosquitto on 127.0.0.1:`port` with `settings` (access rules), without persistence.
-fn broker_with(dir: &Path, port: u16, settings: &str) -> Running {
-    let conf = dir.join("mosquitto.conf");
-    let listener = format!("listener {port} 127.0.0.1\npersistence false\n");
-    std::fs::write(&conf, listener + settings).unwrap();
-    // Debian puts the broker in /usr/sbin, which a user's PATH may not hold.
-    let program = ["/usr/sbin/mosquitto", "/usr/local/sbin/mosquitto"]
-        .into_iter()
-        .find(|p| Path::new(p).exists())
-        .unwrap_or("mosquitto");
-    let child = Command::new(program)
-        .arg("-c")
-        .arg(&conf)
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("mosquitto (apt install mosquitto mosquitto-clients; tests/peers/setup.sh does)");
-    let started = Instant::now();
-    while TcpStream::connect(("127.0.0.1", port)).is_err() {
-        assert!(
-            started.elapsed() < WAIT,
-            "mosquitto did not listen on {port}"
-        );
-        std::thread::sleep(Duration::from_millis(20));
-    }
-    Running(child)
+/// `drivegen gateway FILE`, its log dropped.
+fn start_gateway(file: &Path) -> Process {
+    spawned(
+        Command::new(BIN)
+            .arg("gateway")
+            .arg(file)
+            .stderr(Stdio::null()),
+    )
 }
 
 /// The simulated Lafert on Modbus TCP, and its address.
-fn simulator() -> (Running, String) {
+fn simulator() -> (Process, String) {
     let sets = ["--set", "bus_dc_link=4950", "--set", "operation_mode=2"];
     let (child, addr) = support::modbus_sim(&lafert(), &sets);
-    (Running(child), addr)
+    (Process::new(child), addr)
 }
 
 /// `mosquitto_sub -v` on everything under `drivegen/`: each line `topic payload`.
-fn subscribe(port: u16) -> (Running, Lines) {
+fn subscribe(port: u16) -> (Process, Lines) {
     subscribe_as(port, &[])
 }
 
 /// [`subscribe`] with mosquitto_sub's `login` options (`-u USER -P PASSWORD`).
-fn subscribe_as(port: u16, login: &[&str]) -> (Running, Lines) {
+fn subscribe_as(port: u16, login: &[&str]) -> (Process, Lines) {
     let mut child = Command::new("mosquitto_sub")
         .args([
             "-h",
@@ -119,7 +88,7 @@ fn subscribe_as(port: u16, login: &[&str]) -> (Running, Lines) {
         received,
         unmatched: RefCell::default(),
     };
-    (Running(child), lines)
+    (Process::new(child), lines)
 }
 
 /// What a subscriber printed: lines not yet matched are kept, so messages of several drives
@@ -214,7 +183,7 @@ writable = ["speed_ramp_up", "operation_mode"]
 #[test]
 fn values_writes_a_broker_restart_and_a_silent_drive_through_a_real_broker() {
     let dir = scratch("live");
-    let port = free_port();
+    let port = mosquitto::free_port();
     let mut mosquitto = broker(&dir, port);
     let (mut sim, addr) = simulator();
     let (_sub, lines) = subscribe(port);
@@ -225,17 +194,10 @@ fn values_writes_a_broker_restart_and_a_silent_drive_through_a_real_broker() {
         "\n[[drive]]\nname = \"gone\"\ndescription = \"{}\"\n\
          bus = {{ modbus_tcp = \"127.0.0.1:{}\", timeout_ms = 200 }}\nparameters = [\"bus_dc_link\"]\n",
         lafert().display(),
-        free_port()
+        mosquitto::free_port()
     );
     std::fs::write(&file, text).unwrap();
-    let mut gateway = Running(
-        Command::new(BIN)
-            .arg("gateway")
-            .arg(&file)
-            .stderr(Stdio::null())
-            .spawn()
-            .unwrap(),
-    );
+    let mut gateway = start_gateway(&file);
 
     // Values, retained, with their units and raw values.
     let dc = json(&expect(&lines, "drivegen/lafert/bus_dc_link", |_| true));
@@ -360,7 +322,7 @@ fn values_writes_a_broker_restart_and_a_silent_drive_through_a_real_broker() {
     assert_eq!(retained["raw"], 4950, "{retained}");
 
     // A drive that stops answering goes offline with the reason; its value is not refreshed.
-    sim.0.kill().unwrap();
+    sim.child_mut().kill().unwrap();
     expect(&relines, "drivegen/lafert/status", |p| p == "offline");
     let error = json(&expect(&relines, "drivegen/lafert/error", |p| {
         !p.is_empty()
@@ -368,7 +330,7 @@ fn values_writes_a_broker_restart_and_a_silent_drive_through_a_real_broker() {
     assert!(error["error"].as_str().is_some(), "{error}");
 
     // SIGTERM: a clean stop, the status offline.
-    let pid = gateway.0.id().to_string();
+    let pid = gateway.child_mut().id().to_string();
     assert!(Command::new("kill")
         .args(["-TERM", &pid])
         .status()
@@ -376,7 +338,7 @@ fn values_writes_a_broker_restart_and_a_silent_drive_through_a_real_broker() {
         .success());
     let started = Instant::now();
     let exit = loop {
-        if let Some(exit) = gateway.0.try_wait().unwrap() {
+        if let Some(exit) = gateway.child_mut().try_wait().unwrap() {
             break exit;
         }
         assert!(
@@ -423,7 +385,7 @@ fn refusal(file: &Path) -> String {
 fn a_file_naming_an_unknown_parameter_is_refused_before_anything_opens() {
     let dir = scratch("bad");
     // No broker, no drive: the file is refused first.
-    let file = config(&dir, free_port(), "127.0.0.1:1");
+    let file = config(&dir, mosquitto::free_port(), "127.0.0.1:1");
     let text = std::fs::read_to_string(&file).unwrap();
     let unknown = replaced(
         &text,
@@ -497,26 +459,24 @@ fn logins(dir: &Path) -> String {
 }
 
 /// The gateway of `file`, logging in as `gateway` with `password` (from the environment).
-fn gateway_with_password(file: &Path, password: &str) -> Running {
+fn gateway_with_password(file: &Path, password: &str) -> Process {
     let text = std::fs::read_to_string(file).unwrap();
     let login = "[mqtt]\nusername = \"gateway\"\npassword_env = \"DRIVEGEN_TEST_MQTT_PASSWORD\"\n";
     std::fs::write(file, text.replace("[mqtt]\n", login)).unwrap();
-    Running(
+    spawned(
         Command::new(BIN)
             .arg("gateway")
             .arg(file)
             .env("DRIVEGEN_TEST_MQTT_PASSWORD", password)
-            .stderr(Stdio::piped())
-            .spawn()
-            .unwrap(),
+            .stderr(Stdio::piped()),
     )
 }
 
 #[test]
 fn a_broker_with_logins_takes_the_gateway_and_the_operator_not_the_viewer() {
     let dir = scratch("logins");
-    let port = free_port();
-    let _mosquitto = broker_with(&dir, port, &logins(&dir));
+    let port = mosquitto::free_port();
+    let _mosquitto = mosquitto::start(&dir, port, &logins(&dir));
     let (_sim, addr) = simulator();
     let viewer = ["-u", "viewer", "-P", "view-secret"];
     let (_sub, lines) = subscribe_as(port, &viewer);
@@ -556,15 +516,16 @@ fn a_broker_with_logins_takes_the_gateway_and_the_operator_not_the_viewer() {
 #[test]
 fn a_wrong_broker_password_is_logged_and_nothing_is_published() {
     let dir = scratch("refused");
-    let port = free_port();
-    let _mosquitto = broker_with(&dir, port, &logins(&dir));
+    let port = mosquitto::free_port();
+    let _mosquitto = mosquitto::start(&dir, port, &logins(&dir));
     let (_sim, addr) = simulator();
     let (_sub, lines) = subscribe_as(port, &["-u", "viewer", "-P", "view-secret"]);
     let mut gateway = gateway_with_password(&config(&dir, port, &addr), "wrong");
     std::thread::sleep(Duration::from_secs(2));
-    gateway.0.kill().unwrap();
+    gateway.child_mut().kill().unwrap();
     let mut log = String::new();
-    std::io::Read::read_to_string(&mut gateway.0.stderr.take().unwrap(), &mut log).unwrap();
+    std::io::Read::read_to_string(&mut gateway.child_mut().stderr.take().unwrap(), &mut log)
+        .unwrap();
     assert!(log.contains("no broker connection"), "{log}");
     assert!(lines.none_yet(), "nothing published");
     let _ = std::fs::remove_dir_all(&dir);
@@ -640,7 +601,7 @@ fn certificates(dir: &Path) {
 fn tls_to_the_broker_with_the_ca_the_file_names() {
     let dir = scratch("tls");
     certificates(&dir);
-    let port = free_port();
+    let port = mosquitto::free_port();
     let files = |name: &str| dir.join(name).display().to_string();
     let settings = format!(
         "allow_anonymous true\ncafile {}\ncertfile {}\nkeyfile {}\n",
@@ -648,7 +609,7 @@ fn tls_to_the_broker_with_the_ca_the_file_names() {
         files("broker.pem"),
         files("broker.key")
     );
-    let _mosquitto = broker_with(&dir, port, &settings);
+    let _mosquitto = mosquitto::start(&dir, port, &settings);
     let (_sim, addr) = simulator();
     let (_sub, lines) = subscribe_as(port, &["--cafile", &files("ca.pem")]);
     let file = config(&dir, port, &addr);
@@ -658,14 +619,7 @@ fn tls_to_the_broker_with_the_ca_the_file_names() {
         text.replace("[mqtt]\n", "[mqtt]\nca_file = \"ca.pem\"\n"),
     )
     .unwrap();
-    let _gateway = Running(
-        Command::new(BIN)
-            .arg("gateway")
-            .arg(&file)
-            .stderr(Stdio::null())
-            .spawn()
-            .unwrap(),
-    );
+    let _gateway = start_gateway(&file);
     let dc = json(&expect(&lines, "drivegen/lafert/bus_dc_link", |_| true));
     assert_eq!(dc["raw"], 4950, "{dc}");
     let _ = std::fs::remove_dir_all(&dir);

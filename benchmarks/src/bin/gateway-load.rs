@@ -14,14 +14,14 @@
 //! latencies read up to 1 ms high. Prints Markdown.
 
 use std::io::{BufRead, BufReader};
-use std::net::{TcpListener, TcpStream};
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
+use std::process::{Command, Stdio};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant, SystemTime};
 
 use benchmarks::latency::Histogram;
 use benchmarks::process::{load_average, other_process_cpu, other_resident_bytes, Simulator};
+use peer_support::{mosquitto, Process};
 
 /// The ten parameters each drive publishes: input registers 0x60-0x6A, one request.
 const PARAMETERS: [&str; 10] = [
@@ -70,46 +70,6 @@ fn settings() -> Result<Settings, String> {
     Ok(s)
 }
 
-/// A child process ended with the benchmark.
-struct Running(Child);
-
-impl Drop for Running {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
-
-fn broker(dir: &Path) -> Result<(Running, u16), String> {
-    let port = TcpListener::bind("127.0.0.1:0")
-        .and_then(|l| l.local_addr())
-        .map_err(|e| e.to_string())?
-        .port();
-    let conf = dir.join("mosquitto.conf");
-    let text = format!("listener {port} 127.0.0.1\nallow_anonymous true\npersistence false\n");
-    std::fs::write(&conf, text).map_err(|e| e.to_string())?;
-    let program = ["/usr/sbin/mosquitto", "/usr/local/sbin/mosquitto"]
-        .into_iter()
-        .find(|p| Path::new(p).exists())
-        .unwrap_or("mosquitto");
-    let child = Command::new(program)
-        .arg("-c")
-        .arg(&conf)
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .map_err(|e| format!("mosquitto: {e} (tests/peers/setup.sh installs it)"))?;
-    let running = Running(child);
-    let started = Instant::now();
-    while TcpStream::connect(("127.0.0.1", port)).is_err() {
-        if started.elapsed() > Duration::from_secs(10) {
-            return Err("mosquitto did not listen".into());
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    }
-    Ok((running, port))
-}
-
 fn gateway_file(dir: &Path, port: u16, settings: &Settings, addrs: &[String]) -> PathBuf {
     let lafert = Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/lafert-smartris");
     let parameters: Vec<String> = PARAMETERS.iter().map(|p| format!("\"{p}\"")).collect();
@@ -132,7 +92,7 @@ fn gateway_file(dir: &Path, port: u16, settings: &Settings, addrs: &[String]) ->
 type Window = Arc<Mutex<Histogram>>;
 
 /// `mosquitto_sub` on every value topic; each line's payload time against now.
-fn subscribe(port: u16, window: Window) -> Result<Running, String> {
+fn subscribe(port: u16, window: Window) -> Result<Process, String> {
     let mut child = Command::new("mosquitto_sub")
         .args([
             "-h",
@@ -158,7 +118,7 @@ fn subscribe(port: u16, window: Window) -> Result<Running, String> {
                 .record(latency);
         }
     });
-    Ok(Running(child))
+    Ok(Process::new(child))
 }
 
 /// From a value's read time to now; `None` for a status line or a payload without a time.
@@ -187,12 +147,13 @@ fn main() -> Result<(), String> {
         .map_err(|e| format!("mbap-sim: {e} (cargo build --release -p benchmarks --bins)"))?;
     let dir = std::env::temp_dir().join(format!("drivegen-gateway-load-{}", std::process::id()));
     std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
-    let (_broker, port) = broker(&dir)?;
+    let port = mosquitto::free_port();
+    let _broker = mosquitto::start(&dir, port, "allow_anonymous true\n");
     let window: Window = Arc::default();
     let _subscriber = subscribe(port, window.clone())?;
     let file = gateway_file(&dir, port, &settings, &sim.addrs);
     let drivegen = here.with_file_name("drivegen");
-    let gateway = Running(
+    let mut gateway = Process::new(
         Command::new(&drivegen)
             .arg("gateway")
             .arg(&file)
@@ -205,7 +166,7 @@ fn main() -> Result<(), String> {
                 )
             })?,
     );
-    let pid = gateway.0.id();
+    let pid = gateway.child_mut().id();
     println!(
         "| t (s) | messages/s | p50 ms | p99 ms | gateway CPU % of one core | resident MiB | load average |"
     );

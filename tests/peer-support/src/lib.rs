@@ -1,9 +1,10 @@
 //! What the workspace's tests share, in one place: the workspace root, the python that has the
 //! pinned peers, a process guard that kills by PID, socat pty pairs, an independent Modbus CRC,
-//! and the Kinco manual's telegram list.
+//! the Kinco manual's telegram list, and a mosquitto broker.
 
 pub mod kinco_telegrams;
 pub mod modbus_crc;
+pub mod mosquitto;
 
 use std::path::{Path, PathBuf};
 use std::process::{Child, ChildStdin, Command, Stdio};
@@ -12,7 +13,7 @@ use std::time::{Duration, Instant};
 
 /// What to run when a peer is missing; the tests fail with it rather than skip.
 pub const SETUP_HINT: &str =
-    "run `tests/peers/setup.sh` at the workspace root (socat, and .venv with the pinned pymodbus / canopen), or set DRIVEGEN_PYTHON";
+    "run `tests/peers/setup.sh` at the workspace root (socat, mosquitto, and .venv with the pinned pymodbus / canopen), or set DRIVEGEN_PYTHON";
 
 /// The workspace root (this crate lives in `tests/peer-support`).
 pub fn workspace_root() -> PathBuf {
