@@ -624,3 +624,52 @@ fn tls_to_the_broker_with_the_ca_the_file_names() {
     assert_eq!(dc["raw"], 4950, "{dc}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_drive_with_many_parameters_has_every_value_published() {
+    // More values a poll than the MQTT queue of a small drive holds: none may be dropped.
+    let many = [
+        "speed_setpoint",
+        "torque_setpoint",
+        "digital_inputs",
+        "digital_outputs",
+        "drive_status",
+        "warning_code",
+        "error_code",
+        "bus_dc_link",
+        "motor_temperature",
+        "heat_sink_temperature",
+        "board_temperature",
+        "velocity_average",
+        "torque_current",
+        "i2t_energy",
+        "axis_position",
+        "impulses",
+        "actual_velocity_user",
+        "torque_current_windowed",
+        "volt_reference",
+        "feedback_type_actual",
+        "feedback_resolution",
+        "feedback_init_position",
+        "feedback_actual_position",
+        "encoder_type",
+    ];
+    let dir = scratch("many");
+    let port = mosquitto::free_port();
+    let _mosquitto = broker(&dir, port);
+    let (_sim, addr) = simulator();
+    let (_sub, lines) = subscribe(port);
+    let file = config(&dir, port, &addr);
+    let text = std::fs::read_to_string(&file).unwrap();
+    let listed: Vec<String> = many.iter().map(|p| format!("\"{p}\"")).collect();
+    let parameters = format!("parameters = [{}]", listed.join(", "));
+    let from = "parameters = [\"bus_dc_link\", \"speed_ramp_up\", \"operation_mode\"]";
+    std::fs::write(&file, replaced(&text, from, &parameters)).unwrap();
+    let _gateway = start_gateway(&file);
+    for parameter in many {
+        let topic = format!("drivegen/lafert/{parameter}");
+        let value = json(&expect(&lines, &topic, |_| true));
+        assert!(value.get("raw").is_some(), "{topic}: {value}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

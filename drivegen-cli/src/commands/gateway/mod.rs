@@ -49,6 +49,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
                 topics: mqtt::Topics::new(&gateway.mqtt.topic_prefix, &drive.name),
                 writable: drive.writable_names(gateway.read_only),
                 publish_every_poll: drive.publish_every_poll,
+                parameters: drive.parameters.len(),
                 latest,
                 requests,
                 stop: stopped.clone(),

@@ -70,6 +70,8 @@ pub struct DriveTask {
     pub writable: BTreeSet<String>,
     /// Publish every poll rather than changes only.
     pub publish_every_poll: bool,
+    /// How many parameters it publishes.
+    pub parameters: usize,
     /// The poller's newest report.
     pub latest: watch::Receiver<Report>,
     /// The poller's set requests.
@@ -153,8 +155,9 @@ type Retained = (String, Vec<u8>);
 
 impl DriveTask {
     async fn run(mut self, options: MqttOptions) {
-        // Room for a whole republish: each value, the status and the error.
-        let capacity = 2 * self.latest.borrow().len() + 16;
+        // Room for a whole republish (each value, the status and the error) with room to spare:
+        // a republish that did not fit would leave unchanged values unpublished until they change.
+        let capacity = 2 * self.parameters + 16;
         let (client, mut events) = AsyncClient::new(options, capacity);
         let mut published = Published::default();
         let mut connected = false;
@@ -239,16 +242,6 @@ impl DriveTask {
                     .await;
             }
         });
-    }
-}
-
-impl Report {
-    /// How many values it carries.
-    fn len(&self) -> usize {
-        match self {
-            Report::Values(values) => values.len(),
-            _ => 0,
-        }
     }
 }
 
