@@ -3,6 +3,7 @@
 //! Real clients (drivebus included) also validate more and frame more kinds of request; the
 //! target is to stay within 1.2× of this.
 
+pub mod flags;
 pub mod latency;
 pub mod mbap_sim;
 pub mod process;

@@ -15,6 +15,7 @@ use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
+use benchmarks::flags::Flags;
 use benchmarks::latency::Histogram;
 use benchmarks::process::{load_average, process_cpu, resident_bytes, Simulator};
 use drivebus::modbus::async_client::{AsyncClientConfig, AsyncTcpClient};
@@ -33,30 +34,16 @@ struct Settings {
 }
 
 fn settings() -> Result<Settings, String> {
-    let mut s = Settings {
-        drives: 1000,
-        seconds: 600,
-        period: Duration::from_millis(100),
-        sample: Duration::from_secs(10),
-        workers: 0,
+    let mut flags = Flags::from_env()?;
+    let settings = Settings {
+        drives: flags.number("--drives", 1000)? as usize,
+        seconds: flags.number("--seconds", 600)?,
+        period: Duration::from_millis(flags.number("--period-ms", 100)?),
+        sample: Duration::from_secs(flags.number("--sample-s", 10)?.max(1)),
+        workers: flags.number("--workers", 0)? as usize,
     };
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    for pair in args.chunks(2) {
-        let value = || -> Result<u64, String> {
-            pair.get(1)
-                .and_then(|v| v.parse().ok())
-                .ok_or_else(|| format!("{} needs a number", pair[0]))
-        };
-        match pair[0].as_str() {
-            "--drives" => s.drives = value()? as usize,
-            "--seconds" => s.seconds = value()?,
-            "--period-ms" => s.period = Duration::from_millis(value()?),
-            "--sample-s" => s.sample = Duration::from_secs(value()?.max(1)),
-            "--workers" => s.workers = value()? as usize,
-            other => return Err(format!("unknown argument {other}")),
-        }
-    }
-    Ok(s)
+    flags.finish()?;
+    Ok(settings)
 }
 
 /// What the drives' tasks count, taken by the sampler every `sample`.

@@ -23,6 +23,7 @@ use std::task::{Context, Poll, Waker};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
+use benchmarks::flags::Flags;
 use benchmarks::process::load_average;
 use drivebus::asynch::TokioTimer;
 use drivebus::canopen::can::async_in_process::{AsyncInProcessBus, AsyncInProcessEndpoint};
@@ -263,15 +264,6 @@ fn scan_all(timeout: Duration) -> (Duration, usize) {
     (start.elapsed(), found.len())
 }
 
-fn arg(name: &str, default: u32) -> u32 {
-    let args: Vec<String> = std::env::args().collect();
-    args.iter()
-        .position(|a| a == name)
-        .and_then(|i| args.get(i + 1))
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(default)
-}
-
 fn median(mut values: Vec<f64>) -> f64 {
     values.sort_by(f64::total_cmp);
     values[values.len() / 2]
@@ -279,10 +271,12 @@ fn median(mut values: Vec<f64>) -> f64 {
 
 type Variant = (&'static str, fn(u8, u32) -> Duration);
 
-fn main() {
-    let rounds = arg("--rounds", 7);
-    let sweeps = arg("--sweeps", 100);
-    LATENCY_US.store(u64::from(arg("--latency-us", 1000)), Ordering::Relaxed);
+fn main() -> Result<(), String> {
+    let mut flags = Flags::from_env()?;
+    let rounds = u32::try_from(flags.number("--rounds", 7)?).map_err(|e| e.to_string())?;
+    let sweeps = u32::try_from(flags.number("--sweeps", 100)?).map_err(|e| e.to_string())?;
+    LATENCY_US.store(flags.number("--latency-us", 1000)?, Ordering::Relaxed);
+    flags.finish()?;
     let variants: [Variant; 3] = [
         ("today: one BlockingSdo, node after node", today),
         ("Network (blocking, a thread per node)", blocking),
@@ -330,4 +324,5 @@ fn main() {
         );
     }
     println!("\nload average after: {}", load_average());
+    Ok(())
 }

@@ -14,6 +14,7 @@ use std::error::Error;
 use std::f64::consts::PI;
 use std::time::Duration;
 
+use benchmarks::flags::Flags;
 use benchmarks::process::load_average;
 use drivebus::canopen::can::in_process::InProcessBus;
 use drivebus::canopen::network::Network;
@@ -26,18 +27,11 @@ use drivesim::canopen::{InProcessNode, NodeConfig};
 
 const AXIS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/csp_axis");
 
-/// The value after `flag` on the command line, or `default`.
-fn arg(flag: &str, default: u64) -> Result<u64, Box<dyn Error>> {
-    let args: Vec<String> = std::env::args().collect();
-    match args.iter().position(|a| a == flag) {
-        Some(i) => Ok(args.get(i + 1).ok_or("a value is missing")?.parse()?),
-        None => Ok(default),
-    }
-}
-
 fn main() -> Result<(), Box<dyn Error>> {
-    let seconds = arg("--seconds", 20)?;
-    let period = Duration::from_micros(arg("--period-us", 1_000)?);
+    let mut flags = Flags::from_env()?;
+    let seconds = flags.number("--seconds", 20)?;
+    let period = Duration::from_micros(flags.number("--period-us", 1_000)?);
+    flags.finish()?;
     let bus = InProcessBus::new();
     let links = [NodeId(1), NodeId(2)].map(|node| AxisLink {
         node,

@@ -19,6 +19,7 @@ use std::process::{Command, Stdio};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant, SystemTime};
 
+use benchmarks::flags::Flags;
 use benchmarks::latency::Histogram;
 use benchmarks::process::{load_average, other_process_cpu, other_resident_bytes, Simulator};
 use peer_support::{mosquitto, Process};
@@ -46,28 +47,15 @@ struct Settings {
 }
 
 fn settings() -> Result<Settings, String> {
-    let mut s = Settings {
-        drives: 100,
-        seconds: 600,
-        period_ms: 100,
-        sample: Duration::from_secs(10),
+    let mut flags = Flags::from_env()?;
+    let settings = Settings {
+        drives: flags.number("--drives", 100)? as usize,
+        seconds: flags.number("--seconds", 600)?,
+        period_ms: flags.number("--period-ms", 100)?.max(1),
+        sample: Duration::from_secs(flags.number("--sample-s", 10)?.max(1)),
     };
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    for pair in args.chunks(2) {
-        let value = || -> Result<u64, String> {
-            pair.get(1)
-                .and_then(|v| v.parse().ok())
-                .ok_or_else(|| format!("{} needs a number", pair[0]))
-        };
-        match pair[0].as_str() {
-            "--drives" => s.drives = value()? as usize,
-            "--seconds" => s.seconds = value()?,
-            "--period-ms" => s.period_ms = value()?.max(1),
-            "--sample-s" => s.sample = Duration::from_secs(value()?.max(1)),
-            other => return Err(format!("unknown argument {other}")),
-        }
-    }
-    Ok(s)
+    flags.finish()?;
+    Ok(settings)
 }
 
 fn gateway_file(dir: &Path, port: u16, settings: &Settings, addrs: &[String]) -> PathBuf {
