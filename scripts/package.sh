@@ -22,6 +22,9 @@ for package in json.load(sys.stdin)["packages"]:
 # source on every run: so earlier runs' builds of the published crates are removed there first,
 # and so are the copies cargo unpacked from earlier archives under $CARGO_HOME/registry/src/.
 export CARGO_TARGET_DIR=target/package-build
+# Each archive is its own workspace there, without this workspace's profile: without debug info
+# its dependencies build and link faster, and the check only needs them to build.
+export CARGO_PROFILE_DEV_DEBUG=false
 published=$(python3 -c '
 import json, sys
 for package in json.load(sys.stdin)["packages"]:
