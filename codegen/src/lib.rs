@@ -25,6 +25,7 @@ pub mod diagnostic;
 pub mod diff;
 pub mod eds;
 pub mod emit;
+pub mod file_error;
 pub mod gateway_file;
 pub mod ir;
 pub mod load;

@@ -2,14 +2,10 @@
 
 use std::fmt;
 
-/// A configuration file that cannot be read.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ConfigFileError {
-    /// The line (1-based) the error is on, when it is on one.
-    pub line: Option<u32>,
-    /// What is wrong.
-    pub kind: ConfigFileErrorKind,
-}
+use crate::file_error::{unsupported_format, FileError, UnreadableKind};
+
+/// A configuration file that cannot be read, with the line it points at.
+pub type ConfigFileError = FileError<ConfigFileErrorKind>;
 
 /// What is wrong with a configuration file.
 #[derive(Debug, Clone, PartialEq)]
@@ -31,33 +27,27 @@ pub enum ConfigFileErrorKind {
     Duplicate(String),
 }
 
-impl ConfigFileError {
-    /// What is wrong, without the line (for messages that put the line elsewhere).
-    pub fn kind_text(&self) -> String {
-        Self {
-            line: None,
-            kind: self.kind.clone(),
-        }
-        .to_string()
+impl UnreadableKind for ConfigFileErrorKind {
+    fn syntax(why: String) -> Self {
+        Self::Syntax(why)
     }
 
-    pub(super) fn at(line: Option<u32>, kind: ConfigFileErrorKind) -> Self {
-        Self { line, kind }
+    fn missing_format() -> Self {
+        Self::Missing("format")
+    }
+
+    fn unsupported_format(found: i64) -> Self {
+        Self::UnsupportedFormat(found)
     }
 }
 
-impl fmt::Display for ConfigFileError {
+impl fmt::Display for ConfigFileErrorKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if let Some(line) = self.line {
-            write!(f, "line {line}: ")?;
-        }
-        match &self.kind {
+        match self {
             ConfigFileErrorKind::Syntax(why) => write!(f, "not a configuration file: {why}"),
-            ConfigFileErrorKind::UnsupportedFormat(found) => write!(
-                f,
-                "format {found} is not read by this drivegen (it reads format {})",
-                super::FORMAT_VERSION
-            ),
+            ConfigFileErrorKind::UnsupportedFormat(found) => {
+                unsupported_format(f, *found, super::FORMAT_VERSION)
+            }
             ConfigFileErrorKind::Missing(what) => {
                 write!(f, "`{what}` is missing (is the file cut short?)")
             }
@@ -68,5 +58,3 @@ impl fmt::Display for ConfigFileError {
         }
     }
 }
-
-impl std::error::Error for ConfigFileError {}

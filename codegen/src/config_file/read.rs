@@ -11,7 +11,7 @@ use super::{
     ConfigFile, DescriptionRef, DriveRecord, IdentityEntry, SavedParameter, SavedRaw, Unread,
     FORMAT_VERSION,
 };
-use crate::toml_file::{self, in_file_order, Unreadable};
+use crate::toml_file::{self, in_file_order};
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -47,13 +47,7 @@ struct RawDrive {
 /// of another format version or with an entry of the wrong shape is refused with the line.
 pub fn parse(text: &str) -> Result<ConfigFile, ConfigFileError> {
     let raw: RawFile = toml_file::read(text, FORMAT_VERSION, |raw: &RawFile| raw.format.as_ref())
-        .map_err(|unreadable| match unreadable {
-        Unreadable::Syntax(line, why) => ConfigFileError::at(line, Kind::Syntax(why)),
-        Unreadable::MissingFormat => ConfigFileError::at(None, Kind::Missing("format")),
-        Unreadable::UnsupportedFormat(line, found) => {
-            ConfigFileError::at(Some(line), Kind::UnsupportedFormat(found))
-        }
-    })?;
+        .map_err(ConfigFileError::unreadable)?;
     let description = raw
         .description
         .ok_or(ConfigFileError::at(None, Kind::Missing("[description]")))?;

@@ -2,14 +2,10 @@
 
 use std::fmt;
 
-/// A network file that cannot be read.
-#[derive(Debug, Clone, PartialEq)]
-pub struct NetworkFileError {
-    /// The line (1-based) the error is on, when it is on one.
-    pub line: Option<u32>,
-    /// What is wrong.
-    pub kind: NetworkFileErrorKind,
-}
+use crate::file_error::{unsupported_format, FileError, UnreadableKind};
+
+/// A network file that cannot be read, with the line it points at.
+pub type NetworkFileError = FileError<NetworkFileErrorKind>;
 
 /// What is wrong with a network file.
 #[derive(Debug, Clone, PartialEq)]
@@ -93,24 +89,27 @@ pub enum NetworkFileErrorKind {
     },
 }
 
-impl NetworkFileError {
-    pub(super) fn at(line: Option<u32>, kind: NetworkFileErrorKind) -> Self {
-        Self { line, kind }
+impl UnreadableKind for NetworkFileErrorKind {
+    fn syntax(why: String) -> Self {
+        Self::Syntax(why)
+    }
+
+    fn missing_format() -> Self {
+        Self::MissingFormat
+    }
+
+    fn unsupported_format(found: i64) -> Self {
+        Self::UnsupportedFormat(found)
     }
 }
 
-impl fmt::Display for NetworkFileError {
+impl fmt::Display for NetworkFileErrorKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if let Some(line) = self.line {
-            write!(f, "line {line}: ")?;
-        }
-        match &self.kind {
+        match self {
             NetworkFileErrorKind::Syntax(why) => write!(f, "not a network file: {why}"),
-            NetworkFileErrorKind::UnsupportedFormat(found) => write!(
-                f,
-                "format {found} is not read by this drivegen (it reads format {})",
-                super::FORMAT_VERSION
-            ),
+            NetworkFileErrorKind::UnsupportedFormat(found) => {
+                unsupported_format(f, *found, super::FORMAT_VERSION)
+            }
             NetworkFileErrorKind::MissingFormat => f.write_str("`format = 1` is missing"),
             NetworkFileErrorKind::NoNodes => f.write_str("no [[node]]: nothing to boot"),
             NetworkFileErrorKind::NodeIdOutOfRange(id) => {
@@ -166,5 +165,3 @@ impl fmt::Display for NetworkFileError {
         }
     }
 }
-
-impl std::error::Error for NetworkFileError {}

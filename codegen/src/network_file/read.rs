@@ -11,7 +11,7 @@ use super::{
     BootParameter, ExpectedIdentity, MappedName, NetworkFile, NodeEntry, PdoEntry, FORMAT_VERSION,
 };
 use crate::ir::Direction;
-use crate::toml_file::{self, in_file_order, line_of, Unreadable};
+use crate::toml_file::{self, in_file_order, line_of};
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -60,13 +60,7 @@ struct RawIdentity {
 /// node id outside 1-127 or twice, or with an entry of the wrong shape is refused with the line.
 pub fn parse(text: &str) -> Result<NetworkFile, NetworkFileError> {
     let raw: RawFile = toml_file::read(text, FORMAT_VERSION, |raw: &RawFile| raw.format.as_ref())
-        .map_err(|unreadable| match unreadable {
-        Unreadable::Syntax(line, why) => NetworkFileError::at(line, Kind::Syntax(why)),
-        Unreadable::MissingFormat => NetworkFileError::at(None, Kind::MissingFormat),
-        Unreadable::UnsupportedFormat(line, found) => {
-            NetworkFileError::at(Some(line), Kind::UnsupportedFormat(found))
-        }
-    })?;
+        .map_err(NetworkFileError::unreadable)?;
     if raw.node.is_empty() {
         return Err(NetworkFileError::at(None, Kind::NoNodes));
     }
