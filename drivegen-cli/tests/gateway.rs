@@ -673,3 +673,205 @@ fn a_drive_with_many_parameters_has_every_value_published() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A gateway file of `drives` (each `(name, description, bus, extra lines)`) to the broker at
+/// `port`, every drive polled every 100 ms.
+fn drives_config(dir: &Path, port: u16, drives: &[(&str, &Path, &str, &str)]) -> PathBuf {
+    let mut text = format!("format = 1\n\n[mqtt]\nport = {port}\n");
+    for (name, description, bus, extra) in drives {
+        text += &format!(
+            "\n[[drive]]\nname = \"{name}\"\ndescription = \"{}\"\nbus = {{ {bus} }}\n\
+             interval_ms = 100\n{extra}\n",
+            description.display()
+        );
+    }
+    let file = dir.join("gateway.toml");
+    std::fs::write(&file, text).unwrap();
+    file
+}
+
+/// Waits (within [`WAIT`]) for `drive`'s `parameter` to be published `times` times more.
+fn published_again(lines: &Lines, drive: &str, parameter: &str, times: usize) {
+    let topic = format!("drivegen/{drive}/{parameter}");
+    for _ in 0..times {
+        expect(lines, &topic, |_| true);
+    }
+}
+
+/// Waits for `drive` to go offline with an error that names `why`.
+fn offline(lines: &Lines, drive: &str, why: &str) {
+    expect(lines, &format!("drivegen/{drive}/status"), |p| {
+        p == "offline"
+    });
+    let error = json(&expect(lines, &format!("drivegen/{drive}/error"), |_| true));
+    assert!(error["error"].as_str().unwrap().contains(why), "{error}");
+}
+
+/// Sets `parameter` (`drive/parameter`) to `value` (a number in its unit, here its raw value
+/// too) through the broker, and waits for the done result and the value published.
+fn written(port: u16, lines: &Lines, parameter: &str, value: i64) {
+    let set = format!("drivegen/{parameter}/set");
+    publish(port, &set, &format!("{{\"value\": {value}}}"));
+    let done = json(&expect(lines, &format!("{set}/result"), |_| true));
+    assert_eq!(done["ok"], true, "{done}");
+    expect(lines, &format!("drivegen/{parameter}"), |p| {
+        json(p)["raw"] == value
+    });
+}
+
+#[test]
+fn modbus_units_on_one_rtu_line_share_it_and_a_silent_one_goes_offline_alone() {
+    let dir = scratch("rtu-line");
+    let port = mosquitto::free_port();
+    let _mosquitto = broker(&dir, port);
+    let pty = peer_support::pty_pair();
+    let _sim = spawned(
+        Command::new(BIN)
+            .arg("sim")
+            .arg(lafert())
+            .arg("--serial")
+            .arg(&pty.server)
+            .args(["--unit", "3", "--unit", "7"])
+            .args(["--set", "3:bus_dc_link=4950", "--set", "7:bus_dc_link=4100"])
+            .stdout(Stdio::null()),
+    );
+    let (_sub, lines) = subscribe(port);
+    let line = format!("serial = \"{}\", timeout_ms = 200", pty.client.display());
+    let every_poll = "parameters = [\"bus_dc_link\"]\npublish_every_poll = true";
+    let file = drives_config(
+        &dir,
+        port,
+        &[
+            ("left", &lafert(), &format!("{line}, unit = 3"), every_poll),
+            (
+                "right",
+                &lafert(),
+                &format!("{line}, unit = 7"),
+                "parameters = [\"bus_dc_link\", \"speed_ramp_up\"]\nwritable = [\"speed_ramp_up\"]",
+            ),
+            // No drive answers at unit 9: it goes offline, the others keep being served.
+            (
+                "absent",
+                &lafert(),
+                &format!("{line}, unit = 9"),
+                "parameters = [\"bus_dc_link\"]",
+            ),
+        ],
+    );
+    let _gateway = start_gateway(&file);
+
+    // Each unit answers for itself through the one line.
+    let left = json(&expect(&lines, "drivegen/left/bus_dc_link", |_| true));
+    assert_eq!(left["value"], 49.5, "{left}");
+    let right = json(&expect(&lines, "drivegen/right/bus_dc_link", |_| true));
+    assert_eq!(right["value"], 41.0, "{right}");
+    expect(&lines, "drivegen/left/status", |p| p == "online");
+    expect(&lines, "drivegen/right/status", |p| p == "online");
+    offline(&lines, "absent", "unit 9");
+    // The silent unit costs its timeout at each of its polls; the others are still polled.
+    published_again(&lines, "left", "bus_dc_link", 5);
+
+    // A write goes to its unit, between polls.
+    written(port, &lines, "right/speed_ramp_up", 1500);
+    assert!(
+        !lines
+            .unmatched
+            .borrow()
+            .iter()
+            .any(|l| l.starts_with("drivegen/left/status offline")
+                || l.starts_with("drivegen/right/status offline")),
+        "a drive that answers went offline: {:?}",
+        lines.unmatched.borrow()
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn canopen_nodes_on_one_bus_share_one_connection_and_a_silent_one_goes_offline_alone() {
+    let dir = scratch("can-bus");
+    let port = mosquitto::free_port();
+    let _mosquitto = broker(&dir, port);
+    let (_sub, lines) = subscribe(port);
+    let swd = Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/ezwheel-swd");
+    // Each connection starts the simulated nodes' process, which notes its start: one
+    // connection, one start.
+    let starts = dir.join("starts");
+    let relay = dir.join("nodes.sh");
+    std::fs::write(
+        &relay,
+        format!(
+            "echo started >> {}\nexec {BIN} sim {} --can candump:stdio --node-id 4 --node-id 5 --set 4:vendor_id=0x1234\n",
+            starts.display(),
+            swd.display()
+        ),
+    )
+    .unwrap();
+    let can = format!("candump:exec:sh {}", relay.display());
+    let bus = |node: u8| format!("can = \"{can}\", node_id = {node}, timeout_ms = 1000");
+    let file = drives_config(
+        &dir,
+        port,
+        &[
+            (
+                "four",
+                &swd,
+                &bus(4),
+                "parameters = [\"vendor_id\"]\npublish_every_poll = true",
+            ),
+            (
+                "five",
+                &swd,
+                &bus(5),
+                "parameters = [\"vendor_id\", \"rpdo1_event_timer\"]\nwritable = [\"rpdo1_event_timer\"]",
+            ),
+            ("six", &swd, &bus(6), "parameters = [\"vendor_id\"]"),
+        ],
+    );
+    let _gateway = start_gateway(&file);
+
+    // Node 4 is not the drive its description covers (another vendor id): read all the same.
+    let four = json(&expect(&lines, "drivegen/four/vendor_id", |_| true));
+    assert_eq!(four["raw"], 0x1234, "{four}");
+    let five = json(&expect(&lines, "drivegen/five/vendor_id", |_| true));
+    assert_ne!(five["raw"], 0x1234, "each node answers for itself: {five}");
+    offline(&lines, "six", "node 6");
+    published_again(&lines, "four", "vendor_id", 3);
+
+    written(port, &lines, "five/rpdo1_event_timer", 250);
+    published_again(&lines, "four", "vendor_id", 3);
+    let started = std::fs::read_to_string(&starts).unwrap();
+    assert_eq!(started.lines().count(), 1, "one connection: {started}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn drives_sharing_a_line_need_their_own_ids_and_the_same_settings() {
+    let dir = scratch("bad-line");
+    let pty = "/dev/nonexistent-line";
+    let unit = |u: u8, baud: u32| format!("serial = \"{pty}\", unit = {u}, baud = {baud}");
+    let parameters = "parameters = [\"bus_dc_link\"]";
+    let port = mosquitto::free_port();
+    // Drive `b` after drive `a` on one line: unit, baud, and what the refusal says.
+    let refused = |b: (u8, u32), why: &str| {
+        let drives = [
+            ("a", &*lafert(), &*unit(3, 19200), parameters),
+            ("b", &*lafert(), &*unit(b.0, b.1), parameters),
+        ];
+        let message = refusal(&drives_config(&dir, port, &drives));
+        assert!(message.contains(why), "{message}");
+    };
+    refused(
+        (3, 19200),
+        "gateway.toml:13: drive `b`: bus: unit 3 on this line is drive `a`'s",
+    );
+    refused((4, 9600), "drive `b`: bus: shares its line with drive `a`");
+    let kinco = Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/kinco-fd");
+    let rs232 = |station: u8| format!("kinco_rs232 = \"{pty}\", node_id = {station}");
+    let stations = [
+        ("a", &*kinco, &*rs232(1), "parameters = [\"statusword\"]"),
+        ("b", &*kinco, &*rs232(2), "parameters = [\"statusword\"]"),
+    ];
+    let message = refusal(&drives_config(&dir, port, &stations));
+    assert!(message.contains("one drive a line"), "{message}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

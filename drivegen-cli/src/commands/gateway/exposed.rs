@@ -10,6 +10,7 @@ use clap::Parser;
 use drivegen::gateway_file::{self, BusOption, DriveEntry, MqttEntry, Named};
 use drivegen::ir::{Device, Parameter};
 
+use super::lines::Line;
 use crate::connect::BusArgs;
 use crate::error::CliError;
 
@@ -23,6 +24,8 @@ pub struct Gateway {
     pub read_only: bool,
     /// The drives, in the file's order.
     pub drives: Vec<Drive>,
+    /// The connections the drives go through: drives on one serial line or CAN bus share one.
+    pub lines: Vec<Line>,
 }
 
 /// TLS to the broker, its PEM files read at load.
@@ -50,6 +53,8 @@ pub struct Drive {
     pub parameters: Vec<String>,
     /// The names of the parameters clients may write, each writable in the description.
     pub writable: Vec<String>,
+    /// The line of its `[[drive]]` in the file (1-based), for refusals.
+    pub line: u32,
 }
 
 /// The bus options alone, read by the command line's own parser.
@@ -81,7 +86,9 @@ impl Gateway {
                 Drive::resolve(entry, folder, &mut loaded)
                     .map_err(|(line, why)| CliError::Invalid(format!("{}: {why}", at(Some(line)))))
             })
-            .collect::<Result<_, _>>()?;
+            .collect::<Result<Vec<_>, _>>()?;
+        let lines = super::lines::lines(&drives)
+            .map_err(|(line, why)| CliError::Invalid(format!("{}: {why}", at(Some(line)))))?;
         let read = |name: &str| {
             let path = folder.join(name);
             std::fs::read(&path).map_err(|e| {
@@ -103,6 +110,7 @@ impl Gateway {
             tls,
             read_only: file.read_only,
             drives,
+            lines,
         })
     }
 
@@ -119,7 +127,8 @@ impl Gateway {
     }
 }
 
-type Refusal = (u32, String);
+/// Why the file is refused, and the line to point at.
+pub type Refusal = (u32, String);
 
 /// The descriptions loaded so far, by path: each loaded and checked once.
 type Descriptions = BTreeMap<PathBuf, Arc<Device>>;
@@ -151,6 +160,7 @@ impl Drive {
             publish_every_poll: entry.publish_every_poll,
             parameters,
             writable,
+            line: entry.line,
         })
     }
 
