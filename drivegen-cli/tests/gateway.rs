@@ -21,6 +21,10 @@ fn lafert() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/lafert-smartris")
 }
 
+fn swd() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/ezwheel-swd")
+}
+
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("drivegen-gateway-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -674,14 +678,24 @@ fn a_drive_with_many_parameters_has_every_value_published() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// `dir` and a broker (anonymous clients allowed) on a free port in it.
+fn broker_in(dir: &Path) -> (PathBuf, u16, Process) {
+    let port = mosquitto::free_port();
+    (dir.to_owned(), port, broker(dir, port))
+}
+
 /// A gateway file of `drives` (each `(name, description, bus, extra lines)`) to the broker at
-/// `port`, every drive polled every 100 ms.
+/// `port`, every drive polled every 100 ms unless its extra lines say otherwise.
 fn drives_config(dir: &Path, port: u16, drives: &[(&str, &Path, &str, &str)]) -> PathBuf {
     let mut text = format!("format = 1\n\n[mqtt]\nport = {port}\n");
     for (name, description, bus, extra) in drives {
+        let interval = match extra.contains("interval_ms") {
+            true => "",
+            false => "interval_ms = 100\n",
+        };
         text += &format!(
             "\n[[drive]]\nname = \"{name}\"\ndescription = \"{}\"\nbus = {{ {bus} }}\n\
-             interval_ms = 100\n{extra}\n",
+             {interval}{extra}\n",
             description.display()
         );
     }
@@ -721,9 +735,7 @@ fn written(port: u16, lines: &Lines, parameter: &str, value: i64) {
 
 #[test]
 fn modbus_units_on_one_rtu_line_share_it_and_a_silent_one_goes_offline_alone() {
-    let dir = scratch("rtu-line");
-    let port = mosquitto::free_port();
-    let _mosquitto = broker(&dir, port);
+    let (dir, port, _mosquitto) = broker_in(&scratch("rtu-line"));
     let pty = peer_support::pty_pair();
     let _sim = spawned(
         Command::new(BIN)
@@ -788,11 +800,8 @@ fn modbus_units_on_one_rtu_line_share_it_and_a_silent_one_goes_offline_alone() {
 
 #[test]
 fn canopen_nodes_on_one_bus_share_one_connection_and_a_silent_one_goes_offline_alone() {
-    let dir = scratch("can-bus");
-    let port = mosquitto::free_port();
-    let _mosquitto = broker(&dir, port);
+    let (dir, port, _mosquitto) = broker_in(&scratch("can-bus"));
     let (_sub, lines) = subscribe(port);
-    let swd = Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/ezwheel-swd");
     // Each connection starts the simulated nodes' process, which notes its start: one
     // connection, one start.
     let starts = dir.join("starts");
@@ -802,29 +811,36 @@ fn canopen_nodes_on_one_bus_share_one_connection_and_a_silent_one_goes_offline_a
         format!(
             "echo started >> {}\nexec {BIN} sim {} --can candump:stdio --node-id 4 --node-id 5 --set 4:vendor_id=0x1234\n",
             starts.display(),
-            swd.display()
+            swd().display()
         ),
     )
     .unwrap();
     let can = format!("candump:exec:sh {}", relay.display());
-    let bus = |node: u8| format!("can = \"{can}\", node_id = {node}, timeout_ms = 1000");
+    // A timeout long enough for the relay's first answer: it loads the description first.
+    let bus = |node: u8| format!("can = \"{can}\", node_id = {node}, timeout_ms = 3000");
     let file = drives_config(
         &dir,
         port,
         &[
             (
                 "four",
-                &swd,
+                &swd(),
                 &bus(4),
                 "parameters = [\"vendor_id\"]\npublish_every_poll = true",
             ),
             (
                 "five",
-                &swd,
+                &swd(),
                 &bus(5),
                 "parameters = [\"vendor_id\", \"rpdo1_event_timer\"]\nwritable = [\"rpdo1_event_timer\"]",
             ),
-            ("six", &swd, &bus(6), "parameters = [\"vendor_id\"]"),
+            // Silent: each of its polls costs the timeout, so it is polled seldom.
+            (
+                "six",
+                &swd(),
+                &bus(6),
+                "parameters = [\"vendor_id\"]\ninterval_ms = 10000",
+            ),
         ],
     );
     let _gateway = start_gateway(&file);
@@ -873,5 +889,125 @@ fn drives_sharing_a_line_need_their_own_ids_and_the_same_settings() {
     ];
     let message = refusal(&drives_config(&dir, port, &stations));
     assert!(message.contains("one drive a line"), "{message}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The SWD's node id out of the box.
+const SWD_NODE: u8 = 0x10;
+
+/// A simulated SWD at [`SWD_NODE`] behind a `candump:exec:` relay that appends every frame the
+/// gateway sends to `sent`.
+fn recorded_swd(dir: &Path, name: &str, sent: &Path) -> String {
+    let relay = dir.join(format!("{name}.sh"));
+    std::fs::write(
+        &relay,
+        format!(
+            "tee -a {} | exec {BIN} sim {} --can candump:stdio --node-id {SWD_NODE}\n",
+            sent.display(),
+            swd().display()
+        ),
+    )
+    .unwrap();
+    format!("candump:exec:sh {}", relay.display())
+}
+
+/// Waits (within [`WAIT`]) until `done`.
+fn until(mut done: impl FnMut() -> bool, what: &str) {
+    let started = Instant::now();
+    while !done() {
+        assert!(started.elapsed() < WAIT, "not within {WAIT:?}: {what}");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+/// How many frames with CAN identifier `id` are in the candump lines of `sent`.
+fn frames_to(sent: &Path, id: u16) -> usize {
+    let prefix = format!("{id:03X}#");
+    let text = std::fs::read_to_string(sent).unwrap_or_default();
+    let ids = text.lines().filter_map(|l| l.split_whitespace().last());
+    ids.filter(|frame| frame.starts_with(&prefix)).count()
+}
+
+#[test]
+fn a_canopen_drive_by_pdo_has_its_values_without_sdo_and_its_tpdo_restored_at_the_stop() {
+    let (dir, port, _mosquitto) = broker_in(&scratch("pdo"));
+    let (_sub, lines) = subscribe(port);
+    let (sent, mixed_sent) = (dir.join("pdo.log"), dir.join("mixed.log"));
+    let bus = |can: String| format!("can = \"{can}\", node_id = {SWD_NODE}, timeout_ms = 3000");
+    let by_pdo = "pdo = true\npdo_start = true\npublish_every_poll = true";
+    let file = drives_config(
+        &dir,
+        port,
+        &[
+            (
+                "pdo",
+                &swd(),
+                &bus(recorded_swd(&dir, "pdo", &sent)),
+                &format!("parameters = [\"position_actual_value\", \"error_register\"]\n{by_pdo}"),
+            ),
+            // vendor_id (1018h:01) goes in no PDO: polled by SDO, beside the TPDO's value.
+            (
+                "mixed",
+                &swd(),
+                &bus(recorded_swd(&dir, "mixed", &mixed_sent)),
+                &format!("parameters = [\"vendor_id\", \"error_register\"]\n{by_pdo}"),
+            ),
+        ],
+    );
+    let log = dir.join("gateway.log");
+    let mut gateway = spawned(
+        Command::new(BIN)
+            .arg("gateway")
+            .arg(&file)
+            .stderr(std::fs::File::create(&log).unwrap()),
+    );
+
+    let position = json(&expect(
+        &lines,
+        "drivegen/pdo/position_actual_value",
+        |_| true,
+    ));
+    assert!(position["raw"].is_number(), "{position}");
+    expect(&lines, "drivegen/pdo/status", |p| p == "online");
+    expect(&lines, "drivegen/mixed/vendor_id", |_| true);
+    expect(&lines, "drivegen/mixed/error_register", |_| true);
+    // Values keep coming by TPDO at every SYNC, with no SDO request to the node meanwhile.
+    let sdo = 0x600 + u16::from(SWD_NODE);
+    let (syncs, uploads) = (frames_to(&sent, 0x080), frames_to(&sent, sdo));
+    let mixed_uploads = frames_to(&mixed_sent, sdo);
+    until(|| frames_to(&sent, 0x080) >= syncs + 10, "ten SYNCs more");
+    published_again(&lines, "pdo", "position_actual_value", 10);
+    assert_eq!(
+        frames_to(&sent, sdo),
+        uploads,
+        "no SDO request while running"
+    );
+    // The drive with a parameter polled by SDO besides: its requests go on.
+    until(
+        || frames_to(&mixed_sent, sdo) > mixed_uploads,
+        "vendor_id polled",
+    );
+
+    // SIGTERM: the TPDO configuration written back (SDO downloads) and the node put back in
+    // Pre-Operational before the gateway exits.
+    let pid = gateway.child_mut().id().to_string();
+    let term = Command::new("kill").args(["-TERM", &pid]).status().unwrap();
+    assert!(term.success());
+    until(
+        || gateway.child_mut().try_wait().unwrap().is_some(),
+        "the gateway stops",
+    );
+    let logged = std::fs::read_to_string(&log).unwrap();
+    assert!(
+        frames_to(&sent, sdo) > uploads,
+        "the TPDO restored: {logged}"
+    );
+    let pre_operational = format!("000#80{SWD_NODE:02X}");
+    let text = std::fs::read_to_string(&sent).unwrap();
+    assert!(text.contains(&pre_operational), "{text}");
+    assert!(
+        logged.contains("vendor_id") && logged.contains("polled by SDO, not by PDO"),
+        "{logged}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -53,6 +53,10 @@ pub struct Drive {
     pub parameters: Vec<String>,
     /// The names of the parameters clients may write, each writable in the description.
     pub writable: Vec<String>,
+    /// CANopen: its values by TPDO where they can be (`pdo = true`).
+    pub pdo: bool,
+    /// With `pdo`: NMT Start before, Enter Pre-Operational after.
+    pub pdo_start: bool,
     /// The line of its `[[drive]]` in the file (1-based), for refusals.
     pub line: u32,
 }
@@ -152,14 +156,21 @@ impl Drive {
         let writable = names(&device, &entry.writable, |p| {
             (!writable(p)).then(|| format!("`{}` is read-only in its description", p.name))
         })?;
+        let bus = bus_args(&entry.bus, entry.line)?;
+        if entry.pdo && bus.can.is_none() {
+            let why = "pdo: PDOs are CANopen's; name a `can` bus or leave `pdo` out";
+            return Err((entry.line, format!("drive `{}`: {why}", entry.name)));
+        }
         Ok(Self {
             name: entry.name.clone(),
-            bus: bus_args(&entry.bus, entry.line)?,
+            bus,
             device,
             interval_ms: entry.interval_ms,
             publish_every_poll: entry.publish_every_poll,
             parameters,
             writable,
+            pdo: entry.pdo,
+            pdo_start: entry.pdo_start,
             line: entry.line,
         })
     }

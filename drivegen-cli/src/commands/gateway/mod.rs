@@ -12,6 +12,7 @@ mod exposed;
 mod lines;
 mod mqtt;
 mod payload;
+mod pdo;
 mod poller;
 
 use std::path::PathBuf;

@@ -13,6 +13,7 @@ use tokio::sync::{oneshot, watch};
 use super::connection::Connection;
 use super::exposed::Drive;
 use super::payload;
+use super::pdo::ByPdo;
 use crate::commands::{read, write};
 use crate::connect::{self, Session};
 
@@ -47,6 +48,8 @@ pub struct Served<'d> {
     next: Instant,
     /// Whether its last poll failed.
     failed: bool,
+    /// Its values by TPDO (`pdo = true`).
+    pdo: Option<ByPdo<'d>>,
 }
 
 impl<'d> Served<'d> {
@@ -58,12 +61,14 @@ impl<'d> Served<'d> {
                 connect::warn_node_relative_defaults(&drive.device, node);
             }
         }
+        let parameters: Vec<&Parameter> = drive
+            .parameters
+            .iter()
+            .filter_map(|name| drive.parameter(name))
+            .collect();
         Self {
-            parameters: drive
-                .parameters
-                .iter()
-                .filter_map(|name| drive.parameter(name))
-                .collect(),
+            pdo: drive.pdo.then(|| ByPdo::plan(drive, &parameters)),
+            parameters,
             drive,
             reports,
             session: None,
@@ -140,6 +145,9 @@ fn poll<'d>(connection: &mut Connection<'d>, served: &mut [Served<'d>], slot: us
     drive.failed = matches!(report, Report::Failed(_));
     if drive.failed {
         drive.session = None;
+        if let Some(pdo) = &mut drive.pdo {
+            pdo.end();
+        }
     }
     log_change(&drive.drive.name, &drive.reports.borrow(), &report);
     drive.reports.send_replace(report);
@@ -158,7 +166,11 @@ fn read<'d>(connection: &mut Connection<'d>, served: &mut Served<'d>) -> Report 
         Ok(session) => session,
         Err(why) => return Report::Failed(why),
     };
-    match read::read_all(session, &drive.device, &served.parameters) {
+    let values = match &mut served.pdo {
+        Some(pdo) => pdo.read(drive, session, &served.parameters),
+        None => read::read_all(session, &drive.device, &served.parameters),
+    };
+    match values {
         Ok(values) => {
             let time = SystemTime::now();
             let payloads = served
