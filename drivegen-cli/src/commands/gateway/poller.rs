@@ -229,3 +229,27 @@ fn log_change(drive: &str, before: &Report, now: &Report) {
         (_, Report::Starting) => {}
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn requests_reach_the_line_tagged_with_their_drive_and_the_forwarder_ends_with_them() {
+        let (requests, pending) = std::sync::mpsc::channel();
+        let (line, forwarded) = std::sync::mpsc::channel();
+        let forwarder = std::thread::spawn(move || forward(2, &pending, &line));
+        let (reply, _answer) = oneshot::channel();
+        let request = SetRequest {
+            parameter: "speed".into(),
+            message: b"{\"value\": 1}".to_vec(),
+            reply,
+        };
+        requests.send(request).unwrap();
+        let (slot, got) = forwarded.recv().unwrap();
+        assert_eq!((slot, got.parameter.as_str()), (2, "speed"));
+        drop(requests);
+        forwarder.join().unwrap();
+        assert!(forwarded.recv().is_err(), "the line's sender went with it");
+    }
+}
