@@ -225,16 +225,41 @@ impl<'d> Session<'d> {
         Ok(sessions)
     }
 
+    /// Opens the bus `args` names, talking to the drive they name, for sessions to several
+    /// drives on it, each with its own description ([`beside`](Self::beside)): the `gateway`'s
+    /// drives sharing a serial line or a CAN bus. CANopen nodes go through a network manager
+    /// when `several`. The session's variant is not learned: it is the bus, not a drive's.
+    pub fn open_line(args: &BusArgs, device: &'d Device, several: bool) -> Result<Self, CliError> {
+        Self::connect(args, device, drive_id(args, device)?, several)
+    }
+
+    /// A session on this session's connection to the drive `args` names (its `--unit` or
+    /// `--node-id`, its `--variant`), described by `device`, in the variant it reports; the
+    /// rest of `args` (the bus and its settings) is this connection's.
+    pub fn beside(&self, args: &BusArgs, device: &'d Device) -> Result<Self, CliError> {
+        let mut session = self.reach(drive_id(args, device)?, device)?;
+        session.variant = session.detect_variant(args.variant.as_deref(), device)?;
+        Ok(session)
+    }
+
     /// A session on the same connection, to the drive at `id` (unit, node or station).
-    fn to(&self, id: u8, device: &Device) -> Result<Self, CliError> {
+    fn to(&self, id: u8, device: &'d Device) -> Result<Self, CliError> {
+        if matches!(self.link, Link::CanOpen { .. }) {
+            warn_node_relative_defaults(device, id);
+        }
+        self.reach(id, device)
+    }
+
+    /// [`to`](Self::to) without the warnings: the gateway reaches a drive again after each
+    /// failure, and warns once when it loads.
+    fn reach(&self, id: u8, device: &'d Device) -> Result<Self, CliError> {
         let link = match &self.link {
-            Link::Modbus { bus, limits, .. } => Link::Modbus {
+            Link::Modbus { bus, .. } => Link::Modbus {
                 bus: bus.clone(),
                 unit: UnitId(id),
-                limits: *limits,
+                limits: device.modbus_limits(),
             },
             Link::CanOpen { sdo, .. } => {
-                warn_node_relative_defaults(device, id);
                 let node = node_id(id)?;
                 Link::CanOpen {
                     sdo: sdo.to(node),
@@ -647,6 +672,12 @@ fn drive_ids(args: &BusArgs, device: &Device) -> Result<Vec<u8>, CliError> {
         return Err(CliError::Usage(format!("{option} {twice} is given twice")));
     }
     Ok(ids)
+}
+
+/// The one drive the options name on their bus (the first `--unit` or `--node-id`, else the
+/// default as [`drive_ids`] has it).
+pub fn drive_id(args: &BusArgs, device: &Device) -> Result<u8, CliError> {
+    Ok(drive_ids(args, device)?[0])
 }
 
 /// `given`, else `default` alone (if any).

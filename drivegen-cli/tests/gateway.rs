@@ -21,6 +21,10 @@ fn lafert() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/lafert-smartris")
 }
 
+fn swd() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/ezwheel-swd")
+}
+
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("drivegen-gateway-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -671,5 +675,339 @@ fn a_drive_with_many_parameters_has_every_value_published() {
         let value = json(&expect(&lines, &topic, |_| true));
         assert!(value.get("raw").is_some(), "{topic}: {value}");
     }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `dir` and a broker (anonymous clients allowed) on a free port in it.
+fn broker_in(dir: &Path) -> (PathBuf, u16, Process) {
+    let port = mosquitto::free_port();
+    (dir.to_owned(), port, broker(dir, port))
+}
+
+/// A gateway file of `drives` (each `(name, description, bus, extra lines)`) to the broker at
+/// `port`, every drive polled every 100 ms unless its extra lines say otherwise.
+fn drives_config(dir: &Path, port: u16, drives: &[(&str, &Path, &str, &str)]) -> PathBuf {
+    let mut text = format!("format = 1\n\n[mqtt]\nport = {port}\n");
+    for (name, description, bus, extra) in drives {
+        let interval = match extra.contains("interval_ms") {
+            true => "",
+            false => "interval_ms = 100\n",
+        };
+        text += &format!(
+            "\n[[drive]]\nname = \"{name}\"\ndescription = \"{}\"\nbus = {{ {bus} }}\n\
+             {interval}{extra}\n",
+            description.display()
+        );
+    }
+    let file = dir.join("gateway.toml");
+    std::fs::write(&file, text).unwrap();
+    file
+}
+
+/// Waits (within [`WAIT`]) for `drive`'s `parameter` to be published `times` times more.
+fn published_again(lines: &Lines, drive: &str, parameter: &str, times: usize) {
+    let topic = format!("drivegen/{drive}/{parameter}");
+    for _ in 0..times {
+        expect(lines, &topic, |_| true);
+    }
+}
+
+/// Waits for `drive` to go offline with an error that names `why`.
+fn offline(lines: &Lines, drive: &str, why: &str) {
+    expect(lines, &format!("drivegen/{drive}/status"), |p| {
+        p == "offline"
+    });
+    let error = json(&expect(lines, &format!("drivegen/{drive}/error"), |_| true));
+    assert!(error["error"].as_str().unwrap().contains(why), "{error}");
+}
+
+/// Sets `parameter` (`drive/parameter`) to `value` (a number in its unit, here its raw value
+/// too) through the broker, and waits for the done result and the value published.
+fn written(port: u16, lines: &Lines, parameter: &str, value: i64) {
+    let set = format!("drivegen/{parameter}/set");
+    publish(port, &set, &format!("{{\"value\": {value}}}"));
+    let done = json(&expect(lines, &format!("{set}/result"), |_| true));
+    assert_eq!(done["ok"], true, "{done}");
+    expect(lines, &format!("drivegen/{parameter}"), |p| {
+        json(p)["raw"] == value
+    });
+}
+
+#[test]
+fn modbus_units_on_one_rtu_line_share_it_and_a_silent_one_goes_offline_alone() {
+    let (dir, port, _mosquitto) = broker_in(&scratch("rtu-line"));
+    let pty = peer_support::pty_pair();
+    let _sim = spawned(
+        Command::new(BIN)
+            .arg("sim")
+            .arg(lafert())
+            .arg("--serial")
+            .arg(&pty.server)
+            .args(["--unit", "3", "--unit", "7"])
+            .args(["--set", "3:bus_dc_link=4950", "--set", "7:bus_dc_link=4100"])
+            .stdout(Stdio::null()),
+    );
+    let (_sub, lines) = subscribe(port);
+    let line = format!("serial = \"{}\", timeout_ms = 200", pty.client.display());
+    let every_poll = "parameters = [\"bus_dc_link\"]\npublish_every_poll = true";
+    let file = drives_config(
+        &dir,
+        port,
+        &[
+            ("left", &lafert(), &format!("{line}, unit = 3"), every_poll),
+            (
+                "right",
+                &lafert(),
+                &format!("{line}, unit = 7"),
+                "parameters = [\"bus_dc_link\", \"speed_ramp_up\"]\nwritable = [\"speed_ramp_up\"]",
+            ),
+            // No drive answers at unit 9: it goes offline, the others keep being served.
+            (
+                "absent",
+                &lafert(),
+                &format!("{line}, unit = 9"),
+                "parameters = [\"bus_dc_link\"]",
+            ),
+        ],
+    );
+    let _gateway = start_gateway(&file);
+
+    // Each unit answers for itself through the one line.
+    let left = json(&expect(&lines, "drivegen/left/bus_dc_link", |_| true));
+    assert_eq!(left["value"], 49.5, "{left}");
+    let right = json(&expect(&lines, "drivegen/right/bus_dc_link", |_| true));
+    assert_eq!(right["value"], 41.0, "{right}");
+    expect(&lines, "drivegen/left/status", |p| p == "online");
+    expect(&lines, "drivegen/right/status", |p| p == "online");
+    offline(&lines, "absent", "unit 9");
+    // The silent unit costs its timeout at each of its polls; the others are still polled.
+    published_again(&lines, "left", "bus_dc_link", 5);
+
+    // A write goes to its unit, between polls.
+    written(port, &lines, "right/speed_ramp_up", 1500);
+    assert!(
+        !lines
+            .unmatched
+            .borrow()
+            .iter()
+            .any(|l| l.starts_with("drivegen/left/status offline")
+                || l.starts_with("drivegen/right/status offline")),
+        "a drive that answers went offline: {:?}",
+        lines.unmatched.borrow()
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn canopen_nodes_on_one_bus_share_one_connection_and_a_silent_one_goes_offline_alone() {
+    let (dir, port, _mosquitto) = broker_in(&scratch("can-bus"));
+    let (_sub, lines) = subscribe(port);
+    // Each connection starts the simulated nodes' process, which notes its start: one
+    // connection, one start.
+    let starts = dir.join("starts");
+    let relay = dir.join("nodes.sh");
+    std::fs::write(
+        &relay,
+        format!(
+            "echo started >> {}\nexec {BIN} sim {} --can candump:stdio --node-id 4 --node-id 5 --set 4:vendor_id=0x1234\n",
+            starts.display(),
+            swd().display()
+        ),
+    )
+    .unwrap();
+    let can = format!("candump:exec:sh {}", relay.display());
+    // A timeout long enough for the relay's first answer: it loads the description first.
+    let bus = |node: u8| format!("can = \"{can}\", node_id = {node}, timeout_ms = 3000");
+    let file = drives_config(
+        &dir,
+        port,
+        &[
+            (
+                "four",
+                &swd(),
+                &bus(4),
+                "parameters = [\"vendor_id\"]\npublish_every_poll = true",
+            ),
+            (
+                "five",
+                &swd(),
+                &bus(5),
+                "parameters = [\"vendor_id\", \"rpdo1_event_timer\"]\nwritable = [\"rpdo1_event_timer\"]",
+            ),
+            // Silent: each of its polls costs the timeout, so it is polled seldom.
+            (
+                "six",
+                &swd(),
+                &bus(6),
+                "parameters = [\"vendor_id\"]\ninterval_ms = 10000",
+            ),
+        ],
+    );
+    let _gateway = start_gateway(&file);
+
+    // Node 4 is not the drive its description covers (another vendor id): read all the same.
+    let four = json(&expect(&lines, "drivegen/four/vendor_id", |_| true));
+    assert_eq!(four["raw"], 0x1234, "{four}");
+    let five = json(&expect(&lines, "drivegen/five/vendor_id", |_| true));
+    assert_ne!(five["raw"], 0x1234, "each node answers for itself: {five}");
+    offline(&lines, "six", "node 6");
+    published_again(&lines, "four", "vendor_id", 3);
+
+    written(port, &lines, "five/rpdo1_event_timer", 250);
+    published_again(&lines, "four", "vendor_id", 3);
+    let started = std::fs::read_to_string(&starts).unwrap();
+    assert_eq!(started.lines().count(), 1, "one connection: {started}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn drives_sharing_a_line_need_their_own_ids_and_the_same_settings() {
+    let dir = scratch("bad-line");
+    let pty = "/dev/nonexistent-line";
+    let unit = |u: u8, baud: u32| format!("serial = \"{pty}\", unit = {u}, baud = {baud}");
+    let parameters = "parameters = [\"bus_dc_link\"]";
+    let port = mosquitto::free_port();
+    // Drive `b` after drive `a` on one line: unit, baud, and what the refusal says.
+    let refused = |b: (u8, u32), why: &str| {
+        let drives = [
+            ("a", &*lafert(), &*unit(3, 19200), parameters),
+            ("b", &*lafert(), &*unit(b.0, b.1), parameters),
+        ];
+        let message = refusal(&drives_config(&dir, port, &drives));
+        assert!(message.contains(why), "{message}");
+    };
+    refused(
+        (3, 19200),
+        "gateway.toml:13: drive `b`: bus: unit 3 on this line is drive `a`'s",
+    );
+    refused((4, 9600), "drive `b`: bus: shares its line with drive `a`");
+    let kinco = Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/kinco-fd");
+    let rs232 = |station: u8| format!("kinco_rs232 = \"{pty}\", node_id = {station}");
+    let stations = [
+        ("a", &*kinco, &*rs232(1), "parameters = [\"statusword\"]"),
+        ("b", &*kinco, &*rs232(2), "parameters = [\"statusword\"]"),
+    ];
+    let message = refusal(&drives_config(&dir, port, &stations));
+    assert!(message.contains("one drive a line"), "{message}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The SWD's node id out of the box.
+const SWD_NODE: u8 = 0x10;
+
+/// A simulated SWD at [`SWD_NODE`] behind a `candump:exec:` relay that appends every frame the
+/// gateway sends to `sent`.
+fn recorded_swd(dir: &Path, name: &str, sent: &Path) -> String {
+    let relay = dir.join(format!("{name}.sh"));
+    std::fs::write(
+        &relay,
+        format!(
+            "tee -a {} | exec {BIN} sim {} --can candump:stdio --node-id {SWD_NODE}\n",
+            sent.display(),
+            swd().display()
+        ),
+    )
+    .unwrap();
+    format!("candump:exec:sh {}", relay.display())
+}
+
+/// Waits (within [`WAIT`]) until `done`.
+fn until(mut done: impl FnMut() -> bool, what: &str) {
+    let started = Instant::now();
+    while !done() {
+        assert!(started.elapsed() < WAIT, "not within {WAIT:?}: {what}");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+/// How many frames with CAN identifier `id` are in the candump lines of `sent`.
+fn frames_to(sent: &Path, id: u16) -> usize {
+    let prefix = format!("{id:03X}#");
+    let text = std::fs::read_to_string(sent).unwrap_or_default();
+    let ids = text.lines().filter_map(|l| l.split_whitespace().last());
+    ids.filter(|frame| frame.starts_with(&prefix)).count()
+}
+
+#[test]
+fn a_canopen_drive_by_pdo_has_its_values_without_sdo_and_its_tpdo_restored_at_the_stop() {
+    let (dir, port, _mosquitto) = broker_in(&scratch("pdo"));
+    let (_sub, lines) = subscribe(port);
+    let (sent, mixed_sent) = (dir.join("pdo.log"), dir.join("mixed.log"));
+    let bus = |can: String| format!("can = \"{can}\", node_id = {SWD_NODE}, timeout_ms = 3000");
+    let by_pdo = "pdo = true\npdo_start = true\npublish_every_poll = true";
+    let file = drives_config(
+        &dir,
+        port,
+        &[
+            (
+                "pdo",
+                &swd(),
+                &bus(recorded_swd(&dir, "pdo", &sent)),
+                &format!("parameters = [\"position_actual_value\", \"error_register\"]\n{by_pdo}"),
+            ),
+            // vendor_id (1018h:01) goes in no PDO: polled by SDO, beside the TPDO's value.
+            (
+                "mixed",
+                &swd(),
+                &bus(recorded_swd(&dir, "mixed", &mixed_sent)),
+                &format!("parameters = [\"vendor_id\", \"error_register\"]\n{by_pdo}"),
+            ),
+        ],
+    );
+    let log = dir.join("gateway.log");
+    let mut gateway = spawned(
+        Command::new(BIN)
+            .arg("gateway")
+            .arg(&file)
+            .stderr(std::fs::File::create(&log).unwrap()),
+    );
+
+    let position = json(&expect(
+        &lines,
+        "drivegen/pdo/position_actual_value",
+        |_| true,
+    ));
+    assert!(position["raw"].is_number(), "{position}");
+    expect(&lines, "drivegen/pdo/status", |p| p == "online");
+    expect(&lines, "drivegen/mixed/vendor_id", |_| true);
+    expect(&lines, "drivegen/mixed/error_register", |_| true);
+    // Values keep coming by TPDO at every SYNC, with no SDO request to the node meanwhile.
+    let sdo = 0x600 + u16::from(SWD_NODE);
+    let (syncs, uploads) = (frames_to(&sent, 0x080), frames_to(&sent, sdo));
+    let mixed_uploads = frames_to(&mixed_sent, sdo);
+    until(|| frames_to(&sent, 0x080) >= syncs + 10, "ten SYNCs more");
+    published_again(&lines, "pdo", "position_actual_value", 10);
+    assert_eq!(
+        frames_to(&sent, sdo),
+        uploads,
+        "no SDO request while running"
+    );
+    // The drive with a parameter polled by SDO besides: its requests go on.
+    until(
+        || frames_to(&mixed_sent, sdo) > mixed_uploads,
+        "vendor_id polled",
+    );
+
+    // SIGTERM: the TPDO configuration written back (SDO downloads) and the node put back in
+    // Pre-Operational before the gateway exits.
+    let pid = gateway.child_mut().id().to_string();
+    let term = Command::new("kill").args(["-TERM", &pid]).status().unwrap();
+    assert!(term.success());
+    until(
+        || gateway.child_mut().try_wait().unwrap().is_some(),
+        "the gateway stops",
+    );
+    let logged = std::fs::read_to_string(&log).unwrap();
+    assert!(
+        frames_to(&sent, sdo) > uploads,
+        "the TPDO restored: {logged}"
+    );
+    let pre_operational = format!("000#80{SWD_NODE:02X}");
+    let text = std::fs::read_to_string(&sent).unwrap();
+    assert!(text.contains(&pre_operational), "{text}");
+    assert!(
+        logged.contains("vendor_id") && logged.contains("polled by SDO, not by PDO"),
+        "{logged}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -1,7 +1,7 @@
 //! The gateway file reader (`drivegen::gateway_file::parse`) fed arbitrary text. Asserts that
 //! it never panics, that a file it accepts has at least one drive, drive names that are one
-//! topic level each once, a polling interval of at least 1 ms and lines within the text, and
-//! that a refusal's line is within the text.
+//! topic level each once, a polling interval of at least 1 ms, `pdo_start` only with `pdo`, and
+//! lines within the text, and that a refusal's line is within the text.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
@@ -21,6 +21,7 @@ fuzz_target!(|data: &[u8]| {
                 assert!(!drive.name.contains(['/', '+', '#']));
                 assert!(file.drives[..i].iter().all(|d| d.name != drive.name));
                 assert!(drive.interval_ms >= 1);
+                assert!(drive.pdo || !drive.pdo_start);
                 assert!(!drive.parameters.is_empty());
                 assert!(within(drive.line));
                 assert!(drive.bus.iter().all(|o| within(o.line)));

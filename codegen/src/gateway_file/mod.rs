@@ -71,6 +71,12 @@ pub struct DriveEntry {
     pub parameters: Vec<Named>,
     /// The parameters clients may write (default none).
     pub writable: Vec<Named>,
+    /// CANopen: take the values from a TPDO at each SYNC the gateway sends (`pdo = true`),
+    /// as `drivegen watch --pdo` does; default: SDO polls.
+    pub pdo: bool,
+    /// With `pdo`: send NMT Start to the node before (a node sends PDOs only while
+    /// Operational) and Enter Pre-Operational after (`pdo_start = true`), as `watch --start`.
+    pub pdo_start: bool,
     /// The line of its `[[drive]]` (1-based).
     pub line: u32,
 }

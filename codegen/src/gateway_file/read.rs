@@ -46,6 +46,10 @@ struct RawDrive {
     parameters: Vec<Spanned<String>>,
     #[serde(default)]
     writable: Vec<Spanned<String>>,
+    #[serde(default)]
+    pdo: bool,
+    #[serde(default)]
+    pdo_start: bool,
 }
 
 /// Reads a gateway file. A file that is not TOML, of another format, without drives, with a
@@ -154,6 +158,9 @@ fn drive(text: &str, line: u32, raw: RawDrive) -> Result<DriveEntry, GatewayFile
     if raw.parameters.is_empty() {
         return Err(malformed(line, "parameters", "at least one parameter"));
     }
+    if raw.pdo_start && !raw.pdo {
+        return Err(malformed(line, "pdo_start", "`pdo = true` beside it"));
+    }
     Ok(DriveEntry {
         name: topic_level(text, raw.name, "name")?,
         description: raw.description,
@@ -162,6 +169,8 @@ fn drive(text: &str, line: u32, raw: RawDrive) -> Result<DriveEntry, GatewayFile
         publish_every_poll: raw.publish_every_poll,
         parameters: named(text, raw.parameters),
         writable: named(text, raw.writable),
+        pdo: raw.pdo,
+        pdo_start: raw.pdo_start,
         line,
     })
 }

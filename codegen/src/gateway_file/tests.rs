@@ -139,3 +139,22 @@ fn tls_takes_a_ca_and_a_client_certificate_only_with_its_key() {
     let no_ca = with_tls.replace("ca_file = \"ca.pem\"\n", "");
     assert!(refused(&no_ca).to_string().contains("CA"));
 }
+
+#[test]
+fn pdo_use_is_read_and_pdo_start_needs_it() {
+    let file = parse(GOOD).unwrap();
+    assert!(!file.drives[0].pdo && !file.drives[0].pdo_start);
+    let with_pdo = GOOD.replace(
+        "writable = [\"speed_setpoint\"]\n",
+        "writable = [\"speed_setpoint\"]\npdo = true\npdo_start = true\n",
+    );
+    let left = &parse(&with_pdo).unwrap().drives[0];
+    assert!(left.pdo && left.pdo_start);
+    let start_alone = GOOD.replace(
+        "writable = [\"speed_setpoint\"]\n",
+        "writable = [\"speed_setpoint\"]\npdo_start = true\n",
+    );
+    let error = refused(&start_alone);
+    assert_eq!(error.line, Some(8));
+    assert!(error.to_string().contains("pdo = true"), "{error}");
+}

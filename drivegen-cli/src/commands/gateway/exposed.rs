@@ -10,6 +10,7 @@ use clap::Parser;
 use drivegen::gateway_file::{self, BusOption, DriveEntry, MqttEntry, Named};
 use drivegen::ir::{Device, Parameter};
 
+use super::lines::Line;
 use crate::connect::BusArgs;
 use crate::error::CliError;
 
@@ -23,6 +24,8 @@ pub struct Gateway {
     pub read_only: bool,
     /// The drives, in the file's order.
     pub drives: Vec<Drive>,
+    /// The connections the drives go through: drives on one serial line or CAN bus share one.
+    pub lines: Vec<Line>,
 }
 
 /// TLS to the broker, its PEM files read at load.
@@ -50,6 +53,12 @@ pub struct Drive {
     pub parameters: Vec<String>,
     /// The names of the parameters clients may write, each writable in the description.
     pub writable: Vec<String>,
+    /// CANopen: its values by TPDO where they can be (`pdo = true`).
+    pub pdo: bool,
+    /// With `pdo`: NMT Start before, Enter Pre-Operational after.
+    pub pdo_start: bool,
+    /// The line of its `[[drive]]` in the file (1-based), for refusals.
+    pub line: u32,
 }
 
 /// The bus options alone, read by the command line's own parser.
@@ -81,7 +90,9 @@ impl Gateway {
                 Drive::resolve(entry, folder, &mut loaded)
                     .map_err(|(line, why)| CliError::Invalid(format!("{}: {why}", at(Some(line)))))
             })
-            .collect::<Result<_, _>>()?;
+            .collect::<Result<Vec<_>, _>>()?;
+        let lines = super::lines::lines(&drives)
+            .map_err(|(line, why)| CliError::Invalid(format!("{}: {why}", at(Some(line)))))?;
         let read = |name: &str| {
             let path = folder.join(name);
             std::fs::read(&path).map_err(|e| {
@@ -103,6 +114,7 @@ impl Gateway {
             tls,
             read_only: file.read_only,
             drives,
+            lines,
         })
     }
 
@@ -119,7 +131,8 @@ impl Gateway {
     }
 }
 
-type Refusal = (u32, String);
+/// Why the file is refused, and the line to point at.
+pub type Refusal = (u32, String);
 
 /// The descriptions loaded so far, by path: each loaded and checked once.
 type Descriptions = BTreeMap<PathBuf, Arc<Device>>;
@@ -143,14 +156,22 @@ impl Drive {
         let writable = names(&device, &entry.writable, |p| {
             (!writable(p)).then(|| format!("`{}` is read-only in its description", p.name))
         })?;
+        let bus = bus_args(&entry.bus, entry.line)?;
+        if entry.pdo && bus.can.is_none() {
+            let why = "pdo: PDOs are CANopen's; name a `can` bus or leave `pdo` out";
+            return Err((entry.line, format!("drive `{}`: {why}", entry.name)));
+        }
         Ok(Self {
             name: entry.name.clone(),
-            bus: bus_args(&entry.bus, entry.line)?,
+            bus,
             device,
             interval_ms: entry.interval_ms,
             publish_every_poll: entry.publish_every_poll,
             parameters,
             writable,
+            pdo: entry.pdo,
+            pdo_start: entry.pdo_start,
+            line: entry.line,
         })
     }
 

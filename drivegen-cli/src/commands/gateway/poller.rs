@@ -1,18 +1,21 @@
-//! A drive's bus side: a thread that owns the drive's session, reads its parameters every
-//! interval, and answers set requests between polls. It reports the newest state only (a
-//! `watch` channel): a slow broker sees the latest values, never a backlog.
+//! The bus side: a thread per connection (a line's) that owns it, reads each of its drives'
+//! parameters at the drive's own interval, and answers set requests between polls. It reports
+//! each drive's newest state only (a `watch` channel each): a slow broker sees the latest
+//! values, never a backlog.
 
-use std::sync::mpsc::{Receiver, RecvTimeoutError};
+use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender, TryRecvError};
 use std::time::{Duration, Instant, SystemTime};
 
 use drivebus::interpret::Shown;
 use drivegen::ir::Parameter;
 use tokio::sync::{oneshot, watch};
 
+use super::connection::Connection;
 use super::exposed::Drive;
 use super::payload;
+use super::pdo::ByPdo;
 use crate::commands::{read, write};
-use crate::connect::Session;
+use crate::connect::{self, Session};
 
 /// What the drive gave at its last poll.
 #[derive(Debug, Clone)]
@@ -35,71 +38,158 @@ pub struct SetRequest {
     pub reply: oneshot::Sender<serde_json::Value>,
 }
 
-/// Polls `drive` until `stop` turns true or the set requests' sender is gone.
-pub fn run(
-    drive: &Drive,
-    requests: &Receiver<SetRequest>,
-    reports: &watch::Sender<Report>,
-    stop: &watch::Receiver<bool>,
-) {
-    let parameters: Vec<&Parameter> = drive
-        .parameters
-        .iter()
-        .filter_map(|name| drive.parameter(name))
-        .collect();
-    let interval = Duration::from_millis(drive.interval_ms.into());
-    let mut session = None;
-    while !*stop.borrow() {
-        let next = Instant::now() + interval;
-        let report = poll(drive, &mut session, &parameters);
-        log_change(&drive.name, &reports.borrow(), &report);
-        reports.send_replace(report);
-        loop {
-            let left = next.saturating_duration_since(Instant::now());
-            match requests.recv_timeout(left) {
-                Ok(request) => answer(drive, &mut session, request),
-                Err(RecvTimeoutError::Timeout) => break,
-                Err(RecvTimeoutError::Disconnected) => return,
+/// A drive a line's poller serves: its own interval, report channel and session.
+pub struct Served<'d> {
+    drive: &'d Drive,
+    parameters: Vec<&'d Parameter>,
+    reports: watch::Sender<Report>,
+    session: Option<Session<'d>>,
+    /// When its next poll is due.
+    next: Instant,
+    /// Whether its last poll failed.
+    failed: bool,
+    /// Its values by TPDO (`pdo = true`).
+    pdo: Option<ByPdo<'d>>,
+}
+
+impl<'d> Served<'d> {
+    /// `drive`, reporting on `reports`, due for a poll now. A CANopen node's node-relative
+    /// defaults its description refuses are warned of here, once (not at each reconnection).
+    pub fn new(drive: &'d Drive, reports: watch::Sender<Report>) -> Self {
+        if drive.bus.can.is_some() {
+            if let Ok(node) = connect::drive_id(&drive.bus, &drive.device) {
+                connect::warn_node_relative_defaults(&drive.device, node);
             }
+        }
+        let parameters: Vec<&Parameter> = drive
+            .parameters
+            .iter()
+            .filter_map(|name| drive.parameter(name))
+            .collect();
+        Self {
+            pdo: drive.pdo.then(|| ByPdo::plan(drive, &parameters)),
+            parameters,
+            drive,
+            reports,
+            session: None,
+            next: Instant::now(),
+            failed: false,
         }
     }
 }
 
-/// One poll. A failed read drops the session, so the next poll reconnects (a restarted
-/// server, a replugged adapter).
-fn poll<'d>(
-    drive: &'d Drive,
-    session: &mut Option<Session<'d>>,
-    parameters: &[&Parameter],
-) -> Report {
-    let open = match session {
-        Some(open) => open,
-        None => match Session::open(&drive.bus, &drive.device) {
-            Ok(opened) => session.insert(opened),
-            Err(e) => return Report::Failed(format!("cannot reach the drive: {e}")),
-        },
+/// A set request for the drive at this place in its line's poller.
+pub type LineRequest = (usize, SetRequest);
+
+/// Hands a drive's set requests to its line's poller, tagged with the drive's place there,
+/// until either side is gone: a drive's requests keep the channel of their own (its MQTT task
+/// holds the sender) while the poller waits on one channel for all its drives.
+pub fn forward(slot: usize, pending: &Receiver<SetRequest>, line: &Sender<LineRequest>) {
+    for request in pending {
+        if line.send((slot, request)).is_err() {
+            return;
+        }
+    }
+}
+
+/// Serves the drives of one line through `connection` until `stop` turns true or every set
+/// requests' sender is gone: each drive is polled at its own interval, the one due first
+/// first, and set requests are answered as soon as the poll under way ends, before any other
+/// poll (a write never waits for a round of polls).
+pub fn run<'d>(
+    mut connection: Connection<'d>,
+    mut served: Vec<Served<'d>>,
+    requests: &Receiver<LineRequest>,
+    stop: &watch::Receiver<bool>,
+) {
+    while !*stop.borrow() {
+        let Some(slot) = due_first(&served) else {
+            return;
+        };
+        let wait = served[slot].next.saturating_duration_since(Instant::now());
+        let request = match wait.is_zero() {
+            true => requests
+                .try_recv()
+                .map_err(|e| e == TryRecvError::Disconnected),
+            false => requests
+                .recv_timeout(wait)
+                .map_err(|e| e == RecvTimeoutError::Disconnected),
+        };
+        match request {
+            Ok((slot, request)) => {
+                if let Some(drive) = served.get_mut(slot) {
+                    answer(&mut connection, drive, request);
+                }
+            }
+            Err(true) => return,
+            Err(false) if wait.is_zero() => poll(&mut connection, &mut served, slot),
+            // Not due yet: the next turn polls it.
+            Err(false) => {}
+        }
+    }
+}
+
+/// The drive whose poll is due first (the first in the file among equals).
+fn due_first(served: &[Served<'_>]) -> Option<usize> {
+    (0..served.len()).min_by_key(|&slot| served[slot].next)
+}
+
+/// Polls the drive at `slot` and reports. A drive that fails is reached again at its next
+/// poll; when every drive on the line has failed, the connection is opened again too.
+fn poll<'d>(connection: &mut Connection<'d>, served: &mut [Served<'d>], slot: usize) {
+    let Some(drive) = served.get_mut(slot) else {
+        return;
     };
-    match read::read_all(open, &drive.device, parameters) {
+    drive.next = Instant::now() + Duration::from_millis(drive.drive.interval_ms.into());
+    let report = read(connection, drive);
+    drive.failed = matches!(report, Report::Failed(_));
+    if drive.failed {
+        drive.session = None;
+        if let Some(pdo) = &mut drive.pdo {
+            pdo.end();
+        }
+    }
+    log_change(&drive.drive.name, &drive.reports.borrow(), &report);
+    drive.reports.send_replace(report);
+    if served.iter().all(|s| s.failed) {
+        for drive in served.iter_mut() {
+            drive.session = None;
+        }
+        connection.close();
+    }
+}
+
+/// One poll of `drive`'s parameters.
+fn read<'d>(connection: &mut Connection<'d>, served: &mut Served<'d>) -> Report {
+    let drive = served.drive;
+    let session = match connection.reach(drive, &mut served.session) {
+        Ok(session) => session,
+        Err(why) => return Report::Failed(why),
+    };
+    let values = match &mut served.pdo {
+        Some(pdo) => pdo.read(drive, session, &served.parameters),
+        None => read::read_all(session, &drive.device, &served.parameters),
+    };
+    match values {
         Ok(values) => {
             let time = SystemTime::now();
-            let payloads = parameters
+            let payloads = served
+                .parameters
                 .iter()
                 .zip(&values)
                 .map(|(p, shown)| (p.name.clone(), payload::value(p, shown, time)))
                 .collect();
             Report::Values(payloads)
         }
-        Err(e) => {
-            *session = None;
-            Report::Failed(e.to_string())
-        }
+        Err(e) => Report::Failed(e.to_string()),
     }
 }
 
 /// Writes a set request through `drivegen write`'s checks and sends the result payload.
-fn answer<'d>(drive: &'d Drive, session: &mut Option<Session<'d>>, request: SetRequest) {
+fn answer<'d>(connection: &mut Connection<'d>, served: &mut Served<'d>, request: SetRequest) {
+    let drive = served.drive;
     let parameter = drive.parameter(&request.parameter);
-    let outcome = set(drive, session, parameter, &request.message);
+    let outcome = set(connection, served, parameter, &request.message);
     match &outcome {
         Ok(shown) => {
             tracing::info!(drive = %drive.name, parameter = %request.parameter, value = %shown.text, "written")
@@ -113,17 +203,20 @@ fn answer<'d>(drive: &'d Drive, session: &mut Option<Session<'d>>, request: SetR
 }
 
 fn set<'d>(
-    drive: &'d Drive,
-    session: &mut Option<Session<'d>>,
+    connection: &mut Connection<'d>,
+    served: &mut Served<'d>,
     parameter: Option<&Parameter>,
     message: &[u8],
 ) -> Result<Shown, String> {
+    let drive = served.drive;
     let parameter = parameter.ok_or("no such parameter")?;
     let text = payload::set_text(message)?;
     let bytes = write::parse_value(&drive.device, parameter, &text).map_err(|e| e.to_string())?;
-    let open = session
-        .as_mut()
-        .ok_or("the drive is offline: nothing written")?;
+    // A drive whose last poll failed is offline: nothing is sent to it until a poll reaches it.
+    if served.failed || served.session.is_none() {
+        return Err("the drive is offline: nothing written".into());
+    }
+    let open = connection.reach(drive, &mut served.session)?;
     write::write_checked(open, &drive.device, parameter, &bytes, true).map_err(|e| e.to_string())
 }
 
@@ -134,5 +227,29 @@ fn log_change(drive: &str, before: &Report, now: &Report) {
         (_, Report::Failed(why)) => tracing::warn!(drive, "offline: {why}"),
         (_, Report::Values(_)) => tracing::info!(drive, "online"),
         (_, Report::Starting) => {}
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn requests_reach_the_line_tagged_with_their_drive_and_the_forwarder_ends_with_them() {
+        let (requests, pending) = std::sync::mpsc::channel();
+        let (line, forwarded) = std::sync::mpsc::channel();
+        let forwarder = std::thread::spawn(move || forward(2, &pending, &line));
+        let (reply, _answer) = oneshot::channel();
+        let request = SetRequest {
+            parameter: "speed".into(),
+            message: b"{\"value\": 1}".to_vec(),
+            reply,
+        };
+        requests.send(request).unwrap();
+        let (slot, got) = forwarded.recv().unwrap();
+        assert_eq!((slot, got.parameter.as_str()), (2, "speed"));
+        drop(requests);
+        forwarder.join().unwrap();
+        assert!(forwarded.recv().is_err(), "the line's sender went with it");
     }
 }

@@ -2,15 +2,15 @@
 //! samples are got (`source_*.rs`: polling, PDOs) and how they are shown (`output_*.rs`: lines,
 //! JSON, CSV) meet in [`sample`]: a stream of times with a typed value per parameter per drive.
 
-mod interrupt;
+pub mod interrupt;
 mod output_csv;
 mod output_json;
 mod output_lines;
 mod output_plot;
-mod pdo_plan;
+pub mod pdo_plan;
 mod pdo_slots;
 pub mod sample;
-mod source_pdo;
+pub mod source_pdo;
 mod source_poll;
 mod tpdo_config;
 
@@ -122,7 +122,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         timeout: Duration::from_millis(args.bus.timeout_ms),
         start: args.start,
     };
-    let mut source = PdoWatch::begin(&drives, &device, &parameters, settings, interrupt)?;
+    let mut source = PdoWatch::begin(drives.sessions(), &device, &parameters, settings, interrupt)?;
     let watched = show(&args, &device, &layout, &mut source, plot);
     // Restored here to report a failure; on an early return `Drop` restores.
     let restored = source.restore();

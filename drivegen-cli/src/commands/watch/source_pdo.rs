@@ -16,8 +16,8 @@ use super::pdo_plan::{self, Choice, Trigger};
 use super::pdo_slots::Slots;
 use super::sample::{Sample, Source};
 use super::tpdo_config::TpdoConfig;
-use crate::connect::{hold, SharedCan};
-use crate::drives::{Drives, Outcome};
+use crate::connect::{hold, Session, SharedCan};
+use crate::drives::Outcome;
 use crate::error::CliError;
 
 /// Longest single wait on the bus: how late a Ctrl-C is noticed at most while waiting.
@@ -66,11 +66,11 @@ pub struct PdoWatch<'d> {
 }
 
 impl<'d> PdoWatch<'d> {
-    /// Plans every node's TPDO (reading the drives' configuration by SDO; a parameter that
+    /// Plans every node's TPDO (the nodes of `drives`, sessions on one SDO client; reading the drives' configuration by SDO; a parameter that
     /// cannot be mapped, or a node without a TPDO to map into, is refused before anything is
     /// written), then writes the TPDOs that need it and, with `start`, starts the nodes.
     pub fn begin(
-        drives: &Drives<'_>,
+        drives: &[Session<'_>],
         device: &'d Device,
         parameters: &[&'d Parameter],
         settings: Settings,
@@ -289,10 +289,10 @@ impl Drop for PdoWatch<'_> {
 }
 
 /// The CAN bus the drives share, and their node ids; refused on another bus.
-fn can_nodes(drives: &Drives<'_>) -> Result<(SharedCan, Vec<NodeId>), CliError> {
+fn can_nodes(drives: &[Session<'_>]) -> Result<(SharedCan, Vec<NodeId>), CliError> {
     let mut bus = None;
     let mut ids = Vec::new();
-    for session in drives.sessions() {
+    for session in drives {
         let (shared, id) = session.can().ok_or_else(|| {
             CliError::Usage(format!(
                 "--pdo watches CANopen drives (--can); {} has no PDOs",
