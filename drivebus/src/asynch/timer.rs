@@ -86,7 +86,8 @@ mod tokio_timer {
 
     /// tokio's [`Alarm`](super::Alarm): one `tokio::time::Sleep`, made at the first `set`
     /// (so the alarm can be made outside a runtime) and `reset` at every later one, which is
-    /// an atomic store while the deadline only moves later.
+    /// an atomic store while the deadline only moves later. Like a tokio stream, it belongs to
+    /// the runtime it was first used in.
     #[derive(Debug, Default)]
     pub struct TokioAlarm(Option<Pin<Box<Sleep>>>);
 
