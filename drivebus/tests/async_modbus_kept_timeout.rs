@@ -7,7 +7,7 @@
 use std::time::Duration;
 
 use drivebus::asynch::TokioTimer;
-use drivebus::canopen::can::tokio_adapters::TokioIo;
+use drivebus::modbus::async_client::tokio::FromTokio;
 use drivebus::modbus::async_client::{AsyncClientConfig, AsyncTcpClient};
 use drivebus::modbus::{AsyncRegisterBus, Table, UnitId};
 use drivebus::BusError;
@@ -18,7 +18,7 @@ use tokio::time::{sleep, Instant};
 const UNIT: UnitId = UnitId(1);
 const TIMEOUT: Duration = Duration::from_millis(100);
 
-type Client = AsyncTcpClient<TokioIo<DuplexStream>, TokioTimer>;
+type Client = AsyncTcpClient<FromTokio<DuplexStream>, TokioTimer>;
 
 /// A client, and the channel telling its server how long to wait before each answer (`None`:
 /// no answer).
@@ -44,7 +44,7 @@ fn client() -> (Client, mpsc::UnboundedSender<Option<Duration>>) {
         ..AsyncClientConfig::default()
     };
     (
-        AsyncTcpClient::tcp(TokioIo::new(near), TokioTimer, config),
+        AsyncTcpClient::tcp(FromTokio::new(near), TokioTimer, config),
         delays,
     )
 }
