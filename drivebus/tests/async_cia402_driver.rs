@@ -8,7 +8,7 @@ use core::task::{Context, Poll, Waker};
 use std::cell::Cell;
 use std::time::{Duration, Instant};
 
-use drivebus::asynch::{Async, Timer};
+use drivebus::asynch::{Alarm, Async, Timer};
 use drivebus::canopen::{CanOpenLink, NodeId, SdoBus};
 use drivebus::control::device::Cia402Device;
 use drivebus::control::driver;
@@ -114,7 +114,24 @@ impl Polls {
     }
 }
 
+/// The alarm of [`Polls`]: never due (the procedures here keep no alarm; only clients do).
+struct NeverDue;
+
+impl Alarm for NeverDue {
+    fn set(&mut self, _: Duration) {}
+
+    fn poll_due(&mut self, _: &mut Context<'_>) -> Poll<()> {
+        Poll::Pending
+    }
+}
+
 impl Timer for Polls {
+    type Alarm = NeverDue;
+
+    fn alarm(&self) -> NeverDue {
+        NeverDue
+    }
+
     async fn sleep(&self, duration: Duration) {
         if duration == POLL_INTERVAL {
             self.slept.set(self.slept.get() + 1);

@@ -3,10 +3,10 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
-use std::task::{Poll, Waker};
+use std::task::{Context, Poll, Waker};
 use std::time::Duration;
 
-use drivebus::asynch::{AsyncLink, Timer, TokioTimer};
+use drivebus::asynch::{Alarm, AsyncLink, Timer, TokioTimer};
 use drivebus::canopen::async_client::AsyncSdo;
 use drivebus::canopen::can::async_in_process::{AsyncInProcessBus, AsyncInProcessEndpoint};
 use drivebus::canopen::can::AsyncCanBus;
@@ -210,15 +210,28 @@ impl Manual {
 }
 
 impl Timer for Manual {
+    type Alarm = Manual;
+
+    fn alarm(&self) -> Manual {
+        self.clone()
+    }
+
     async fn sleep(&self, _: Duration) {
-        std::future::poll_fn(|cx| {
-            if self.expired.load(Ordering::SeqCst) {
-                return Poll::Ready(());
-            }
-            self.wakers.lock().unwrap().push(cx.waker().clone());
-            Poll::Pending
-        })
-        .await;
+        let mut alarm = self.clone();
+        std::future::poll_fn(|cx| alarm.poll_due(cx)).await;
+    }
+}
+
+/// The alarm of a manual timer is the timer itself: due once the test expires it.
+impl Alarm for Manual {
+    fn set(&mut self, _: Duration) {}
+
+    fn poll_due(&mut self, cx: &mut Context<'_>) -> Poll<()> {
+        if self.expired.load(Ordering::SeqCst) {
+            return Poll::Ready(());
+        }
+        self.wakers.lock().unwrap().push(cx.waker().clone());
+        Poll::Pending
     }
 }
 

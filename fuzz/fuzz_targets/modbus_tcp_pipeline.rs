@@ -9,7 +9,7 @@
 
 use core::time::Duration;
 
-use drivebus::asynch::Timer;
+use drivebus::asynch::{Alarm, Timer};
 use drivebus::modbus::pipeline::TcpPipeline;
 use drivebus::modbus::{AsyncRegisterBus, Table, UnitId};
 use drivebus::BusError;
@@ -20,8 +20,22 @@ use libfuzzer_sys::fuzz_target;
 struct Never;
 
 impl Timer for Never {
+    type Alarm = Never;
+
+    fn alarm(&self) -> Never {
+        Never
+    }
+
     async fn sleep(&self, _: Duration) {
         core::future::pending::<()>().await;
+    }
+}
+
+impl Alarm for Never {
+    fn set(&mut self, _: Duration) {}
+
+    fn poll_due(&mut self, _: &mut core::task::Context<'_>) -> core::task::Poll<()> {
+        core::task::Poll::Pending
     }
 }
 

@@ -22,6 +22,7 @@
 //! the device's next async request sends it first.
 
 mod accessor;
+mod alarm;
 mod device;
 mod identity;
 pub(crate) mod io_error;
@@ -32,9 +33,10 @@ mod read_set;
 mod replay;
 mod timer;
 
+pub use alarm::{within_alarm, Alarm};
 pub use link::{Async, AsyncLink};
 pub use owed_lock::OwedLock;
 pub use read_set::AsyncReadSet;
-#[cfg(feature = "tokio")]
-pub use timer::TokioTimer;
 pub use timer::{within, Elapsed, Timer};
+#[cfg(feature = "tokio")]
+pub use timer::{TokioAlarm, TokioTimer};

@@ -5,16 +5,30 @@ use core::pin::pin;
 use core::task::Poll;
 use core::time::Duration;
 
+use super::Alarm;
+
 /// Waits on behalf of the async API: request timeouts, the RTU inter-frame silence, retries.
 /// tokio's timer implements it behind feature `tokio`; an embassy or test timer implements it
 /// in a few lines.
 #[allow(async_fn_in_trait)]
 pub trait Timer {
+    /// The deadline a client keeps for its request timeouts (see [`Alarm`]).
+    type Alarm: Alarm;
+
+    /// A new alarm, not set yet.
+    fn alarm(&self) -> Self::Alarm;
+
     /// Completes once `duration` has passed.
     async fn sleep(&self, duration: Duration);
 }
 
 impl<T: Timer + ?Sized> Timer for &T {
+    type Alarm = T::Alarm;
+
+    fn alarm(&self) -> T::Alarm {
+        (**self).alarm()
+    }
+
     async fn sleep(&self, duration: Duration) {
         (**self).sleep(duration).await;
     }
@@ -45,21 +59,62 @@ pub async fn within<T>(
 
 #[cfg(feature = "tokio")]
 mod tokio_timer {
+    use core::future::Future;
+    use core::pin::Pin;
+    use core::task::{Context, Poll};
     use core::time::Duration;
+
+    use std::boxed::Box;
+
+    use tokio::time::{Instant, Sleep};
 
     /// tokio's timer (`tokio::time::sleep`): needs a tokio runtime with time enabled.
     #[derive(Debug, Clone, Copy, Default)]
     pub struct TokioTimer;
 
     impl super::Timer for TokioTimer {
+        type Alarm = TokioAlarm;
+
+        fn alarm(&self) -> TokioAlarm {
+            TokioAlarm::default()
+        }
+
         async fn sleep(&self, duration: Duration) {
             tokio::time::sleep(duration).await;
+        }
+    }
+
+    /// tokio's [`Alarm`](super::Alarm): one `tokio::time::Sleep`, made at the first `set`
+    /// (so the alarm can be made outside a runtime) and `reset` at every later one, which is
+    /// an atomic store while the deadline only moves later. Like a tokio stream, it belongs to
+    /// the runtime it was first used in.
+    #[derive(Debug, Default)]
+    pub struct TokioAlarm(Option<Pin<Box<Sleep>>>);
+
+    /// How far a deadline beyond `Instant`'s range is put: tokio's own "far future".
+    const FAR_FUTURE: Duration = Duration::from_secs(86_400 * 365 * 30);
+
+    impl super::Alarm for TokioAlarm {
+        fn set(&mut self, after: Duration) {
+            let now = Instant::now();
+            let deadline = now.checked_add(after).unwrap_or(now + FAR_FUTURE);
+            match &mut self.0 {
+                Some(sleep) => sleep.as_mut().reset(deadline),
+                None => self.0 = Some(Box::pin(tokio::time::sleep_until(deadline))),
+            }
+        }
+
+        fn poll_due(&mut self, cx: &mut Context<'_>) -> Poll<()> {
+            match &mut self.0 {
+                Some(sleep) => sleep.as_mut().poll(cx),
+                None => Poll::Pending,
+            }
         }
     }
 }
 
 #[cfg(feature = "tokio")]
-pub use tokio_timer::TokioTimer;
+pub use tokio_timer::{TokioAlarm, TokioTimer};
 
 #[cfg(test)]
 mod tests {
@@ -69,7 +124,27 @@ mod tests {
     /// A timer whose sleep is over at once, or never.
     struct Instant(bool);
 
+    /// `Instant`'s alarm: due at once, or never.
+    struct InstantAlarm(bool);
+
+    impl Alarm for InstantAlarm {
+        fn set(&mut self, _: Duration) {}
+
+        fn poll_due(&mut self, _: &mut Context<'_>) -> Poll<()> {
+            match self.0 {
+                true => Poll::Ready(()),
+                false => Poll::Pending,
+            }
+        }
+    }
+
     impl Timer for Instant {
+        type Alarm = InstantAlarm;
+
+        fn alarm(&self) -> InstantAlarm {
+            InstantAlarm(self.0)
+        }
+
         async fn sleep(&self, _: Duration) {
             if !self.0 {
                 core::future::pending::<()>().await;

@@ -16,7 +16,8 @@ use core::time::Duration;
 use super::cia402::{Observation, State, Target};
 use super::control_error::ControlError;
 use super::mode::{self, ModeStep};
-use super::objects::{Cia402Modes, Cia402Objects, VendorMachine};
+use super::objects::{Cia402Objects, VendorMachine};
+use super::objects_on::{ModeOn, WalkOn};
 use super::walk::{self, Cia402Walk, MachineWalk, Walk, POLL_INTERVAL};
 use super::Millis;
 use crate::asynch::{within, Async, AsyncLink, Elapsed, Timer};
@@ -65,11 +66,8 @@ pub async fn drive_to<O, L>(
     limit: Duration,
 ) -> Result<(), ControlError>
 where
-    O: Cia402Objects,
+    O: WalkOn<L::Protocol>,
     L: AsyncLink,
-    O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
-    O::Statusword: Readable<L::Protocol>,
-    O::SafeTorqueOffWord: Readable<L::Protocol>,
 {
     let mut late = no_answer(O::Controlword::NAME);
     let walk = walk_cia402::<O, L>(device, target, timer, &mut late);
@@ -85,11 +83,8 @@ async fn walk_cia402<O, L>(
     late: &mut ControlError,
 ) -> Result<(), ControlError>
 where
-    O: Cia402Objects,
+    O: WalkOn<L::Protocol>,
     L: AsyncLink,
-    O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
-    O::Statusword: Readable<L::Protocol>,
-    O::SafeTorqueOffWord: Readable<L::Protocol>,
 {
     let mut clock = SleptClock(Millis(0));
     let controlword = device.read_raw::<O::Controlword>().await?;
@@ -115,10 +110,8 @@ where
 /// The statusword and, where the drive has one, the safe torque off bit, as seen at `now`.
 async fn observe<O, L>(device: &mut Device<Async<L>>, now: Millis) -> Result<Observation, Error>
 where
-    O: Cia402Objects,
+    O: WalkOn<L::Protocol>,
     L: AsyncLink,
-    O::Statusword: Readable<L::Protocol>,
-    O::SafeTorqueOffWord: Readable<L::Protocol>,
 {
     let statusword = device.read_raw::<O::Statusword>().await?;
     let safe_torque_off = match O::SAFE_TORQUE_OFF_BIT {
@@ -150,11 +143,8 @@ pub async fn quick_stop<O, L>(
     limit: Duration,
 ) -> Result<(), ControlError>
 where
-    O: Cia402Objects,
+    O: WalkOn<L::Protocol>,
     L: AsyncLink,
-    O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
-    O::Statusword: Readable<L::Protocol>,
-    O::SafeTorqueOffWord: Readable<L::Protocol>,
 {
     let target = walk::quick_stop_target(state::<O, L>(device).await?);
     walk::quick_stop_outcome(drive_to::<O, L>(device, target, timer, limit).await)
@@ -168,11 +158,8 @@ pub async fn fault_reset<O, L>(
     limit: Duration,
 ) -> Result<(), ControlError>
 where
-    O: Cia402Objects,
+    O: WalkOn<L::Protocol>,
     L: AsyncLink,
-    O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
-    O::Statusword: Readable<L::Protocol>,
-    O::SafeTorqueOffWord: Readable<L::Protocol>,
 {
     if walk::needs_fault_reset(state::<O, L>(device).await?) {
         drive_to::<O, L>(device, Target::SwitchOnDisabled, timer, limit).await
@@ -190,11 +177,8 @@ pub async fn set_mode<O, L>(
     limit: Duration,
 ) -> Result<(), ControlError>
 where
-    O: Cia402Modes,
+    O: ModeOn<L::Protocol>,
     L: AsyncLink,
-    O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
-    O::ModesOfOperation: Writable<L::Protocol>,
-    O::ModesOfOperationDisplay: Readable<L::Protocol>,
 {
     let mut late = no_answer(O::Controlword::NAME);
     let procedure = async {

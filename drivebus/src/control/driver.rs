@@ -11,7 +11,8 @@ pub use super::walk::POLL_INTERVAL;
 
 use super::cia402::{Observation, State, Target};
 use super::mode::{self, ModeStep};
-use super::objects::{Cia402Modes, Cia402Objects, VendorMachine};
+use super::objects::{Cia402Objects, VendorMachine};
+use super::objects_on::{ModeOn, WalkOn};
 use super::walk::{self, Cia402Walk, MachineWalk, Walk};
 use super::Millis;
 use crate::device::Device;
@@ -35,11 +36,8 @@ pub fn drive_to<O, L>(
     deadline: Instant,
 ) -> Result<(), ControlError>
 where
-    O: Cia402Objects,
+    O: WalkOn<L::Protocol>,
     L: Link,
-    O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
-    O::Statusword: Readable<L::Protocol>,
-    O::SafeTorqueOffWord: Readable<L::Protocol>,
 {
     drive_to_with::<O, L>(device, target, deadline, |device| {
         device.read_raw::<O::Statusword>()
@@ -117,11 +115,8 @@ where
 /// ends in switch on disabled counts as stopped there too); from any other state, disables.
 pub fn quick_stop<O, L>(device: &mut Device<L>, deadline: Instant) -> Result<(), ControlError>
 where
-    O: Cia402Objects,
+    O: WalkOn<L::Protocol>,
     L: Link,
-    O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
-    O::Statusword: Readable<L::Protocol>,
-    O::SafeTorqueOffWord: Readable<L::Protocol>,
 {
     let target = walk::quick_stop_target(state::<O, L>(device)?);
     walk::quick_stop_outcome(drive_to::<O, L>(device, target, deadline))
@@ -130,11 +125,8 @@ where
 /// Fault reset: from fault (or fault reaction active) to switch on disabled; nothing to do otherwise.
 pub fn fault_reset<O, L>(device: &mut Device<L>, deadline: Instant) -> Result<(), ControlError>
 where
-    O: Cia402Objects,
+    O: WalkOn<L::Protocol>,
     L: Link,
-    O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
-    O::Statusword: Readable<L::Protocol>,
-    O::SafeTorqueOffWord: Readable<L::Protocol>,
 {
     if walk::needs_fault_reset(state::<O, L>(device)?) {
         drive_to::<O, L>(device, Target::SwitchOnDisabled, deadline)
@@ -150,11 +142,8 @@ pub fn set_mode<O, L>(
     deadline: Instant,
 ) -> Result<(), ControlError>
 where
-    O: Cia402Modes,
+    O: ModeOn<L::Protocol>,
     L: Link,
-    O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
-    O::ModesOfOperation: Writable<L::Protocol>,
-    O::ModesOfOperationDisplay: Readable<L::Protocol>,
 {
     let controlword = device.read_raw::<O::Controlword>()?;
     if let ModeStep::ClearHaltFirst { controlword } = mode::mode_change(&O::QUIRKS, controlword) {

@@ -56,6 +56,7 @@ pub mod motion_driver;
 #[cfg(feature = "std")]
 pub mod motion_error;
 pub mod objects;
+pub mod objects_on;
 pub mod position;
 pub mod profile_target;
 pub use drivebus_model::control::quirks;

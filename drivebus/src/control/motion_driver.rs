@@ -12,22 +12,20 @@ use super::driver::{set_mode, Instant, POLL_INTERVAL};
 use super::homing::{HomingPlanner, HomingStep};
 use super::mode_bits::{HOMING, PROFILE_POSITION, PROFILE_TORQUE, PROFILE_VELOCITY};
 use super::motion_error::MotionError;
-use super::objects::{
-    Cia402Modes, Cia402Objects, HomingObjects, ProfilePositionObjects, ProfileTorqueObjects,
-    ProfileVelocityObjects,
+use super::objects_on::{
+    ControlOn, HomingOn, ModeOn, ProfilePositionOn, ProfileTorqueOn, ProfileVelocityOn,
 };
 use super::position::{operation_enabled, Move, MovePlanner, MoveStep, SoftLimits};
 use super::profile_target::{ProfileTarget, TargetPlanner};
 use crate::device::Device;
 use crate::link::Link;
-use crate::parameter::{FromWire, OpenEnum, Readable, Writable};
+use crate::parameter::{FromWire, OpenEnum};
 
 /// Refuses unless the drive is operation enabled; returns the statusword.
 fn enabled<O, L>(device: &mut Device<L>) -> Result<u16, MotionError>
 where
-    O: super::objects::Cia402Objects,
+    O: ControlOn<L::Protocol>,
     L: Link,
-    O::Statusword: Readable<L::Protocol>,
 {
     let status = device.read_raw::<O::Statusword>()?;
     if operation_enabled(status) {
@@ -48,14 +46,8 @@ pub fn move_to<O, L>(
     deadline: Instant,
 ) -> Result<i32, MotionError>
 where
-    O: ProfilePositionObjects,
+    O: ProfilePositionOn<L::Protocol>,
     L: Link,
-    O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
-    O::Statusword: Readable<L::Protocol>,
-    O::ModesOfOperation: Writable<L::Protocol>,
-    O::ModesOfOperationDisplay: Readable<L::Protocol>,
-    O::TargetPosition: Writable<L::Protocol>,
-    O::PositionActual: Readable<L::Protocol>,
 {
     enabled::<O, L>(device)?;
     if let Some(limits) = limits {
@@ -98,14 +90,8 @@ pub fn run_at_velocity<O, L>(
     deadline: Instant,
 ) -> Result<i32, MotionError>
 where
-    O: ProfileVelocityObjects,
+    O: ProfileVelocityOn<L::Protocol>,
     L: Link,
-    O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
-    O::Statusword: Readable<L::Protocol>,
-    O::ModesOfOperation: Writable<L::Protocol>,
-    O::ModesOfOperationDisplay: Readable<L::Protocol>,
-    O::TargetVelocity: Writable<L::Protocol>,
-    O::VelocityActual: Readable<L::Protocol>,
 {
     enter::<O, L>(device, PROFILE_VELOCITY, deadline)?;
     device.write_raw::<O::TargetVelocity>(velocity)?;
@@ -123,13 +109,8 @@ pub fn apply_torque<O, L>(
     deadline: Instant,
 ) -> Result<(), MotionError>
 where
-    O: ProfileTorqueObjects,
+    O: ProfileTorqueOn<L::Protocol>,
     L: Link,
-    O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
-    O::Statusword: Readable<L::Protocol>,
-    O::ModesOfOperation: Writable<L::Protocol>,
-    O::ModesOfOperationDisplay: Readable<L::Protocol>,
-    O::TargetTorque: Writable<L::Protocol>,
 {
     enter::<O, L>(device, PROFILE_TORQUE, deadline)?;
     device.write_raw::<O::TargetTorque>(torque)?;
@@ -139,12 +120,8 @@ where
 /// Refuses unless the drive is operation enabled, then switches to `mode`.
 fn enter<O, L>(device: &mut Device<L>, mode: i8, deadline: Instant) -> Result<(), MotionError>
 where
-    O: Cia402Modes,
+    O: ControlOn<L::Protocol> + ModeOn<L::Protocol>,
     L: Link,
-    O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
-    O::Statusword: Readable<L::Protocol>,
-    O::ModesOfOperation: Writable<L::Protocol>,
-    O::ModesOfOperationDisplay: Readable<L::Protocol>,
 {
     enabled::<O, L>(device)?;
     set_mode::<O, L>(device, O::Mode::from_raw(mode, FromWire(())), deadline)?;
@@ -158,10 +135,8 @@ fn target<O, L>(
     deadline: Instant,
 ) -> Result<(), MotionError>
 where
-    O: Cia402Objects,
+    O: ControlOn<L::Protocol>,
     L: Link,
-    O::Controlword: Writable<L::Protocol>,
-    O::Statusword: Readable<L::Protocol>,
 {
     let mut planner = TargetPlanner::new(target);
     let halt = planner.halt();
@@ -186,14 +161,8 @@ pub fn home<O, L>(
     deadline: Instant,
 ) -> Result<i32, MotionError>
 where
-    O: HomingObjects + ProfilePositionObjects,
+    O: HomingOn<L::Protocol>,
     L: Link,
-    O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
-    O::Statusword: Readable<L::Protocol>,
-    O::ModesOfOperation: Writable<L::Protocol>,
-    O::ModesOfOperationDisplay: Readable<L::Protocol>,
-    O::HomingMethod: Writable<L::Protocol>,
-    O::PositionActual: Readable<L::Protocol>,
 {
     if method.name().is_none() {
         return Err(MotionError::HomingMethodNotListed {
@@ -234,10 +203,8 @@ fn run<O, L>(
     mut next: impl FnMut(u16) -> Poll,
 ) -> Result<(), MotionError>
 where
-    O: Cia402Objects,
+    O: ControlOn<L::Protocol>,
     L: Link,
-    O::Controlword: Writable<L::Protocol>,
-    O::Statusword: Readable<L::Protocol>,
 {
     loop {
         let status = device.read_raw::<O::Statusword>()?;

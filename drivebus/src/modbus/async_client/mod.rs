@@ -26,7 +26,7 @@ use core::time::Duration;
 
 use embedded_io_async::{Read, Write};
 
-use crate::asynch::{within, Timer};
+use crate::asynch::{within, within_alarm, Timer};
 use crate::error::BusError;
 
 use super::framing::{scan_registers, Framing, Scan};
@@ -83,9 +83,12 @@ enum Left {
 
 /// An async Modbus client over stream `S` with framing `F`, timed by `T`.
 #[derive(Debug)]
-pub struct AsyncClient<S, F, T> {
+pub struct AsyncClient<S, F, T: Timer> {
     io: Io<S, F>,
     timer: T,
+    /// The answer timeout, kept from one request to the next and moved at each: cheaper than
+    /// a timer armed afresh per request (docs/benchmarks.md, issue 30).
+    alarm: T::Alarm,
     config: AsyncClientConfig,
 }
 
@@ -97,6 +100,9 @@ struct Io<S, F> {
     tx: [u8; MAX_ADU],
     rx: [u8; RX_CAPACITY],
     rx_len: usize,
+    /// How many bytes at the front of the receive buffer are the answer the last request took
+    /// (kept until the next request: a write's answer is decoded after the exchange).
+    taken: usize,
     left: Left,
 }
 
@@ -133,8 +139,10 @@ impl<S: Read + Write, F: Framing, T: Timer> AsyncClient<S, F, T> {
                 tx: [0; MAX_ADU],
                 rx: [0; RX_CAPACITY],
                 rx_len: 0,
+                taken: 0,
                 left: Left::Clean,
             },
+            alarm: timer.alarm(),
             timer,
             config,
         }
@@ -210,9 +218,9 @@ impl<S: Read + Write, F: Framing, T: Timer> AsyncClient<S, F, T> {
             .encode_request(unit, request, &mut self.io.tx)?;
         self.io.send(len).await?;
         let mut rejected = None;
-        let answer = within(&self.timer, self.config.timeout, async {
+        let io = &mut self.io;
+        let answer = within_alarm(&mut self.alarm, self.config.timeout, async {
             loop {
-                let io = &mut self.io;
                 match scan(&io.framing, &io.rx[..io.rx_len])? {
                     Scan::Found { start, len } => return Ok(start..start + len),
                     Scan::Incomplete {
@@ -229,6 +237,7 @@ impl<S: Read + Write, F: Framing, T: Timer> AsyncClient<S, F, T> {
         .await;
         let frame = answer.map_err(|_| rejected.map_or(BusError::Timeout, BusError::Frame))??;
         self.io.left = Left::Clean;
+        self.io.taken = frame.end;
         Ok(frame)
     }
 
@@ -270,9 +279,9 @@ impl<S: Read + Write, F: Framing, T: Timer> AsyncClient<S, F, T> {
         let mut rejected = None;
         let mut refused = Ok(());
         let mut waiting = in_flight.iter().flatten().count();
-        let collected = within(&self.timer, self.config.timeout, async {
+        let io = &mut self.io;
+        let collected = within_alarm(&mut self.alarm, self.config.timeout, async {
             while waiting > 0 {
-                let io = &mut self.io;
                 let (rx, rx_len) = (&mut io.rx, &mut io.rx_len);
                 match claim_answer(unit, &mut in_flight, rx, rx_len, &mut rejected) {
                     Some(answer) => {
@@ -294,6 +303,10 @@ impl<S: Read + Write, F: Framing, T: Timer> AsyncClient<S, F, T> {
     /// Cleans up after a request that did not complete (dropped, or timed out), then keeps
     /// the idle gap: the start of every request.
     async fn resynchronise(&mut self) -> Result<(), BusError> {
+        // The last answer is no stale frame: dropped unseen, so a timeout now is reported as
+        // one (as the blocking client does), not as a transaction id that does not match.
+        let io = &mut self.io;
+        drop_front(&mut io.rx, &mut io.rx_len, core::mem::take(&mut io.taken));
         match self.io.left {
             Left::Sending if F::TAGGED_ANSWERS => return Err(BusError::Closed),
             // RTU answers carry no tag: a late answer must not pass for the next one.

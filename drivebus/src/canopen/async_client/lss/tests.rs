@@ -42,7 +42,21 @@ impl AsyncCanBus for Slaves {
 struct NoWait;
 
 impl Timer for NoWait {
+    type Alarm = NoWait;
+
+    fn alarm(&self) -> NoWait {
+        NoWait
+    }
+
     async fn sleep(&self, _: Duration) {}
+}
+
+impl crate::asynch::Alarm for NoWait {
+    fn set(&mut self, _: Duration) {}
+
+    fn poll_due(&mut self, _: &mut core::task::Context<'_>) -> core::task::Poll<()> {
+        core::task::Poll::Ready(())
+    }
 }
 
 fn address(serial: u32) -> LssAddress {
