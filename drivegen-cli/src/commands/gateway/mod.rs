@@ -1,15 +1,19 @@
 //! `drivegen gateway CONFIG.toml`: the drives a gateway file names, polled on their buses and
-//! published to an MQTT broker, with writes from MQTT clients through the checks of `drivegen
-//! write` (docs/gateway.md).
+//! published to an MQTT broker and/or served on an OPC UA endpoint (feature `opcua`), with
+//! writes from clients through the checks of `drivegen write` (docs/gateway.md).
 //!
 //! A thread per drive owns its blocking session (the bus I/O); the MQTT side runs on a tokio
-//! runtime, a task per drive with its own connection so each drive has its own last will. The
-//! two meet through channels only, so no bus call ever blocks the runtime.
+//! runtime, a task per drive with its own connection so each drive has its own last will; the
+//! OPC UA server runs on the same runtime. They meet the pollers through channels only, so no
+//! bus call ever blocks the runtime.
 
 mod exposed;
 mod mqtt;
+#[cfg(feature = "opcua")]
+mod opcua;
 mod payload;
 mod poller;
+mod refusal;
 
 use std::path::PathBuf;
 
@@ -30,6 +34,8 @@ pub struct Args {
 pub fn run(args: Args) -> Result<(), CliError> {
     let gateway = exposed::Gateway::load(&args.config)?;
     let password = gateway.password()?;
+    #[cfg(feature = "opcua")]
+    let endpoint = opcua::Endpoint::prepare(&gateway)?;
     init_logging();
     // TLS through rustls on ring: the one provider compiled in, installed for the process.
     let _ = rustls::crypto::ring::default_provider().install_default();
@@ -40,13 +46,22 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let (stop, stopped) = watch::channel(false);
     std::thread::scope(|scope| {
         let mut tasks = Vec::new();
+        let mut feeds = Vec::new();
         for drive in &gateway.drives {
             let (requests, pending) = std::sync::mpsc::channel();
             let (reports, latest) = watch::channel(poller::Report::Starting);
             let poll_stop = stopped.clone();
             scope.spawn(move || poller::run(drive, &pending, &reports, &poll_stop));
+            feeds.push(Feed {
+                drive,
+                latest: latest.clone(),
+                requests: requests.clone(),
+            });
             tasks.push(mqtt::DriveTask {
-                topics: mqtt::Topics::new(&gateway.mqtt.topic_prefix, &drive.name),
+                topics: mqtt::Topics::new(
+                    gateway.mqtt.as_ref().map_or("", |m| &m.topic_prefix),
+                    &drive.name,
+                ),
                 writable: drive.writable_names(gateway.read_only),
                 publish_every_poll: drive.publish_every_poll,
                 parameters: drive.parameters.len(),
@@ -57,8 +72,47 @@ pub fn run(args: Args) -> Result<(), CliError> {
         }
         // The pollers see the stop (or their dropped request channel) at their next wait and
         // end; the scope joins them.
-        runtime.block_on(mqtt::serve(&gateway, password, tasks, stop))
+        runtime.block_on(async {
+            let brokered = async {
+                match &gateway.mqtt {
+                    Some(mqtt) => mqtt::serve(&gateway, mqtt, password, tasks, stop).await,
+                    None => {
+                        drop(tasks);
+                        let signalled = mqtt::signal().await;
+                        tracing::info!("stopping");
+                        stop.send_replace(true);
+                        signalled
+                    }
+                }
+            };
+            #[cfg(feature = "opcua")]
+            {
+                // The OPC UA side ends when `stopped` turns true, as the MQTT side does.
+                let served = async {
+                    if let Some(endpoint) = endpoint {
+                        endpoint.serve(&gateway, feeds, stopped.clone()).await;
+                    }
+                };
+                tokio::join!(brokered, served).0
+            }
+            #[cfg(not(feature = "opcua"))]
+            {
+                drop(feeds);
+                brokered.await
+            }
+        })
     })
+}
+
+/// What a drive's poller gives the endpoints: its newest report, and a way to send it writes.
+#[cfg_attr(not(feature = "opcua"), allow(dead_code))]
+struct Feed<'g> {
+    /// The drive.
+    drive: &'g exposed::Drive,
+    /// Its poller's newest report.
+    latest: watch::Receiver<poller::Report>,
+    /// Its poller's set requests.
+    requests: std::sync::mpsc::Sender<poller::SetRequest>,
 }
 
 /// Log lines on standard error, info and above.

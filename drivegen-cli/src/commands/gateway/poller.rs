@@ -11,6 +11,7 @@ use tokio::sync::{oneshot, watch};
 
 use super::exposed::Drive;
 use super::payload;
+use super::refusal::{Refusal, Refused};
 use crate::commands::{read, write};
 use crate::connect::Session;
 
@@ -25,14 +26,23 @@ pub enum Report {
     Failed(String),
 }
 
-/// A client's set message for one parameter, and where its result payload goes.
+/// A client's set message for one parameter, and where its result goes.
 pub struct SetRequest {
     /// The parameter's name.
     pub parameter: String,
-    /// The message as received.
+    /// The message as received (MQTT), or as an OPC UA write is put in those words.
     pub message: Vec<u8>,
-    /// The result payload.
-    pub reply: oneshot::Sender<serde_json::Value>,
+    /// The result.
+    pub reply: oneshot::Sender<SetReply>,
+}
+
+/// The answer to a set request.
+pub struct SetReply {
+    /// The result payload (MQTT's `.../set/result`).
+    pub payload: serde_json::Value,
+    /// Why it was refused, when it was (OPC UA answers with a status code of its kind).
+    #[cfg_attr(not(feature = "opcua"), allow(dead_code))]
+    pub refused: Option<Refusal>,
 }
 
 /// Polls `drive` until `stop` turns true or the set requests' sender is gone.
@@ -104,12 +114,17 @@ fn answer<'d>(drive: &'d Drive, session: &mut Option<Session<'d>>, request: SetR
         Ok(shown) => {
             tracing::info!(drive = %drive.name, parameter = %request.parameter, value = %shown.text, "written")
         }
-        Err(why) => {
-            tracing::warn!(drive = %drive.name, parameter = %request.parameter, "write refused: {why}")
+        Err(refused) => {
+            tracing::warn!(drive = %drive.name, parameter = %request.parameter, "write refused: {}", refused.why)
         }
     }
+    let refused = outcome.as_ref().err().map(|r| r.kind);
+    let reply = SetReply {
+        payload: payload::set_result(parameter, &outcome.map_err(|r| r.why)),
+        refused,
+    };
     // The client may have gone; the write's outcome is logged either way.
-    let _ = request.reply.send(payload::set_result(parameter, &outcome));
+    let _ = request.reply.send(reply);
 }
 
 fn set<'d>(
@@ -117,14 +132,18 @@ fn set<'d>(
     session: &mut Option<Session<'d>>,
     parameter: Option<&Parameter>,
     message: &[u8],
-) -> Result<Shown, String> {
-    let parameter = parameter.ok_or("no such parameter")?;
-    let text = payload::set_text(message)?;
-    let bytes = write::parse_value(&drive.device, parameter, &text).map_err(|e| e.to_string())?;
-    let open = session
-        .as_mut()
-        .ok_or("the drive is offline: nothing written")?;
-    write::write_checked(open, &drive.device, parameter, &bytes, true).map_err(|e| e.to_string())
+) -> Result<Shown, Refused> {
+    let parameter =
+        parameter.ok_or_else(|| Refused::new(Refusal::NotWritable, "no such parameter"))?;
+    let text = payload::set_text(message).map_err(|why| Refused::new(Refusal::WrongType, why))?;
+    let bytes = write::parse_value(&drive.device, parameter, &text).map_err(|e| Refused::of(&e))?;
+    let open = session.as_mut().ok_or_else(|| {
+        Refused::new(
+            Refusal::Communication,
+            "the drive is offline: nothing written",
+        )
+    })?;
+    write::write_checked(open, &drive.device, parameter, &bytes, true).map_err(|e| Refused::of(&e))
 }
 
 /// Logs when a drive starts or stops answering, not at every poll.
