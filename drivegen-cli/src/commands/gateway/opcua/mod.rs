@@ -199,3 +199,83 @@ fn drive_spec(gateway: &Gateway, feed: &Feed<'_>) -> DriveSpec {
         requests: feed.requests.clone(),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+    use crate::commands::gateway::exposed::Gateway;
+    use crate::commands::gateway::poller::Report;
+
+    /// A gateway file with `read_only` as given, loaded: one Lafert drive.
+    fn gateway(read_only: bool) -> Gateway {
+        let dir = std::env::temp_dir().join(format!(
+            "drivegen-opcua-spec-{read_only}-{}",
+            std::process::id()
+        ));
+        std::fs::create_dir_all(&dir).unwrap();
+        let lafert = Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/lafert-smartris");
+        let file = dir.join("gateway.toml");
+        std::fs::write(
+            &file,
+            format!(
+                "format = 1\nread_only = {read_only}\n[opcua]\nanonymous = true\n[[drive]]\n\
+                 name = \"lafert\"\ndescription = \"{}\"\nbus = {{ modbus_tcp = \"127.0.0.1:1\" }}\n\
+                 parameters = [\"bus_dc_link\", \"speed_ramp_up\", \"operation_mode\"]\n\
+                 writable = [\"speed_ramp_up\", \"operation_mode\"]\n",
+                lafert.display()
+            ),
+        )
+        .unwrap();
+        let gateway = Gateway::load(&file).unwrap();
+        let _ = std::fs::remove_dir_all(&dir);
+        gateway
+    }
+
+    fn spec(gateway: &Gateway) -> DriveSpec {
+        let (requests, _pending) = std::sync::mpsc::channel();
+        let (_reports, latest) = watch::channel(Report::Starting);
+        let feed = Feed {
+            drive: &gateway.drives[0],
+            latest,
+            requests,
+        };
+        drive_spec(gateway, &feed)
+    }
+
+    #[test]
+    fn variables_take_their_shape_range_and_access_from_the_description_and_the_file() {
+        let drive = spec(&gateway(false));
+        let shapes: Vec<_> = drive
+            .parameters
+            .iter()
+            .map(|p| (p.name.as_str(), p.kind, p.unit.as_deref(), p.writable))
+            .collect();
+        let u16_value = kind::Kind::Integer {
+            int: kind::Int::U16,
+            raw: false,
+        };
+        let u16_raw = kind::Kind::Integer {
+            int: kind::Int::U16,
+            raw: true,
+        };
+        assert_eq!(
+            shapes,
+            [
+                ("bus_dc_link", kind::Kind::Double, Some("V"), false),
+                ("speed_ramp_up", u16_value, Some("ms"), true),
+                ("operation_mode", u16_raw, None, true),
+            ]
+        );
+        assert_eq!(drive.parameters[1].range, Some((0.0, 32000.0)));
+        let modes = &drive.parameters[2].enum_values;
+        assert!(modes.contains(&(2, "velocity".to_owned())), "{modes:?}");
+    }
+
+    #[test]
+    fn a_read_only_gateway_makes_every_variable_read_only() {
+        let drive = spec(&gateway(true));
+        assert!(drive.parameters.iter().all(|p| !p.writable));
+    }
+}
