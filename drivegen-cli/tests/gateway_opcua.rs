@@ -106,16 +106,40 @@ fn json(text: &str) -> serde_json::Value {
     serde_json::from_str(text).unwrap_or_else(|e| panic!("{text}: {e}"))
 }
 
+/// `drivegen gateway FILE` with the users' passwords, its log in `dir/gateway.log`, once it
+/// serves OPC UA.
+fn start_gateway(dir: &Path, file: &Path) -> Process {
+    let log = std::fs::File::create(dir.join("gateway.log")).unwrap();
+    let gateway = Process::new(
+        Command::new(BIN)
+            .arg("gateway")
+            .arg(file)
+            .env("OPERATOR_PASSWORD", "op-secret")
+            .env("VIEWER_PASSWORD", "view-secret")
+            .stderr(log)
+            .spawn()
+            .unwrap(),
+    );
+    serving(&dir.join("gateway.log"));
+    gateway
+}
+
 /// Waits until the gateway's log says it serves OPC UA (its port is bound from the start, but
 /// the first start makes the server's key first).
 fn serving(log: &Path) {
+    logged(log, "OPC UA serving");
+}
+
+/// Waits until the gateway's log has `line` (four times [`WAIT`]: a debug build takes a while
+/// to make the server's RSA key).
+fn logged(log: &Path, line: &str) {
     let started = Instant::now();
     loop {
         let text = std::fs::read_to_string(log).unwrap_or_default();
-        if text.contains("OPC UA serving") {
+        if text.contains(line) {
             return;
         }
-        assert!(started.elapsed() < WAIT * 4, "not serving:\n{text}");
+        assert!(started.elapsed() < WAIT * 4, "no `{line}`:\n{text}");
         std::thread::sleep(Duration::from_millis(50));
     }
 }
@@ -136,18 +160,7 @@ fn an_independent_client_browses_reads_writes_and_subscribes() {
     let mut lenze_sim = Process::new(lenze_sim);
     let port = free_port();
     let file = config(&dir, port, &lafert, &lenze);
-    let log = std::fs::File::create(dir.join("gateway.log")).unwrap();
-    let mut gateway = Process::new(
-        Command::new(BIN)
-            .arg("gateway")
-            .arg(&file)
-            .env("OPERATOR_PASSWORD", "op-secret")
-            .env("VIEWER_PASSWORD", "view-secret")
-            .stderr(log)
-            .spawn()
-            .unwrap(),
-    );
-    serving(&dir.join("gateway.log"));
+    let mut gateway = start_gateway(&dir, &file);
     let url = format!("opc.tcp://127.0.0.1:{port}/");
 
     // An unknown client certificate is refused and kept in pki/rejected; the operator trusts it
@@ -259,6 +272,66 @@ fn an_independent_client_browses_reads_writes_and_subscribes() {
     let log = std::fs::read_to_string(dir.join("gateway.log")).unwrap();
     assert!(log.contains("the user has no write right"), "{log}");
     assert!(log.contains("viewer"), "{log}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[cfg(feature = "opcua")]
+#[test]
+fn mqtt_and_opcua_serve_the_same_polls_from_one_process() {
+    let dir = scratch("both");
+    let broker_port = free_port();
+    let _broker = peer_support::mosquitto::start(&dir, broker_port, "allow_anonymous true\n");
+    let (lafert_sim, lafert) = support::modbus_sim(&description("lafert-smartris"), &[]);
+    let _lafert_sim = Process::new(lafert_sim);
+    let port = free_port();
+    let file = config(&dir, port, &lafert, "127.0.0.1:1");
+    let text = std::fs::read_to_string(&file).unwrap();
+    let both = text.replacen(
+        "[opcua]",
+        &format!("[mqtt]\nport = {broker_port}\n\n[opcua]"),
+        1,
+    );
+    std::fs::write(&file, both).unwrap();
+    let _gateway = start_gateway(&dir, &file);
+    // Set messages are not retained: the gateway must have subscribed first.
+    logged(
+        &dir.join("gateway.log"),
+        "connected to the broker drive=lafert",
+    );
+    let url = format!("opc.tcp://127.0.0.1:{port}/");
+    // A write from an MQTT client is seen by OPC UA clients at the next poll.
+    let published = Command::new("mosquitto_pub")
+        .args(["-h", "127.0.0.1", "-p", &broker_port.to_string()])
+        .args([
+            "-t",
+            "drivegen/lafert/speed_ramp_up/set",
+            "-m",
+            r#"{"value": 1800}"#,
+        ])
+        .status()
+        .unwrap();
+    assert!(published.success());
+    let started = Instant::now();
+    loop {
+        let read = json(&client(&["status", &url, "lafert.speed_ramp_up"]));
+        if read["value"] == 1800 {
+            assert_eq!(read["status"], "Good", "{read}");
+            break;
+        }
+        assert!(started.elapsed() < WAIT, "still {read}");
+        std::thread::sleep(Duration::from_millis(200));
+    }
+    // And MQTT keeps publishing the drive's values beside (retained).
+    let retained = Command::new("mosquitto_sub")
+        .args(["-h", "127.0.0.1", "-p", &broker_port.to_string()])
+        .args(["-t", "drivegen/lafert/speed_ramp_up", "-C", "1", "-W", "10"])
+        .output()
+        .unwrap();
+    let value = json(&String::from_utf8_lossy(&retained.stdout));
+    assert_eq!(value["raw"], 1800, "{value}");
+    // The dead Lenze bus: Bad on OPC UA, the Lafert served all the same.
+    let lenze = json(&client(&["status", &url, "lenze.acceleration_time"]));
+    assert_ne!(lenze["status"], "Good", "{lenze}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 

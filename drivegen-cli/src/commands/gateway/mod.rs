@@ -4,8 +4,8 @@
 //!
 //! A thread per drive owns its blocking session (the bus I/O); the MQTT side runs on a tokio
 //! runtime, a task per drive with its own connection so each drive has its own last will; the
-//! OPC UA server runs on the same runtime. They meet the pollers through channels only, so no
-//! bus call ever blocks the runtime.
+//! OPC UA server runs on a thread and runtime of its own. They meet the pollers through channels
+//! only, so no bus call ever blocks a runtime.
 
 mod exposed;
 mod mqtt;
@@ -70,35 +70,27 @@ pub fn run(args: Args) -> Result<(), CliError> {
                 stop: stopped.clone(),
             });
         }
+        // The OPC UA server on a thread and runtime of its own: its first start makes an RSA
+        // key (seconds), which must not hold up the MQTT side. It ends when `stopped` turns true.
+        #[cfg(feature = "opcua")]
+        if let Some(endpoint) = endpoint {
+            let (gateway, stopped) = (&gateway, stopped.clone());
+            scope.spawn(move || endpoint.run(gateway, feeds, stopped));
+        }
+        #[cfg(not(feature = "opcua"))]
+        drop(feeds);
         // The pollers see the stop (or their dropped request channel) at their next wait and
         // end; the scope joins them.
         runtime.block_on(async {
-            let brokered = async {
-                match &gateway.mqtt {
-                    Some(mqtt) => mqtt::serve(&gateway, mqtt, password, tasks, stop).await,
-                    None => {
-                        drop(tasks);
-                        let signalled = mqtt::signal().await;
-                        tracing::info!("stopping");
-                        stop.send_replace(true);
-                        signalled
-                    }
+            match &gateway.mqtt {
+                Some(mqtt) => mqtt::serve(&gateway, mqtt, password, tasks, stop).await,
+                None => {
+                    drop(tasks);
+                    let signalled = mqtt::signal().await;
+                    tracing::info!("stopping");
+                    stop.send_replace(true);
+                    signalled
                 }
-            };
-            #[cfg(feature = "opcua")]
-            {
-                // The OPC UA side ends when `stopped` turns true, as the MQTT side does.
-                let served = async {
-                    if let Some(endpoint) = endpoint {
-                        endpoint.serve(&gateway, feeds, stopped.clone()).await;
-                    }
-                };
-                tokio::join!(brokered, served).0
-            }
-            #[cfg(not(feature = "opcua"))]
-            {
-                drop(feeds);
-                brokered.await
             }
         })
     })

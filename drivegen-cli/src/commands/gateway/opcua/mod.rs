@@ -65,13 +65,20 @@ impl Endpoint {
         }))
     }
 
+    /// Serves `feeds` until `stop` turns true, on a runtime of its own (run on a thread of its
+    /// own).
+    pub fn run(self, gateway: &Gateway, feeds: Vec<Feed<'_>>, stop: watch::Receiver<bool>) {
+        let runtime = tokio::runtime::Builder::new_current_thread()
+            .enable_all()
+            .build();
+        match runtime {
+            Ok(runtime) => runtime.block_on(self.serve(gateway, feeds, stop)),
+            Err(e) => tracing::error!("OPC UA: cannot start its runtime: {e}"),
+        }
+    }
+
     /// Serves `feeds` until `stop` turns true.
-    pub async fn serve(
-        self,
-        gateway: &Gateway,
-        feeds: Vec<Feed<'_>>,
-        mut stop: watch::Receiver<bool>,
-    ) {
+    async fn serve(self, gateway: &Gateway, feeds: Vec<Feed<'_>>, mut stop: watch::Receiver<bool>) {
         let users = Arc::new(users::Users::new(&self.users));
         let drives = feeds.iter().map(|feed| drive_spec(gateway, feed)).collect();
         let builder =
