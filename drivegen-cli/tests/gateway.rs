@@ -334,23 +334,7 @@ fn values_writes_a_broker_restart_and_a_silent_drive_through_a_real_broker() {
     assert!(error["error"].as_str().is_some(), "{error}");
 
     // SIGTERM: a clean stop, the status offline.
-    let pid = gateway.child_mut().id().to_string();
-    assert!(Command::new("kill")
-        .args(["-TERM", &pid])
-        .status()
-        .unwrap()
-        .success());
-    let started = Instant::now();
-    let exit = loop {
-        if let Some(exit) = gateway.child_mut().try_wait().unwrap() {
-            break exit;
-        }
-        assert!(
-            started.elapsed() < WAIT,
-            "the gateway did not stop on SIGTERM"
-        );
-        std::thread::sleep(Duration::from_millis(20));
-    };
+    let exit = support::terminate(gateway.child_mut());
     assert!(exit.success(), "{exit}");
     drop(mosquitto);
     let _ = std::fs::remove_dir_all(&dir);
@@ -366,23 +350,7 @@ fn replaced(text: &str, from: &str, to: &str) -> String {
 /// `drivegen gateway FILE` for a file it must refuse: its stderr, once it has exited (a
 /// gateway that starts instead is killed and fails the test).
 fn refusal(file: &Path) -> String {
-    let mut child = Command::new(BIN)
-        .arg("gateway")
-        .arg(file)
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let started = Instant::now();
-    while child.try_wait().unwrap().is_none() {
-        if started.elapsed() > WAIT {
-            child.kill().unwrap();
-            panic!("the gateway started instead of refusing its file");
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    }
-    let output = child.wait_with_output().unwrap();
-    assert!(!output.status.success());
-    stderr(&output)
+    support::refused(Command::new(BIN).arg("gateway").arg(file))
 }
 
 #[test]

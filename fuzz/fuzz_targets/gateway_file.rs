@@ -1,7 +1,8 @@
 //! The gateway file reader (`drivegen::gateway_file::parse`) fed arbitrary text. Asserts that
 //! it never panics, that a file it accepts has at least one drive, drive names that are one
-//! topic level each once, a polling interval of at least 1 ms, `pdo_start` only with `pdo`, and
-//! lines within the text, and that a refusal's line is within the text.
+//! topic level each once, a polling interval of at least 1 ms, `pdo_start` only with `pdo`, lines
+//! within the text, an endpoint (MQTT or OPC UA, whose users are named once and who someone can
+//! log in as), and that a refusal's line is within the text.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
@@ -15,7 +16,17 @@ fuzz_target!(|data: &[u8]| {
     match drivegen::gateway_file::parse(text) {
         Ok(file) => {
             assert!(!file.drives.is_empty());
-            assert!(file.mqtt.port != 0);
+            assert!(file.mqtt.is_some() || file.opcua.is_some());
+            assert!(file.mqtt.as_ref().is_none_or(|mqtt| mqtt.port != 0));
+            if let Some(opcua) = &file.opcua {
+                assert!(opcua.port != 0 && opcua.sampling_interval_ms >= 1);
+                assert!(opcua.anonymous || !opcua.users.is_empty());
+                assert!(within(opcua.line));
+                for (i, user) in opcua.users.iter().enumerate() {
+                    assert!(!user.name.is_empty() && within(user.line));
+                    assert!(opcua.users[..i].iter().all(|u| u.name != user.name));
+                }
+            }
             for (i, drive) in file.drives.iter().enumerate() {
                 assert!(!drive.name.is_empty());
                 assert!(!drive.name.contains(['/', '+', '#']));

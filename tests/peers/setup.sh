@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
 # Installs the independent test peers: socat (pty pairs), chromium and tmux (the plots and the
 # terminal scope), mosquitto (an MQTT broker and its clients) and a Python venv at the workspace
-# root with pinned pymodbus / pyserial / canopen / python-can / pyModbusTCP / cantools.
+# root with pinned pymodbus / pyserial / canopen / python-can / pyModbusTCP / cantools / asyncua
+# (the OPC UA client of drivegen-cli/tests/gateway_opcua.rs; it brings cryptography).
 # Idempotent; a no-op when already done.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 venv="$root/.venv"
-pins=(pymodbus==3.16.1 pyserial==3.5 canopen==2.4.1 python-can==4.6.1 pyModbusTCP==0.3.1 cantools==45.1.0)
+pins=(pymodbus==3.16.1 pyserial==3.5 canopen==2.4.1 python-can==4.6.1 pyModbusTCP==0.3.1 cantools==45.1.0 asyncua==2.1.0)
 stamp="$venv/.drivegen-peers"
 
 # socat: pty pairs; chromium: opens the HTML plots headless (drivegen-cli/tests/plot.rs); tmux:

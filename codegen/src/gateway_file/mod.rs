@@ -1,15 +1,17 @@
 //! The configuration file `drivegen gateway` reads (docs/gateway.md): the MQTT broker to publish
-//! to, and each drive to expose, with its description, its bus (in the words of the CLI's bus
+//! to, the OPC UA endpoint to serve, and each drive to expose, with its description, its bus (in the words of the CLI's bus
 //! options), the parameters to publish and the ones clients may write. This module is the file
 //! alone: text to [`GatewayFile`], every entry with the line it is on; resolving descriptions,
 //! parameters and bus options is the CLI's, before any bus is opened.
 
 mod error;
+mod opcua;
 mod read;
 #[cfg(test)]
 mod tests;
 
 pub use error::{GatewayFileError, GatewayFileErrorKind};
+pub use opcua::{OpcUaEntry, OpcUaRight, OpcUaUser};
 pub use read::parse;
 
 /// The version of the file format this module reads (`format = 1`).
@@ -18,8 +20,11 @@ pub const FORMAT_VERSION: u32 = 1;
 /// A gateway: where to publish, and the drives.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GatewayFile {
-    /// The `[mqtt]` table.
-    pub mqtt: MqttEntry,
+    /// The `[mqtt]` table: its defaults when the file has neither `[mqtt]` nor `[opcua]`,
+    /// `None` when it has `[opcua]` alone (a gateway for OPC UA clients only).
+    pub mqtt: Option<MqttEntry>,
+    /// The `[opcua]` table, when the file has one.
+    pub opcua: Option<OpcUaEntry>,
     /// Refuse every write, whatever the drives' `writable` lists say.
     pub read_only: bool,
     /// The `[[drive]]` entries, in the file's order.

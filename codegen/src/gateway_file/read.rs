@@ -7,6 +7,7 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use super::error::{GatewayFileError, GatewayFileErrorKind as Kind};
+use super::opcua::{opcua, RawOpcUa};
 use super::{BusOption, DriveEntry, GatewayFile, MqttEntry, Named, TlsEntry, FORMAT_VERSION};
 use crate::toml_file::{self, in_file_order, line_of, Unreadable};
 
@@ -17,6 +18,7 @@ struct RawFile {
     #[serde(default)]
     read_only: bool,
     mqtt: Option<Spanned<RawMqtt>>,
+    opcua: Option<Spanned<RawOpcUa>>,
     #[serde(default)]
     drive: Vec<Spanned<RawDrive>>,
 }
@@ -53,8 +55,8 @@ struct RawDrive {
 }
 
 /// Reads a gateway file. A file that is not TOML, of another format, without drives, with a
-/// drive name twice or unfit for a topic, or with an entry of the wrong shape is refused with
-/// the line.
+/// drive name twice or unfit for a topic, an OPC UA user twice or none (without `anonymous`), or
+/// with an entry of the wrong shape is refused with the line.
 pub fn parse(text: &str) -> Result<GatewayFile, GatewayFileError> {
     let raw: RawFile = toml_file::read(text, FORMAT_VERSION, |raw: &RawFile| raw.format.as_ref())
         .map_err(|unreadable| match unreadable {
@@ -79,8 +81,21 @@ pub fn parse(text: &str) -> Result<GatewayFile, GatewayFileError> {
         }
         drives.push(drive);
     }
+    let opcua = match raw.opcua {
+        None => None,
+        Some(spanned) => {
+            let line = line_of(text, spanned.span().start);
+            Some(opcua(text, line, spanned.into_inner())?)
+        }
+    };
+    // MQTT is the default endpoint: on when the file says `[mqtt]`, or names no endpoint.
+    let mqtt = match (raw.mqtt, &opcua) {
+        (None, Some(_)) => None,
+        (raw_mqtt, _) => Some(mqtt(text, raw_mqtt)?),
+    };
     Ok(GatewayFile {
-        mqtt: mqtt(text, raw.mqtt)?,
+        mqtt,
+        opcua,
         read_only: raw.read_only,
         drives,
     })

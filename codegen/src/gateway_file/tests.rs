@@ -25,10 +25,12 @@ parameters = ["actual_velocity"]
 #[test]
 fn a_whole_file_reads_with_defaults_and_lines() {
     let file = parse(GOOD).unwrap();
-    assert_eq!(file.mqtt.host, "127.0.0.1");
-    assert_eq!(file.mqtt.port, 18830);
-    assert_eq!(file.mqtt.topic_prefix, "drivegen");
-    assert_eq!(file.mqtt.password_env.as_deref(), Some("GATEWAY_PASSWORD"));
+    let mqtt = file.mqtt.expect("[mqtt]");
+    assert_eq!(mqtt.host, "127.0.0.1");
+    assert_eq!(mqtt.port, 18830);
+    assert_eq!(mqtt.topic_prefix, "drivegen");
+    assert_eq!(mqtt.password_env.as_deref(), Some("GATEWAY_PASSWORD"));
+    assert_eq!(file.opcua, None);
     assert!(!file.read_only);
     let [left, kinco] = file.drives.as_slice() else {
         panic!("two drives expected: {:?}", file.drives)
@@ -128,10 +130,10 @@ fn tls_takes_a_ca_and_a_client_certificate_only_with_its_key() {
         "port = 18830\n",
         "port = 18830\nca_file = \"ca.pem\"\nclient_cert_file = \"gw.pem\"\nclient_key_file = \"gw.key\"\n",
     );
-    let tls = parse(&with_tls).unwrap().mqtt.tls.expect("tls");
+    let tls = parse(&with_tls).unwrap().mqtt.unwrap().tls.expect("tls");
     assert_eq!(tls.ca_file, "ca.pem");
     assert_eq!(tls.client, Some(("gw.pem".into(), "gw.key".into())));
-    assert_eq!(parse(GOOD).unwrap().mqtt.tls, None);
+    assert_eq!(parse(GOOD).unwrap().mqtt.unwrap().tls, None);
     let no_key = with_tls.replace("client_key_file = \"gw.key\"\n", "");
     let error = refused(&no_key);
     assert_eq!(error.line, Some(3));
@@ -157,4 +159,98 @@ fn pdo_use_is_read_and_pdo_start_needs_it() {
     let error = refused(&start_alone);
     assert_eq!(error.line, Some(8));
     assert!(error.to_string().contains("pdo = true"), "{error}");
+}
+
+/// GOOD with an `[opcua]` table (lines 3-15) instead of `[mqtt]`.
+fn with_opcua(table: &str) -> String {
+    let drives = GOOD.split_once("\n[[drive]]").expect("drives").1;
+    format!("format = 1\n\n{table}\n[[drive]]{drives}")
+}
+
+const OPCUA: &str = r#"[opcua]
+port = 48400
+pki_dir = "pki"
+sampling_interval_ms = 50
+
+[[opcua.user]]
+name = "operator"
+password_env = "OPERATOR_PASSWORD"
+right = "write"
+
+[[opcua.user]]
+name = "viewer"
+password_env = "VIEWER_PASSWORD"
+right = "read"
+"#;
+
+#[test]
+fn an_opcua_table_reads_with_its_users_and_alone_turns_mqtt_off() {
+    let file = parse(&with_opcua(OPCUA)).unwrap();
+    assert_eq!(file.mqtt, None);
+    let opcua = file.opcua.expect("[opcua]");
+    assert_eq!(opcua.host, "127.0.0.1");
+    assert_eq!(opcua.port, 48400);
+    assert_eq!(opcua.sampling_interval_ms, 50);
+    assert_eq!(opcua.line, 3);
+    assert!(!opcua.anonymous);
+    let users: Vec<_> = opcua
+        .users
+        .iter()
+        .map(|u| (u.name.as_str(), u.password_env.as_str(), u.right, u.line))
+        .collect();
+    assert_eq!(
+        users,
+        [
+            ("operator", "OPERATOR_PASSWORD", OpcUaRight::Write, 9),
+            ("viewer", "VIEWER_PASSWORD", OpcUaRight::Read, 14),
+        ]
+    );
+    assert_eq!(file.drives.len(), 2);
+    // Both tables: both endpoints.
+    let both = GOOD.replacen("[mqtt]", &format!("{OPCUA}\n[mqtt]"), 1);
+    let file = parse(&both).unwrap();
+    assert!(file.mqtt.is_some() && file.opcua.is_some());
+}
+
+#[test]
+fn opcua_defaults_and_refusals_carry_their_line() {
+    let anonymous = parse(&with_opcua("[opcua]\nanonymous = true\n")).unwrap();
+    let opcua = anonymous.opcua.unwrap();
+    assert_eq!((opcua.port, opcua.pki_dir.as_str()), (4840, "pki"));
+    assert_eq!(opcua.sampling_interval_ms, 100);
+    let cases = [
+        (
+            with_opcua("[opcua]\nport = 18830\n"),
+            3,
+            "no client could log in",
+        ),
+        (with_opcua(&OPCUA.replace("48400", "0")), 4, "port"),
+        (
+            with_opcua(&OPCUA.replace("= 50", "= 0")),
+            6,
+            "sampling_interval_ms",
+        ),
+        (
+            with_opcua(&OPCUA.replace("\"read\"", "\"admin\"")),
+            16,
+            "`read` or `write`",
+        ),
+        (
+            with_opcua(&OPCUA.replace("\"viewer\"", "\"operator\"")),
+            14,
+            "once",
+        ),
+        (
+            with_opcua(&OPCUA.replace("\"viewer\"", "\"a b\"")),
+            14,
+            "without spaces",
+        ),
+    ];
+    for (text, line, why) in cases {
+        let error = refused(&text);
+        assert_eq!(error.line, Some(line), "{why}: {error}");
+        assert!(error.to_string().contains(why), "{why}: {error}");
+    }
+    let unknown = refused(&with_opcua(&OPCUA.replace("pki_dir", "pki_folder")));
+    assert!(matches!(unknown.kind, GatewayFileErrorKind::Syntax(_)));
 }

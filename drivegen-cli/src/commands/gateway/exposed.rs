@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use clap::Parser;
-use drivegen::gateway_file::{self, BusOption, DriveEntry, MqttEntry, Named};
+use drivegen::gateway_file::{self, BusOption, DriveEntry, MqttEntry, Named, OpcUaEntry};
 use drivegen::ir::{Device, Parameter};
 
 use super::lines::Line;
@@ -16,8 +16,14 @@ use crate::error::CliError;
 
 /// The gateway a file describes.
 pub struct Gateway {
-    /// The broker.
-    pub mqtt: MqttEntry,
+    /// The broker, unless the file serves OPC UA alone.
+    pub mqtt: Option<MqttEntry>,
+    /// The OPC UA endpoint, when the file has one (refused at load without the feature).
+    #[cfg_attr(not(feature = "opcua"), allow(dead_code))]
+    pub opcua: Option<OpcUaEntry>,
+    /// The folder of the file, which its relative paths start from.
+    #[cfg_attr(not(feature = "opcua"), allow(dead_code))]
+    pub folder: PathBuf,
     /// TLS to the broker: the PEM files the file names, read.
     pub tls: Option<Tls>,
     /// Every write refused.
@@ -99,7 +105,16 @@ impl Gateway {
                 CliError::Io(format!("{}: cannot read {}: {e}", at(None), path.display()))
             })
         };
-        let tls = match &file.mqtt.tls {
+        if let Some(opcua) = &file.opcua {
+            if !cfg!(feature = "opcua") {
+                return Err(CliError::Invalid(format!(
+                    "{}: [opcua] needs a drivegen built with the `opcua` feature \
+                     (cargo install drivegen-cli --features opcua)",
+                    at(Some(opcua.line))
+                )));
+            }
+        }
+        let tls = match file.mqtt.as_ref().and_then(|mqtt| mqtt.tls.as_ref()) {
             None => None,
             Some(entry) => Some(Tls {
                 ca: read(&entry.ca_file)?,
@@ -111,6 +126,8 @@ impl Gateway {
         };
         Ok(Self {
             mqtt: file.mqtt,
+            opcua: file.opcua,
+            folder: folder.to_path_buf(),
             tls,
             read_only: file.read_only,
             drives,
@@ -120,7 +137,7 @@ impl Gateway {
 
     /// The broker password, from the environment variable the file names.
     pub fn password(&self) -> Result<Option<String>, CliError> {
-        let Some(variable) = &self.mqtt.password_env else {
+        let Some(variable) = self.mqtt.as_ref().and_then(|m| m.password_env.as_ref()) else {
             return Ok(None);
         };
         std::env::var(variable).map(Some).map_err(|_| {

@@ -1,19 +1,23 @@
 //! `drivegen gateway CONFIG.toml`: the drives a gateway file names, polled on their buses and
-//! published to an MQTT broker, with writes from MQTT clients through the checks of `drivegen
-//! write` (docs/gateway.md).
+//! published to an MQTT broker and/or served on an OPC UA endpoint (feature `opcua`), with
+//! writes from clients through the checks of `drivegen write` (docs/gateway.md).
 //!
 //! A thread per connection owns its blocking sessions (the bus I/O): drives on one serial line
 //! or CAN bus share one, each polled at its own interval. The MQTT side runs on a tokio
-//! runtime, a task per drive with its own connection so each drive has its own last will. The
-//! two meet through channels only, so no bus call ever blocks the runtime.
+//! runtime, a task per drive with its own connection so each drive has its own last will; the
+//! OPC UA server runs on a thread and runtime of its own. They meet the pollers through
+//! channels only, so no bus call ever blocks a runtime.
 
 mod connection;
 mod exposed;
 mod lines;
 mod mqtt;
+#[cfg(feature = "opcua")]
+mod opcua;
 mod payload;
 mod pdo;
 mod poller;
+mod refusal;
 
 use std::path::PathBuf;
 
@@ -34,6 +38,8 @@ pub struct Args {
 pub fn run(args: Args) -> Result<(), CliError> {
     let gateway = exposed::Gateway::load(&args.config)?;
     let password = gateway.password()?;
+    #[cfg(feature = "opcua")]
+    let endpoint = opcua::Endpoint::prepare(&gateway)?;
     init_logging();
     // TLS through rustls on ring: the one provider compiled in, installed for the process.
     let _ = rustls::crypto::ring::default_provider().install_default();
@@ -44,6 +50,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let (stop, stopped) = watch::channel(false);
     std::thread::scope(|scope| {
         let mut tasks = Vec::new();
+        let mut feeds = Vec::new();
         for line in &gateway.lines {
             let (forwarded, line_requests) = std::sync::mpsc::channel();
             let mut served = Vec::new();
@@ -54,8 +61,16 @@ pub fn run(args: Args) -> Result<(), CliError> {
                 let forwarded = forwarded.clone();
                 scope.spawn(move || poller::forward(slot, &pending, &forwarded));
                 served.push(poller::Served::new(drive, reports));
+                feeds.push(Feed {
+                    drive,
+                    latest: latest.clone(),
+                    requests: requests.clone(),
+                });
                 tasks.push(mqtt::DriveTask {
-                    topics: mqtt::Topics::new(&gateway.mqtt.topic_prefix, &drive.name),
+                    topics: mqtt::Topics::new(
+                        gateway.mqtt.as_ref().map_or("", |m| &m.topic_prefix),
+                        &drive.name,
+                    ),
                     writable: drive.writable_names(gateway.read_only),
                     publish_every_poll: drive.publish_every_poll,
                     parameters: drive.parameters.len(),
@@ -70,10 +85,43 @@ pub fn run(args: Args) -> Result<(), CliError> {
             let poll_stop = stopped.clone();
             scope.spawn(move || poller::run(connection, served, &line_requests, &poll_stop));
         }
+        // The OPC UA server on a thread and runtime of its own: its first start makes an RSA
+        // key (seconds), which must not hold up the MQTT side. It ends when `stopped` turns
+        // true, dropping its request senders.
+        #[cfg(feature = "opcua")]
+        if let Some(endpoint) = endpoint {
+            let (gateway, stopped) = (&gateway, stopped.clone());
+            scope.spawn(move || endpoint.run(gateway, feeds, stopped));
+        }
+        #[cfg(not(feature = "opcua"))]
+        drop(feeds);
         // The pollers see the stop (or their dropped request channels) at their next wait and
-        // end; the forwarders end with the MQTT tasks' request senders; the scope joins them.
-        runtime.block_on(mqtt::serve(&gateway, password, tasks, stop))
+        // end; the forwarders end with the last of each drive's request senders (the MQTT
+        // tasks', the OPC UA endpoint's); the scope joins them.
+        runtime.block_on(async {
+            match &gateway.mqtt {
+                Some(mqtt) => mqtt::serve(&gateway, mqtt, password, tasks, stop).await,
+                None => {
+                    drop(tasks);
+                    let signalled = mqtt::signal().await;
+                    tracing::info!("stopping");
+                    stop.send_replace(true);
+                    signalled
+                }
+            }
+        })
     })
+}
+
+/// What a drive's poller gives the endpoints: its newest report, and a way to send it writes.
+#[cfg_attr(not(feature = "opcua"), allow(dead_code))]
+struct Feed<'g> {
+    /// The drive.
+    drive: &'g exposed::Drive,
+    /// Its poller's newest report.
+    latest: watch::Receiver<poller::Report>,
+    /// Its poller's set requests.
+    requests: std::sync::mpsc::Sender<poller::SetRequest>,
 }
 
 /// Log lines on standard error, info and above.

@@ -13,6 +13,8 @@ use rumqttc::{
 use tokio::sync::{oneshot, watch};
 use tokio::task::JoinSet;
 
+use drivegen::gateway_file::MqttEntry;
+
 use super::exposed::Gateway;
 use super::poller::{Report, SetRequest};
 use crate::error::CliError;
@@ -84,14 +86,14 @@ pub struct DriveTask {
 /// publish its status offline and disconnect.
 pub async fn serve(
     gateway: &Gateway,
+    mqtt: &MqttEntry,
     password: Option<String>,
     tasks: Vec<DriveTask>,
     stop: watch::Sender<bool>,
 ) -> Result<(), CliError> {
-    let mqtt = &gateway.mqtt;
     let mut running = JoinSet::new();
     for task in tasks {
-        let options = options(gateway, password.as_deref(), &task);
+        let options = options(gateway, mqtt, password.as_deref(), &task);
         running.spawn(task.run(options));
     }
     tracing::info!(broker = %format!("{}:{}", mqtt.host, mqtt.port), "serving");
@@ -103,7 +105,7 @@ pub async fn serve(
 }
 
 /// Waits for SIGINT or SIGTERM.
-async fn signal() -> Result<(), CliError> {
+pub async fn signal() -> Result<(), CliError> {
     let mut terminate = tokio::signal::unix::signal(tokio::signal::unix::SignalKind::terminate())
         .map_err(|e| CliError::Io(format!("cannot watch for SIGTERM: {e}")))?;
     tokio::select! {
@@ -113,8 +115,12 @@ async fn signal() -> Result<(), CliError> {
     }
 }
 
-fn options(gateway: &Gateway, password: Option<&str>, task: &DriveTask) -> MqttOptions {
-    let mqtt = &gateway.mqtt;
+fn options(
+    gateway: &Gateway,
+    mqtt: &MqttEntry,
+    password: Option<&str>,
+    task: &DriveTask,
+) -> MqttOptions {
     let id = format!(
         "drivegen-{}-{}",
         task.topics.base.replace('/', "-"),
@@ -238,7 +244,12 @@ impl DriveTask {
         tokio::spawn(async move {
             if let Ok(result) = answer.await {
                 let _ = client
-                    .publish(result_topic, QoS::AtLeastOnce, false, result.to_string())
+                    .publish(
+                        result_topic,
+                        QoS::AtLeastOnce,
+                        false,
+                        result.payload.to_string(),
+                    )
                     .await;
             }
         });

@@ -14,6 +14,7 @@ use super::connection::Connection;
 use super::exposed::Drive;
 use super::payload;
 use super::pdo::ByPdo;
+use super::refusal::{Refusal, Refused};
 use crate::commands::{read, write};
 use crate::connect::{self, Session};
 
@@ -28,14 +29,23 @@ pub enum Report {
     Failed(String),
 }
 
-/// A client's set message for one parameter, and where its result payload goes.
+/// A client's set message for one parameter, and where its result goes.
 pub struct SetRequest {
     /// The parameter's name.
     pub parameter: String,
-    /// The message as received.
+    /// The message as received (MQTT), or as an OPC UA write is put in those words.
     pub message: Vec<u8>,
-    /// The result payload.
-    pub reply: oneshot::Sender<serde_json::Value>,
+    /// The result.
+    pub reply: oneshot::Sender<SetReply>,
+}
+
+/// The answer to a set request.
+pub struct SetReply {
+    /// The result payload (MQTT's `.../set/result`).
+    pub payload: serde_json::Value,
+    /// Why it was refused, when it was (OPC UA answers with a status code of its kind).
+    #[cfg_attr(not(feature = "opcua"), allow(dead_code))]
+    pub refused: Option<Refusal>,
 }
 
 /// A drive a line's poller serves: its own interval, report channel and session.
@@ -194,12 +204,17 @@ fn answer<'d>(connection: &mut Connection<'d>, served: &mut Served<'d>, request:
         Ok(shown) => {
             tracing::info!(drive = %drive.name, parameter = %request.parameter, value = %shown.text, "written")
         }
-        Err(why) => {
-            tracing::warn!(drive = %drive.name, parameter = %request.parameter, "write refused: {why}")
+        Err(refused) => {
+            tracing::warn!(drive = %drive.name, parameter = %request.parameter, "write refused: {}", refused.why)
         }
     }
+    let refused = outcome.as_ref().err().map(|r| r.kind);
+    let reply = SetReply {
+        payload: payload::set_result(parameter, &outcome.map_err(|r| r.why)),
+        refused,
+    };
     // The client may have gone; the write's outcome is logged either way.
-    let _ = request.reply.send(payload::set_result(parameter, &outcome));
+    let _ = request.reply.send(reply);
 }
 
 fn set<'d>(
@@ -207,17 +222,26 @@ fn set<'d>(
     served: &mut Served<'d>,
     parameter: Option<&Parameter>,
     message: &[u8],
-) -> Result<Shown, String> {
+) -> Result<Shown, Refused> {
     let drive = served.drive;
-    let parameter = parameter.ok_or("no such parameter")?;
-    let text = payload::set_text(message)?;
-    let bytes = write::parse_value(&drive.device, parameter, &text).map_err(|e| e.to_string())?;
+    let parameter =
+        parameter.ok_or_else(|| Refused::new(Refusal::NotWritable, "no such parameter"))?;
+    let text = payload::set_text(message).map_err(|why| Refused::new(Refusal::WrongType, why))?;
+    let bytes = write::parse_value(&drive.device, parameter, &text).map_err(|e| Refused::of(&e))?;
     // A drive whose last poll failed is offline: nothing is sent to it until a poll reaches it.
+    let offline = || {
+        Refused::new(
+            Refusal::Communication,
+            "the drive is offline: nothing written",
+        )
+    };
     if served.failed || served.session.is_none() {
-        return Err("the drive is offline: nothing written".into());
+        return Err(offline());
     }
-    let open = connection.reach(drive, &mut served.session)?;
-    write::write_checked(open, &drive.device, parameter, &bytes, true).map_err(|e| e.to_string())
+    let open = connection
+        .reach(drive, &mut served.session)
+        .map_err(|why| Refused::new(Refusal::Communication, why))?;
+    write::write_checked(open, &drive.device, parameter, &bytes, true).map_err(|e| Refused::of(&e))
 }
 
 /// Logs when a drive starts or stops answering, not at every poll.
