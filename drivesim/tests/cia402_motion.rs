@@ -1,7 +1,7 @@
 //! The simulated positioning axis on the Kinco description (its objects found by CiA 402 index):
-//! profile position with the set-point handshake, target reached and the following error, and
-//! homing onto the simulated switch with the home offset. Time is advanced by hand, so the
-//! trapezoid's timing is checked exactly.
+//! profile position with the set-point handshake, target reached and the following error,
+//! homing onto the simulated switch with the home offset, and the stops as the option codes say.
+//! Time is advanced by hand, so the trapezoid's and the ramps' timing is checked exactly.
 
 use std::time::Duration;
 
@@ -229,4 +229,116 @@ fn profile_torque_drives_the_load_and_reports_target_reached() {
         0,
         "no torque out of enabled"
     );
+}
+
+// The stops (CiA 402-2 605Ah, 605Bh, 605Dh; Kinco manual section 8.13, lines 2128-2131): the
+// quick stop on the slow down ramp (the profile deceleration) or the quick stop ramp (6085h),
+// then switch on disabled (codes 1, 2) or quick stop active (5, 6); a halt on either ramp; a
+// shutdown on the slow down ramp.
+
+const STATE: u16 = 0x006F;
+const QUICK_STOP_ACTIVE: u16 = 0x0007;
+const SWITCH_ON_DISABLED: u16 = 0x0040;
+const READY_TO_SWITCH_ON: u16 = 0x0021;
+
+/// Moving at 10 000 units/s in profile position mode towards a far target, with a profile
+/// deceleration of 10 000 units/s² (1 s to stop) and a quick stop deceleration of 50 000
+/// (0.2 s); `setup` writes the option codes first.
+fn moving(setup: &[(&str, i64)]) -> Drive {
+    let mut drive = drive();
+    for &(name, value) in setup {
+        set(&mut drive, name, value);
+    }
+    for word in [0x06, 0x07, 0x0F] {
+        set(&mut drive, "controlword", word);
+    }
+    set(&mut drive, "modes_of_operation", 1);
+    set(&mut drive, "profile_speed", 10_000);
+    set(&mut drive, "profile_acceleration", 100_000);
+    set(&mut drive, "profile_deceleration", 10_000);
+    set(&mut drive, "quick_stop_deceleration", 50_000);
+    set(&mut drive, "target_position", 1_000_000);
+    set(&mut drive, "controlword", 0x1F);
+    set(&mut drive, "controlword", 0x0F);
+    drive.tick(Duration::from_millis(500));
+    assert_eq!(get(&drive, "velocity_actual_value"), 10_000, "at speed");
+    drive
+}
+
+fn standing(drive: &Drive) -> bool {
+    get(drive, "velocity_actual_value") == 0
+}
+
+#[test]
+fn a_quick_stop_brakes_on_the_ramp_its_code_names_then_ends_where_the_code_says() {
+    // Code 1: the slow down ramp, 1 s, braking in quick stop active, then switch on disabled.
+    let mut drive = moving(&[("quick_stop_mode", 1)]);
+    set(&mut drive, "controlword", 0x0B);
+    assert_eq!(status(&drive) & STATE, QUICK_STOP_ACTIVE, "braking");
+    let spent = run_until(&mut drive, 3.0, |d| status(d) & STATE == SWITCH_ON_DISABLED);
+    assert!((0.95..=1.1).contains(&spent), "slow down ramp: {spent} s");
+
+    // Code 2: the quick stop ramp, 0.2 s, then switch on disabled.
+    let mut drive = moving(&[("quick_stop_mode", 2)]);
+    set(&mut drive, "controlword", 0x0B);
+    let spent = run_until(&mut drive, 3.0, |d| status(d) & STATE == SWITCH_ON_DISABLED);
+    assert!((0.15..=0.3).contains(&spent), "quick stop ramp: {spent} s");
+
+    // Code 6: the quick stop ramp, and the drive stays in quick stop active.
+    let mut drive = moving(&[("quick_stop_mode", 6)]);
+    set(&mut drive, "controlword", 0x0B);
+    let spent = run_until(&mut drive, 3.0, standing);
+    assert!((0.15..=0.3).contains(&spent), "quick stop ramp: {spent} s");
+    drive.tick(Duration::from_millis(500));
+    assert_eq!(status(&drive) & STATE, QUICK_STOP_ACTIVE, "stays");
+
+    // Code 5: the slow down ramp, staying.
+    let mut drive = moving(&[("quick_stop_mode", 5)]);
+    set(&mut drive, "controlword", 0x0B);
+    let spent = run_until(&mut drive, 3.0, standing);
+    assert!((0.95..=1.1).contains(&spent), "slow down ramp: {spent} s");
+    assert_eq!(status(&drive) & STATE, QUICK_STOP_ACTIVE, "stays");
+
+    // Code 0: disable drive function, at once.
+    let mut drive = moving(&[("quick_stop_mode", 0)]);
+    set(&mut drive, "controlword", 0x0B);
+    assert_eq!(status(&drive) & STATE, SWITCH_ON_DISABLED);
+}
+
+#[test]
+fn a_halt_brakes_on_the_ramp_the_halt_option_code_names() {
+    let mut drive = moving(&[("halt_mode", 1)]);
+    set(&mut drive, "controlword", 0x010F);
+    let spent = run_until(&mut drive, 3.0, |d| status(d) & TARGET_REACHED != 0);
+    assert!((0.95..=1.1).contains(&spent), "slow down ramp: {spent} s");
+
+    let mut drive = moving(&[("halt_mode", 2)]);
+    set(&mut drive, "controlword", 0x010F);
+    let spent = run_until(&mut drive, 3.0, |d| status(d) & TARGET_REACHED != 0);
+    assert!((0.15..=0.3).contains(&spent), "quick stop ramp: {spent} s");
+}
+
+#[test]
+fn a_shutdown_with_the_slow_down_code_ramps_the_velocity_mode_down() {
+    // Profile velocity: the motor follows 60FFh on the Kinco ramp (per millisecond, line 1966).
+    let run = |code: i64| {
+        let mut drive = drive();
+        set(&mut drive, "shutdown_stop_mode", code);
+        for word in [0x06, 0x07, 0x0F] {
+            set(&mut drive, "controlword", word);
+        }
+        set(&mut drive, "modes_of_operation", 3);
+        set(&mut drive, "profile_acceleration", 100);
+        set(&mut drive, "profile_deceleration", 10);
+        set(&mut drive, "target_velocity", 5_000);
+        drive.tick(Duration::from_millis(100));
+        assert_eq!(get(&drive, "velocity_actual_value"), 5_000);
+        set(&mut drive, "controlword", 0x06);
+        assert_eq!(status(&drive) & STATE, READY_TO_SWITCH_ON);
+        drive.tick(Duration::from_millis(100));
+        get(&drive, "velocity_actual_value")
+    };
+    // 10 units/ms: 1 000 less after 100 ms.
+    assert_eq!(run(1), 4_000, "slow down ramp");
+    assert_eq!(run(0), 0, "disable drive function: at once");
 }

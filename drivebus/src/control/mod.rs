@@ -26,6 +26,8 @@
 //!   RPDO content for each SYNC from the TPDO feedback and the next trajectory sample.
 //! * `cyclic_driver` (feature `canopen`) — its blocking shell on the network manager: SYNC
 //!   producer, RPDOs sent, TPDOs subscribed, cycle timing measured.
+//! * [`stop_option`] — what the option codes (605Ah-605Eh) say: how a stop brakes and where a
+//!   quick stop ends.
 //! * [`objects`] — the traits generated crates implement to hand their parameters to the driver.
 //! * [`walk`] — what a driver decides between two polls (the next command, or the error a
 //!   deadline ends the walk with), without I/O: the steps both drivers take.
@@ -59,6 +61,7 @@ pub mod objects;
 pub mod position;
 pub mod profile_target;
 pub use drivebus_model::control::quirks;
+pub mod stop_option;
 pub mod walk;
 
 pub use cia402::{Blocker, Cia402Planner, State, Step, Target, Waiting};

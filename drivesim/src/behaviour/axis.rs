@@ -19,7 +19,10 @@
 //!   homing ended. Methods 35 and 37 home on the position where the axis stands. Without a switch
 //!   ([`Shared::home_switch`] `None`) homing fails at once with bit 13. The simulated search goes
 //!   straight to the switch, whatever side the method starts on.
-//! * A quick stop decelerates with 6085h; out of operation enabled the load stands where it is.
+//! * A quick stop brakes as the quick stop option code 605Ah says, a halt as the halt option
+//!   code 605Dh says ([`Braking`]): on the slow down ramp (6084h), the quick stop ramp (6085h),
+//!   or at once at the current or voltage limit; without the code a quick stop takes 6085h and a
+//!   halt 6084h. Out of operation enabled and quick stop active the load stands where it is.
 //! * Cyclic synchronous position (mode 8): each target position (607Ah) written in operation
 //!   enabled (an RPDO taken at a SYNC) is reached at an even speed over one interpolation period
 //!   (60C2h: sub 1 × 10^sub 2 s; without one, at once); statusword bit 12 says the drive follows
@@ -42,6 +45,7 @@ use drivebus::control::mode_bits::{
     PROFILE_POSITION, PROFILE_TORQUE, PROFILE_VELOCITY, RELATIVE, SET_POINT_ACKNOWLEDGE,
     SPEED_ZERO, TARGET_REACHED,
 };
+use drivebus::control::stop_option::Braking;
 
 use super::trajectory::{Heading, Kinematics, Profile};
 use super::{object, Behaviour, Shared};
@@ -60,6 +64,8 @@ struct Objects {
     acceleration: Option<ParamId>,
     deceleration: Option<ParamId>,
     quick_stop_deceleration: Option<ParamId>,
+    quick_stop_option: Option<ParamId>,
+    halt_option: Option<ParamId>,
     following_window: Option<ParamId>,
     following_time_out: Option<ParamId>,
     following_actual: Option<ParamId>,
@@ -132,6 +138,8 @@ impl Axis {
             acceleration: at(0x6083),
             deceleration: at(0x6084),
             quick_stop_deceleration: at(0x6085),
+            quick_stop_option: at(0x605A),
+            halt_option: at(0x605D),
             following_window: at(0x6065),
             following_time_out: at(0x6066),
             following_actual: at(0x60F4),
@@ -194,6 +202,29 @@ impl Axis {
             velocity: get(self.ids.profile_velocity),
             acceleration: get(self.ids.acceleration),
             deceleration: get(self.ids.deceleration),
+        }
+    }
+
+    /// The braking option code held in `id`, decoded by `decode`.
+    fn code(
+        &self,
+        store: &Store,
+        id: Option<ParamId>,
+        decode: fn(i128) -> Option<Braking>,
+    ) -> Option<Braking> {
+        id.and_then(|id| store.int(id)).and_then(decode)
+    }
+
+    /// The deceleration of `braking`: the profile's (the slow down ramp), the quick stop
+    /// deceleration 6085h (the quick stop ramp; the profile's without one), or 0, at once (the
+    /// current and voltage limits, the drive disabled).
+    fn braking_deceleration(&self, store: &Store, braking: Braking, profile: &Profile) -> f64 {
+        match braking {
+            Braking::SlowDownRamp => profile.deceleration,
+            Braking::QuickStopRamp => {
+                Self::value(store, self.ids.quick_stop_deceleration).unwrap_or(profile.deceleration)
+            }
+            Braking::CurrentLimit | Braking::VoltageLimit | Braking::DisableDriveFunction => 0.0,
         }
     }
 
@@ -307,10 +338,21 @@ impl Axis {
         }
         let mut profile = self.profile(store, mode);
         let heading = if state == QUICK_STOP_ACTIVE {
-            profile.deceleration = Self::value(store, self.ids.quick_stop_deceleration)
-                .unwrap_or(profile.deceleration);
+            // Without 605Ah (or a code of its own) the quick stop ramp, as before codes were read.
+            let braking = self.code(store, self.ids.quick_stop_option, Braking::quick_stop);
+            profile.deceleration = self.braking_deceleration(
+                store,
+                braking.unwrap_or(Braking::QuickStopRamp),
+                &profile,
+            );
             Heading::Stop
         } else if self.controlword & HALT_BIT != 0 {
+            let braking = self.code(store, self.ids.halt_option, Braking::halt);
+            profile.deceleration = self.braking_deceleration(
+                store,
+                braking.unwrap_or(Braking::SlowDownRamp),
+                &profile,
+            );
             Heading::Stop
         } else if mode == CYCLIC_SYNC_POSITION {
             self.follow_segment(seconds);

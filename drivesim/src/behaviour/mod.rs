@@ -35,6 +35,9 @@ pub enum Motion {
     QuickStop,
     /// Ramping to zero along the deceleration ramp of the setpoint held in this parameter.
     RampStop(ParamId),
+    /// Ramping to zero from the setpoint held in the first parameter at the deceleration held
+    /// in the second (the quick stop deceleration 6085h), in the units of the setpoint's ramp.
+    RampStopAt(ParamId, ParamId),
 }
 
 /// A stop the drive makes on its own, not commanded through a state machine (the serial
