@@ -12,6 +12,7 @@ const KINCO: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../descriptions/kinco-
 const TARGET_REACHED: u16 = 1 << 10;
 const BIT_12: u16 = 1 << 12;
 const BIT_13: u16 = 1 << 13;
+const BIT_15: u16 = 1 << 15;
 
 fn drive() -> Drive {
     let checked = drivegen::check(std::path::Path::new(KINCO));
@@ -167,6 +168,8 @@ fn homing_finds_the_switch_and_sets_the_home_offset() {
         -250,
         "home is minus the offset"
     );
+    // Kinco declares `homing-attained-bit-15`: Reference_found shows from the homing attained.
+    assert_ne!(word & BIT_15, 0, "reference found: {word:#06X}");
 
     // The switch stays where it is: homing again from elsewhere ends on the same place.
     set(&mut drive, "controlword", 0x0F);
@@ -174,10 +177,13 @@ fn homing_finds_the_switch_and_sets_the_home_offset() {
     set(&mut drive, "target_position", 5_000);
     set(&mut drive, "controlword", 0x1F);
     run_until(&mut drive, 5.0, |d| status(d) & TARGET_REACHED != 0);
+    assert_ne!(status(&drive) & BIT_15, 0, "kept in another mode");
     set(&mut drive, "controlword", 0x0F);
     set(&mut drive, "modes_of_operation", 6);
     set(&mut drive, "controlword", 0x1F);
+    assert_eq!(status(&drive) & BIT_15, 0, "cleared by the new start");
     run_until(&mut drive, 5.0, |d| status(d) & BIT_12 != 0);
+    assert_ne!(status(&drive) & BIT_15, 0);
     assert_eq!(get(&drive, "position_actual"), -250);
 }
 

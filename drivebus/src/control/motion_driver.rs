@@ -204,7 +204,8 @@ where
     let mode = O::Mode::from_raw(HOMING, FromWire(()));
     set_mode::<O, L>(device, mode, deadline)?;
     device.write::<O::HomingMethod>(method)?;
-    let mut planner = HomingPlanner::new(device.read_raw::<O::Controlword>()?);
+    let mut planner =
+        HomingPlanner::new(device.read_raw::<O::Controlword>()?).with_quirks(O::QUIRKS);
     let halt = planner.halt();
     run::<O, L>(device, deadline, halt, |status| {
         match planner.next(status) {

@@ -18,7 +18,11 @@
 //!   (CiA 402: the zero is the home position plus the offset); bit 12 says attained, bit 10 that
 //!   homing ended. Methods 35 and 37 home on the position where the axis stands. Without a switch
 //!   ([`Shared::home_switch`] `None`) homing fails at once with bit 13. The simulated search goes
-//!   straight to the switch, whatever side the method starts on.
+//!   straight to the switch, whatever side the method starts on. A drive declaring the
+//!   `homing-attained-bit-15` quirk (Kinco) also shows bit 15, `Reference_found`, from a homing
+//!   attained until the next start or reboot, in every state; bits 12 and 10 stay as CiA 402
+//!   says, which independent masters (python canopen's `homing()`) wait for.
+//!   (The manual prints 0xC037, bits 12 and 10 clear, after homing: lines 2498, 3260.)
 //! * A quick stop brakes as the quick stop option code 605Ah says, a halt as the halt option
 //!   code 605Dh says ([`Braking`]): on the slow down ramp (6084h), the quick stop ramp (6085h),
 //!   or at once at the current or voltage limit; without the code a quick stop takes 6085h and a
@@ -39,6 +43,7 @@ use std::time::Duration;
 use drivegen::ir::SpeedPhase;
 
 use drivebus::control::cia402::HALT_BIT;
+use drivebus::control::homing::REFERENCE_FOUND;
 use drivebus::control::mode_bits::{
     CHANGE_IMMEDIATELY, CYCLIC_SYNC_POSITION, CYCLIC_SYNC_TORQUE, CYCLIC_SYNC_VELOCITY,
     FOLLOWING_ERROR, FOLLOWS_COMMAND, HOMING, HOMING_ATTAINED, HOMING_ERROR, NEW_SET_POINT,
@@ -114,6 +119,10 @@ pub struct Axis {
     controlword: u16,
     /// The cyclic synchronous position set-point in progress.
     segment: Option<Segment>,
+    /// The drive declares the `homing-attained-bit-15` quirk: it shows statusword bit 15
+    /// (Kinco's `Reference_found`) from a homing attained to the next start or reboot.
+    shows_reference: bool,
+    referenced: bool,
 }
 
 /// The CiA 402 state coding of operation enabled and quick stop active (statusword bits 0-3, 5, 6).
@@ -155,11 +164,12 @@ impl Axis {
         if ids.actuals.is_empty() || (ids.target.is_none() && ids.homing_method.is_none()) {
             return None;
         }
-        Some(Self::at_power_on(ids))
+        let shows_reference = super::cia402::declared_quirks(store).homing_attained_bit_15;
+        Some(Self::at_power_on(ids, shows_reference))
     }
 
-    /// Standing at 0, nothing commanded.
-    fn at_power_on(ids: Objects) -> Self {
+    /// Standing at 0, nothing commanded, not referenced.
+    fn at_power_on(ids: Objects, shows_reference: bool) -> Self {
         Self {
             ids,
             demand: Kinematics::default(),
@@ -172,6 +182,8 @@ impl Axis {
             beyond_window: 0.0,
             controlword: 0,
             segment: None,
+            shows_reference,
+            referenced: false,
         }
     }
 
@@ -295,6 +307,7 @@ impl Axis {
     fn start_homing(&mut self, store: &Store, shared: &mut Shared) {
         let method = Self::value(store, self.ids.homing_method).map_or(0, |m| m as i128);
         self.homing = Homing::Searching;
+        self.referenced = false;
         if HOME_HERE.contains(&method) {
             self.home(store, self.demand.position, shared);
         } else if shared.home_switch.0.is_none() {
@@ -315,6 +328,7 @@ impl Axis {
         self.moving = false;
         self.pending = None;
         self.homing = Homing::Attained;
+        self.referenced = true;
         shared.home_switch.shift(shift);
     }
 
@@ -454,7 +468,8 @@ impl Axis {
         ) {
             store.set_int(id, self.demand.velocity.round() as i128);
         }
-        shared.mode_bits = self.mode_bits(store, shared, following_error);
+        let reference = bit(self.shows_reference && self.referenced, REFERENCE_FOUND);
+        shared.mode_bits = self.mode_bits(store, shared, following_error) | reference;
     }
 
     fn advance(&mut self, store: &mut Store, shared: &mut Shared, seconds: f64) {
@@ -507,7 +522,7 @@ impl Behaviour for Axis {
 
     /// A reboot loses the position (an incremental encoder) and any move.
     fn reset(&mut self, store: &mut Store, shared: &mut Shared) {
-        *self = Self::at_power_on(std::mem::take(&mut self.ids));
+        *self = Self::at_power_on(std::mem::take(&mut self.ids), self.shows_reference);
         self.advance(store, shared, 0.0);
     }
 }

@@ -138,7 +138,7 @@ impl Cia402 {
 }
 
 /// The quirks the description's `[cia402]` table declares (none without one).
-fn declared_quirks(store: &Store) -> Quirks {
+pub(crate) fn declared_quirks(store: &Store) -> Quirks {
     let names = store.device().cia402.iter().flat_map(|c| &c.quirks);
     names
         .filter_map(|name| Quirk::from_name(name))
