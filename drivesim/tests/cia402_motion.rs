@@ -348,3 +348,66 @@ fn a_shutdown_with_the_slow_down_code_ramps_the_velocity_mode_down() {
     assert_eq!(run(1), 4_000, "slow down ramp");
     assert_eq!(run(0), 0, "disable drive function: at once");
 }
+
+/// The velocity of a profile position move to 20 000 on the S-curve fixture axis with motion
+/// profile type `kind`, sampled every millisecond until target reached.
+fn move_velocities(kind: i64) -> Vec<i128> {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/s_curve_axis.toml"
+    );
+    let checked = drivegen::check(std::path::Path::new(path));
+    let report = checked.render();
+    let mut drive = Drive::new(checked.device.unwrap_or_else(|| panic!("{report}")));
+    set(&mut drive, "motion_profile_type", kind);
+    for word in [0x06, 0x07, 0x0F] {
+        set(&mut drive, "controlword", word);
+    }
+    set(&mut drive, "modes_of_operation", 1);
+    set(&mut drive, "profile_velocity", 10_000);
+    set(&mut drive, "profile_acceleration", 20_000);
+    set(&mut drive, "profile_deceleration", 20_000);
+    set(&mut drive, "target_position", 20_000);
+    set(&mut drive, "controlword", 0x1F);
+    set(&mut drive, "controlword", 0x0F);
+    let mut velocities = Vec::new();
+    while status(&drive) & TARGET_REACHED == 0 {
+        assert!(velocities.len() < 10_000, "no target reached");
+        drive.tick(Duration::from_millis(1));
+        velocities.push(get(&drive, "velocity_actual_value"));
+    }
+    assert_eq!(get(&drive, "position_actual_value"), 20_000);
+    velocities
+}
+
+/// The largest change of the acceleration between two milliseconds, in units/s³, over the
+/// first `len` samples.
+fn largest_jerk(velocities: &[i128], len: usize) -> i128 {
+    let accelerations: Vec<i128> = velocities[..len]
+        .windows(2)
+        .map(|w| (w[1] - w[0]) * 1_000)
+        .collect();
+    let jerks = accelerations
+        .windows(2)
+        .map(|w| (w[1] - w[0]).abs() * 1_000);
+    jerks.max().unwrap_or(0)
+}
+
+#[test]
+fn motion_profile_type_1_moves_on_an_s_curve_where_0_moves_on_the_trapezoid() {
+    let trapezoid = move_velocities(0);
+    let s_curve = move_velocities(1);
+    // Over the start of the move, up to cruising (0.5 s on the trapezoid): the trapezoid's
+    // acceleration jumps to 20 000/s² in one millisecond; the S-curve's rises by 2·a²/v =
+    // 80 000/s³, a few units of rounding of the shown speed aside.
+    let start = 800;
+    assert!(largest_jerk(&trapezoid, start) >= 10_000_000);
+    assert!(
+        largest_jerk(&s_curve, start) <= 2_100_000,
+        "{}",
+        largest_jerk(&s_curve, start)
+    );
+    // Smoother, so later: one window (v / 2a = 0.25 s) more, on the same target.
+    let later = s_curve.len() as i128 - trapezoid.len() as i128;
+    assert!((200..=300).contains(&later), "{later} ms");
+}

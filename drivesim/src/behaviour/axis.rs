@@ -7,7 +7,8 @@
 //! * Profile position: a rising edge of controlword bit 4 takes 607Ah (relative to the preceding
 //!   target with bit 6) and sets the set-point acknowledge (statusword bit 12) until bit 4 falls;
 //!   a set-point during a move follows it unless bit 5 (change immediately) is set. The demand
-//!   runs the trapezoid of [`trajectory`](super::trajectory) with 6081h, 6083h and 6084h; target
+//!   runs the trapezoid of [`trajectory`](super::trajectory) with 6081h, 6083h and 6084h (the
+//!   S-curve of [`s_curve`] where the motion profile type 6086h is 1-3); target
 //!   reached (bit 10) is the actual position within the position window 6067h of the target
 //!   once the demand stands on it, or a standstill under halt (bit 8).
 //! * Following error: the actual position follows the demand, unless a test blocks the load
@@ -52,6 +53,7 @@ use drivebus::control::mode_bits::{
 };
 use drivebus::control::stop_option::Braking;
 
+use super::s_curve::{self, SCurve};
 use super::trajectory::{Heading, Kinematics, Profile};
 use super::{object, Behaviour, Shared};
 use crate::store::{ParamId, Store};
@@ -71,6 +73,7 @@ struct Objects {
     quick_stop_deceleration: Option<ParamId>,
     quick_stop_option: Option<ParamId>,
     halt_option: Option<ParamId>,
+    motion_profile_type: Option<ParamId>,
     following_window: Option<ParamId>,
     following_time_out: Option<ParamId>,
     following_actual: Option<ParamId>,
@@ -123,6 +126,8 @@ pub struct Axis {
     /// (Kinco's `Reference_found`) from a homing attained to the next start or reboot.
     shows_reference: bool,
     referenced: bool,
+    /// The S-curve of the profile position move in progress (6086h 1-3).
+    s_curve: Option<SCurve>,
 }
 
 /// The CiA 402 state coding of operation enabled and quick stop active (statusword bits 0-3, 5, 6).
@@ -149,6 +154,7 @@ impl Axis {
             quick_stop_deceleration: at(0x6085),
             quick_stop_option: at(0x605A),
             halt_option: at(0x605D),
+            motion_profile_type: at(0x6086),
             following_window: at(0x6065),
             following_time_out: at(0x6066),
             following_actual: at(0x60F4),
@@ -184,6 +190,7 @@ impl Axis {
             segment: None,
             shows_reference,
             referenced: false,
+            s_curve: None,
         }
     }
 
@@ -329,6 +336,7 @@ impl Axis {
         self.pending = None;
         self.homing = Homing::Attained;
         self.referenced = true;
+        self.s_curve = None;
         shared.home_switch.shift(shift);
     }
 
@@ -336,6 +344,10 @@ impl Axis {
     fn run(&mut self, store: &Store, shared: &mut Shared, seconds: f64) {
         let mode = self.mode(store);
         let state = self.state(store);
+        if mode != PROFILE_POSITION || (state != OPERATION_ENABLED && state != QUICK_STOP_ACTIVE) {
+            // The S-curve belongs to the profile position move it started with.
+            self.s_curve = None;
+        }
         if state != OPERATION_ENABLED && state != QUICK_STOP_ACTIVE {
             self.demand = Kinematics {
                 position: self.actual,
@@ -395,13 +407,39 @@ impl Axis {
                     self.home(store, switch, shared);
                 }
             }
-            None => self.demand.advance(heading, &profile, seconds),
+            None => self.advance_demand(store, mode, heading, &profile, seconds),
         }
         if self.moving && self.demand.arrived(self.target) {
             self.moving = false;
             if let Some(next) = self.pending.take() {
                 self.target = next;
                 self.moving = true;
+            }
+        }
+    }
+
+    /// Moves the demand for `seconds` towards `heading`: on the trapezoid, or in profile
+    /// position mode on the S-curve the motion profile type (6086h) selects.
+    fn advance_demand(
+        &mut self,
+        store: &Store,
+        mode: i8,
+        heading: Heading,
+        profile: &Profile,
+        seconds: f64,
+    ) {
+        let kind = Self::value(store, self.ids.motion_profile_type).map_or(0, |k| k as i128);
+        let window = s_curve::window(kind, profile).filter(|_| mode == PROFILE_POSITION);
+        match window {
+            Some(window) => {
+                let start = self.demand;
+                self.s_curve
+                    .get_or_insert_with(|| SCurve::from(start, window))
+                    .advance(&mut self.demand, heading, profile, seconds);
+            }
+            None => {
+                self.s_curve = None;
+                self.demand.advance(heading, profile, seconds);
             }
         }
     }

@@ -17,6 +17,7 @@ pub mod commands;
 pub mod communication_loss;
 pub mod motor;
 pub mod ramp;
+pub mod s_curve;
 pub mod srdo_validity;
 pub mod state_machine;
 pub mod torque;
