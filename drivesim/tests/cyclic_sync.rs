@@ -1,7 +1,7 @@
 //! The simulated axis in the cyclic synchronous modes, on the example CiA 402 axis: in CSP each
 //! target position is reached evenly over one interpolation period (60C2h), statusword bit 12
 //! says the drive follows, bit 13 a following error; in CSV the position integrates the target
-//! velocity. Time is advanced by hand.
+//! velocity; in CST the torque set points drive the simulated load. Time is advanced by hand.
 
 use std::time::Duration;
 
@@ -92,6 +92,25 @@ fn csv_integrates_the_target_velocity_and_nothing_moves_unless_enabled() {
     set(&mut idle, "target_position", 400);
     idle.tick(4 * MS);
     assert_eq!(get(&idle, "position_actual_value"), 0);
+}
+
+#[test]
+fn cst_drives_the_load_with_the_target_torque() {
+    let mut drive = enabled(10);
+    assert_ne!(get(&drive, "statusword") as u16 & FOLLOWS, 0);
+    set(&mut drive, "target_torque", 10);
+    drive.tick(Duration::from_secs(3));
+    // dv/dt = 1000 · torque − 2 · v settles at 5 000 units/s (drivesim::behaviour::torque).
+    let speed = get(&drive, "velocity_actual_value");
+    assert!((4_900..=5_000).contains(&speed), "{speed}");
+    let position = get(&drive, "position_actual_value");
+    set(&mut drive, "target_torque", -10);
+    drive.tick(Duration::from_secs(3));
+    assert!(get(&drive, "velocity_actual_value") < -4_900);
+    assert!(
+        get(&drive, "position_actual_value") < position,
+        "driven back"
+    );
 }
 
 fn drive_disabled() -> Drive {
@@ -230,6 +249,31 @@ mod over_canopen {
         for (feedback, start) in run.feedback().iter().zip(start) {
             // 50 000 units/s for at least 50 periods of 4 ms: 10 000 or more.
             assert!(feedback.actual - start >= 9_000, "{feedback:?}");
+        }
+        run.stop();
+    }
+
+    #[test]
+    fn cst_drives_both_axes_against_their_load_through_rpdo_3() {
+        let (sims, bus, _running) = axes();
+        let network = Network::new(bus.endpoint());
+        network.nmt(NmtCommand::Start, None).unwrap();
+        let links = LINKS.map(|link| AxisLink {
+            rpdo_cob_id: 0x400 + u16::from(link.node.0),
+            ..link
+        });
+        let mut run = CyclicRun::start(&network, &links, config(CyclicMode::Torque)).unwrap();
+        let start: Vec<i32> = run.feedback().iter().map(|f| f.actual).collect();
+        run.run(50, |_, _| 10).unwrap();
+        for ((feedback, start), sim) in run.feedback().iter().zip(start).zip(&sims) {
+            // 10 torque units for at least 0.2 s: the load runs forward (v = 5 000 (1 − e^-2t)).
+            assert!(feedback.actual - start >= 50, "{feedback:?}");
+            assert_eq!(int(sim, "target_torque"), 10, "taken from RPDO 3");
+            assert!(int(sim, "velocity_actual_value") > 1_000);
+        }
+        run.run(50, |_, _| -10).unwrap();
+        for sim in &sims {
+            assert!(int(sim, "velocity_actual_value") < 0, "braked and reversed");
         }
         run.stop();
     }

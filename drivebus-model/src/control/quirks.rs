@@ -12,15 +12,20 @@ pub enum Quirk {
     SwitchOnNeedsVoltage,
     /// The drive honours the remote bit (statusword bit 9): commands wait while it is clear.
     HonoursRemote,
+    /// The drive reports homing attained by statusword bit 15 (Kinco's `Reference_found`) and
+    /// may leave bits 12 (homing attained) and 10 (target reached) clear; homing is taken as
+    /// attained when bit 15 rises after the start (seen clear, then set), or as CiA 402 says.
+    HomingAttainedBit15,
 }
 
 impl Quirk {
     /// Every quirk, in declaration order.
-    pub const ALL: [Quirk; 4] = [
+    pub const ALL: [Quirk; 5] = [
         Quirk::ModeChangeNeedsHaltClear,
         Quirk::QuickStopToOperationEnabled,
         Quirk::SwitchOnNeedsVoltage,
         Quirk::HonoursRemote,
+        Quirk::HomingAttainedBit15,
     ];
 
     /// The name a description uses.
@@ -30,6 +35,7 @@ impl Quirk {
             Quirk::QuickStopToOperationEnabled => "quick-stop-to-operation-enabled",
             Quirk::SwitchOnNeedsVoltage => "switch-on-needs-voltage",
             Quirk::HonoursRemote => "honours-remote",
+            Quirk::HomingAttainedBit15 => "homing-attained-bit-15",
         }
     }
 
@@ -50,6 +56,8 @@ pub struct Quirks {
     pub switch_on_needs_voltage: bool,
     /// See [`Quirk::HonoursRemote`].
     pub honours_remote: bool,
+    /// See [`Quirk::HomingAttainedBit15`].
+    pub homing_attained_bit_15: bool,
     /// How long fault reset (controlword bit 7) is held high before it is dropped to re-arm the
     /// edge, in milliseconds; 0 drops it on the next poll.
     pub fault_reset_hold_ms: u32,
@@ -62,6 +70,7 @@ impl Quirks {
         quick_stop_to_operation_enabled: false,
         switch_on_needs_voltage: false,
         honours_remote: false,
+        homing_attained_bit_15: false,
         fault_reset_hold_ms: 0,
     };
 
@@ -72,6 +81,7 @@ impl Quirks {
             Quirk::QuickStopToOperationEnabled => self.quick_stop_to_operation_enabled = true,
             Quirk::SwitchOnNeedsVoltage => self.switch_on_needs_voltage = true,
             Quirk::HonoursRemote => self.honours_remote = true,
+            Quirk::HomingAttainedBit15 => self.homing_attained_bit_15 = true,
         }
         self
     }
@@ -83,6 +93,7 @@ impl Quirks {
             Quirk::QuickStopToOperationEnabled => self.quick_stop_to_operation_enabled,
             Quirk::SwitchOnNeedsVoltage => self.switch_on_needs_voltage,
             Quirk::HonoursRemote => self.honours_remote,
+            Quirk::HomingAttainedBit15 => self.homing_attained_bit_15,
         }
     }
 }

@@ -18,7 +18,8 @@ use super::control_error::ControlError;
 use super::mode::{self, ModeStep};
 use super::objects::{Cia402Objects, VendorMachine};
 use super::objects_on::{ModeOn, WalkOn};
-use super::walk::{self, Cia402Walk, MachineWalk, Walk, POLL_INTERVAL};
+use super::stop_option::QuickStopEnd;
+use super::walk::{self, Cia402Steps, Cia402Walk, MachineWalk, QuickStopWalk, Walk, POLL_INTERVAL};
 use super::Millis;
 use crate::asynch::{within, Async, AsyncLink, Elapsed, Timer};
 use crate::device::Device;
@@ -70,25 +71,57 @@ where
     L: AsyncLink,
 {
     let mut late = no_answer(O::Controlword::NAME);
-    let walk = walk_cia402::<O, L>(device, target, timer, &mut late);
+    let walk = walk_cia402::<O, L, _>(device, timer, &mut late, |controlword, now| {
+        Cia402Walk::new(O::QUIRKS, target, controlword, now)
+    });
     let outcome = within(timer, limit, walk).await;
     in_time(outcome, late)
 }
 
-/// The walk of [`drive_to`], recording in `late` the error a deadline would end it with.
-async fn walk_cia402<O, L>(
+/// Quick stop seen through to `end`, as the blocking driver's `quick_stop_to`: from operation
+/// enabled the quick stop command, then, where `end` is switch on disabled, the wait (no write)
+/// for the drive's own transition 12; from any other state, disables.
+pub async fn quick_stop_to<O, L>(
     device: &mut Device<Async<L>>,
-    target: Target,
+    end: QuickStopEnd,
     timer: &impl Timer,
-    late: &mut ControlError,
+    limit: Duration,
 ) -> Result<(), ControlError>
 where
     O: WalkOn<L::Protocol>,
     L: AsyncLink,
 {
+    let mut late = no_answer(O::Controlword::NAME);
+    let procedure = async {
+        let state = state::<O, L>(device).await?;
+        walk_cia402::<O, L, _>(device, timer, &mut late, |controlword, now| {
+            QuickStopWalk::new(O::QUIRKS, end, state, controlword, now)
+        })
+        .await
+    };
+    let outcome = within(timer, limit, procedure).await;
+    in_time(outcome, late)
+}
+
+/// The walk `start` makes from the controlword read and the time, recording in `late` the error
+/// a deadline would end it with.
+async fn walk_cia402<O, L, W>(
+    device: &mut Device<Async<L>>,
+    timer: &impl Timer,
+    late: &mut ControlError,
+    start: impl FnOnce(u16, Millis) -> W,
+) -> Result<(), ControlError>
+where
+    O: Cia402Objects,
+    L: AsyncLink,
+    O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
+    O::Statusword: Readable<L::Protocol>,
+    O::SafeTorqueOffWord: Readable<L::Protocol>,
+    W: Cia402Steps,
+{
     let mut clock = SleptClock(Millis(0));
     let controlword = device.read_raw::<O::Controlword>().await?;
-    let mut walk = Cia402Walk::new(O::QUIRKS, target, controlword, clock.now());
+    let mut walk = start(controlword, clock.now());
     loop {
         let seen = observe::<O, L>(device, clock.now()).await?;
         let write = match walk.step(&seen) {

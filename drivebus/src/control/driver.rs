@@ -13,7 +13,8 @@ use super::cia402::{Observation, State, Target};
 use super::mode::{self, ModeStep};
 use super::objects::{Cia402Objects, VendorMachine};
 use super::objects_on::{ModeOn, WalkOn};
-use super::walk::{self, Cia402Walk, MachineWalk, Walk};
+use super::stop_option::QuickStopEnd;
+use super::walk::{self, Cia402Steps, Cia402Walk, MachineWalk, QuickStopWalk, Walk};
 use super::Millis;
 use crate::device::Device;
 use crate::error::Error;
@@ -50,7 +51,7 @@ pub fn drive_to_with<O, L>(
     device: &mut Device<L>,
     target: Target,
     deadline: Instant,
-    mut statusword: impl FnMut(&mut Device<L>) -> Result<u16, Error>,
+    statusword: impl FnMut(&mut Device<L>) -> Result<u16, Error>,
 ) -> Result<(), ControlError>
 where
     O: Cia402Objects,
@@ -58,9 +59,29 @@ where
     O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
     O::SafeTorqueOffWord: Readable<L::Protocol>,
 {
+    run_walk::<O, L, _>(device, deadline, statusword, |controlword, now| {
+        Cia402Walk::new(O::QUIRKS, target, controlword, now)
+    })
+}
+
+/// Runs the walk `start` makes from the controlword read and the time, polling the statusword
+/// `statusword` gives until the walk ends or `deadline` passes.
+fn run_walk<O, L, W>(
+    device: &mut Device<L>,
+    deadline: Instant,
+    mut statusword: impl FnMut(&mut Device<L>) -> Result<u16, Error>,
+    start: impl FnOnce(u16, Millis) -> W,
+) -> Result<(), ControlError>
+where
+    O: Cia402Objects,
+    L: Link,
+    O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
+    O::SafeTorqueOffWord: Readable<L::Protocol>,
+    W: Cia402Steps,
+{
     let clock = Clock(Instant::now());
     let controlword = device.read_raw::<O::Controlword>()?;
-    let mut walk = Cia402Walk::new(O::QUIRKS, target, controlword, clock.now());
+    let mut walk = start(controlword, clock.now());
     loop {
         let seen = observe::<O, L>(device, &clock, &mut statusword)?;
         let (write, if_late) = match walk.step(&seen) {
@@ -120,6 +141,30 @@ where
 {
     let target = walk::quick_stop_target(state::<O, L>(device)?);
     walk::quick_stop_outcome(drive_to::<O, L>(device, target, deadline))
+}
+
+/// Quick stop seen through to `end`, the end the drive's quick stop option code (605Ah) gives
+/// ([`QuickStopEnd::of_code`]): from operation enabled the quick stop command, then, for codes
+/// 0-4, the wait (no write) until the drive has braked and taken transition 12 to switch on
+/// disabled; from any other state, disables. A drive that ends elsewhere than `end` fails with
+/// [`ControlError::Stuck`].
+pub fn quick_stop_to<O, L>(
+    device: &mut Device<L>,
+    end: QuickStopEnd,
+    deadline: Instant,
+) -> Result<(), ControlError>
+where
+    O: Cia402Objects,
+    L: Link,
+    O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
+    O::Statusword: Readable<L::Protocol>,
+    O::SafeTorqueOffWord: Readable<L::Protocol>,
+{
+    let state = state::<O, L>(device)?;
+    let statusword = |device: &mut Device<L>| device.read_raw::<O::Statusword>();
+    run_walk::<O, L, _>(device, deadline, statusword, |controlword, now| {
+        QuickStopWalk::new(O::QUIRKS, end, state, controlword, now)
+    })
 }
 
 /// Fault reset: from fault (or fault reaction active) to switch on disabled; nothing to do otherwise.

@@ -22,10 +22,14 @@
 //! * `motion_driver` and `motion_error` (std) — their blocking shell behind `drive.move_to(..)`,
 //!   `drive.home(..)`, `drive.run_at_velocity(..)` and `drive.apply_torque(..)`, and its typed
 //!   errors.
+//! * `motion_poll` (std) — the refusals and steps both motion shells take; `async_motion_driver`
+//!   (features `async` and `std`) — the async shell over them.
 //! * [`cyclic`] — the cyclic synchronous modes (csp, csv, cst) as a pure planner per axis: the
 //!   RPDO content for each SYNC from the TPDO feedback and the next trajectory sample.
 //! * `cyclic_driver` (feature `canopen`) — its blocking shell on the network manager: SYNC
 //!   producer, RPDOs sent, TPDOs subscribed, cycle timing measured.
+//! * [`stop_option`] — what the option codes (605Ah-605Eh) say: how a stop brakes and where a
+//!   quick stop ends.
 //! * [`objects`] — the traits generated crates implement to hand their parameters to the driver.
 //! * [`walk`] — what a driver decides between two polls (the next command, or the error a
 //!   deadline ends the walk with), without I/O: the steps both drivers take.
@@ -36,6 +40,8 @@
 
 #[cfg(feature = "async")]
 pub mod async_driver;
+#[cfg(all(feature = "async", feature = "std"))]
+pub mod async_motion_driver;
 pub mod cia402;
 mod control_error;
 #[cfg(feature = "std")]
@@ -55,11 +61,14 @@ pub use drivebus_model::control::mode_bits;
 pub mod motion_driver;
 #[cfg(feature = "std")]
 pub mod motion_error;
+#[cfg(feature = "std")]
+pub mod motion_poll;
 pub mod objects;
 pub mod objects_on;
 pub mod position;
 pub mod profile_target;
 pub use drivebus_model::control::quirks;
+pub mod stop_option;
 pub mod walk;
 
 pub use cia402::{Blocker, Cia402Planner, State, Step, Target, Waiting};

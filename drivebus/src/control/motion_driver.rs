@@ -9,30 +9,26 @@
 use std::thread;
 
 use super::driver::{set_mode, Instant, POLL_INTERVAL};
-use super::homing::{HomingPlanner, HomingStep};
+use super::homing::HomingPlanner;
 use super::mode_bits::{HOMING, PROFILE_POSITION, PROFILE_TORQUE, PROFILE_VELOCITY};
 use super::motion_error::MotionError;
+use super::motion_poll::{self, Poll};
 use super::objects_on::{
     ControlOn, HomingOn, ModeOn, ProfilePositionOn, ProfileTorqueOn, ProfileVelocityOn,
 };
-use super::position::{operation_enabled, Move, MovePlanner, MoveStep, SoftLimits};
+use super::position::{Move, MovePlanner, SoftLimits};
 use super::profile_target::{ProfileTarget, TargetPlanner};
 use crate::device::Device;
 use crate::link::Link;
 use crate::parameter::{FromWire, OpenEnum};
 
-/// Refuses unless the drive is operation enabled; returns the statusword.
-fn enabled<O, L>(device: &mut Device<L>) -> Result<u16, MotionError>
+/// Refuses unless the drive is operation enabled.
+fn enabled<O, L>(device: &mut Device<L>) -> Result<(), MotionError>
 where
     O: ControlOn<L::Protocol>,
     L: Link,
 {
-    let status = device.read_raw::<O::Statusword>()?;
-    if operation_enabled(status) {
-        Ok(status)
-    } else {
-        Err(MotionError::NotOperationEnabled { status })
-    }
+    motion_poll::check_enabled(device.read_raw::<O::Statusword>()?)
 }
 
 /// Moves to `request.target` in profile position mode (switching to it first) and returns the
@@ -50,31 +46,18 @@ where
     L: Link,
 {
     enabled::<O, L>(device)?;
-    if let Some(limits) = limits {
-        let end = if request.relative {
-            i64::from(device.read_raw::<O::PositionActual>()?) + i64::from(request.target)
-        } else {
-            i64::from(request.target)
-        };
-        if !limits.allow(end) {
-            return Err(MotionError::OutsideLimits {
-                target: end,
-                limits,
-            });
-        }
-    }
+    let actual = match (limits, request.relative) {
+        (Some(_), true) => Some(device.read_raw::<O::PositionActual>()?),
+        _ => None,
+    };
+    motion_poll::check_limits(request, limits, actual)?;
     let mode = O::Mode::from_raw(PROFILE_POSITION, FromWire(()));
     set_mode::<O, L>(device, mode, deadline)?;
     device.write_raw::<O::TargetPosition>(request.target)?;
     let mut planner = MovePlanner::new(request, device.read_raw::<O::Controlword>()?);
     let halt = planner.halt();
     run::<O, L>(device, deadline, halt, |status| {
-        match planner.next(status) {
-            MoveStep::Send(controlword) => Poll::Send(controlword),
-            MoveStep::Wait => Poll::Wait,
-            MoveStep::Done => Poll::Done,
-            MoveStep::Failed(failure) => Poll::Fail(MotionError::of_move(failure, status)),
-        }
+        motion_poll::of_move(&mut planner, status)
     })?;
     Ok(device.read_raw::<O::PositionActual>()?)
 }
@@ -141,14 +124,7 @@ where
     let mut planner = TargetPlanner::new(target);
     let halt = planner.halt();
     run::<O, L>(device, deadline, halt, |status| {
-        match planner.next(status) {
-            MoveStep::Send(controlword) => Poll::Send(controlword),
-            MoveStep::Wait => Poll::Wait,
-            MoveStep::Done => Poll::Done,
-            MoveStep::Failed(failure) => {
-                Poll::Fail(MotionError::of_target(target, failure, status))
-            }
-        }
+        motion_poll::of_target(&mut planner, target, status)
     })
 }
 
@@ -164,36 +140,21 @@ where
     O: HomingOn<L::Protocol>,
     L: Link,
 {
-    if method.name().is_none() {
-        return Err(MotionError::HomingMethodNotListed {
-            method: method.raw(),
-        });
-    }
+    motion_poll::check_method(method)?;
     enabled::<O, L>(device)?;
     let mode = O::Mode::from_raw(HOMING, FromWire(()));
     set_mode::<O, L>(device, mode, deadline)?;
     device.write::<O::HomingMethod>(method)?;
-    let mut planner = HomingPlanner::new(device.read_raw::<O::Controlword>()?);
+    let mut planner =
+        HomingPlanner::new(device.read_raw::<O::Controlword>()?).with_quirks(O::QUIRKS);
     let halt = planner.halt();
     run::<O, L>(device, deadline, halt, |status| {
-        match planner.next(status) {
-            HomingStep::Send(controlword) => Poll::Send(controlword),
-            HomingStep::Wait => Poll::Wait,
-            HomingStep::Done => Poll::Done,
-            HomingStep::Failed(failure) => Poll::Fail(MotionError::of_homing(failure, status)),
-        }
+        motion_poll::of_homing(&mut planner, status)
     })?;
     Ok(device.read_raw::<O::PositionActual>()?)
 }
 
 /// A planner's answer to a statusword, as the poll loop acts on it.
-enum Poll {
-    Send(u16),
-    Wait,
-    Done,
-    Fail(MotionError),
-}
-
 /// Reads the statusword and acts on `next`'s answer until done or failed; a failure the drive
 /// does not stop on by itself, or the deadline, writes `halt` first.
 fn run<O, L>(

@@ -8,10 +8,11 @@
 
 use core::time::Duration;
 
-use super::cia402::{Blocker, Cia402Planner, Observation, State, Step, Target};
+use super::cia402::{self, Blocker, Cia402Planner, Observation, State, Step, Target, Waiting};
 use super::control_error::{ControlError, StuckReason};
 use super::machine::{Machine, Plan, TransitionKind};
 use super::quirks::Quirks;
+use super::stop_option::QuickStopEnd;
 use super::Millis;
 
 /// Pause between two status polls.
@@ -46,6 +47,33 @@ impl Commander {
         let fresh = self.last != Some((command, status));
         self.last = Some((command, status));
         fresh
+    }
+}
+
+/// The steps of a walk on the CiA 402 machine, which both drivers run the same way: a walk to a
+/// target ([`Cia402Walk`]) or a quick stop seen through to its end ([`QuickStopWalk`]).
+pub trait Cia402Steps {
+    /// What to do after observing `seen`.
+    fn step(&mut self, seen: &Observation) -> Walk;
+    /// Records that the step's command was written at `now`.
+    fn sent(&mut self, controlword: u16, now: Millis);
+}
+
+impl Cia402Steps for Cia402Walk {
+    fn step(&mut self, seen: &Observation) -> Walk {
+        Cia402Walk::step(self, seen)
+    }
+    fn sent(&mut self, controlword: u16, now: Millis) {
+        Cia402Walk::sent(self, controlword, now);
+    }
+}
+
+impl Cia402Steps for QuickStopWalk {
+    fn step(&mut self, seen: &Observation) -> Walk {
+        QuickStopWalk::step(self, seen)
+    }
+    fn sent(&mut self, controlword: u16, now: Millis) {
+        QuickStopWalk::sent(self, controlword, now);
     }
 }
 
@@ -134,6 +162,68 @@ pub fn quick_stop_outcome(outcome: Result<(), ControlError>) -> Result<(), Contr
     }
 }
 
+/// A quick stop seen through to the end its option code gives: from operation enabled the
+/// quick stop command (to quick stop active), then, where the code ends in switch on disabled,
+/// the wait for the drive's own transition 12 once it has stopped; nothing is written while
+/// the drive brakes (disable voltage would cut the power mid-ramp). From any other state it
+/// disables, as [`quick_stop_target`] says.
+#[derive(Debug, Clone)]
+pub struct QuickStopWalk {
+    walk: Cia402Walk,
+    end: QuickStopEnd,
+}
+
+impl QuickStopWalk {
+    /// A quick stop of a drive with `quirks` in `state` whose quick stop ends at `end`, its
+    /// controlword reading `controlword` at `now`.
+    pub fn new(
+        quirks: Quirks,
+        end: QuickStopEnd,
+        state: Option<State>,
+        controlword: u16,
+        now: Millis,
+    ) -> Self {
+        let first = quick_stop_target(state);
+        let end = if first == Target::QuickStopActive {
+            end
+        } else {
+            QuickStopEnd::SwitchOnDisabled
+        };
+        Self {
+            walk: Cia402Walk::new(quirks, first, controlword, now),
+            end,
+        }
+    }
+
+    /// What to do after observing `seen`.
+    pub fn step(&mut self, seen: &Observation) -> Walk {
+        let state = State::decode(seen.statusword);
+        match (self.end, state) {
+            (
+                QuickStopEnd::SwitchOnDisabled | QuickStopEnd::Either,
+                Some(State::SwitchOnDisabled),
+            ) => Walk::Done,
+            (QuickStopEnd::SwitchOnDisabled, Some(State::QuickStopActive)) => Walk::Pending {
+                write: None,
+                if_late: ControlError::Stuck {
+                    target: State::SwitchOnDisabled.name(),
+                    state: state.map(State::name),
+                    status: seen.statusword,
+                    reason: cia402::transition("12").map_or(StuckReason::Unreachable, |t| {
+                        StuckReason::Waiting(Waiting::Automatic(t))
+                    }),
+                },
+            },
+            _ => self.walk.step(seen),
+        }
+    }
+
+    /// Records that the step's command was written at `now`.
+    pub fn sent(&mut self, controlword: u16, now: Millis) {
+        self.walk.sent(controlword, now);
+    }
+}
+
 /// Whether a fault reset has anything to do in `state` (fault or fault reaction active).
 pub fn needs_fault_reset(state: Option<State>) -> bool {
     matches!(state, Some(State::Fault | State::FaultReactionActive))
@@ -205,5 +295,72 @@ impl MachineWalk {
                 Walk::Failed(stuck(StuckReason::Unreachable))
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn seen(statusword: u16) -> Observation {
+        Observation {
+            statusword,
+            safe_torque_off: false,
+            now: Millis(0),
+        }
+    }
+
+    const OPERATION_ENABLED: u16 = 0x0037;
+    const QUICK_STOP_ACTIVE: u16 = 0x0017;
+    const SWITCH_ON_DISABLED: u16 = 0x0040;
+
+    fn quick_stop(end: QuickStopEnd) -> QuickStopWalk {
+        let state = Some(State::OperationEnabled);
+        QuickStopWalk::new(Quirks::STANDARD, end, state, 0x0F, Millis(0))
+    }
+
+    #[test]
+    fn a_quick_stop_ending_switched_off_commands_once_then_waits_for_transition_12() {
+        let mut walk = quick_stop(QuickStopEnd::SwitchOnDisabled);
+        match walk.step(&seen(OPERATION_ENABLED)) {
+            Walk::Pending { write, .. } => assert_eq!(write, Some(0x02), "quick stop"),
+            other => panic!("{other:?}"),
+        }
+        walk.sent(0x02, Millis(1));
+        // Braking in quick stop active: nothing written, and a deadline names transition 12.
+        match walk.step(&seen(QUICK_STOP_ACTIVE)) {
+            Walk::Pending {
+                write: None,
+                if_late:
+                    ControlError::Stuck {
+                        reason: StuckReason::Waiting(Waiting::Automatic(t)),
+                        ..
+                    },
+            } => assert_eq!(t.name, "12"),
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(walk.step(&seen(SWITCH_ON_DISABLED)), Walk::Done);
+    }
+
+    #[test]
+    fn a_quick_stop_ending_in_quick_stop_active_fails_if_the_drive_switches_off() {
+        let mut walk = quick_stop(QuickStopEnd::QuickStopActive);
+        assert_eq!(walk.step(&seen(QUICK_STOP_ACTIVE)), Walk::Done);
+        let mut walk = quick_stop(QuickStopEnd::QuickStopActive);
+        assert!(matches!(
+            walk.step(&seen(SWITCH_ON_DISABLED)),
+            Walk::Failed(ControlError::Stuck { .. })
+        ));
+        let mut either = quick_stop(QuickStopEnd::Either);
+        assert_eq!(either.step(&seen(SWITCH_ON_DISABLED)), Walk::Done);
+        assert_eq!(either.step(&seen(QUICK_STOP_ACTIVE)), Walk::Done);
+    }
+
+    #[test]
+    fn a_quick_stop_outside_operation_enabled_disables() {
+        let state = Some(State::SwitchedOn);
+        let end = QuickStopEnd::QuickStopActive;
+        let mut walk = QuickStopWalk::new(Quirks::STANDARD, end, state, 0x07, Millis(0));
+        assert_eq!(walk.step(&seen(SWITCH_ON_DISABLED)), Walk::Done);
     }
 }

@@ -157,3 +157,109 @@ async fn the_cia402_walk_awaited_sends_what_the_blocking_walk_sends() {
         .collect();
     assert_eq!(commands, [[0x06, 0], [0x07, 0], [0x0F, 0], [0x00, 0]]);
 }
+
+#[tokio::test]
+async fn homes_and_moves_through_the_async_motion_shell() {
+    use drivebus::control::async_motion_driver as motion;
+    use drivebus::control::motion_error::MotionError;
+    use drivebus::control::position::{Move, SoftLimits};
+    use kinco_fd::types::HomingMethod;
+
+    const LIMIT: Duration = Duration::from_secs(5);
+    let sim = Simulator::load(DESCRIPTION).unwrap();
+    sim.with(|d| d.place_home_switch(Some(-20_000)));
+    let mut drive = async_kinco(&sim);
+
+    // Not operation enabled: refused before anything is sent.
+    let refused =
+        motion::move_to::<AsyncKinco, _>(drive.device(), Move::to(1_000), None, &TokioTimer, LIMIT)
+            .await;
+    assert!(
+        matches!(refused, Err(MotionError::NotOperationEnabled { .. })),
+        "{refused:?}"
+    );
+
+    drive.profile_speed().write_raw(200_000).await.unwrap();
+    drive
+        .profile_acceleration()
+        .write_raw(1_000_000)
+        .await
+        .unwrap();
+    drive
+        .profile_deceleration()
+        .write_raw(1_000_000)
+        .await
+        .unwrap();
+    drive
+        .homing_speed_switch()
+        .write_raw(100_000)
+        .await
+        .unwrap();
+    drive
+        .homing_acceleration()
+        .write_raw(1_000_000)
+        .await
+        .unwrap();
+    drive.homing_offset().write_raw(500).await.unwrap();
+    drive
+        .enable_operation_async(&TokioTimer, LIMIT)
+        .await
+        .unwrap();
+
+    let home =
+        motion::home::<AsyncKinco, _>(drive.device(), HomingMethod::METHOD17, &TokioTimer, LIMIT)
+            .await;
+    assert_eq!(home, Ok(-500), "home is minus the home offset");
+    let at = motion::move_to::<AsyncKinco, _>(
+        drive.device(),
+        Move::to(50_000),
+        None,
+        &TokioTimer,
+        LIMIT,
+    )
+    .await;
+    assert_eq!(at, Ok(50_000));
+    let by = motion::move_to::<AsyncKinco, _>(
+        drive.device(),
+        Move::by(-10_000),
+        None,
+        &TokioTimer,
+        LIMIT,
+    )
+    .await;
+    assert_eq!(by, Ok(40_000));
+
+    // Outside the software limits: refused before anything is sent.
+    let limits = SoftLimits {
+        min: -100_000,
+        max: 45_000,
+    };
+    let outside = motion::move_to::<AsyncKinco, _>(
+        drive.device(),
+        Move::by(10_000),
+        Some(limits),
+        &TokioTimer,
+        LIMIT,
+    )
+    .await;
+    assert!(
+        matches!(
+            outside,
+            Err(MotionError::OutsideLimits { target: 50_000, .. })
+        ),
+        "{outside:?}"
+    );
+
+    // A move that cannot end within its limit: halted, then a time out.
+    let late = motion::move_to::<AsyncKinco, _>(
+        drive.device(),
+        Move::to(10_000_000),
+        None,
+        &TokioTimer,
+        Duration::from_millis(200),
+    )
+    .await;
+    assert!(matches!(late, Err(MotionError::Timeout { .. })), "{late:?}");
+    let controlword = drive.controlword().read_raw().await.unwrap();
+    assert_ne!(controlword & 0x0100, 0, "halted: {controlword:#06x}");
+}

@@ -7,7 +7,8 @@
 //! * Profile position: a rising edge of controlword bit 4 takes 607Ah (relative to the preceding
 //!   target with bit 6) and sets the set-point acknowledge (statusword bit 12) until bit 4 falls;
 //!   a set-point during a move follows it unless bit 5 (change immediately) is set. The demand
-//!   runs the trapezoid of [`trajectory`](super::trajectory) with 6081h, 6083h and 6084h; target
+//!   runs the trapezoid of [`trajectory`](super::trajectory) with 6081h, 6083h and 6084h (the
+//!   S-curve of [`s_curve`] where the motion profile type 6086h is 1-3); target
 //!   reached (bit 10) is the actual position within the position window 6067h of the target
 //!   once the demand stands on it, or a standstill under halt (bit 8).
 //! * Following error: the actual position follows the demand, unless a test blocks the load
@@ -18,8 +19,15 @@
 //!   (CiA 402: the zero is the home position plus the offset); bit 12 says attained, bit 10 that
 //!   homing ended. Methods 35 and 37 home on the position where the axis stands. Without a switch
 //!   ([`Shared::home_switch`] `None`) homing fails at once with bit 13. The simulated search goes
-//!   straight to the switch, whatever side the method starts on.
-//! * A quick stop decelerates with 6085h; out of operation enabled the load stands where it is.
+//!   straight to the switch, whatever side the method starts on. A drive declaring the
+//!   `homing-attained-bit-15` quirk (Kinco) also shows bit 15, `Reference_found`, from a homing
+//!   attained until the next start or reboot, in every state; bits 12 and 10 stay as CiA 402
+//!   says, which independent masters (python canopen's `homing()`) wait for.
+//!   (The manual prints 0xC037, bits 12 and 10 clear, after homing: lines 2498, 3260.)
+//! * A quick stop brakes as the quick stop option code 605Ah says, a halt as the halt option
+//!   code 605Dh says ([`Braking`]): on the slow down ramp (6084h), the quick stop ramp (6085h),
+//!   or at once at the current or voltage limit; without the code a quick stop takes 6085h and a
+//!   halt 6084h. Out of operation enabled and quick stop active the load stands where it is.
 //! * Cyclic synchronous position (mode 8): each target position (607Ah) written in operation
 //!   enabled (an RPDO taken at a SYNC) is reached at an even speed over one interpolation period
 //!   (60C2h: sub 1 × 10^sub 2 s; without one, at once); statusword bit 12 says the drive follows
@@ -36,13 +44,16 @@ use std::time::Duration;
 use drivegen::ir::SpeedPhase;
 
 use drivebus::control::cia402::HALT_BIT;
+use drivebus::control::homing::REFERENCE_FOUND;
 use drivebus::control::mode_bits::{
     CHANGE_IMMEDIATELY, CYCLIC_SYNC_POSITION, CYCLIC_SYNC_TORQUE, CYCLIC_SYNC_VELOCITY,
     FOLLOWING_ERROR, FOLLOWS_COMMAND, HOMING, HOMING_ATTAINED, HOMING_ERROR, NEW_SET_POINT,
     PROFILE_POSITION, PROFILE_TORQUE, PROFILE_VELOCITY, RELATIVE, SET_POINT_ACKNOWLEDGE,
     SPEED_ZERO, TARGET_REACHED,
 };
+use drivebus::control::stop_option::Braking;
 
+use super::s_curve::{self, SCurve};
 use super::trajectory::{Heading, Kinematics, Profile};
 use super::{object, Behaviour, Shared};
 use crate::store::{ParamId, Store};
@@ -60,6 +71,9 @@ struct Objects {
     acceleration: Option<ParamId>,
     deceleration: Option<ParamId>,
     quick_stop_deceleration: Option<ParamId>,
+    quick_stop_option: Option<ParamId>,
+    halt_option: Option<ParamId>,
+    motion_profile_type: Option<ParamId>,
     following_window: Option<ParamId>,
     following_time_out: Option<ParamId>,
     following_actual: Option<ParamId>,
@@ -108,6 +122,12 @@ pub struct Axis {
     controlword: u16,
     /// The cyclic synchronous position set-point in progress.
     segment: Option<Segment>,
+    /// The drive declares the `homing-attained-bit-15` quirk: it shows statusword bit 15
+    /// (Kinco's `Reference_found`) from a homing attained to the next start or reboot.
+    shows_reference: bool,
+    referenced: bool,
+    /// The S-curve of the profile position move in progress (6086h 1-3).
+    s_curve: Option<SCurve>,
 }
 
 /// The CiA 402 state coding of operation enabled and quick stop active (statusword bits 0-3, 5, 6).
@@ -132,6 +152,9 @@ impl Axis {
             acceleration: at(0x6083),
             deceleration: at(0x6084),
             quick_stop_deceleration: at(0x6085),
+            quick_stop_option: at(0x605A),
+            halt_option: at(0x605D),
+            motion_profile_type: at(0x6086),
             following_window: at(0x6065),
             following_time_out: at(0x6066),
             following_actual: at(0x60F4),
@@ -147,11 +170,12 @@ impl Axis {
         if ids.actuals.is_empty() || (ids.target.is_none() && ids.homing_method.is_none()) {
             return None;
         }
-        Some(Self::at_power_on(ids))
+        let shows_reference = super::cia402::declared_quirks(store).homing_attained_bit_15;
+        Some(Self::at_power_on(ids, shows_reference))
     }
 
-    /// Standing at 0, nothing commanded.
-    fn at_power_on(ids: Objects) -> Self {
+    /// Standing at 0, nothing commanded, not referenced.
+    fn at_power_on(ids: Objects, shows_reference: bool) -> Self {
         Self {
             ids,
             demand: Kinematics::default(),
@@ -164,6 +188,9 @@ impl Axis {
             beyond_window: 0.0,
             controlword: 0,
             segment: None,
+            shows_reference,
+            referenced: false,
+            s_curve: None,
         }
     }
 
@@ -194,6 +221,29 @@ impl Axis {
             velocity: get(self.ids.profile_velocity),
             acceleration: get(self.ids.acceleration),
             deceleration: get(self.ids.deceleration),
+        }
+    }
+
+    /// The braking option code held in `id`, decoded by `decode`.
+    fn code(
+        &self,
+        store: &Store,
+        id: Option<ParamId>,
+        decode: fn(i128) -> Option<Braking>,
+    ) -> Option<Braking> {
+        id.and_then(|id| store.int(id)).and_then(decode)
+    }
+
+    /// The deceleration of `braking`: the profile's (the slow down ramp), the quick stop
+    /// deceleration 6085h (the quick stop ramp; the profile's without one), or 0, at once (the
+    /// current and voltage limits, the drive disabled).
+    fn braking_deceleration(&self, store: &Store, braking: Braking, profile: &Profile) -> f64 {
+        match braking {
+            Braking::SlowDownRamp => profile.deceleration,
+            Braking::QuickStopRamp => {
+                Self::value(store, self.ids.quick_stop_deceleration).unwrap_or(profile.deceleration)
+            }
+            Braking::CurrentLimit | Braking::VoltageLimit | Braking::DisableDriveFunction => 0.0,
         }
     }
 
@@ -264,6 +314,7 @@ impl Axis {
     fn start_homing(&mut self, store: &Store, shared: &mut Shared) {
         let method = Self::value(store, self.ids.homing_method).map_or(0, |m| m as i128);
         self.homing = Homing::Searching;
+        self.referenced = false;
         if HOME_HERE.contains(&method) {
             self.home(store, self.demand.position, shared);
         } else if shared.home_switch.0.is_none() {
@@ -284,6 +335,8 @@ impl Axis {
         self.moving = false;
         self.pending = None;
         self.homing = Homing::Attained;
+        self.referenced = true;
+        self.s_curve = None;
         shared.home_switch.shift(shift);
     }
 
@@ -291,6 +344,10 @@ impl Axis {
     fn run(&mut self, store: &Store, shared: &mut Shared, seconds: f64) {
         let mode = self.mode(store);
         let state = self.state(store);
+        if mode != PROFILE_POSITION || (state != OPERATION_ENABLED && state != QUICK_STOP_ACTIVE) {
+            // The S-curve belongs to the profile position move it started with.
+            self.s_curve = None;
+        }
         if state != OPERATION_ENABLED && state != QUICK_STOP_ACTIVE {
             self.demand = Kinematics {
                 position: self.actual,
@@ -307,10 +364,21 @@ impl Axis {
         }
         let mut profile = self.profile(store, mode);
         let heading = if state == QUICK_STOP_ACTIVE {
-            profile.deceleration = Self::value(store, self.ids.quick_stop_deceleration)
-                .unwrap_or(profile.deceleration);
+            // Without 605Ah (or a code of its own) the quick stop ramp, as before codes were read.
+            let braking = self.code(store, self.ids.quick_stop_option, Braking::quick_stop);
+            profile.deceleration = self.braking_deceleration(
+                store,
+                braking.unwrap_or(Braking::QuickStopRamp),
+                &profile,
+            );
             Heading::Stop
         } else if self.controlword & HALT_BIT != 0 {
+            let braking = self.code(store, self.ids.halt_option, Braking::halt);
+            profile.deceleration = self.braking_deceleration(
+                store,
+                braking.unwrap_or(Braking::SlowDownRamp),
+                &profile,
+            );
             Heading::Stop
         } else if mode == CYCLIC_SYNC_POSITION {
             self.follow_segment(seconds);
@@ -339,13 +407,39 @@ impl Axis {
                     self.home(store, switch, shared);
                 }
             }
-            None => self.demand.advance(heading, &profile, seconds),
+            None => self.advance_demand(store, mode, heading, &profile, seconds),
         }
         if self.moving && self.demand.arrived(self.target) {
             self.moving = false;
             if let Some(next) = self.pending.take() {
                 self.target = next;
                 self.moving = true;
+            }
+        }
+    }
+
+    /// Moves the demand for `seconds` towards `heading`: on the trapezoid, or in profile
+    /// position mode on the S-curve the motion profile type (6086h) selects.
+    fn advance_demand(
+        &mut self,
+        store: &Store,
+        mode: i8,
+        heading: Heading,
+        profile: &Profile,
+        seconds: f64,
+    ) {
+        let kind = Self::value(store, self.ids.motion_profile_type).map_or(0, |k| k as i128);
+        let window = s_curve::window(kind, profile).filter(|_| mode == PROFILE_POSITION);
+        match window {
+            Some(window) => {
+                let start = self.demand;
+                self.s_curve
+                    .get_or_insert_with(|| SCurve::from(start, window))
+                    .advance(&mut self.demand, heading, profile, seconds);
+            }
+            None => {
+                self.s_curve = None;
+                self.demand.advance(heading, profile, seconds);
             }
         }
     }
@@ -412,7 +506,8 @@ impl Axis {
         ) {
             store.set_int(id, self.demand.velocity.round() as i128);
         }
-        shared.mode_bits = self.mode_bits(store, shared, following_error);
+        let reference = bit(self.shows_reference && self.referenced, REFERENCE_FOUND);
+        shared.mode_bits = self.mode_bits(store, shared, following_error) | reference;
     }
 
     fn advance(&mut self, store: &mut Store, shared: &mut Shared, seconds: f64) {
@@ -465,7 +560,7 @@ impl Behaviour for Axis {
 
     /// A reboot loses the position (an incremental encoder) and any move.
     fn reset(&mut self, store: &mut Store, shared: &mut Shared) {
-        *self = Self::at_power_on(std::mem::take(&mut self.ids));
+        *self = Self::at_power_on(std::mem::take(&mut self.ids), self.shows_reference);
         self.advance(store, shared, 0.0);
     }
 }

@@ -17,6 +17,7 @@ pub mod commands;
 pub mod communication_loss;
 pub mod motor;
 pub mod ramp;
+pub mod s_curve;
 pub mod srdo_validity;
 pub mod state_machine;
 pub mod torque;
@@ -35,6 +36,9 @@ pub enum Motion {
     QuickStop,
     /// Ramping to zero along the deceleration ramp of the setpoint held in this parameter.
     RampStop(ParamId),
+    /// Ramping to zero from the setpoint held in the first parameter at the deceleration held
+    /// in the second (the quick stop deceleration 6085h), in the units of the setpoint's ramp.
+    RampStopAt(ParamId, ParamId),
 }
 
 /// A stop the drive makes on its own, not commanded through a state machine (the serial

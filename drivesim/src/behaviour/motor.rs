@@ -41,7 +41,7 @@ impl Motor {
                     .map_or(1.0, |r| r.sign(store));
                 Some((setpoint, sign * store.int(setpoint).unwrap_or(0) as f64))
             }
-            Motion::RampStop(setpoint) => Some((setpoint, 0.0)),
+            Motion::RampStop(setpoint) | Motion::RampStopAt(setpoint, _) => Some((setpoint, 0.0)),
             Motion::Disabled | Motion::QuickStop => None,
         }
     }
@@ -102,6 +102,25 @@ impl Motor {
         }
     }
 
+    /// Speed change per second in `motion`: its own deceleration in a [`Motion::RampStopAt`],
+    /// else the setpoint's ramp towards `target`; `None` = at once.
+    fn motion_rate(
+        &self,
+        store: &Store,
+        motion: Motion,
+        setpoint: ParamId,
+        target: f64,
+    ) -> Option<f64> {
+        match motion {
+            Motion::RampStopAt(setpoint, deceleration) => self
+                .ramps
+                .iter()
+                .find(|r| r.shapes(setpoint))?
+                .rate_of(store, deceleration),
+            _ => self.rate(store, setpoint, target),
+        }
+    }
+
     /// Speed change per second towards `target` set in `setpoint`; `None` = at once.
     fn rate(&self, store: &Store, setpoint: ParamId, target: f64) -> Option<f64> {
         let speeding_up = target.abs() > self.speed.abs();
@@ -147,7 +166,7 @@ impl Behaviour for Motor {
         let rate = if target == self.speed {
             None
         } else {
-            self.rate(store, setpoint, target)
+            self.motion_rate(store, shared.motion, setpoint, target)
         };
         self.speed = match rate {
             _ if spent => self.speed,

@@ -110,6 +110,17 @@ impl SetpointRamp {
         }
     }
 
+    /// Speed units per second at the deceleration held in `rate` (the quick stop deceleration),
+    /// counted per the same time as this ramp's own deceleration rate (Kinco: per millisecond);
+    /// `None` when it reads 0 (the speed jumps).
+    pub fn rate_of(&self, store: &Store, rate: ParamId) -> Option<f64> {
+        let per_second = match self.down {
+            SlopeIds::Rate(_, per_second) => per_second,
+            SlopeIds::Time(_) | SlopeIds::Delta { .. } => 1.0,
+        };
+        Some(store.int(rate).unwrap_or(0) as f64 * per_second).filter(|r| *r > 0.0)
+    }
+
     /// Speed units per second towards a setpoint further from zero (`speeding_up`) or nearer to
     /// it; `None` when the ramp is off or its time or rate is zero (the speed jumps).
     pub fn rate(&self, store: &Store, speeding_up: bool) -> Option<f64> {

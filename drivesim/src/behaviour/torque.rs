@@ -1,6 +1,8 @@
-//! Profile torque (CiA 402 mode 4) against a simple load, chosen when the description has the
-//! target torque (6071h) and the velocity actual value (606Ch): in operation enabled the torque
-//! demand moves to 6071h at the torque slope 6087h (per second; without one, at once), and the
+//! Profile torque (CiA 402 mode 4) and cyclic synchronous torque (mode 10) against a simple
+//! load, chosen when the description has the target torque (6071h) and the velocity actual value
+//! (606Ch): in operation enabled the torque demand moves to 6071h at the torque slope 6087h (per
+//! second; without one, and in cst where each set point taken at a SYNC is the demand, at once),
+//! and the
 //! load's speed follows `dv/dt = GAIN · torque − FRICTION · v` (an inertia with viscous
 //! friction, so a constant torque settles at a speed of `GAIN / FRICTION` per torque unit). The
 //! speed shows in 606Ch (the axis integrates it into the position), the torque in 6077h if the
@@ -9,7 +11,7 @@
 
 use std::time::Duration;
 
-use drivebus::control::mode_bits::PROFILE_TORQUE;
+use drivebus::control::mode_bits::{CYCLIC_SYNC_TORQUE, PROFILE_TORQUE};
 
 use super::{object, Behaviour, Shared};
 use crate::store::{ParamId, Store};
@@ -57,9 +59,11 @@ impl TorqueLoad {
         id.and_then(|id| store.int(id))
     }
 
-    /// Whether the drive is operation enabled in profile torque mode.
+    /// Whether the drive is operation enabled in profile torque or cyclic synchronous torque
+    /// mode.
     fn driving(&self, store: &Store) -> bool {
-        let mode = Self::int(store, self.mode) == Some(PROFILE_TORQUE.into());
+        let mode = Self::int(store, self.mode)
+            .is_some_and(|m| m == PROFILE_TORQUE.into() || m == CYCLIC_SYNC_TORQUE.into());
         let state = Self::int(store, self.statusword).unwrap_or(0) & STATE_MASK;
         mode && state == OPERATION_ENABLED
     }
@@ -84,7 +88,14 @@ impl Behaviour for TorqueLoad {
             return;
         }
         let target = store.int(self.target).unwrap_or(0) as f64;
-        let slope = Self::int(store, self.slope).unwrap_or(0) as f64;
+        // In cst each set point is the torque demand at once (the master interpolates; CiA
+        // 402-2 cst has no torque slope); profile torque ramps at 6087h.
+        let cyclic = Self::int(store, self.mode) == Some(CYCLIC_SYNC_TORQUE.into());
+        let slope = if cyclic {
+            0.0
+        } else {
+            Self::int(store, self.slope).unwrap_or(0) as f64
+        };
         let mut left = dt.as_secs_f64();
         while left > 0.0 {
             let h = left.min(STEP);

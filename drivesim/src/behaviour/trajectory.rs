@@ -85,7 +85,7 @@ impl Kinematics {
 
     /// One step: the speed moves towards the speed wanted here (the profile velocity, less near
     /// the target so the deceleration stops on it), then the position by the speed.
-    fn step(&mut self, heading: Heading, profile: &Profile, h: f64) {
+    pub(crate) fn step(&mut self, heading: Heading, profile: &Profile, h: f64) {
         let wanted = match heading {
             Heading::To(target) => {
                 let to_go = target - self.position;
