@@ -6,16 +6,24 @@
 use std::collections::HashMap;
 
 use drivebus::canopen::pdo::MappedObject;
+use drivebus::interpret::Presentation;
 use drivegen::ir::{Device, Direction, Parameter};
 
-use crate::frames::Sample;
+/// A parameter at a CANopen address, with how its values are shown (looked up once, not for
+/// every frame).
+#[derive(Debug)]
+pub struct Known<'d> {
+    /// The parameter.
+    pub parameter: &'d Parameter,
+    /// How its values are shown.
+    pub presentation: Presentation<'d>,
+}
 
 /// The objects of one description.
 #[derive(Debug)]
 pub struct Objects<'d> {
-    device: &'d Device,
     /// The first parameter at each CANopen address, as a walk in declaration order finds it.
-    by_address: HashMap<(u16, u8), &'d Parameter>,
+    by_address: HashMap<(u16, u8), Known<'d>>,
     /// Each declared PDO's mapping, by (transmit, number), where its entries resolve.
     declared: HashMap<(bool, u16), Vec<MappedObject>>,
     /// The first name of each EMCY code in the description's error-code enumerations.
@@ -28,7 +36,12 @@ impl<'d> Objects<'d> {
         let mut by_address = HashMap::new();
         for parameter in &device.parameters {
             for a in &parameter.canopen {
-                by_address.entry((a.index, a.subindex)).or_insert(parameter);
+                by_address
+                    .entry((a.index, a.subindex))
+                    .or_insert_with(|| Known {
+                        parameter,
+                        presentation: Presentation::of(device, parameter),
+                    });
             }
         }
         let mut declared = HashMap::new();
@@ -48,30 +61,15 @@ impl<'d> Objects<'d> {
             }
         }
         Self {
-            device,
             by_address,
             declared,
             emcy,
         }
     }
 
-    /// The parameter at `index:subindex`.
-    pub fn find(&self, index: u16, subindex: u8) -> Option<&'d Parameter> {
-        self.by_address.get(&(index, subindex)).copied()
-    }
-
-    /// The parameter at `index:subindex` by name, or the address.
-    pub fn name(&self, index: u16, subindex: u8) -> String {
-        self.find(index, subindex)
-            .map_or(format!("{index:04X}:{subindex:02X}"), |p| p.name.clone())
-    }
-
-    /// A sample of the parameter at `index:subindex` from its raw bytes.
-    pub fn sample(&self, index: u16, subindex: u8, bytes: &[u8]) -> Sample {
-        match self.find(index, subindex) {
-            Some(p) => Sample::of(p, drivebus::interpret::show(self.device, p, bytes)),
-            None => Sample::unknown(index, subindex, bytes),
-        }
+    /// The parameter at `index:subindex`, with its presentation.
+    pub fn find(&self, index: u16, subindex: u8) -> Option<&Known<'d>> {
+        self.by_address.get(&(index, subindex))
     }
 
     /// The mapping the description declares for a PDO (`[[pdo]]`), if any.
