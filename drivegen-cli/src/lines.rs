@@ -3,7 +3,7 @@
 //! as it is written, except from [`Lines::buffered`] (a capture decoded as fast as it reads,
 //! where a write per line cost more than the decoding: issue 33, docs/benchmarks.md).
 
-use std::fmt;
+use std::fmt::{self, Write as _};
 use std::io::{BufWriter, Stdout, Write};
 
 use crate::error::CliError;
@@ -14,6 +14,8 @@ const BUFFER: usize = 64 * 1024;
 /// Standard output, line by line.
 pub struct Lines {
     out: BufWriter<Stdout>,
+    /// The line being formatted: one write of it costs less than one per piece.
+    line: String,
     closed: bool,
     /// Each line is flushed as it is written.
     flush_each: bool,
@@ -24,6 +26,7 @@ impl Lines {
     pub fn stdout() -> Self {
         Self {
             out: BufWriter::with_capacity(BUFFER, std::io::stdout()),
+            line: String::new(),
             closed: false,
             flush_each: true,
         }
@@ -52,10 +55,11 @@ impl Lines {
         if self.closed {
             return Ok(());
         }
-        let written = self
-            .out
-            .write_fmt(line)
-            .and_then(|()| self.out.write_all(b"\n"));
+        self.line.clear();
+        // Formatting into a String cannot fail.
+        let _ = self.line.write_fmt(line);
+        self.line.push('\n');
+        let written = self.out.write_all(self.line.as_bytes());
         let written = match written {
             Ok(()) if self.flush_each => self.out.flush(),
             other => other,

@@ -1,12 +1,10 @@
 //! PDO mappings learned from a capture: the SDO writes to the mapping objects (1600h.., 1A00h..)
 //! say which objects later PDO payloads carry.
 
-use std::collections::HashMap;
-
 use drivebus::canopen::pdo::{MappedObject, PdoKind};
 
 use crate::frames::{Sample, Samples};
-use crate::objects::Objects;
+use crate::objects::{AddressMap, Objects};
 
 /// First RPDO and TPDO mapping objects.
 const RPDO_MAPPING: u16 = 0x1600;
@@ -17,7 +15,7 @@ const MAPPINGS: u16 = 0x200;
 /// The mappings seen so far, per node, direction and PDO number.
 #[derive(Debug, Default)]
 pub struct PdoMappings {
-    maps: HashMap<(u8, bool, u16), Vec<MappedObject>>,
+    maps: AddressMap<(u8, bool, u16), Vec<MappedObject>>,
 }
 
 impl PdoMappings {

@@ -5,6 +5,7 @@
 use std::collections::BTreeSet;
 use std::path::PathBuf;
 
+use drivebus::canopen::CanFrame;
 use drivebus::trace::{Armed, Captured, Trigger, Window};
 use serde_json::json;
 
@@ -94,10 +95,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
             break;
         }
         match received? {
-            Received::Frame { time, frame } => {
-                let decoded = trace.decoder.decode(&frame);
-                trace.take(Row { time, decoded }, &mut out)?;
-            }
+            Received::Frame { time, frame } => trace.frame(time, &frame, &mut out)?,
             Received::Malformed(reason) => {
                 trace.malformed += 1;
                 trace.first_malformed.get_or_insert(reason);
@@ -152,14 +150,23 @@ impl<'a> Trace<'a> {
         }
     }
 
+    /// Decodes a frame and takes it; a frame of another node is dropped before it becomes a
+    /// row, unless a trigger may fire on it.
+    fn frame(&mut self, time: Time, frame: &CanFrame, out: &mut Output) -> Result<(), CliError> {
+        let decoded = self.decoder.decode(frame);
+        if self.trigger.is_none() && !self.node_ok(&decoded) {
+            return Ok(());
+        }
+        self.take(Row { time, decoded }, out)
+    }
+
+    fn node_ok(&self, decoded: &Decoded<'_>) -> bool {
+        self.nodes.is_empty() || decoded.node_id().is_some_and(|n| self.nodes.contains(&n))
+    }
+
     /// The row as the filters leave it: `None` if they drop it.
     fn filtered(&self, mut row: Row<'a>) -> Option<Row<'a>> {
-        let node_ok = self.nodes.is_empty()
-            || row
-                .decoded
-                .node_id()
-                .is_some_and(|n| self.nodes.contains(&n));
-        if !node_ok {
+        if !self.node_ok(&row.decoded) {
             return None;
         }
         if self.parameters.is_empty() || row.decoded.keep_parameters(&self.parameters) {
