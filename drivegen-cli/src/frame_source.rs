@@ -35,20 +35,57 @@ pub struct LiveArgs {
     pub bitrate: Option<u32>,
 }
 
+/// When a frame was received, printed as `seconds.micros` (a capture's or the kernel's
+/// timestamp), `Nms` (an adapter's clock) or nothing: kept as numbers, written only when a
+/// frame is printed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Time {
+    /// No timestamp.
+    None,
+    /// Seconds and microseconds since the epoch.
+    Seconds {
+        /// Whole seconds.
+        secs: u64,
+        /// Microseconds, below 1,000,000.
+        micros: u32,
+    },
+    /// An adapter's milliseconds.
+    AdapterMillis(u16),
+}
+
+impl Time {
+    fn from_micros(us: u64) -> Self {
+        Self::Seconds {
+            secs: us / 1_000_000,
+            micros: (us % 1_000_000) as u32,
+        }
+    }
+}
+
+impl std::fmt::Display for Time {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::None => Ok(()),
+            Self::Seconds { secs, micros } => write!(f, "{secs}.{micros:06}"),
+            Self::AdapterMillis(ms) => write!(f, "{ms}ms"),
+        }
+    }
+}
+
 /// What a source gives.
 #[derive(Debug)]
 pub enum Received {
     /// A frame and its time (`seconds.micros`, `Nms` from an adapter, or empty).
     Frame {
         /// When it was received.
-        time: String,
+        time: Time,
         /// The frame.
         frame: CanFrame,
     },
     /// An error frame or bus state change of a live interface.
     BusError {
         /// When it was reported.
-        time: String,
+        time: Time,
         /// The error classes.
         classes: String,
         /// The controller state, if reported.
@@ -139,9 +176,7 @@ impl Iterator for FrameSource {
                 *records += 1;
                 Some(Ok(match record {
                     Ok(record) => Received::Frame {
-                        time: record.timestamp_us.map_or(String::new(), |us| {
-                            format!("{}.{:06}", us / 1_000_000, us % 1_000_000)
-                        }),
+                        time: record.timestamp_us.map_or(Time::None, Time::from_micros),
                         frame: record.frame,
                     },
                     Err(e) => Received::Malformed(format!("{path}, record {records}: {e}")),
@@ -184,12 +219,16 @@ impl Iterator for FrameSource {
     }
 }
 
-fn time(timestamp: Option<Timestamp>) -> String {
+fn time(timestamp: Option<Timestamp>) -> Time {
     match timestamp {
-        Some(Timestamp::Kernel(at)) => at.duration_since(UNIX_EPOCH).map_or(String::new(), |d| {
-            format!("{}.{:06}", d.as_secs(), d.subsec_micros())
-        }),
-        Some(Timestamp::AdapterMillis(ms)) => format!("{ms}ms"),
-        None => String::new(),
+        Some(Timestamp::Kernel(at)) => {
+            at.duration_since(UNIX_EPOCH)
+                .map_or(Time::None, |d| Time::Seconds {
+                    secs: d.as_secs(),
+                    micros: d.subsec_micros(),
+                })
+        }
+        Some(Timestamp::AdapterMillis(ms)) => Time::AdapterMillis(ms),
+        None => Time::None,
     }
 }

@@ -1,218 +1,352 @@
 //! A CANopen frame as people and tools read it: named, typed, with the parameter values it
 //! carries. `decode` prints these; `trace` filters and triggers on them.
+//!
+//! A frame decodes into borrowed values: the classified message, and the values it carries with
+//! the parameters they belong to (by reference into the description's index, `objects.rs`).
+//! Its text (object names, typed values, units) is written only when the frame is printed, so a
+//! frame a filter drops costs no formatting and no allocation (issue 33, docs/benchmarks.md).
+
+use std::collections::BTreeSet;
+use std::fmt;
 
 use drivebus::canopen::message::Message;
 use drivebus::canopen::sdo::AbortCode;
 use drivebus::canopen::CanFrame;
-use drivebus::interpret::Shown;
 use drivebus::trace::Event;
-use drivegen::ir::{Device, Parameter};
+use smallvec::SmallVec;
 
-use crate::objects::Objects;
+use crate::objects::{Known, Objects};
 use crate::pdo_mappings::PdoMappings;
 
-/// A parameter value a frame carries.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Sample {
-    /// The parameter's name, or `INDEX:SUB` for an object the description does not have.
-    pub parameter: String,
-    /// The value for people, with its unit or names.
-    pub text: String,
-    /// The value as a number (an enumeration or flags word by its raw value), if it is one.
-    pub value: Option<f64>,
+/// A parameter value a frame carries: its bytes and the object they belong to.
+#[derive(Debug, Clone, Copy)]
+pub struct Sample<'a> {
+    known: Option<&'a Known<'a>>,
+    index: u16,
+    subindex: u8,
+    len: u8,
+    bytes: [u8; 8],
 }
 
-impl Sample {
-    pub(crate) fn of(parameter: &Parameter, shown: Shown) -> Self {
-        let value = crate::series::number(&shown);
+/// The values of one frame: a frame carries at most a few (an SDO one, a PDO up to eight bytes).
+pub type Samples<'a> = SmallVec<[Sample<'a>; 4]>;
+
+impl<'a> Sample<'a> {
+    /// The value of `bytes` (at most 8; more are cut) at `index:subindex` of `objects`.
+    pub fn of(objects: &'a Objects<'a>, index: u16, subindex: u8, bytes: &[u8]) -> Self {
+        let len = bytes.len().min(8);
+        let mut copy = [0u8; 8];
+        copy[..len].copy_from_slice(&bytes[..len]);
         Self {
-            parameter: parameter.name.clone(),
-            text: shown.text,
-            value,
+            known: objects.find(index, subindex),
+            index,
+            subindex,
+            len: len as u8,
+            bytes: copy,
         }
     }
 
-    pub(crate) fn unknown(index: u16, subindex: u8, bytes: &[u8]) -> Self {
-        Self {
-            parameter: format!("{index:04X}:{subindex:02X}"),
-            text: format!("{bytes:02X?}"),
-            value: None,
+    fn bytes(&self) -> &[u8] {
+        &self.bytes[..usize::from(self.len)]
+    }
+
+    /// The name of the parameter, if the description has the object.
+    pub fn name(&self) -> Option<&'a str> {
+        self.known.map(|k| k.parameter.name.as_str())
+    }
+
+    /// The parameter's name, or `INDEX:SUB` for an object the description does not have.
+    pub fn parameter(&self) -> impl fmt::Display + use<'_, 'a> {
+        ObjectName {
+            known: self.known,
+            index: self.index,
+            subindex: self.subindex,
         }
     }
+
+    /// The value for people, with its unit or names (the bytes, for an unknown object).
+    pub fn text(&self) -> impl fmt::Display + use<'_, 'a> {
+        fmt_with(move |f| match self.known {
+            Some(known) => write!(f, "{}", known.presentation.text(self.bytes())),
+            None => write!(f, "{:02X?}", self.bytes()),
+        })
+    }
+
+    /// The value as a number (an enumeration or flags word by its raw value), if it is one.
+    pub fn value(&self) -> Option<f64> {
+        self.known?.presentation.number(self.bytes())
+    }
+}
+
+/// A parameter's name, or the address of an object the description does not have.
+struct ObjectName<'a> {
+    known: Option<&'a Known<'a>>,
+    index: u16,
+    subindex: u8,
+}
+
+impl fmt::Display for ObjectName<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.known {
+            Some(known) => f.write_str(&known.parameter.name),
+            None => write!(f, "{:04X}:{:02X}", self.index, self.subindex),
+        }
+    }
+}
+
+/// A `Display` of a closure (`fmt::from_fn` is newer than the workspace's Rust version).
+fn fmt_with<F: Fn(&mut fmt::Formatter<'_>) -> fmt::Result>(f: F) -> impl fmt::Display {
+    struct With<F>(F);
+    impl<F: Fn(&mut fmt::Formatter<'_>) -> fmt::Result> fmt::Display for With<F> {
+        fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+            (self.0)(f)
+        }
+    }
+    With(f)
 }
 
 /// One decoded frame.
 #[derive(Debug, Clone)]
-pub struct Decoded {
-    /// The node it is from or for (empty for SYNC; `all` for an NMT command to every node).
-    pub node: String,
-    /// `sdo →`, `sdo ←`, `pdo`, `heartbeat`, `emcy`, `nmt`, `sync` or `other`.
-    pub kind: &'static str,
-    /// The object, PDO or code.
-    pub what: String,
-    /// The value, typed.
-    pub value: String,
-    /// The parameter values it carries.
-    pub samples: Vec<Sample>,
-    /// What a trigger sees of it besides its samples: an EMCY, a node's state, an NMT command.
-    pub event: Option<Event<'static>>,
-    /// The node id, where the frame has one.
-    pub node_id: Option<u8>,
+pub struct Decoded<'a> {
+    objects: &'a Objects<'a>,
+    message: Message,
+    samples: Samples<'a>,
+    /// The value is the samples as `name=value, ...`: a PDO of a known mapping, or any frame
+    /// once a parameter filter chose its samples.
+    joined: bool,
 }
 
-impl Decoded {
+impl<'a> Decoded<'a> {
+    /// The node id, where the frame has one.
+    pub fn node_id(&self) -> Option<u8> {
+        match self.message {
+            Message::SdoRequest { node, .. }
+            | Message::SdoResponse { node, .. }
+            | Message::Heartbeat { node, .. }
+            | Message::Pdo { node, .. } => Some(node.0),
+            Message::Emcy(emcy) => Some(emcy.node.0),
+            Message::Nmt { target, .. } => target.map(|n| n.0),
+            Message::Sync(_) | Message::Time(_) | Message::Other(_) => None,
+        }
+    }
+
+    /// The node it is from or for (empty for SYNC; `all` for an NMT command to every node).
+    pub fn node(&self) -> impl fmt::Display + use<'_, 'a> {
+        fmt_with(move |f| match (self.message, self.node_id()) {
+            (Message::Nmt { target: None, .. }, _) => f.write_str("all"),
+            (_, Some(node)) => write!(f, "{node}"),
+            (_, None) => Ok(()),
+        })
+    }
+
+    /// `sdo →`, `sdo ←`, `pdo`, `heartbeat`, `emcy`, `nmt`, `sync` or `other`.
+    pub fn kind(&self) -> &'static str {
+        match self.message {
+            Message::SdoRequest { .. } => "sdo →",
+            Message::SdoResponse { .. } => "sdo ←",
+            Message::Pdo { .. } => "pdo",
+            Message::Heartbeat { .. } => "heartbeat",
+            Message::Emcy(_) => "emcy",
+            Message::Nmt { .. } => "nmt",
+            Message::Sync(_) => "sync",
+            Message::Time(_) | Message::Other(_) => "other",
+        }
+    }
+
+    /// The parameter values it carries.
+    pub fn samples(&self) -> &[Sample<'a>] {
+        &self.samples
+    }
+
+    /// The object, PDO or code.
+    pub fn what(&self) -> impl fmt::Display + use<'_, 'a> {
+        fmt_with(move |f| self.write_what(f))
+    }
+
+    /// The value, typed.
+    pub fn value(&self) -> impl fmt::Display + use<'_, 'a> {
+        fmt_with(move |f| self.write_value(f))
+    }
+
+    /// Keeps only the samples of `parameters`, shown as `name=value, ...`; `false` (the frame
+    /// is dropped) if none is left.
+    pub fn keep_parameters(&mut self, parameters: &BTreeSet<String>) -> bool {
+        self.samples.retain(|s| match s.name() {
+            Some(name) => parameters.contains(name),
+            None => parameters.contains(&s.parameter().to_string()),
+        });
+        self.joined = true;
+        !self.samples.is_empty()
+    }
+
     /// The trigger events of the frame: its samples with a number, then its own event.
     pub fn events(&self) -> impl Iterator<Item = Event<'_>> {
-        let node = self.node_id.unwrap_or(0);
+        let node = self.node_id().unwrap_or(0);
         let samples = self.samples.iter().filter_map(move |s| {
             Some(Event::Sample {
                 node,
-                parameter: &s.parameter,
-                value: s.value?,
+                parameter: s.name()?,
+                value: s.value()?,
             })
         });
-        samples.chain(self.event)
+        samples.chain(self.event())
+    }
+
+    /// What a trigger sees of it besides its samples: an EMCY, a node's state, an NMT command.
+    fn event(&self) -> Option<Event<'static>> {
+        match self.message {
+            Message::Heartbeat { node, state } => Some(Event::State {
+                node: node.0,
+                state: state.code(),
+            }),
+            Message::Emcy(emcy) => Some(Event::Emcy {
+                node: emcy.node.0,
+                code: emcy.code,
+            }),
+            Message::Nmt { target, .. } => Some(Event::NmtCommand {
+                node: target.map(|n| n.0),
+            }),
+            _ => None,
+        }
+    }
+
+    fn name(&self, index: u16, subindex: u8) -> ObjectName<'a> {
+        ObjectName {
+            known: self.objects.find(index, subindex),
+            index,
+            subindex,
+        }
+    }
+
+    fn write_what(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.message {
+            Message::SdoRequest { data, .. } => {
+                let (index, subindex) = mux(&data);
+                let name = self.name(index, subindex);
+                match data[0] >> 5 {
+                    1 => write!(f, "write {name}"),
+                    2 => write!(f, "read {name}"),
+                    4 => write!(f, "abort {name}"),
+                    _ => f.write_str("segment"),
+                }
+            }
+            Message::SdoResponse { data, .. } => {
+                let (index, subindex) = mux(&data);
+                let name = self.name(index, subindex);
+                if self.message.expedited_value().is_some() {
+                    return write!(f, "{name}");
+                }
+                match data[0] >> 5 {
+                    3 => write!(f, "{name} written"),
+                    4 => write!(f, "abort {name}"),
+                    _ => f.write_str("segment"),
+                }
+            }
+            Message::Emcy(emcy) => write!(f, "{:#06X}", emcy.code),
+            Message::Pdo { kind, number, .. } => write!(f, "{kind:?}{number}"),
+            Message::Time(frame) | Message::Other(frame) => write!(f, "{:03X}", frame.id()),
+            Message::Heartbeat { .. } | Message::Nmt { .. } | Message::Sync(_) => Ok(()),
+        }
+    }
+
+    fn write_value(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.joined {
+            let mut separator = "";
+            for s in &self.samples {
+                write!(f, "{separator}{}={}", s.parameter(), s.text())?;
+                separator = ", ";
+            }
+            return Ok(());
+        }
+        let sample = self.samples.first();
+        match self.message {
+            Message::SdoRequest { data, .. } => match (sample, data[0] >> 5) {
+                (Some(sample), _) => write!(f, "{}", sample.text()),
+                (None, 1) => f.write_str("(segmented)"),
+                (None, 2) => Ok(()),
+                (None, 4) => write_abort(f, &data),
+                (None, _) => write!(f, "{data:02X?}"),
+            },
+            Message::SdoResponse { data, .. } => match (sample, data[0] >> 5) {
+                (Some(sample), _) => write!(f, "{}", sample.text()),
+                (None, 3) => f.write_str("ok"),
+                (None, 4) => write_abort(f, &data),
+                (None, _) => write!(f, "{data:02X?}"),
+            },
+            Message::Heartbeat { state, .. } => write!(f, "{state:?}"),
+            Message::Emcy(emcy) => write!(
+                f,
+                "{} (register {:#04x})",
+                self.objects.emcy_name(emcy.code).unwrap_or("unknown code"),
+                emcy.register.bits()
+            ),
+            Message::Nmt { command, .. } => write!(f, "{command:?}"),
+            Message::Sync(counter) => write!(f, "{counter:?}"),
+            Message::Pdo { frame, .. } => {
+                write!(f, "{:02X?} (mapping not in the capture)", frame.data())
+            }
+            Message::Time(frame) | Message::Other(frame) => write!(f, "{:02X?}", frame.data()),
+        }
     }
 }
 
 /// Decodes frames in bus order, learning PDO mappings from the SDO writes it sees.
 #[derive(Debug)]
-pub struct FrameDecoder<'d> {
-    objects: Objects<'d>,
+pub struct FrameDecoder<'a> {
+    objects: &'a Objects<'a>,
     mappings: PdoMappings,
 }
 
-impl<'d> FrameDecoder<'d> {
-    /// A decoder for a bus of drives `device` describes.
-    pub fn new(device: &'d Device) -> Self {
+impl<'a> FrameDecoder<'a> {
+    /// A decoder for a bus of drives whose objects `objects` indexes.
+    pub fn new(objects: &'a Objects<'a>) -> Self {
         Self {
-            objects: Objects::new(device),
+            objects,
             mappings: PdoMappings::default(),
         }
     }
 
     /// The next frame, decoded.
-    pub fn decode(&mut self, frame: &CanFrame) -> Decoded {
+    pub fn decode(&mut self, frame: &CanFrame) -> Decoded<'a> {
+        let objects = self.objects;
         let message = Message::classify(frame);
-        if let Message::SdoRequest { node, data } = message {
-            if let Some((index, subindex, value)) = expedited_download(&data) {
-                self.mappings.learn(node.0, index, subindex, value);
-            }
-        }
-        self.describe(message)
-    }
-
-    fn describe(&self, message: Message) -> Decoded {
-        let objects = &self.objects;
-        let line = |node: Option<u8>, kind, what: String, value: String| Decoded {
-            node: node.map_or(String::new(), |n| n.to_string()),
-            kind,
-            what,
-            value,
-            samples: Vec::new(),
-            event: None,
-            node_id: node,
-        };
+        let mut samples = Samples::new();
+        let mut joined = false;
         match message {
             Message::SdoRequest { node, data } => {
-                let (what, value, sample) = sdo_request(objects, &data);
-                Decoded {
-                    samples: sample.into_iter().collect(),
-                    ..line(Some(node.0), "sdo →", what, value)
+                if let Some((index, subindex, value)) = expedited_download(&data) {
+                    self.mappings.learn(node.0, index, subindex, value);
+                    samples.push(Sample::of(objects, index, subindex, value));
                 }
             }
-            Message::SdoResponse { node, data } => {
-                let (what, value, sample) = sdo_response(objects, &message, &data);
-                Decoded {
-                    samples: sample.into_iter().collect(),
-                    ..line(Some(node.0), "sdo ←", what, value)
+            Message::SdoResponse { .. } => {
+                if let Some(v) = message.expedited_value() {
+                    let bytes = &v.bytes[..usize::from(v.len)];
+                    samples.push(Sample::of(objects, v.index, v.subindex, bytes));
                 }
             }
-            Message::Heartbeat { node, state } => Decoded {
-                event: Some(Event::State {
-                    node: node.0,
-                    state: state.code(),
-                }),
-                ..line(
-                    Some(node.0),
-                    "heartbeat",
-                    String::new(),
-                    format!("{state:?}"),
-                )
-            },
-            Message::Emcy(emcy) => Decoded {
-                event: Some(Event::Emcy {
-                    node: emcy.node.0,
-                    code: emcy.code,
-                }),
-                ..line(
-                    Some(emcy.node.0),
-                    "emcy",
-                    format!("{:#06X}", emcy.code),
-                    format!(
-                        "{} (register {:#04x})",
-                        objects.emcy_name(emcy.code).unwrap_or("unknown code"),
-                        emcy.register.bits()
-                    ),
-                )
-            },
-            Message::Nmt { command, target } => Decoded {
-                node: target.map_or("all".into(), |n| n.0.to_string()),
-                event: Some(Event::NmtCommand {
-                    node: target.map(|n| n.0),
-                }),
-                ..line(
-                    target.map(|n| n.0),
-                    "nmt",
-                    String::new(),
-                    format!("{command:?}"),
-                )
-            },
-            Message::Sync(counter) => line(None, "sync", String::new(), format!("{counter:?}")),
             Message::Pdo {
                 kind,
                 number,
                 node,
                 frame,
             } => {
-                let what = format!("{kind:?}{number}");
-                match self
-                    .mappings
-                    .decode(objects, node.0, kind, number, frame.data())
+                if let Some(decoded) =
+                    self.mappings
+                        .decode(objects, node.0, kind, number, frame.data())
                 {
-                    Some(samples) => Decoded {
-                        samples,
-                        ..line(Some(node.0), "pdo", what, String::new())
-                    }
-                    .with_joined_value(),
-                    None => line(
-                        Some(node.0),
-                        "pdo",
-                        what,
-                        format!("{:02X?} (mapping not in the capture)", frame.data()),
-                    ),
+                    samples = decoded;
+                    joined = true;
                 }
             }
-            Message::Time(frame) | Message::Other(frame) => line(
-                None,
-                "other",
-                format!("{:03X}", frame.id()),
-                format!("{:02X?}", frame.data()),
-            ),
+            _ => {}
         }
-    }
-}
-
-impl Decoded {
-    /// The value as `name=value, ...` of its samples.
-    fn with_joined_value(mut self) -> Self {
-        let pairs: Vec<String> = self
-            .samples
-            .iter()
-            .map(|s| format!("{}={}", s.parameter, s.text))
-            .collect();
-        self.value = pairs.join(", ");
-        self
+        Decoded {
+            objects,
+            message,
+            samples,
+            joined,
+        }
     }
 }
 
@@ -234,46 +368,7 @@ fn mux(data: &[u8; 8]) -> (u16, u8) {
     (u16::from_le_bytes([data[1], data[2]]), data[3])
 }
 
-fn sdo_request(objects: &Objects<'_>, data: &[u8; 8]) -> (String, String, Option<Sample>) {
-    let (index, subindex) = mux(data);
-    let name = objects.name(index, subindex);
-    if let Some((index, subindex, bytes)) = expedited_download(data) {
-        let sample = objects.sample(index, subindex, bytes);
-        return (format!("write {name}"), sample.text.clone(), Some(sample));
-    }
-    let (what, value) = match data[0] >> 5 {
-        1 => (format!("write {name}"), "(segmented)".into()),
-        2 => (format!("read {name}"), String::new()),
-        4 => (format!("abort {name}"), abort(data)),
-        _ => ("segment".into(), format!("{data:02X?}")),
-    };
-    (what, value, None)
-}
-
-fn sdo_response(
-    objects: &Objects<'_>,
-    message: &Message,
-    data: &[u8; 8],
-) -> (String, String, Option<Sample>) {
-    if let Some(v) = message.expedited_value() {
-        let sample = objects.sample(v.index, v.subindex, &v.bytes[..v.len as usize]);
-        return (
-            objects.name(v.index, v.subindex),
-            sample.text.clone(),
-            Some(sample),
-        );
-    }
-    let (index, subindex) = mux(data);
-    let name = objects.name(index, subindex);
-    let (what, value) = match data[0] >> 5 {
-        3 => (format!("{name} written"), "ok".into()),
-        4 => (format!("abort {name}"), abort(data)),
-        _ => ("segment".into(), format!("{data:02X?}")),
-    };
-    (what, value, None)
-}
-
-fn abort(data: &[u8; 8]) -> String {
+fn write_abort(f: &mut fmt::Formatter<'_>, data: &[u8; 8]) -> fmt::Result {
     let code = u32::from_le_bytes([data[4], data[5], data[6], data[7]]);
-    format!("{code:#010X} {}", AbortCode::from_u32(code).meaning())
+    write!(f, "{code:#010X} {}", AbortCode::from_u32(code).meaning())
 }

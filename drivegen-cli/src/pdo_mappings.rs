@@ -1,12 +1,10 @@
 //! PDO mappings learned from a capture: the SDO writes to the mapping objects (1600h.., 1A00h..)
 //! say which objects later PDO payloads carry.
 
-use std::collections::HashMap;
-
 use drivebus::canopen::pdo::{MappedObject, PdoKind};
 
-use crate::frames::Sample;
-use crate::objects::Objects;
+use crate::frames::{Sample, Samples};
+use crate::objects::{AddressMap, Objects};
 
 /// First RPDO and TPDO mapping objects.
 const RPDO_MAPPING: u16 = 0x1600;
@@ -17,7 +15,7 @@ const MAPPINGS: u16 = 0x200;
 /// The mappings seen so far, per node, direction and PDO number.
 #[derive(Debug, Default)]
 pub struct PdoMappings {
-    maps: HashMap<(u8, bool, u16), Vec<MappedObject>>,
+    maps: AddressMap<(u8, bool, u16), Vec<MappedObject>>,
 }
 
 impl PdoMappings {
@@ -51,28 +49,28 @@ impl PdoMappings {
 
     /// The parameter values of a PDO payload, if its mapping is known and the payload holds
     /// it: the mapping seen in the capture, else the one the description declares for the PDO.
-    pub fn decode(
+    pub fn decode<'a>(
         &self,
-        objects: &Objects<'_>,
+        objects: &'a Objects<'a>,
         node: u8,
         kind: PdoKind,
         number: u8,
         payload: &[u8],
-    ) -> Option<Vec<Sample>> {
+    ) -> Option<Samples<'a>> {
         let transmit = kind == PdoKind::Transmit;
         let entries = match self.maps.get(&(node, transmit, u16::from(number))) {
             Some(learned) => learned.as_slice(),
             None => objects.declared_mapping(transmit, number)?,
         };
         let mut bit = 0usize;
-        let mut values = Vec::with_capacity(entries.len());
+        let mut values = Samples::new();
         for entry in entries {
             if bit % 8 != 0 || entry.bits % 8 != 0 {
                 return None; // Bit-packed mappings are left raw.
             }
             let bytes = payload.get(bit / 8..bit / 8 + usize::from(entry.bits) / 8)?;
             bit += usize::from(entry.bits);
-            values.push(objects.sample(entry.index, entry.subindex, bytes));
+            values.push(Sample::of(objects, entry.index, entry.subindex, bytes));
         }
         Some(values)
     }
@@ -96,10 +94,10 @@ mod tests {
         maps.learn(1, 0x1A00, 2, &0x606C_0020u32.to_le_bytes());
         maps.learn(1, 0x1A00, 0, &[2]);
         let payload = [0x37, 0x00, 0xE8, 0x03, 0x00, 0x00];
-        let named = |samples: Vec<Sample>| -> Vec<(String, Option<f64>)> {
+        let named = |samples: Samples<'_>| -> Vec<(String, Option<f64>)> {
             samples
-                .into_iter()
-                .map(|s| (s.parameter, s.value))
+                .iter()
+                .map(|s| (s.parameter().to_string(), s.value()))
                 .collect()
         };
         let learned = maps.decode(&device, 1, PdoKind::Transmit, 1, &payload);
@@ -110,9 +108,9 @@ mod tests {
                 ("velocity_actual_value".to_owned(), Some(1000.0))
             ]
         );
-        assert_eq!(
-            maps.decode(&device, 1, PdoKind::Receive, 2, &payload),
-            None,
+        assert!(
+            maps.decode(&device, 1, PdoKind::Receive, 2, &payload)
+                .is_none(),
             "neither learned nor declared"
         );
         // TPDO 2 was not seen being mapped: the description's mapping decodes it.

@@ -34,4 +34,4 @@ pub use over_link::{
     Variant,
 };
 #[cfg(feature = "std")]
-pub use shown::{show, Engineering, Raw, Shown};
+pub use shown::{show, Engineering, Presentation, Raw, Shown};

@@ -5,15 +5,16 @@
 use std::collections::BTreeSet;
 use std::path::PathBuf;
 
+use drivebus::canopen::CanFrame;
 use drivebus::trace::{Armed, Captured, Trigger, Window};
-use drivegen::ir::Device;
 use serde_json::json;
 
 use crate::csv;
 use crate::error::CliError;
-use crate::frame_source::{FrameSource, Received};
+use crate::frame_source::{FrameSource, Received, Time};
 use crate::frames::{Decoded, FrameDecoder};
 use crate::lines::Lines;
+use crate::objects::Objects;
 use crate::series::plot_file::PlotFile;
 use crate::series::plotter::Plotter;
 
@@ -65,9 +66,9 @@ struct Place {
 
 /// A frame as printed.
 #[derive(Debug, Clone)]
-struct Row {
-    time: String,
-    decoded: Decoded,
+struct Row<'a> {
+    time: Time,
+    decoded: Decoded<'a>,
 }
 
 /// Runs `trace`.
@@ -84,54 +85,58 @@ pub fn run(args: Args) -> Result<(), CliError> {
         Some(path) => FrameSource::capture(path)?,
         None => FrameSource::live(&args.live, &device)?,
     };
-    let mut out = Output::new(&args);
     let live = args.capture.is_none();
+    let mut out = Output::new(&args, live);
     out.plot = plot.map(|file| Plotter::new(file, &device, "trace", &[]).redrawn(live));
-    let mut trace = Trace::new(&args, &device);
+    let objects = Objects::new(&device);
+    let mut trace = Trace::new(&args, &objects);
     for received in source {
         if out.out.is_closed() {
             break;
         }
         match received? {
-            Received::Frame { time, frame } => {
-                let decoded = trace.decoder.decode(&frame);
-                trace.take(Row { time, decoded }, &mut out)?;
+            Received::Frame { time, frame } => trace.frame(time, &frame, &mut out)?,
+            Received::Malformed(reason) => {
+                trace.malformed += 1;
+                trace.first_malformed.get_or_insert(reason);
             }
-            Received::Malformed(reason) => trace.malformed.push(reason),
             Received::BusError { .. } => trace.bus_errors += 1,
         }
     }
     trace.finish(&mut out)?;
+    out.out.flush()?;
     if let Some(plot) = &mut out.plot {
         plot.finish()?;
     }
     if trace.bus_errors > 0 {
         eprintln!("the interface reported {} bus error(s)", trace.bus_errors);
     }
-    if let Some(first) = trace.malformed.first() {
+    if let Some(first) = &trace.first_malformed {
         eprintln!(
             "skipped {} malformed line(s); the first: {first}",
-            trace.malformed.len()
+            trace.malformed
         );
     }
     Ok(())
 }
 
 /// The filters, trigger and window of one run.
-struct Trace<'d> {
-    decoder: FrameDecoder<'d>,
+struct Trace<'a> {
+    decoder: FrameDecoder<'a>,
     nodes: BTreeSet<u8>,
     parameters: BTreeSet<String>,
-    trigger: Option<(Armed, Window<Row>)>,
+    trigger: Option<(Armed, Window<Row<'a>>)>,
     windows: usize,
-    malformed: Vec<String>,
+    /// Lines that were not frames: how many, and where and why the first.
+    malformed: usize,
+    first_malformed: Option<String>,
     bus_errors: usize,
 }
 
-impl<'d> Trace<'d> {
-    fn new(args: &Args, device: &'d Device) -> Self {
+impl<'a> Trace<'a> {
+    fn new(args: &Args, objects: &'a Objects<'a>) -> Self {
         Self {
-            decoder: FrameDecoder::new(device),
+            decoder: FrameDecoder::new(objects),
             nodes: args.nodes.iter().copied().collect(),
             parameters: args.parameters.iter().cloned().collect(),
             trigger: args
@@ -139,38 +144,38 @@ impl<'d> Trace<'d> {
                 .clone()
                 .map(|t| (t.arm(), Window::new(args.pre, args.post))),
             windows: 0,
-            malformed: Vec::new(),
+            malformed: 0,
+            first_malformed: None,
             bus_errors: 0,
         }
     }
 
-    /// The row as the filters leave it: `None` if they drop it.
-    fn filtered(&self, mut row: Row) -> Option<Row> {
-        let node_ok =
-            self.nodes.is_empty() || row.decoded.node_id.is_some_and(|n| self.nodes.contains(&n));
-        if !node_ok {
-            return None;
+    /// Decodes a frame and takes it; a frame of another node is dropped before it becomes a
+    /// row, unless a trigger may fire on it.
+    fn frame(&mut self, time: Time, frame: &CanFrame, out: &mut Output) -> Result<(), CliError> {
+        let decoded = self.decoder.decode(frame);
+        if self.trigger.is_none() && !self.node_ok(&decoded) {
+            return Ok(());
         }
-        if self.parameters.is_empty() {
-            return Some(row);
-        }
-        row.decoded
-            .samples
-            .retain(|s| self.parameters.contains(&s.parameter));
-        if row.decoded.samples.is_empty() {
-            return None;
-        }
-        row.decoded.value = row
-            .decoded
-            .samples
-            .iter()
-            .map(|s| format!("{}={}", s.parameter, s.text))
-            .collect::<Vec<_>>()
-            .join(", ");
-        Some(row)
+        self.take(Row { time, decoded }, out)
     }
 
-    fn take(&mut self, row: Row, out: &mut Output) -> Result<(), CliError> {
+    fn node_ok(&self, decoded: &Decoded<'_>) -> bool {
+        self.nodes.is_empty() || decoded.node_id().is_some_and(|n| self.nodes.contains(&n))
+    }
+
+    /// The row as the filters leave it: `None` if they drop it.
+    fn filtered(&self, mut row: Row<'a>) -> Option<Row<'a>> {
+        if !self.node_ok(&row.decoded) {
+            return None;
+        }
+        if self.parameters.is_empty() || row.decoded.keep_parameters(&self.parameters) {
+            return Some(row);
+        }
+        None
+    }
+
+    fn take(&mut self, row: Row<'a>, out: &mut Output) -> Result<(), CliError> {
         let Some((armed, _)) = &mut self.trigger else {
             return match self.filtered(row) {
                 Some(row) => out.row(&row, None),
@@ -196,7 +201,11 @@ impl<'d> Trace<'d> {
         }
     }
 
-    fn print_window(&mut self, captured: Captured<Row>, out: &mut Output) -> Result<(), CliError> {
+    fn print_window(
+        &mut self,
+        captured: Captured<Row<'a>>,
+        out: &mut Output,
+    ) -> Result<(), CliError> {
         self.windows += 1;
         let window = self.windows;
         out.window_header(window, &captured)?;
@@ -228,7 +237,8 @@ enum Format {
 }
 
 impl Output<'_> {
-    fn new(args: &Args) -> Self {
+    /// The output of `args`; a live source's rows reach the reader as they come.
+    fn new(args: &Args, live: bool) -> Self {
         let format = match (args.csv, args.json) {
             (true, _) => Format::Csv,
             (_, true) => Format::Json,
@@ -236,7 +246,11 @@ impl Output<'_> {
         };
         Self {
             format,
-            out: Lines::stdout(),
+            out: if live {
+                Lines::stdout()
+            } else {
+                Lines::buffered()
+            },
             header_done: false,
             plot: None,
         }
@@ -247,7 +261,11 @@ impl Output<'_> {
         self.out.write(line)
     }
 
-    fn window_header(&mut self, window: usize, captured: &Captured<Row>) -> Result<(), CliError> {
+    fn window_header(
+        &mut self,
+        window: usize,
+        captured: &Captured<Row<'_>>,
+    ) -> Result<(), CliError> {
         if self.format != Format::Lines {
             return Ok(());
         }
@@ -264,15 +282,19 @@ impl Output<'_> {
         ))
     }
 
-    fn row(&mut self, row: &Row, place: Option<Place>) -> Result<(), CliError> {
+    fn row(&mut self, row: &Row<'_>, place: Option<Place>) -> Result<(), CliError> {
         let d = &row.decoded;
         if let Some(plot) = &mut self.plot {
-            plot.frame(&row.time, &d.samples)?;
+            plot.frame(&row.time.to_string(), d.samples())?;
         }
         match self.format {
-            Format::Lines => self.write(&format!(
+            Format::Lines => self.out.line(format_args!(
                 "{}  {}  {}  {}  {}",
-                row.time, d.node, d.kind, d.what, d.value
+                row.time,
+                d.node(),
+                d.kind(),
+                d.what(),
+                d.value()
             )),
             Format::Csv => {
                 if !self.header_done {
@@ -281,26 +303,30 @@ impl Output<'_> {
                 }
                 let (window, at) =
                     place.map_or((String::new(), ""), |p| (p.window.to_string(), p.at));
-                let fields = [&window, at, &row.time, &d.node, d.kind, &d.what, &d.value];
+                let (time, node) = (row.time.to_string(), d.node().to_string());
+                let (what, value) = (d.what().to_string(), d.value().to_string());
+                let fields = [&window, at, &time, &node, d.kind(), &what, &value];
                 self.write(&csv::record(&fields))
             }
             Format::Json => {
                 let samples: serde_json::Map<String, serde_json::Value> = d
-                    .samples
+                    .samples()
                     .iter()
                     .map(|s| {
-                        let value = s.value.map_or_else(|| json!(s.text), |v| json!(v));
-                        (s.parameter.clone(), value)
+                        let value = s
+                            .value()
+                            .map_or_else(|| json!(s.text().to_string()), |v| json!(v));
+                        (s.parameter().to_string(), value)
                     })
                     .collect();
                 let line = json!({
                     "window": place.map(|p| p.window),
                     "at": place.map(|p| p.at),
-                    "time": row.time,
-                    "node": d.node,
-                    "kind": d.kind,
-                    "object": d.what,
-                    "value": d.value,
+                    "time": row.time.to_string(),
+                    "node": d.node().to_string(),
+                    "kind": d.kind(),
+                    "object": d.what().to_string(),
+                    "value": d.value().to_string(),
                     "samples": samples,
                 });
                 self.write(&line.to_string())

@@ -83,14 +83,15 @@ impl<'d> Plotter<'d> {
 
     /// Adds a decoded frame's numeric samples at the frame's time text (see [`super::seconds`])
     /// and draws the file now and then.
-    pub fn frame(&mut self, time: &str, samples: &[Sample]) -> Result<(), CliError> {
+    pub fn frame(&mut self, time: &str, samples: &[Sample<'_>]) -> Result<(), CliError> {
         let time = super::seconds(time).map(|(whole, fraction)| {
             let epoch = *self.epoch.get_or_insert(whole);
             (whole - epoch) as f64 + fraction
         });
         for sample in samples {
-            if let Some(value) = sample.value {
-                self.sample(&sample.parameter, time, value);
+            // Only the description's parameters have values as numbers.
+            if let (Some(parameter), Some(value)) = (sample.name(), sample.value()) {
+                self.sample(parameter, time, value);
             }
         }
         self.now_and_then()
