@@ -2,14 +2,10 @@
 
 use std::fmt;
 
-/// A gateway file that cannot be read.
-#[derive(Debug, Clone, PartialEq)]
-pub struct GatewayFileError {
-    /// The line (1-based) the error is on, when it is on one.
-    pub line: Option<u32>,
-    /// What is wrong.
-    pub kind: GatewayFileErrorKind,
-}
+use crate::file_error::{unsupported_format, FileError, UnreadableKind};
+
+/// A gateway file that cannot be read, with the line it points at.
+pub type GatewayFileError = FileError<GatewayFileErrorKind>;
 
 /// What is wrong with a gateway file.
 #[derive(Debug, Clone, PartialEq)]
@@ -33,33 +29,27 @@ pub enum GatewayFileErrorKind {
     },
 }
 
-impl GatewayFileError {
-    /// What is wrong, without the line (for messages that put the line elsewhere).
-    pub fn kind_text(&self) -> String {
-        Self {
-            line: None,
-            kind: self.kind.clone(),
-        }
-        .to_string()
+impl UnreadableKind for GatewayFileErrorKind {
+    fn syntax(why: String) -> Self {
+        Self::Syntax(why)
     }
 
-    pub(super) fn at(line: Option<u32>, kind: GatewayFileErrorKind) -> Self {
-        Self { line, kind }
+    fn missing_format() -> Self {
+        Self::MissingFormat
+    }
+
+    fn unsupported_format(found: i64) -> Self {
+        Self::UnsupportedFormat(found)
     }
 }
 
-impl fmt::Display for GatewayFileError {
+impl fmt::Display for GatewayFileErrorKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if let Some(line) = self.line {
-            write!(f, "line {line}: ")?;
-        }
-        match &self.kind {
+        match self {
             GatewayFileErrorKind::Syntax(why) => write!(f, "not a gateway file: {why}"),
-            GatewayFileErrorKind::UnsupportedFormat(found) => write!(
-                f,
-                "format {found} is not read by this drivegen (it reads format {})",
-                super::FORMAT_VERSION
-            ),
+            GatewayFileErrorKind::UnsupportedFormat(found) => {
+                unsupported_format(f, *found, super::FORMAT_VERSION)
+            }
             GatewayFileErrorKind::MissingFormat => f.write_str("`format = 1` is missing"),
             GatewayFileErrorKind::NoDrives => f.write_str("no [[drive]]: nothing to expose"),
             GatewayFileErrorKind::DuplicateDrive(name) => {
@@ -71,5 +61,3 @@ impl fmt::Display for GatewayFileError {
         }
     }
 }
-
-impl std::error::Error for GatewayFileError {}

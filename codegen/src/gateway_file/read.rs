@@ -9,7 +9,7 @@ use toml::Spanned;
 use super::error::{GatewayFileError, GatewayFileErrorKind as Kind};
 use super::opcua::{opcua, RawOpcUa};
 use super::{BusOption, DriveEntry, GatewayFile, MqttEntry, Named, TlsEntry, FORMAT_VERSION};
-use crate::toml_file::{self, in_file_order, line_of, Unreadable};
+use crate::toml_file::{self, in_file_order, line_of};
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -59,13 +59,7 @@ struct RawDrive {
 /// with an entry of the wrong shape is refused with the line.
 pub fn parse(text: &str) -> Result<GatewayFile, GatewayFileError> {
     let raw: RawFile = toml_file::read(text, FORMAT_VERSION, |raw: &RawFile| raw.format.as_ref())
-        .map_err(|unreadable| match unreadable {
-        Unreadable::Syntax(line, why) => GatewayFileError::at(line, Kind::Syntax(why)),
-        Unreadable::MissingFormat => GatewayFileError::at(None, Kind::MissingFormat),
-        Unreadable::UnsupportedFormat(line, found) => {
-            GatewayFileError::at(Some(line), Kind::UnsupportedFormat(found))
-        }
-    })?;
+        .map_err(GatewayFileError::unreadable)?;
     if raw.drive.is_empty() {
         return Err(GatewayFileError::at(None, Kind::NoDrives));
     }
