@@ -128,7 +128,7 @@ mod over_canopen {
     use drivebus::canopen::network::Network;
     use drivebus::canopen::nmt::NmtCommand;
     use drivebus::canopen::NodeId;
-    use drivebus::control::cyclic::{CyclicFailure, CyclicMode};
+    use drivebus::control::cyclic::{CyclicFailure, CyclicMode, Feedback};
     use drivebus::control::cyclic_driver::{AxisLink, CyclicConfig, CyclicError, CyclicRun};
     use drivebus::control::Quirks;
     use drivesim::canopen::{InProcessNode, NodeConfig};
@@ -136,7 +136,7 @@ mod over_canopen {
 
     use super::AXIS;
 
-    const LINKS: [AxisLink; 2] = [
+    pub(super) const LINKS: [AxisLink; 2] = [
         AxisLink {
             node: NodeId(1),
             rpdo_cob_id: 0x201,
@@ -149,7 +149,7 @@ mod over_canopen {
         },
     ];
 
-    fn config(mode: CyclicMode) -> CyclicConfig {
+    pub(super) fn config(mode: CyclicMode) -> CyclicConfig {
         CyclicConfig {
             mode,
             period: Duration::from_millis(4),
@@ -162,22 +162,20 @@ mod over_canopen {
     fn axes() -> (Vec<Simulator>, InProcessBus, InProcessNode) {
         let sims: Vec<Simulator> = (0..2).map(|_| Simulator::load(AXIS).unwrap()).collect();
         let bus = InProcessBus::new();
-        let nodes = sims
-            .iter()
-            .zip(LINKS)
-            .map(|(sim, link)| {
-                let config = NodeConfig {
-                    node: link.node,
-                    heartbeat: None,
-                };
-                (sim.clone(), config)
-            })
-            .collect();
-        let running = InProcessNode::serve(&bus, nodes);
+        let running = InProcessNode::serve(&bus, served(&sims));
         (sims, bus, running)
     }
 
-    fn int(sim: &Simulator, name: &str) -> i128 {
+    /// Each simulated axis with the node configuration of its link.
+    pub(super) fn served(sims: &[Simulator]) -> Vec<(Simulator, NodeConfig)> {
+        let config = |link: AxisLink| NodeConfig {
+            node: link.node,
+            heartbeat: None,
+        };
+        sims.iter().cloned().zip(LINKS.map(config)).collect()
+    }
+
+    pub(super) fn int(sim: &Simulator, name: &str) -> i128 {
         sim.with(|d| d.store().int(d.store().id(name).unwrap()).unwrap())
     }
 
@@ -188,6 +186,12 @@ mod over_canopen {
         let network = Network::new(bus.endpoint());
         network.nmt(NmtCommand::Start, None).unwrap();
         let error = CyclicRun::start(&network, &LINKS, config(CyclicMode::Torque)).unwrap_err();
+        refused(&sims, error);
+    }
+
+    /// Checks `error` refuses cst on node 2, which lists only csp and csv, and no axis got a
+    /// mode.
+    pub(super) fn refused(sims: &[Simulator], error: CyclicError) {
         assert_eq!(
             error,
             CyclicError::Axis {
@@ -199,7 +203,7 @@ mod over_canopen {
                 emcy: None
             }
         );
-        for sim in &sims {
+        for sim in sims {
             assert_eq!(int(sim, "modes_of_operation"), 0, "no mode written");
         }
     }
@@ -211,13 +215,23 @@ mod over_canopen {
         network.nmt(NmtCommand::Start, None).unwrap();
         let mut run = CyclicRun::start(&network, &LINKS, config(CyclicMode::Position)).unwrap();
         run.run(50, |cycle, _| (cycle as i32 + 1) * 100).unwrap();
-        // The last TPDO shows the axis on one of the last set points (100 apart), or on its
-        // way between them when a SYNC came early.
-        for feedback in run.feedback() {
-            assert!((4_500..=5_000).contains(&feedback.actual), "{feedback:?}");
-        }
+        followed(&run.feedback());
         sims[0].with(|d| d.block_load(true));
         let error = run.run(100, |cycle, _| 5_000 + (cycle as i32 + 1) * 200);
+        stopped(&sims, error.map(|_| ()));
+    }
+
+    /// Checks the last TPDO of each axis shows it on one of the last set points (100 apart,
+    /// the last 5 000), or on its way between them when a SYNC came early.
+    pub(super) fn followed(feedback: &[Feedback]) {
+        for feedback in feedback {
+            assert!((4_500..=5_000).contains(&feedback.actual), "{feedback:?}");
+        }
+    }
+
+    /// Checks the run stopped with node 1's following error, and quick-stopped every axis:
+    /// quick stop active (or further on), no longer operation enabled.
+    pub(super) fn stopped(sims: &[Simulator], error: Result<(), CyclicError>) {
         assert!(
             matches!(
                 error,
@@ -229,9 +243,10 @@ mod over_canopen {
             ),
             "{error:?}"
         );
-        // Quick-stopped: quick stop active (or further on), no longer operation enabled.
-        let status = int(&sims[0], "statusword") as u16;
-        assert_ne!(status & 0x6F, 0x27, "{status:#06X}");
+        for sim in sims {
+            let status = int(sim, "statusword") as u16;
+            assert_ne!(status & 0x6F, 0x27, "{status:#06X}");
+        }
     }
 
     #[test]
@@ -276,5 +291,91 @@ mod over_canopen {
             assert!(int(sim, "velocity_actual_value") < 0, "braked and reversed");
         }
         run.stop();
+    }
+}
+
+mod over_async_canopen {
+    //! The runtime's async cyclic shell against two simulated axes, the async network manager
+    //! over SLCAN on a loopback TCP connection (the axes on the blocking SLCAN bus).
+
+    use std::net::TcpListener;
+
+    use drivebus::asynch::TokioTimer;
+    use drivebus::canopen::can::async_slcan::AsyncSlcanBus;
+    use drivebus::canopen::can::slcan::SlcanBus;
+    use drivebus::canopen::network::AsyncNetwork;
+    use drivebus::canopen::nmt::NmtCommand;
+    use drivebus::control::async_cyclic_driver::AsyncCyclicRun;
+    use drivebus::control::cyclic::CyclicMode;
+    use drivesim::canopen::{nodes, Node};
+    use drivesim::Simulator;
+
+    use super::over_canopen::{config, followed, refused, served, stopped, LINKS};
+    use super::AXIS;
+
+    /// Two simulated axes served over SLCAN on a loopback port from a thread that ends when
+    /// the master hangs up; the master's async bus connected to them.
+    async fn axes() -> (
+        Vec<Simulator>,
+        AsyncSlcanBus<drivebus::canopen::can::tokio_adapters::TokioIo<tokio::net::TcpStream>>,
+    ) {
+        let sims: Vec<Simulator> = (0..2).map(|_| Simulator::load(AXIS).unwrap()).collect();
+        let served = served(&sims);
+        let listener = TcpListener::bind("127.0.0.1:0").unwrap();
+        let address = listener.local_addr().unwrap();
+        std::thread::spawn(move || {
+            let (stream, _) = listener.accept().unwrap();
+            let mut bus = SlcanBus::tcp(stream).unwrap();
+            let mut nodes: Vec<Node> = served
+                .into_iter()
+                .map(|(sim, config)| Node::new(sim.clone(), config, sim.variant()))
+                .collect();
+            // Ends with an error once the master hung up; that is how a test ends.
+            let _ = nodes::run_while(&mut nodes, &mut bus, || true);
+        });
+        (sims, AsyncSlcanBus::connect(address).await.unwrap())
+    }
+
+    #[tokio::test]
+    async fn a_mode_an_axis_does_not_list_is_refused_before_anything_is_sent() {
+        let (sims, bus) = axes().await;
+        sims[1].preset("supported_drive_modes", 0x0180).unwrap();
+        let (network, mut router) = AsyncNetwork::new(bus, TokioTimer);
+        let work = async {
+            network.nmt(NmtCommand::Start, None).unwrap();
+            let started = AsyncCyclicRun::start(&network, &LINKS, config(CyclicMode::Torque)).await;
+            let error = started.map(|_| ()).unwrap_err();
+            network.close();
+            error
+        };
+        let (routed, error) = tokio::join!(router.run(), work);
+        routed.unwrap();
+        refused(&sims, error);
+    }
+
+    #[tokio::test]
+    async fn two_axes_follow_and_a_blocked_load_stops_the_run_with_a_following_error() {
+        let (sims, bus) = axes().await;
+        let (network, mut router) = AsyncNetwork::new(bus, TokioTimer);
+        let work = async {
+            network.nmt(NmtCommand::Start, None).unwrap();
+            let mut run = AsyncCyclicRun::start(&network, &LINKS, config(CyclicMode::Position))
+                .await
+                .unwrap();
+            let stats = run.run(50, |cycle, _| (cycle as i32 + 1) * 100).await;
+            let followed_feedback = run.feedback();
+            sims[0].with(|d| d.block_load(true));
+            let error = run
+                .run(100, |cycle, _| 5_000 + (cycle as i32 + 1) * 200)
+                .await;
+            drop(run);
+            network.close();
+            (stats, followed_feedback, error)
+        };
+        let (routed, (stats, followed_feedback, error)) = tokio::join!(router.run(), work);
+        routed.unwrap();
+        assert_eq!(stats.unwrap().cycles(), 49, "intervals between 50 cycles");
+        followed(&followed_feedback);
+        stopped(&sims, error.map(|_| ()));
     }
 }

@@ -19,13 +19,12 @@ use std::time::Instant;
 use std::vec::Vec;
 
 use super::cycle_stats::CycleStats;
-use super::cyclic::{Command, CyclicAxis, CyclicFailure, CyclicMode, Feedback};
-use super::position::operation_enabled;
+use super::cyclic::{CyclicFailure, CyclicMode, Feedback};
+use super::cyclic_steps::{setup_writes, Axes, Axis};
 use super::quirks::Quirks;
-use super::Millis;
 use crate::canopen::emcy::Emcy;
-use crate::canopen::network::{Network, NetworkEvent, Subscription};
-use crate::canopen::{CanFrame, NodeId, SdoBus};
+use crate::canopen::network::{Network, Subscription};
+use crate::canopen::{NodeId, SdoBus};
 use crate::error::BusError;
 
 /// How one axis is reached: its node and PDOs.
@@ -115,23 +114,11 @@ impl fmt::Display for CyclicError {
 
 impl std::error::Error for CyclicError {}
 
-/// One axis of a run.
-#[derive(Debug)]
-struct Axis {
-    link: AxisLink,
-    planner: CyclicAxis,
-    events: Subscription,
-    last: Feedback,
-    emcy: Option<Emcy>,
-}
-
 /// A cyclic synchronous run of several axes on one network.
 #[derive(Debug)]
 pub struct CyclicRun<'n, B> {
     network: &'n Network<B>,
-    config: CyclicConfig,
-    axes: Vec<Axis>,
-    started: Instant,
+    axes: Axes<Subscription>,
 }
 
 /// Reads `index:sub` as a little-endian integer of up to 4 bytes.
@@ -139,17 +126,6 @@ fn read_u32<S: SdoBus>(sdo: &mut S, node: NodeId, index: u16, sub: u8) -> Result
     let mut out = [0u8; 4];
     sdo.upload(node, index, sub, &mut out)?;
     Ok(u32::from_le_bytes(out))
-}
-
-/// The interpolation period 60C2h as (value, power of ten): whole milliseconds if it is, else
-/// tenths of milliseconds.
-fn interpolation_period(period: Duration) -> (u8, i8) {
-    let micros = period.as_micros();
-    if micros % 1000 == 0 && micros / 1000 <= u128::from(u8::MAX) {
-        ((micros / 1000) as u8, -3)
-    } else {
-        ((micros / 100).min(u128::from(u8::MAX)) as u8, -4)
-    }
 }
 
 impl<'n, B> CyclicRun<'n, B> {
@@ -161,51 +137,27 @@ impl<'n, B> CyclicRun<'n, B> {
         links: &[AxisLink],
         config: CyclicConfig,
     ) -> Result<Self, CyclicError> {
-        let mut planners = Vec::with_capacity(links.len());
+        let mut axes = Vec::with_capacity(links.len());
         for link in links {
             let mut sdo = network.node(link.node);
             let supported = read_u32(&mut sdo, link.node, 0x6502, 0)?;
             // 6065h is optional: without it the master does not check the position.
             let window = read_u32(&mut sdo, link.node, 0x6065, 0).ok();
-            let planner = CyclicAxis::new(config.mode, supported, config.quirks, window).map_err(
-                |failure| CyclicError::Axis {
-                    node: link.node,
-                    failure,
-                    emcy: None,
-                },
-            )?;
-            planners.push(planner);
+            axes.push(Axis::new(*link, &config, supported, window)?);
         }
-        let (value, index) = interpolation_period(config.period);
-        let mut axes = Vec::with_capacity(links.len());
-        for (link, planner) in links.iter().zip(planners) {
+        for link in links {
             let mut sdo = network.node(link.node);
-            sdo.download(link.node, 0x6060, 0, &config.mode.number().to_le_bytes())?;
-            sdo.download(link.node, 0x60C2, 1, &[value])?;
-            sdo.download(link.node, 0x60C2, 2, &index.to_le_bytes())?;
-            axes.push(Axis {
-                link: *link,
-                planner,
-                events: network.subscribe(link.node, 64),
-                last: Feedback {
-                    statusword: 0,
-                    actual: 0,
-                },
-                emcy: None,
-            });
+            for (index, sub, value) in setup_writes(&config) {
+                sdo.download(link.node, index, sub, &value)?;
+            }
         }
-        network.set_sync(Some(config.period));
-        Ok(Self {
-            network,
-            config,
-            axes,
-            started: Instant::now(),
-        })
+        let axes = Axes::start(network, config, axes);
+        Ok(Self { network, axes })
     }
 
     /// The last feedback of each axis, in the order of the links.
     pub fn feedback(&self) -> Vec<Feedback> {
-        self.axes.iter().map(|a| a.last).collect()
+        self.axes.feedback()
     }
 
     /// Enables every axis, then runs `cycles` cycles sending `sample(cycle, axis)` as each
@@ -216,90 +168,26 @@ impl<'n, B> CyclicRun<'n, B> {
         cycles: u64,
         mut sample: impl FnMut(u64, usize) -> i32,
     ) -> Result<CycleStats, CyclicError> {
-        let result = self.cycles(cycles, &mut sample);
-        if result.is_err() {
-            self.stop();
-        }
-        result
-    }
-
-    fn cycles(
-        &mut self,
-        cycles: u64,
-        sample: &mut impl FnMut(u64, usize) -> i32,
-    ) -> Result<CycleStats, CyclicError> {
-        let enable_by = Instant::now() + self.config.enable_within;
-        let mut stats = CycleStats::new(self.config.period);
-        let mut cycle = 0u64;
-        let mut previous: Option<Instant> = None;
-        while cycle < cycles {
-            self.receive()?;
-            let received = Instant::now();
-            let following = self.axes.iter().all(|a| a.planner.following());
-            if following {
-                if let Some(previous) = previous {
-                    stats.record(received - previous);
-                }
-                previous = Some(received);
-            } else if received >= enable_by {
-                let node = self.axes.iter().find(|a| !a.planner.following());
-                return Err(CyclicError::EnableTimeout {
-                    node: node.map_or(NodeId(0), |a| a.link.node),
-                });
-            }
-            let now = Millis(self.started.elapsed().as_millis() as u64);
-            for (i, axis) in self.axes.iter_mut().enumerate() {
-                let next = following.then(|| sample(cycle, i));
-                let command = axis
-                    .planner
-                    .cycle(axis.last, next, now)
-                    .map_err(|failure| CyclicError::Axis {
-                        node: axis.link.node,
-                        failure,
-                        emcy: axis.emcy,
-                    })?;
-                send(self.network, axis, command)?;
-            }
-            if following {
-                cycle += 1;
+        let mut run = self.axes.cycles(cycles);
+        while run.running() {
+            let cycle = self
+                .receive()
+                .and_then(|()| self.axes.step(&mut run, &mut sample, self.network));
+            if let Err(error) = cycle {
+                self.stop();
+                return Err(error);
             }
         }
-        Ok(stats)
+        Ok(run.stats())
     }
 
     /// Waits for every axis's TPDO of this SYNC; a TPDO queued behind a newer one is passed
     /// over (the newest is the state now).
     fn receive(&mut self) -> Result<(), CyclicError> {
-        let timeout = self.config.feedback_within;
-        for axis in &mut self.axes {
-            let mut fresh = false;
-            loop {
-                let event = if fresh {
-                    match axis.events.try_recv() {
-                        Some(event) => event,
-                        None => break,
-                    }
-                } else {
-                    match axis.events.recv(timeout)? {
-                        Some(event) => event,
-                        None => {
-                            return Err(CyclicError::FeedbackLost {
-                                node: axis.link.node,
-                            })
-                        }
-                    }
-                };
-                match event {
-                    NetworkEvent::Pdo { number, frame } if number == axis.link.tpdo => {
-                        if let Some(feedback) = Feedback::from_tpdo(frame.data()) {
-                            axis.last = feedback;
-                            fresh = true;
-                        }
-                    }
-                    NetworkEvent::Emcy(emcy) => axis.emcy = Some(emcy),
-                    _ => {}
-                }
-            }
+        let timeout = self.axes.config.feedback_within;
+        for (axis, events) in self.axes.each() {
+            while !axis.take(events.recv(timeout)?.ok_or_else(|| axis.lost())?) {}
+            axis.drain(core::iter::from_fn(|| events.try_recv()));
         }
         Ok(())
     }
@@ -308,18 +196,9 @@ impl<'n, B> CyclicRun<'n, B> {
     /// every TPDO to show it left operation enabled (a TPDO already queued may predate the
     /// stop); SYNC goes on until the run is dropped.
     pub fn stop(&mut self) {
-        for axis in &self.axes {
-            // A bus that fails now has nothing more to stop.
-            let _ = send(self.network, axis, axis.planner.stop(axis.last));
-        }
-        let until = Instant::now() + self.config.feedback_within;
-        while Instant::now() < until
-            && self
-                .axes
-                .iter()
-                .any(|a| operation_enabled(a.last.statusword))
-            && self.receive().is_ok()
-        {}
+        self.axes.stop(self.network);
+        let until = Instant::now() + self.axes.config.feedback_within;
+        while Instant::now() < until && self.axes.any_enabled() && self.receive().is_ok() {}
     }
 }
 
@@ -327,22 +206,5 @@ impl<B> Drop for CyclicRun<'_, B> {
     /// Stops SYNC: the drives keep their last set point.
     fn drop(&mut self) {
         self.network.set_sync(None);
-    }
-}
-
-/// Sends `command` in `axis`'s RPDO.
-fn send<B>(network: &Network<B>, axis: &Axis, command: Command) -> Result<(), BusError> {
-    let (payload, len) = command.rpdo_payload(axis.planner.mode());
-    network.send(CanFrame::new(axis.link.rpdo_cob_id, &payload[..len])?)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_interpolation_period_in_milliseconds_or_tenths() {
-        assert_eq!(interpolation_period(Duration::from_millis(4)), (4, -3));
-        assert_eq!(interpolation_period(Duration::from_micros(1_500)), (15, -4));
     }
 }

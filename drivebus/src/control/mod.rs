@@ -27,7 +27,9 @@
 //! * [`cyclic`] — the cyclic synchronous modes (csp, csv, cst) as a pure planner per axis: the
 //!   RPDO content for each SYNC from the TPDO feedback and the next trajectory sample.
 //! * `cyclic_driver` (feature `canopen`) — its blocking shell on the network manager: SYNC
-//!   producer, RPDOs sent, TPDOs subscribed, cycle timing measured.
+//!   producer, RPDOs sent, TPDOs subscribed, cycle timing measured; `async_cyclic_driver`
+//!   (features `async` and `canopen`) — the same run on the async network manager. Both take
+//!   their decisions from `cyclic_steps` (the axes from the drives' answers, each cycle).
 //! * [`stop_option`] — what the option codes (605Ah-605Eh) say: how a stop brakes and where a
 //!   quick stop ends.
 //! * [`objects`] — the traits generated crates implement to hand their parameters to the driver.
@@ -38,6 +40,8 @@
 //!   `drive.enable_operation_async(&timer, limit).await`, waiting only through an
 //!   [`asynch::Timer`](crate::asynch::Timer).
 
+#[cfg(all(feature = "async", feature = "canopen"))]
+pub mod async_cyclic_driver;
 #[cfg(feature = "async")]
 pub mod async_driver;
 #[cfg(all(feature = "async", feature = "std"))]
@@ -49,6 +53,8 @@ pub mod cycle_stats;
 pub mod cyclic;
 #[cfg(feature = "canopen")]
 pub mod cyclic_driver;
+#[cfg(feature = "canopen")]
+mod cyclic_steps;
 #[cfg(feature = "server")]
 pub mod device;
 #[cfg(feature = "std")]

@@ -69,6 +69,11 @@ impl<T: Timer + Clone> AsyncNetwork<T> {
     pub fn node(&self, node: NodeId) -> AsyncNodeSdo<T> {
         AsyncNodeSdo::new(Arc::clone(&self.shared), self.timer.clone(), node)
     }
+
+    /// The timer the network waits on (the cyclic shell's feedback time limits).
+    pub(crate) fn timer(&self) -> &T {
+        &self.timer
+    }
 }
 
 impl<T> AsyncNetwork<T> {

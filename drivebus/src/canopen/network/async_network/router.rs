@@ -61,7 +61,7 @@ impl<B: AsyncCanBus, T: Timer> AsyncRouter<B, T> {
         loop {
             self.send_queued().await?;
             let now = self.shared.now();
-            let wait = {
+            let (wait, planned) = {
                 let mut state = self.shared.lock();
                 if state.closing {
                     return Ok(());
@@ -72,12 +72,11 @@ impl<B: AsyncCanBus, T: Timer> AsyncRouter<B, T> {
                     wake(wakers);
                     continue;
                 }
-                state
-                    .core
-                    .next_deadline()
-                    .map_or(IDLE, |d| d.saturating_sub(now).min(IDLE))
+                let planned = state.core.next_deadline();
+                let wait = planned.map_or(IDLE, |d| d.saturating_sub(now).min(IDLE));
+                (wait, planned)
             };
-            match self.wait(wait).await {
+            match self.wait(wait, planned).await {
                 Woken::Frame(frame) => self.route(&frame?),
                 Woken::Queued | Woken::Timer => {}
             }
@@ -104,8 +103,9 @@ impl<B: AsyncCanBus, T: Timer> AsyncRouter<B, T> {
         wake(wakers);
     }
 
-    /// Waits for a frame, a frame queued to send (or a close), or `wait` to pass.
-    async fn wait(&mut self, wait: Duration) -> Woken {
+    /// Waits for a frame, a frame queued to send (or a close), a timer set meanwhile that is
+    /// due before the `planned` one (SYNC started, a heartbeat monitored), or `wait` to pass.
+    async fn wait(&mut self, wait: Duration, planned: Option<Duration>) -> Woken {
         let shared = &self.shared;
         let mut recv = pin!(self.bus.recv());
         let mut sleep = pin!(self.timer.sleep(wait));
@@ -118,10 +118,37 @@ impl<B: AsyncCanBus, T: Timer> AsyncRouter<B, T> {
                 if state.core.has_transmit() || state.closing {
                     return Poll::Ready(Woken::Queued);
                 }
+                // A handle's update woke the router: its new timer must not wait out the old sleep.
+                if earlier(state.core.next_deadline(), planned) {
+                    return Poll::Ready(Woken::Timer);
+                }
                 state.router_waits(cx);
             }
             sleep.as_mut().poll(cx).map(|()| Woken::Timer)
         })
         .await
+    }
+}
+
+/// Whether the timer due `next` comes before the `planned` one the router sleeps until.
+fn earlier(next: Option<Duration>, planned: Option<Duration>) -> bool {
+    match (next, planned) {
+        (Some(next), Some(planned)) => next < planned,
+        (Some(_), None) => true,
+        (None, _) => false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_timer_set_meanwhile_ends_the_sleep_only_when_due_earlier() {
+        let ms = Duration::from_millis;
+        assert!(earlier(Some(ms(1)), None), "SYNC started while idle");
+        assert!(earlier(Some(ms(1)), Some(ms(5))));
+        assert!(!earlier(Some(ms(5)), Some(ms(5))), "the timer slept for");
+        assert!(!earlier(None, Some(ms(5))));
     }
 }
