@@ -829,6 +829,44 @@ fn canopen_nodes_on_one_bus_share_one_connection_and_a_silent_one_goes_offline_a
 }
 
 #[test]
+fn a_kinco_on_its_rs232_line_is_served_and_written_through_the_checks() {
+    let (dir, port, _mosquitto) = broker_in(&scratch("kinco"));
+    let pty = peer_support::pty_pair();
+    let kinco = Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/kinco-fd");
+    let _sim = spawned(
+        Command::new(BIN)
+            .arg("sim")
+            .arg(&kinco)
+            .arg("--kinco-rs232")
+            .arg(&pty.server)
+            .stdout(Stdio::null()),
+    );
+    let (_sub, lines) = subscribe(port);
+    let bus = format!(
+        "kinco_rs232 = \"{}\", node_id = 1, timeout_ms = 300",
+        pty.client.display()
+    );
+    let served = "parameters = [\"max_speed\"]\nwritable = [\"max_speed\"]";
+    let file = drives_config(&dir, port, &[("kinco", &kinco, &bus, served)]);
+    let _gateway = start_gateway(&file);
+
+    // The description's default, in its unit.
+    let speed = json(&expect(&lines, "drivegen/kinco/max_speed", |_| true));
+    assert_eq!(speed["value"].as_f64(), Some(5000.0), "{speed}");
+    assert_eq!(speed["unit"], "rpm", "{speed}");
+    written(port, &lines, "kinco/max_speed", 3000);
+    // A 16-bit parameter cannot take 70000: refused before anything is sent.
+    publish(port, "drivegen/kinco/max_speed/set", "{\"value\": 70000}");
+    let refused = json(&expect(
+        &lines,
+        "drivegen/kinco/max_speed/set/result",
+        |_| true,
+    ));
+    assert_eq!(refused["ok"], false, "{refused}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn drives_sharing_a_line_need_their_own_ids_and_the_same_settings() {
     let dir = scratch("bad-line");
     let pty = "/dev/nonexistent-line";
