@@ -14,6 +14,7 @@ use std::sync::Arc;
 use std::thread::JoinHandle;
 use std::vec::Vec;
 
+use super::candump_fast::parse_well_formed;
 use super::CanBus;
 use crate::canopen::frame::CanFrame;
 use crate::error::BusError;
@@ -27,9 +28,10 @@ pub struct Record {
     pub frame: CanFrame,
 }
 
-const INVALID: u8 = 0xFF;
+/// Not a hex digit, in [`HEX`].
+pub(super) const INVALID: u8 = 0xFF;
 /// Hex digit values; `INVALID` for other bytes.
-static HEX: [u8; 256] = {
+pub(super) static HEX: [u8; 256] = {
     let mut table = [INVALID; 256];
     let mut i = 0;
     while i < 10 {
@@ -82,6 +84,17 @@ pub fn parse_line(line: &[u8]) -> Result<Option<Record>, BusError> {
     if line.is_empty() || line[0] == b'#' {
         return Ok(None);
     }
+    // A log's lines take one pass (`drivegen trace`, issue 33); a line that pass does not
+    // take (malformed, or a rare form) is parsed again field by field, which names the error.
+    match parse_well_formed(line) {
+        Some(record) => Ok(Some(record)),
+        None => parse_fields(line).map(Some),
+    }
+}
+
+/// Parses a trimmed line that is not a comment field by field: the timestamp, the last field
+/// as the frame. Gives the error of a malformed line.
+fn parse_fields(line: &[u8]) -> Result<Record, BusError> {
     let (timestamp_us, frame_text) = if line[0] == b'(' {
         let close = line
             .iter()
@@ -98,10 +111,10 @@ pub fn parse_line(line: &[u8]) -> Result<Option<Record>, BusError> {
     } else {
         (None, line)
     };
-    Ok(Some(Record {
+    Ok(Record {
         timestamp_us,
         frame: parse_frame(frame_text)?,
-    }))
+    })
 }
 
 /// Parses a compact frame: `123#DEADBEEF`, `123#DE.AD.BE.EF`, `123#R`, `123#R8`.
@@ -493,6 +506,62 @@ mod tests {
             .unwrap()
             .unwrap();
         assert_eq!(largest.timestamp_us, Some(u64::MAX));
+    }
+
+    /// What the one pass takes it reads as the field parser does, over lines built from the
+    /// bytes that matter to either (digits, hex, `#`, `.`, `R`, brackets, separators, other
+    /// whitespace) and over valid lines with one byte changed. The lines the pass gives up on
+    /// are parsed by the field parser, so `parse_line` is the field parser's on every line.
+    #[test]
+    fn the_one_pass_reads_lines_as_the_field_parser() {
+        const BYTES: &[u8] = b"0123456789aFfG#.#.Rr()  \t\x0c\r\ncn";
+        const VALID: &[&[u8]] = &[
+            b"(1700000000.123456) can0 605#4000100000000000",
+            b"(1.5) vcan1 080#",
+            b"(1000000000.000001)  can0 123#DE.AD",
+            b"(9999999999999.999999)\tcan0\t123#R8",
+            b"7FF#0102030405060708",
+            b"123#r",
+        ];
+        let mut state = 0x9E37_79B9_7F4A_7C15u64;
+        let mut random = move |below: usize| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state % below as u64) as usize
+        };
+        let (mut taken, mut lines) = (0, 0);
+        for round in 0..200_000 {
+            let mut line = Vec::new();
+            if round % 2 == 0 {
+                line.extend_from_slice(VALID[random(VALID.len())]);
+                let at = random(line.len());
+                line[at] = BYTES[random(BYTES.len())];
+            } else {
+                for _ in 0..random(48) {
+                    line.push(BYTES[random(BYTES.len())]);
+                }
+            }
+            let trimmed = line.trim_ascii();
+            if trimmed.is_empty() || trimmed[0] == b'#' {
+                continue;
+            }
+            lines += 1;
+            if let Some(record) = parse_well_formed(trimmed) {
+                taken += 1;
+                assert_eq!(
+                    parse_fields(trimmed),
+                    Ok(record),
+                    "{}",
+                    std::string::String::from_utf8_lossy(&line)
+                );
+            }
+        }
+        // The pass must take the valid lines, and the comparison must have had some to check.
+        for line in VALID {
+            assert!(parse_well_formed(line).is_some(), "{line:?}");
+        }
+        assert!(taken > lines / 20, "{taken} of {lines}");
     }
 
     #[test]

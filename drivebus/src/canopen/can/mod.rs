@@ -31,6 +31,8 @@ pub mod async_socketcan;
 #[cfg(feature = "canopen")]
 pub mod candump;
 #[cfg(feature = "canopen")]
+mod candump_fast;
+#[cfg(feature = "canopen")]
 pub mod in_process;
 #[cfg(feature = "canopen")]
 pub mod slcan;
