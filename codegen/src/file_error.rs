@@ -62,6 +62,28 @@ pub(crate) trait UnreadableKind {
     fn unsupported_format(found: i64) -> Self;
 }
 
+/// [`UnreadableKind`] for a kind with the variants `Syntax(String)`, `MissingFormat` and
+/// `UnsupportedFormat(i64)` (the network and gateway files; the configuration file says
+/// "missing" of any key, `format` included).
+macro_rules! unreadable_kind {
+    ($kind:ty) => {
+        impl $crate::file_error::UnreadableKind for $kind {
+            fn syntax(why: String) -> Self {
+                Self::Syntax(why)
+            }
+
+            fn missing_format() -> Self {
+                Self::MissingFormat
+            }
+
+            fn unsupported_format(found: i64) -> Self {
+                Self::UnsupportedFormat(found)
+            }
+        }
+    };
+}
+pub(crate) use unreadable_kind;
+
 /// "format N is not read by this drivegen (it reads format V)".
 pub(crate) fn unsupported_format(
     f: &mut fmt::Formatter<'_>,

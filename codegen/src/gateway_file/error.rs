@@ -2,7 +2,7 @@
 
 use std::fmt;
 
-use crate::file_error::{unsupported_format, FileError, UnreadableKind};
+use crate::file_error::{unreadable_kind, unsupported_format, FileError};
 
 /// A gateway file that cannot be read, with the line it points at.
 pub type GatewayFileError = FileError<GatewayFileErrorKind>;
@@ -29,19 +29,7 @@ pub enum GatewayFileErrorKind {
     },
 }
 
-impl UnreadableKind for GatewayFileErrorKind {
-    fn syntax(why: String) -> Self {
-        Self::Syntax(why)
-    }
-
-    fn missing_format() -> Self {
-        Self::MissingFormat
-    }
-
-    fn unsupported_format(found: i64) -> Self {
-        Self::UnsupportedFormat(found)
-    }
-}
+unreadable_kind!(GatewayFileErrorKind);
 
 impl fmt::Display for GatewayFileErrorKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {

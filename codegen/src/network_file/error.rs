@@ -2,7 +2,7 @@
 
 use std::fmt;
 
-use crate::file_error::{unsupported_format, FileError, UnreadableKind};
+use crate::file_error::{unreadable_kind, unsupported_format, FileError};
 
 /// A network file that cannot be read, with the line it points at.
 pub type NetworkFileError = FileError<NetworkFileErrorKind>;
@@ -89,19 +89,7 @@ pub enum NetworkFileErrorKind {
     },
 }
 
-impl UnreadableKind for NetworkFileErrorKind {
-    fn syntax(why: String) -> Self {
-        Self::Syntax(why)
-    }
-
-    fn missing_format() -> Self {
-        Self::MissingFormat
-    }
-
-    fn unsupported_format(found: i64) -> Self {
-        Self::UnsupportedFormat(found)
-    }
-}
+unreadable_kind!(NetworkFileErrorKind);
 
 impl fmt::Display for NetworkFileErrorKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
