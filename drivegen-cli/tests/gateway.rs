@@ -41,6 +41,19 @@ fn spawned(command: &mut Command) -> Process {
     Process::new(command.spawn().unwrap())
 }
 
+/// `command`, a `drivegen sim` on a serial line, once it announced that it listens: a gateway
+/// started before would find the line silent and report the drives offline first.
+fn listening(command: &mut Command) -> Process {
+    let mut child = command.stdout(Stdio::piped()).spawn().unwrap();
+    let mut stdout = BufReader::new(child.stdout.take().unwrap());
+    let mut line = String::new();
+    stdout.read_line(&mut line).unwrap();
+    assert!(line.starts_with("listening on "), "announcement: {line}");
+    // Whatever it prints later is drained, so it never writes into a closed pipe.
+    std::thread::spawn(move || std::io::copy(&mut stdout, &mut std::io::sink()));
+    Process::new(child)
+}
+
 /// `drivegen gateway FILE`, its log dropped.
 fn start_gateway(file: &Path) -> Process {
     spawned(
@@ -705,15 +718,14 @@ fn written(port: u16, lines: &Lines, parameter: &str, value: i64) {
 fn modbus_units_on_one_rtu_line_share_it_and_a_silent_one_goes_offline_alone() {
     let (dir, port, _mosquitto) = broker_in(&scratch("rtu-line"));
     let pty = peer_support::pty_pair();
-    let _sim = spawned(
+    let _sim = listening(
         Command::new(BIN)
             .arg("sim")
             .arg(lafert())
             .arg("--serial")
             .arg(&pty.server)
             .args(["--unit", "3", "--unit", "7"])
-            .args(["--set", "3:bus_dc_link=4950", "--set", "7:bus_dc_link=4100"])
-            .stdout(Stdio::null()),
+            .args(["--set", "3:bus_dc_link=4950", "--set", "7:bus_dc_link=4100"]),
     );
     let (_sub, lines) = subscribe(port);
     let line = format!("serial = \"{}\", timeout_ms = 200", pty.client.display());
@@ -833,13 +845,12 @@ fn a_kinco_on_its_rs232_line_is_served_and_written_through_the_checks() {
     let (dir, port, _mosquitto) = broker_in(&scratch("kinco"));
     let pty = peer_support::pty_pair();
     let kinco = Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/kinco-fd");
-    let _sim = spawned(
+    let _sim = listening(
         Command::new(BIN)
             .arg("sim")
             .arg(&kinco)
             .arg("--kinco-rs232")
-            .arg(&pty.server)
-            .stdout(Stdio::null()),
+            .arg(&pty.server),
     );
     let (_sub, lines) = subscribe(port);
     let bus = format!(
