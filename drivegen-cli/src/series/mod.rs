@@ -101,10 +101,12 @@ impl Recording {
                 self.series.len() - 1
             }
         };
-        // A NaN or infinite reading (a float register can hold one) has no place on an axis;
-        // its parameter keeps its panel.
-        if value.is_finite() && time.is_finite() {
-            self.series[at].samples.push((time - origin, value));
+        // A NaN or infinite reading (a float register can hold one) has no place on an axis,
+        // nor has a time whose distance from the first overflows `f64`; its parameter keeps
+        // its panel.
+        let since_origin = time - origin;
+        if value.is_finite() && since_origin.is_finite() {
+            self.series[at].samples.push((since_origin, value));
         }
     }
 

@@ -258,6 +258,18 @@ mod tests {
         }
     }
 
+    #[test]
+    fn times_too_far_apart_for_f64_give_finite_coordinates() {
+        // Found by the property below: 1.66e308 s after -1.53e308 s is beyond f64 (a path to
+        // `inf`); such a sample is dropped like a NaN reading.
+        let samples = [
+            (-1.525_309_727_150_901e308, 0.0),
+            (1.659_830_503_092_046_8e308, 0.0),
+        ];
+        let svg = render(recording(&samples).series());
+        assert!(!svg.contains("inf") && !svg.contains("NaN"), "{svg}");
+    }
+
     proptest! {
         /// Any values, the limits of `f64` and NaN among them: a document with numbers only.
         #[test]
