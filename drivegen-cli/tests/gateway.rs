@@ -919,15 +919,18 @@ fn recorded_swd(dir: &Path, name: &str, sent: &Path) -> String {
 }
 
 /// Simulated drives of `description` at `nodes`, one process on one bus, behind a
-/// `candump:exec:` relay that appends every frame the gateway sends to `sent`.
+/// `candump:exec:` relay that appends every frame the gateway sends to `sent`; the simulator's
+/// process id goes to `dir/name.pid`.
 fn recorded_sim(dir: &Path, name: &str, sent: &Path, description: &Path, nodes: &[u8]) -> String {
     let relay = dir.join(format!("{name}.sh"));
     let ids: Vec<String> = nodes.iter().map(|n| format!("--node-id {n}")).collect();
+    let pid = dir.join(format!("{name}.pid"));
     std::fs::write(
         &relay,
         format!(
-            "tee -a {} | exec {BIN} sim {} --can candump:stdio {}\n",
+            "tee -a {} | sh -c 'echo $$ > {}; exec {BIN} sim {} --can candump:stdio {}'\n",
             sent.display(),
+            pid.display(),
             description.display(),
             ids.join(" ")
         ),
@@ -1042,12 +1045,16 @@ fn logged_gateway(file: &Path, log: &Path) -> Process {
 
 /// Sends `signal` (`TERM`, `INT`) to `process`.
 fn kill(process: &mut Process, signal: &str) {
-    let pid = process.child_mut().id().to_string();
+    signal_pid(&process.child_mut().id().to_string(), signal);
+}
+
+/// Sends `signal` (`TERM`, `STOP`) to the process `pid`.
+fn signal_pid(pid: &str, signal: &str) {
     let sent = Command::new("kill")
-        .args([&format!("-{signal}"), &pid])
+        .args([&format!("-{signal}"), pid])
         .status()
         .unwrap();
-    assert!(sent.success());
+    assert!(sent.success(), "kill -{signal} {pid}");
 }
 
 #[test]
@@ -1117,8 +1124,9 @@ fn canopen_nodes_by_pdo_share_their_bus_with_one_sync_stream_beside_an_sdo_drive
     assert_eq!([sdo(16), sdo(17)], uploads[..2], "no SDO to the PDO drives");
     assert!(sdo(18) > uploads[2], "node 18 polled and written by SDO");
     // One SYNC stream for the bus at a's 50 ms, not one per drive: b takes the same SYNCs.
+    // (At least half of a's values: node 17's own TPDO 3 on 390h may give a second per SYNC.)
     let most = elapsed.as_millis() as usize / 50 + 3;
-    assert!((19..=most).contains(&more), "{more} SYNCs in {elapsed:?}");
+    assert!((10..=most).contains(&more), "{more} SYNCs in {elapsed:?}");
 
     kill(&mut gateway, "TERM");
     until(
@@ -1129,6 +1137,10 @@ fn canopen_nodes_by_pdo_share_their_bus_with_one_sync_stream_beside_an_sdo_drive
     // The SWD's TPDO identifiers do not follow the node id: node 17 got a TPDO of its own,
     // put back at the stop, and both nodes are back in Pre-Operational.
     assert!(logged.contains("node 17: TPDO"), "{logged}");
+    assert!(
+        logged.contains("node 17: its TPDO 3 also goes out on CAN id 390h"),
+        "the clash is told: {logged}"
+    );
     assert!(sdo(17) > uploads[1], "node 17's TPDO restored: {logged}");
     let text = std::fs::read_to_string(&sent).unwrap();
     assert!(
@@ -1188,9 +1200,18 @@ fn a_tpdo_by_event_timer_needs_no_sync_and_a_second_signal_lets_the_restore_fini
     let timer = |ms: &str| format!("601#2B001805{ms}000000");
     assert!(text.contains(&timer("32")), "{text}");
 
-    // A second signal while stopping: logged, and the restore still completes.
+    // A second signal while stopping: logged, and the restore still completes. The simulator
+    // is held (SIGSTOP) so that the restore waits for its answers while the second signal
+    // comes, then let go well within the gateway's timeout.
+    let sim = std::fs::read_to_string(dir.join("bus.pid")).unwrap();
+    signal_pid(sim.trim(), "STOP");
     kill(&mut gateway, "TERM");
+    std::thread::sleep(Duration::from_millis(300));
     kill(&mut gateway, "INT");
+    std::thread::sleep(Duration::from_millis(100));
+    let waiting = gateway.child_mut().try_wait().unwrap().is_none();
+    signal_pid(sim.trim(), "CONT");
+    assert!(waiting, "the gateway waits for its drives");
     until(
         || gateway.child_mut().try_wait().unwrap().is_some(),
         "the gateway stops",
