@@ -915,13 +915,24 @@ const SWD_NODE: u8 = 0x10;
 /// A simulated SWD at [`SWD_NODE`] behind a `candump:exec:` relay that appends every frame the
 /// gateway sends to `sent`.
 fn recorded_swd(dir: &Path, name: &str, sent: &Path) -> String {
+    recorded_sim(dir, name, sent, &swd(), &[SWD_NODE])
+}
+
+/// Simulated drives of `description` at `nodes`, one process on one bus, behind a
+/// `candump:exec:` relay that appends every frame the gateway sends to `sent`; the simulator's
+/// process id goes to `dir/name.pid`.
+fn recorded_sim(dir: &Path, name: &str, sent: &Path, description: &Path, nodes: &[u8]) -> String {
     let relay = dir.join(format!("{name}.sh"));
+    let ids: Vec<String> = nodes.iter().map(|n| format!("--node-id {n}")).collect();
+    let pid = dir.join(format!("{name}.pid"));
     std::fs::write(
         &relay,
         format!(
-            "tee -a {} | exec {BIN} sim {} --can candump:stdio --node-id {SWD_NODE}\n",
+            "tee -a {} | sh -c 'echo $$ > {}; exec {BIN} sim {} --can candump:stdio {}'\n",
             sent.display(),
-            swd().display()
+            pid.display(),
+            description.display(),
+            ids.join(" ")
         ),
     )
     .unwrap();
@@ -972,12 +983,7 @@ fn a_canopen_drive_by_pdo_has_its_values_without_sdo_and_its_tpdo_restored_at_th
         ],
     );
     let log = dir.join("gateway.log");
-    let mut gateway = spawned(
-        Command::new(BIN)
-            .arg("gateway")
-            .arg(&file)
-            .stderr(std::fs::File::create(&log).unwrap()),
-    );
+    let mut gateway = logged_gateway(&file, &log);
 
     let position = json(&expect(
         &lines,
@@ -1007,9 +1013,7 @@ fn a_canopen_drive_by_pdo_has_its_values_without_sdo_and_its_tpdo_restored_at_th
 
     // SIGTERM: the TPDO configuration written back (SDO downloads) and the node put back in
     // Pre-Operational before the gateway exits.
-    let pid = gateway.child_mut().id().to_string();
-    let term = Command::new("kill").args(["-TERM", &pid]).status().unwrap();
-    assert!(term.success());
+    kill(&mut gateway, "TERM");
     until(
         || gateway.child_mut().try_wait().unwrap().is_some(),
         "the gateway stops",
@@ -1026,5 +1030,200 @@ fn a_canopen_drive_by_pdo_has_its_values_without_sdo_and_its_tpdo_restored_at_th
         logged.contains("vendor_id") && logged.contains("polled by SDO, not by PDO"),
         "{logged}"
     );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `drivegen gateway FILE`, its log written to `log`.
+fn logged_gateway(file: &Path, log: &Path) -> Process {
+    spawned(
+        Command::new(BIN)
+            .arg("gateway")
+            .arg(file)
+            .stderr(std::fs::File::create(log).unwrap()),
+    )
+}
+
+/// Sends `signal` (`TERM`, `INT`) to `process`.
+fn kill(process: &mut Process, signal: &str) {
+    signal_pid(&process.child_mut().id().to_string(), signal);
+}
+
+/// Sends `signal` (`TERM`, `STOP`) to the process `pid`.
+fn signal_pid(pid: &str, signal: &str) {
+    let sent = Command::new("kill")
+        .args([&format!("-{signal}"), pid])
+        .status()
+        .unwrap();
+    assert!(sent.success(), "kill -{signal} {pid}");
+}
+
+#[test]
+fn canopen_nodes_by_pdo_share_their_bus_with_one_sync_stream_beside_an_sdo_drive() {
+    let (dir, port, _mosquitto) = broker_in(&scratch("pdo-bus"));
+    let (_sub, lines) = subscribe(port);
+    let sent = dir.join("bus.log");
+    // Nodes 16, 17 and 18 in one process on one bus; node 19 does not answer.
+    let can = recorded_sim(&dir, "bus", &sent, &swd(), &[16, 17, 18]);
+    let bus = |node: u8| format!("can = \"{can}\", node_id = {node}, timeout_ms = 3000");
+    let by_pdo = "parameters = [\"statusword\", \"position_actual_value\"]\n\
+                  pdo = true\npdo_start = true\npublish_every_poll = true";
+    let file = drives_config(
+        &dir,
+        port,
+        &[
+            (
+                "a",
+                &swd(),
+                &bus(16),
+                &format!("interval_ms = 50\n{by_pdo}"),
+            ),
+            ("b", &swd(), &bus(17), by_pdo),
+            (
+                "c",
+                &swd(),
+                &bus(18),
+                "parameters = [\"vendor_id\", \"rpdo1_event_timer\"]\n\
+                 writable = [\"rpdo1_event_timer\"]\npublish_every_poll = true",
+            ),
+            // Silent: goes offline alone; each of its polls costs the timeout, so it is seldom.
+            (
+                "d",
+                &swd(),
+                &bus(19),
+                &format!("interval_ms = 10000\n{by_pdo}"),
+            ),
+        ],
+    );
+    let log = dir.join("gateway.log");
+    let mut gateway = logged_gateway(&file, &log);
+
+    for drive in ["a", "b"] {
+        let statusword = json(&expect(
+            &lines,
+            &format!("drivegen/{drive}/statusword"),
+            |_| true,
+        ));
+        assert!(statusword["raw"].is_number(), "{statusword}");
+        expect(&lines, &format!("drivegen/{drive}/status"), |p| {
+            p == "online"
+        });
+    }
+    expect(&lines, "drivegen/c/vendor_id", |_| true);
+    offline(&lines, "d", "node 19");
+
+    // Values by TPDO with no SDO request to nodes 16 and 17; node 18 polled by SDO meanwhile,
+    // and written between SYNCs.
+    let sdo = |node: u16| frames_to(&sent, 0x600 + node);
+    let (syncs, uploads) = (frames_to(&sent, 0x080), [sdo(16), sdo(17), sdo(18)]);
+    let running = Instant::now();
+    published_again(&lines, "a", "position_actual_value", 20);
+    published_again(&lines, "b", "position_actual_value", 5);
+    published_again(&lines, "c", "vendor_id", 5);
+    written(port, &lines, "c/rpdo1_event_timer", 250);
+    let (more, elapsed) = (frames_to(&sent, 0x080) - syncs, running.elapsed());
+    assert_eq!([sdo(16), sdo(17)], uploads[..2], "no SDO to the PDO drives");
+    assert!(sdo(18) > uploads[2], "node 18 polled and written by SDO");
+    // One SYNC stream for the bus at a's 50 ms, not one per drive: b takes the same SYNCs.
+    // (At least half of a's values: node 17's own TPDO 3 on 390h may give a second per SYNC.)
+    let most = elapsed.as_millis() as usize / 50 + 3;
+    assert!((10..=most).contains(&more), "{more} SYNCs in {elapsed:?}");
+
+    kill(&mut gateway, "TERM");
+    until(
+        || gateway.child_mut().try_wait().unwrap().is_some(),
+        "the gateway stops",
+    );
+    let logged = std::fs::read_to_string(&log).unwrap();
+    // The SWD's TPDO identifiers do not follow the node id: node 17 got a TPDO of its own,
+    // put back at the stop, and both nodes are back in Pre-Operational.
+    assert!(logged.contains("node 17: TPDO"), "{logged}");
+    assert!(
+        logged.contains("node 17: its TPDO 3 also goes out on CAN id 390h"),
+        "the clash is told: {logged}"
+    );
+    assert!(sdo(17) > uploads[1], "node 17's TPDO restored: {logged}");
+    let text = std::fs::read_to_string(&sent).unwrap();
+    assert!(
+        text.contains("000#8010") && text.contains("000#8011"),
+        "{text}"
+    );
+    assert!(
+        !logged.contains("node 16: TPDO"),
+        "node 16's own TPDO as it is: {logged}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_tpdo_by_event_timer_needs_no_sync_and_a_second_signal_lets_the_restore_finish() {
+    let (dir, port, _mosquitto) = broker_in(&scratch("pdo-event"));
+    let (_sub, lines) = subscribe(port);
+    let sent = dir.join("bus.log");
+    let kinco = Path::new(env!("CARGO_MANIFEST_DIR")).join("../descriptions/kinco-fd");
+    let can = recorded_sim(&dir, "bus", &sent, &kinco, &[1, 2]);
+    let bus = |node: u8| format!("can = \"{can}\", node_id = {node}, timeout_ms = 3000");
+    let file = drives_config(
+        &dir,
+        port,
+        &[
+            (
+                "event",
+                &kinco,
+                &bus(1),
+                "parameters = [\"statusword\", \"position_actual\"]\ninterval_ms = 50\n\
+                 pdo = \"event\"\npdo_start = true\npublish_every_poll = true",
+            ),
+            (
+                "polled",
+                &kinco,
+                &bus(2),
+                "parameters = [\"statusword\"]\npublish_every_poll = true",
+            ),
+        ],
+    );
+    let log = dir.join("gateway.log");
+    let mut gateway = logged_gateway(&file, &log);
+
+    let statusword = json(&expect(&lines, "drivegen/event/statusword", |_| true));
+    assert!(statusword["raw"].is_number(), "{statusword}");
+    expect(&lines, "drivegen/event/status", |p| p == "online");
+    expect(&lines, "drivegen/polled/statusword", |_| true);
+    let sdo = |node: u16| frames_to(&sent, 0x600 + node);
+    let uploads = [sdo(1), sdo(2)];
+    published_again(&lines, "event", "position_actual", 10);
+    published_again(&lines, "polled", "statusword", 3);
+    assert_eq!(sdo(1), uploads[0], "no SDO to the drive by event timer");
+    assert!(sdo(2) > uploads[1], "node 2 polled by SDO");
+    assert_eq!(frames_to(&sent, 0x080), 0, "no SYNC: no drive takes one");
+    // TPDO 1 (type 254, event timer 0 out of the box) set to an event timer of 50 ms (32h).
+    let text = std::fs::read_to_string(&sent).unwrap();
+    let timer = |ms: &str| format!("601#2B001805{ms}000000");
+    assert!(text.contains(&timer("32")), "{text}");
+
+    // A second signal while stopping: logged, and the restore still completes. The simulator
+    // is held (SIGSTOP) so that the restore waits for its answers while the second signal
+    // comes, then let go well within the gateway's timeout.
+    let sim = std::fs::read_to_string(dir.join("bus.pid")).unwrap();
+    signal_pid(sim.trim(), "STOP");
+    kill(&mut gateway, "TERM");
+    std::thread::sleep(Duration::from_millis(300));
+    kill(&mut gateway, "INT");
+    std::thread::sleep(Duration::from_millis(100));
+    let waiting = gateway.child_mut().try_wait().unwrap().is_none();
+    signal_pid(sim.trim(), "CONT");
+    assert!(waiting, "the gateway waits for its drives");
+    until(
+        || gateway.child_mut().try_wait().unwrap().is_some(),
+        "the gateway stops",
+    );
+    let status = gateway.child_mut().wait().unwrap();
+    let logged = std::fs::read_to_string(&log).unwrap();
+    assert!(status.success(), "{status}: {logged}");
+    assert!(logged.contains("SIGINT while stopping"), "{logged}");
+    let text = std::fs::read_to_string(&sent).unwrap();
+    let restored = text.rfind(&timer("00")).expect("the event timer put back");
+    assert!(restored > text.find(&timer("32")).unwrap(), "{text}");
+    assert!(text.contains("000#8001"), "back in Pre-Operational: {text}");
+    assert!(!text.contains("000#8002"), "node 2 was not started: {text}");
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -1,8 +1,8 @@
 //! The gateway file reader (`drivegen::gateway_file::parse`) fed arbitrary text. Asserts that
 //! it never panics, that a file it accepts has at least one drive, drive names that are one
-//! topic level each once, a polling interval of at least 1 ms, `pdo_start` only with `pdo`, lines
-//! within the text, an endpoint (MQTT or OPC UA, whose users are named once and who someone can
-//! log in as), and that a refusal's line is within the text.
+//! topic level each once, a polling interval of at least 1 ms (at most 65535 by event timer),
+//! `pdo_start` only with `pdo`, lines within the text, an endpoint (MQTT or OPC UA, whose users
+//! are named once and who someone can log in as), and that a refusal's line is within the text.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
@@ -32,7 +32,10 @@ fuzz_target!(|data: &[u8]| {
                 assert!(!drive.name.contains(['/', '+', '#']));
                 assert!(file.drives[..i].iter().all(|d| d.name != drive.name));
                 assert!(drive.interval_ms >= 1);
-                assert!(drive.pdo || !drive.pdo_start);
+                assert!(drive.pdo.on() || !drive.pdo_start);
+                // The event timer holds 16 bits of milliseconds.
+                let event = drive.pdo == drivegen::gateway_file::PdoUse::Event;
+                assert!(!event || drive.interval_ms <= u32::from(u16::MAX));
                 assert!(!drive.parameters.is_empty());
                 assert!(within(drive.line));
                 assert!(drive.bus.iter().all(|o| within(o.line)));

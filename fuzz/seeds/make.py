@@ -294,6 +294,24 @@ def gateway_file_seeds():
     write("gateway_file", "gateway.toml", text)
     write("gateway_file", "truncated.toml", text[: text.index(b"interval_ms") + 5])
     write("gateway_file", "topic_name.toml", text.replace(b'"left"', b'"left/#"'))
+    write("gateway_file", "pdo_on_a_shared_bus.toml", GATEWAY_PDO_FILE.encode())
+
+
+# Two CANopen drives by PDO on one bus: one at SYNC, one by its event timer.
+def gateway_pdo_drive(name, description, node, interval, parameters, pdo):
+    return (
+        f'\n[[drive]]\nname = "{name}"\ndescription = "../descriptions/{description}"\n'
+        f'bus = {{ can = "socketcan:can0", node_id = {node}, timeout_ms = 200 }}\n'
+        f"interval_ms = {interval}\nparameters = {parameters}\npdo = {pdo}\n"
+    )
+
+
+GATEWAY_PDO_FILE = (
+    "format = 1\n"
+    + gateway_pdo_drive("sync", "ezwheel-swd", 16, 20, '["statusword", "position_actual_value"]', "true")
+    + "pdo_start = true\n"
+    + gateway_pdo_drive("event", "kinco-fd", 1, 50, '["statusword", "position_actual"]', '"event"')
+)
 
 
 GATEWAY_FILE = """format = 1

@@ -76,14 +76,35 @@ pub struct DriveEntry {
     pub parameters: Vec<Named>,
     /// The parameters clients may write (default none).
     pub writable: Vec<Named>,
-    /// CANopen: take the values from a TPDO at each SYNC the gateway sends (`pdo = true`),
-    /// as `drivegen watch --pdo` does; default: SDO polls.
-    pub pdo: bool,
+    /// CANopen: take the values from a TPDO, as `drivegen watch --pdo` does: at each SYNC the
+    /// gateway sends (`pdo = true` or `pdo = "sync"`), or by the drive's event timer every
+    /// `interval_ms` (`pdo = "event"`); default: SDO polls.
+    pub pdo: PdoUse,
     /// With `pdo`: send NMT Start to the node before (a node sends PDOs only while
     /// Operational) and Enter Pre-Operational after (`pdo_start = true`), as `watch --start`.
     pub pdo_start: bool,
     /// The line of its `[[drive]]` (1-based).
     pub line: u32,
+}
+
+/// How a drive's values come (its `pdo` key).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum PdoUse {
+    /// By SDO polls (`pdo = false`, or no `pdo`).
+    #[default]
+    Off,
+    /// By a TPDO the drive sends at each SYNC the gateway sends (`pdo = true`, `pdo = "sync"`).
+    Sync,
+    /// By a TPDO the drive sends by its event timer every `interval_ms`, no SYNC sent for it
+    /// (`pdo = "event"`).
+    Event,
+}
+
+impl PdoUse {
+    /// Whether the values come by TPDO at all.
+    pub fn on(self) -> bool {
+        self != Self::Off
+    }
 }
 
 /// One bus option: its name (`modbus_tcp`) and its value as the command line would take it; a

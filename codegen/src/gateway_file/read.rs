@@ -8,7 +8,9 @@ use toml::Spanned;
 
 use super::error::{GatewayFileError, GatewayFileErrorKind as Kind};
 use super::opcua::{opcua, RawOpcUa};
-use super::{BusOption, DriveEntry, GatewayFile, MqttEntry, Named, TlsEntry, FORMAT_VERSION};
+use super::{
+    BusOption, DriveEntry, GatewayFile, MqttEntry, Named, PdoUse, TlsEntry, FORMAT_VERSION,
+};
 use crate::toml_file::{self, in_file_order, line_of};
 
 #[derive(Deserialize)]
@@ -48,8 +50,7 @@ struct RawDrive {
     parameters: Vec<Spanned<String>>,
     #[serde(default)]
     writable: Vec<Spanned<String>>,
-    #[serde(default)]
-    pdo: bool,
+    pdo: Option<Spanned<toml::Value>>,
     #[serde(default)]
     pdo_start: bool,
 }
@@ -167,8 +168,14 @@ fn drive(text: &str, line: u32, raw: RawDrive) -> Result<DriveEntry, GatewayFile
     if raw.parameters.is_empty() {
         return Err(malformed(line, "parameters", "at least one parameter"));
     }
-    if raw.pdo_start && !raw.pdo {
+    let pdo = pdo_use(text, raw.pdo)?;
+    if raw.pdo_start && !pdo.on() {
         return Err(malformed(line, "pdo_start", "`pdo = true` beside it"));
+    }
+    // The event timer (1800h+n sub 5) holds 16 bits of milliseconds.
+    if pdo == PdoUse::Event && interval_ms > u32::from(u16::MAX) {
+        let expected = "at most 65535 ms with `pdo = \"event\"` (the event timer's 16 bits)";
+        return Err(malformed(line, "interval_ms", expected));
     }
     Ok(DriveEntry {
         name: topic_level(text, raw.name, "name")?,
@@ -178,10 +185,29 @@ fn drive(text: &str, line: u32, raw: RawDrive) -> Result<DriveEntry, GatewayFile
         publish_every_poll: raw.publish_every_poll,
         parameters: named(text, raw.parameters),
         writable: named(text, raw.writable),
-        pdo: raw.pdo,
+        pdo,
         pdo_start: raw.pdo_start,
         line,
     })
+}
+
+/// The `pdo` key: `true` / `"sync"`, `"event"`, or `false` / none.
+fn pdo_use(text: &str, raw: Option<Spanned<toml::Value>>) -> Result<PdoUse, GatewayFileError> {
+    let Some(spanned) = raw else {
+        return Ok(PdoUse::Off);
+    };
+    let line = line_of(text, spanned.span().start);
+    match spanned.into_inner() {
+        toml::Value::Boolean(false) => Ok(PdoUse::Off),
+        toml::Value::Boolean(true) => Ok(PdoUse::Sync),
+        toml::Value::String(s) if s == "sync" => Ok(PdoUse::Sync),
+        toml::Value::String(s) if s == "event" => Ok(PdoUse::Event),
+        _ => Err(malformed(
+            line,
+            "pdo",
+            "`true` or `\"sync\"` (a TPDO at each SYNC), `\"event\"` (by its event timer) or `false`",
+        )),
+    }
 }
 
 /// A name that is one topic level: no `/`, `+`, `#`, no spaces, not empty.

@@ -145,20 +145,32 @@ fn tls_takes_a_ca_and_a_client_certificate_only_with_its_key() {
 #[test]
 fn pdo_use_is_read_and_pdo_start_needs_it() {
     let file = parse(GOOD).unwrap();
-    assert!(!file.drives[0].pdo && !file.drives[0].pdo_start);
-    let with_pdo = GOOD.replace(
-        "writable = [\"speed_setpoint\"]\n",
-        "writable = [\"speed_setpoint\"]\npdo = true\npdo_start = true\n",
-    );
-    let left = &parse(&with_pdo).unwrap().drives[0];
-    assert!(left.pdo && left.pdo_start);
-    let start_alone = GOOD.replace(
-        "writable = [\"speed_setpoint\"]\n",
-        "writable = [\"speed_setpoint\"]\npdo_start = true\n",
-    );
-    let error = refused(&start_alone);
+    assert!(file.drives[0].pdo == PdoUse::Off && !file.drives[0].pdo_start);
+    let with = |pdo: &str| {
+        GOOD.replace(
+            "writable = [\"speed_setpoint\"]\n",
+            &format!("writable = [\"speed_setpoint\"]\n{pdo}\n"),
+        )
+    };
+    let left = &parse(&with("pdo = true\npdo_start = true")).unwrap().drives[0];
+    assert!(left.pdo == PdoUse::Sync && left.pdo_start);
+    for (written, read) in [
+        ("\"sync\"", PdoUse::Sync),
+        ("\"event\"", PdoUse::Event),
+        ("false", PdoUse::Off),
+    ] {
+        let file = parse(&with(&format!("pdo = {written}"))).unwrap();
+        assert_eq!(file.drives[0].pdo, read, "{written}");
+    }
+    let error = refused(&with("pdo = \"often\""));
+    assert_eq!(error.line, Some(15), "the line of the value");
+    assert!(error.to_string().contains("\"event\""), "{error}");
+    let error = refused(&with("pdo_start = true"));
     assert_eq!(error.line, Some(8));
     assert!(error.to_string().contains("pdo = true"), "{error}");
+    // The event timer holds 16 bits of milliseconds.
+    let slow = with("pdo = \"event\"").replace("interval_ms = 100", "interval_ms = 70000");
+    assert!(refused(&slow).to_string().contains("65535"), "{slow}");
 }
 
 /// GOOD with an `[opcua]` table (lines 3-15) instead of `[mqtt]`.

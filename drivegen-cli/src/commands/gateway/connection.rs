@@ -5,7 +5,7 @@
 //! restarted server, a replugged adapter).
 
 use super::exposed::Drive;
-use crate::connect::Session;
+use crate::connect::{Session, SharedCan};
 
 /// A line's connection, open or not.
 pub struct Connection<'d> {
@@ -51,6 +51,13 @@ impl<'d> Connection<'d> {
             .beside(&drive.bus, &drive.device)
             .map_err(unreachable)?;
         Ok(session.insert(reached))
+    }
+
+    /// The CAN bus itself, while the connection is open on one SDO client (a bus with PDO
+    /// drives: its SYNCs go out on it).
+    pub fn can(&self) -> Option<SharedCan> {
+        let (bus, _) = self.open.as_ref()?.can()?;
+        Some(bus)
     }
 
     /// Closes the connection (once the drives' sessions are dropped too); the next

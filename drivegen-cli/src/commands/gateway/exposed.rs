@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use clap::Parser;
-use drivegen::gateway_file::{self, BusOption, DriveEntry, MqttEntry, Named, OpcUaEntry};
+use drivegen::gateway_file::{self, BusOption, DriveEntry, MqttEntry, Named, OpcUaEntry, PdoUse};
 use drivegen::ir::{Device, Parameter};
 
 use super::lines::Line;
@@ -59,8 +59,8 @@ pub struct Drive {
     pub parameters: Vec<String>,
     /// The names of the parameters clients may write, each writable in the description.
     pub writable: Vec<String>,
-    /// CANopen: its values by TPDO where they can be (`pdo = true`).
-    pub pdo: bool,
+    /// CANopen: its values by TPDO where they can be, at SYNC or by event timer (`pdo`).
+    pub pdo: PdoUse,
     /// With `pdo`: NMT Start before, Enter Pre-Operational after.
     pub pdo_start: bool,
     /// The line of its `[[drive]]` in the file (1-based), for refusals.
@@ -174,7 +174,7 @@ impl Drive {
             (!writable(p)).then(|| format!("`{}` is read-only in its description", p.name))
         })?;
         let bus = bus_args(&entry.bus, entry.line)?;
-        if entry.pdo && bus.can.is_none() {
+        if entry.pdo.on() && bus.can.is_none() {
             let why = "pdo: PDOs are CANopen's; name a `can` bus or leave `pdo` out";
             return Err((entry.line, format!("drive `{}`: {why}", entry.name)));
         }

@@ -54,12 +54,6 @@ fn shared(bus: &BusArgs) -> Option<Shared<'_>> {
 /// Whether `drive` may go through the connection `first` opens.
 fn may_share(first: &Drive, drive: &Drive) -> Result<(), Refusal> {
     let refuse = |why: String| Err((drive.line, format!("drive `{}`: {why}", drive.name)));
-    if let Some(pdo) = [first, drive].into_iter().find(|d| d.pdo) {
-        return refuse(format!(
-            "bus: drive `{}` takes PDOs, so it has its CAN bus to itself (the gateway sends its SYNC)",
-            pdo.name
-        ));
-    }
     if drive.bus.kinco_rs232.is_some() {
         return refuse(format!(
             "bus: the Kinco RS-232 line is drive `{}`'s: one drive a line",

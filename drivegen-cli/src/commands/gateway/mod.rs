@@ -16,8 +16,10 @@ mod mqtt;
 mod opcua;
 mod payload;
 mod pdo;
+mod pdo_bus;
 mod poller;
 mod refusal;
+mod signals;
 
 use std::path::PathBuf;
 
@@ -34,7 +36,9 @@ pub struct Args {
 }
 
 /// Checks the whole file (descriptions, parameters, bus options) before any bus or broker is
-/// opened, then serves until SIGINT or SIGTERM, when each drive's status goes offline.
+/// opened, then serves until SIGINT or SIGTERM, when each drive's status goes offline and each
+/// poller puts back what it changed on its drives (a further signal meanwhile is logged and
+/// does not cut that short: [`signals`]).
 pub fn run(args: Args) -> Result<(), CliError> {
     let gateway = exposed::Gateway::load(&args.config)?;
     let password = gateway.password()?;
@@ -47,7 +51,14 @@ pub fn run(args: Args) -> Result<(), CliError> {
         .enable_all()
         .build()
         .map_err(|e| CliError::Io(format!("cannot start the gateway's runtime: {e}")))?;
+    // Caught before any bus opens: a signal never finds a drive's TPDO changed and no handler.
+    let mut signals = {
+        let _inside = runtime.enter();
+        signals::Signals::catch()?
+    };
     let (stop, stopped) = watch::channel(false);
+    // Each poller holds a sender until it ends, its drives put back.
+    let (alive, pollers_done) = tokio::sync::mpsc::channel::<()>(1);
     std::thread::scope(|scope| {
         let mut tasks = Vec::new();
         let mut feeds = Vec::new();
@@ -81,9 +92,16 @@ pub fn run(args: Args) -> Result<(), CliError> {
             }
             // The poller's requests end when every drive's forwarder has ended.
             drop(forwarded);
-            let connection = connection::Connection::new(&gateway.drives[line[0]], line.len() > 1);
-            let poll_stop = stopped.clone();
-            scope.spawn(move || poller::run(connection, served, &line_requests, &poll_stop));
+            // Several CANopen nodes go through the network manager, unless PDOs are taken on
+            // the bus: SYNCs and TPDOs then need the bus itself, beside one SDO client.
+            let by_pdo = line.iter().any(|&i| gateway.drives[i].pdo.on());
+            let several = line.len() > 1 && !by_pdo;
+            let connection = connection::Connection::new(&gateway.drives[line[0]], several);
+            let (poll_stop, alive) = (stopped.clone(), alive.clone());
+            scope.spawn(move || {
+                poller::run(connection, served, &line_requests, &poll_stop);
+                drop(alive);
+            });
         }
         // The OPC UA server on a thread and runtime of its own: its first start makes an RSA
         // key (seconds), which must not hold up the MQTT side. It ends when `stopped` turns
@@ -95,21 +113,25 @@ pub fn run(args: Args) -> Result<(), CliError> {
         }
         #[cfg(not(feature = "opcua"))]
         drop(feeds);
+        drop(alive);
         // The pollers see the stop (or their dropped request channels) at their next wait and
         // end; the forwarders end with the last of each drive's request senders (the MQTT
         // tasks', the OPC UA endpoint's); the scope joins them.
         runtime.block_on(async {
             match &gateway.mqtt {
-                Some(mqtt) => mqtt::serve(&gateway, mqtt, password, tasks, stop).await,
+                Some(mqtt) => {
+                    mqtt::serve(&gateway, mqtt, password, tasks, stop, &mut signals).await
+                }
                 None => {
                     drop(tasks);
-                    let signalled = mqtt::signal().await;
-                    tracing::info!("stopping");
+                    let signal = signals.next().await;
+                    tracing::info!("{signal}: stopping");
                     stop.send_replace(true);
-                    signalled
                 }
             }
-        })
+            signals.until_stopped(pollers_done).await;
+        });
+        Ok(())
     })
 }
 

@@ -17,7 +17,7 @@ use drivegen::gateway_file::MqttEntry;
 
 use super::exposed::Gateway;
 use super::poller::{Report, SetRequest};
-use crate::error::CliError;
+use super::signals::Signals;
 
 /// A drive's topics: `<prefix>/<drive>/...`.
 pub struct Topics {
@@ -90,29 +90,18 @@ pub async fn serve(
     password: Option<String>,
     tasks: Vec<DriveTask>,
     stop: watch::Sender<bool>,
-) -> Result<(), CliError> {
+    signals: &mut Signals,
+) {
     let mut running = JoinSet::new();
     for task in tasks {
         let options = options(gateway, mqtt, password.as_deref(), &task);
         running.spawn(task.run(options));
     }
     tracing::info!(broker = %format!("{}:{}", mqtt.host, mqtt.port), "serving");
-    let signalled = signal().await;
-    tracing::info!("stopping");
+    let signal = signals.next().await;
+    tracing::info!("{signal}: stopping");
     stop.send_replace(true);
     while running.join_next().await.is_some() {}
-    signalled
-}
-
-/// Waits for SIGINT or SIGTERM.
-pub async fn signal() -> Result<(), CliError> {
-    let mut terminate = tokio::signal::unix::signal(tokio::signal::unix::SignalKind::terminate())
-        .map_err(|e| CliError::Io(format!("cannot watch for SIGTERM: {e}")))?;
-    tokio::select! {
-        interrupted = tokio::signal::ctrl_c() => interrupted
-            .map_err(|e| CliError::Io(format!("cannot watch for SIGINT: {e}"))),
-        _ = terminate.recv() => Ok(()),
-    }
 }
 
 fn options(

@@ -14,6 +14,7 @@ use super::connection::Connection;
 use super::exposed::Drive;
 use super::payload;
 use super::pdo::ByPdo;
+use super::pdo_bus::PdoBus;
 use super::refusal::{Refusal, Refused};
 use crate::commands::{read, write};
 use crate::connect::{self, Session};
@@ -77,7 +78,7 @@ impl<'d> Served<'d> {
             .filter_map(|name| drive.parameter(name))
             .collect();
         Self {
-            pdo: drive.pdo.then(|| ByPdo::plan(drive, &parameters)),
+            pdo: drive.pdo.on().then(|| ByPdo::plan(drive, &parameters)),
             parameters,
             drive,
             reports,
@@ -105,18 +106,28 @@ pub fn forward(slot: usize, pending: &Receiver<SetRequest>, line: &Sender<LineRe
 /// Serves the drives of one line through `connection` until `stop` turns true or every set
 /// requests' sender is gone: each drive is polled at its own interval, the one due first
 /// first, and set requests are answered as soon as the poll under way ends, before any other
-/// poll (a write never waits for a round of polls).
+/// poll (a write never waits for a round of polls). On a CAN bus with drives by PDO, the bus's
+/// SYNCs go out on their own schedule between the polls ([`PdoBus`]). When it returns, the
+/// drives' TPDOs have been put back.
 pub fn run<'d>(
     mut connection: Connection<'d>,
     mut served: Vec<Served<'d>>,
     requests: &Receiver<LineRequest>,
     stop: &watch::Receiver<bool>,
 ) {
+    let mut pdo_bus = PdoBus::new(served.iter().map(|s| s.drive));
     while !*stop.borrow() {
         let Some(slot) = due_first(&served) else {
             return;
         };
-        let wait = served[slot].next.saturating_duration_since(Instant::now());
+        let sync = pdo_bus.as_ref().and_then(PdoBus::next_sync);
+        // A SYNC due no later than the poll goes out first: the poll then takes its answer.
+        let syncing = sync.is_some_and(|at| at <= served[slot].next);
+        let due = match sync {
+            Some(at) if syncing => at,
+            _ => served[slot].next,
+        };
+        let wait = due.saturating_duration_since(Instant::now());
         let request = match wait.is_zero() {
             true => requests
                 .try_recv()
@@ -132,7 +143,14 @@ pub fn run<'d>(
                 }
             }
             Err(true) => return,
-            Err(false) if wait.is_zero() => poll(&mut connection, &mut served, slot),
+            Err(false) if wait.is_zero() && syncing => {
+                if let Some(pdo_bus) = &mut pdo_bus {
+                    sync_bus(&connection, pdo_bus);
+                }
+            }
+            Err(false) if wait.is_zero() => {
+                poll(&mut connection, &mut served, slot, pdo_bus.as_mut())
+            }
             // Not due yet: the next turn polls it.
             Err(false) => {}
         }
@@ -144,14 +162,32 @@ fn due_first(served: &[Served<'_>]) -> Option<usize> {
     (0..served.len()).min_by_key(|&slot| served[slot].next)
 }
 
+/// Sends the bus's SYNC (skipped while the connection is closed). A bus that fails here fails
+/// the next poll too, which reports it.
+fn sync_bus(connection: &Connection<'_>, pdo_bus: &mut PdoBus) {
+    if let Err(e) = pdo_bus.tick(connection.can().as_ref()) {
+        tracing::debug!("SYNC: {e}");
+    }
+}
+
 /// Polls the drive at `slot` and reports. A drive that fails is reached again at its next
 /// poll; when every drive on the line has failed, the connection is opened again too.
-fn poll<'d>(connection: &mut Connection<'d>, served: &mut [Served<'d>], slot: usize) {
+fn poll<'d>(
+    connection: &mut Connection<'d>,
+    served: &mut [Served<'d>],
+    slot: usize,
+    pdo_bus: Option<&mut PdoBus>,
+) {
+    // The CAN identifiers the other drives' TPDOs go out on.
+    let taken: Vec<u16> = (0..served.len())
+        .filter(|&other| other != slot)
+        .filter_map(|other| served[other].pdo.as_ref()?.can_id())
+        .collect();
     let Some(drive) = served.get_mut(slot) else {
         return;
     };
     drive.next = Instant::now() + Duration::from_millis(drive.drive.interval_ms.into());
-    let report = read(connection, drive);
+    let report = read(connection, drive, pdo_bus, &taken);
     drive.failed = matches!(report, Report::Failed(_));
     if drive.failed {
         drive.session = None;
@@ -170,15 +206,20 @@ fn poll<'d>(connection: &mut Connection<'d>, served: &mut [Served<'d>], slot: us
 }
 
 /// One poll of `drive`'s parameters.
-fn read<'d>(connection: &mut Connection<'d>, served: &mut Served<'d>) -> Report {
+fn read<'d>(
+    connection: &mut Connection<'d>,
+    served: &mut Served<'d>,
+    pdo_bus: Option<&mut PdoBus>,
+    taken: &[u16],
+) -> Report {
     let drive = served.drive;
     let session = match connection.reach(drive, &mut served.session) {
         Ok(session) => session,
         Err(why) => return Report::Failed(why),
     };
-    let values = match &mut served.pdo {
-        Some(pdo) => pdo.read(drive, session, &served.parameters),
-        None => read::read_all(session, &drive.device, &served.parameters),
+    let values = match (&mut served.pdo, pdo_bus) {
+        (Some(pdo), Some(pdo_bus)) => pdo.read(drive, session, &served.parameters, pdo_bus, taken),
+        _ => read::read_all(session, &drive.device, &served.parameters),
     };
     match values {
         Ok(values) => {

@@ -30,12 +30,6 @@ impl Interrupt {
         Ok(Self(flag))
     }
 
-    /// A flag no signal raises, for a caller that stops between samples by itself (the
-    /// gateway, whose runtime catches the signals).
-    pub fn manual() -> Self {
-        Self(Arc::new(AtomicBool::new(false)))
-    }
-
     /// Whether the process was asked to stop.
     pub fn raised(&self) -> bool {
         self.0.load(Ordering::Relaxed)

@@ -13,6 +13,7 @@ pub mod sample;
 pub mod source_pdo;
 mod source_poll;
 mod tpdo_config;
+pub mod tpdo_setup;
 
 use std::path::PathBuf;
 use std::time::Duration;
@@ -22,6 +23,7 @@ use self::pdo_plan::Trigger;
 use self::sample::{Layout, Output, Source};
 use self::source_pdo::{PdoWatch, Settings};
 use self::source_poll::Poll;
+use self::tpdo_setup::TpdoSetup;
 use drivegen::ir::Device;
 
 use crate::connect::BusArgs;
@@ -122,7 +124,15 @@ pub fn run(args: Args) -> Result<(), CliError> {
         timeout: Duration::from_millis(args.bus.timeout_ms),
         start: args.start,
     };
-    let mut source = PdoWatch::begin(drives.sessions(), &device, &parameters, settings, interrupt)?;
+    let setup = TpdoSetup::begin(
+        drives.sessions(),
+        &device,
+        &parameters,
+        trigger,
+        args.start,
+        &[],
+    )?;
+    let mut source = PdoWatch::new(setup, settings, interrupt);
     let watched = show(&args, &device, &layout, &mut source, plot);
     // Restored here to report a failure; on an early return `Drop` restores.
     let restored = source.restore();

@@ -64,6 +64,11 @@ impl TpdoConfig {
         })
     }
 
+    /// The CAN identifier it goes out on (COB-ID bits 0-10).
+    pub fn can_id(&self) -> u16 {
+        (self.cob_id & 0x7FF) as u16
+    }
+
     /// Whether the PDO is valid (COB-ID bit 31 clear).
     pub fn is_valid(&self) -> bool {
         self.cob_id & COB_ID_INVALID == 0
