@@ -24,6 +24,12 @@ impl Given {
             .map(|(_, v)| *v)
     }
 
+    /// Whether no value was given. Values fill the table from the front and are never removed,
+    /// so the first entry tells.
+    pub fn is_empty(&self) -> bool {
+        self.entries[0].is_none()
+    }
+
     /// Gives (or replaces) the value named `name`. Returns `false`, storing nothing, when the
     /// table already holds [`MAX_GIVEN`] other names.
     pub fn set(&mut self, name: &'static str, value: Ratio) -> bool {
@@ -58,6 +64,16 @@ mod tests {
         assert!(given.set("peak_current", Ratio::int(50)));
         assert_eq!(given.get("peak_current"), Some(Ratio::int(50)));
         assert_eq!(given.get("encoder_resolution"), Some(Ratio::int(10_000)));
+    }
+
+    #[test]
+    fn a_table_is_empty_until_a_value_is_given() {
+        let mut given = Given::default();
+        assert!(given.is_empty());
+        assert!(given.set("peak_current", Ratio::int(45)));
+        assert!(!given.is_empty());
+        assert!(given.set("peak_current", Ratio::int(50)));
+        assert!(!given.is_empty(), "replacing keeps the value");
     }
 
     #[test]

@@ -34,6 +34,13 @@ impl<A: Alarm + ?Sized> Alarm for &mut A {
     }
 }
 
+/// Completes once `alarm` is due: a kept alarm raced against other work (a transfer that
+/// waits for frames and its deadline alike) without giving it up.
+#[cfg_attr(not(feature = "canopen"), allow(dead_code))]
+pub(crate) fn due<A: Alarm + ?Sized>(alarm: &mut A) -> impl Future<Output = ()> + '_ {
+    poll_fn(move |cx| alarm.poll_due(cx))
+}
+
 /// Runs `work` for at most `limit`, timed by `alarm` (set here): [`within`](super::within) on
 /// a kept alarm. Whichever completes first wins, the work when both are ready; on [`Elapsed`]
 /// the work's future has been dropped, so its cancellation handling has run. The alarm stays

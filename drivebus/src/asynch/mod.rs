@@ -22,7 +22,7 @@
 //! the device's next async request sends it first.
 
 mod accessor;
-mod alarm;
+pub(crate) mod alarm;
 mod device;
 mod identity;
 pub(crate) mod io_error;

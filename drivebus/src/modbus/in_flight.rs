@@ -115,7 +115,12 @@ pub(crate) fn take_answer<F: Framing>(
 
 /// Drops the first `n` bytes of `rx[..*rx_len]`.
 pub(crate) fn drop_front(rx: &mut [u8], rx_len: &mut usize, n: usize) {
-    let n = n.min(*rx_len);
+    // Dropping all (an answer taken whole, or nothing received yet) moves nothing: no copy
+    // call, twice per async read (docs/benchmarks.md, issue 30).
+    if n >= *rx_len {
+        *rx_len = 0;
+        return;
+    }
     rx.copy_within(n..*rx_len, 0);
     *rx_len -= n;
 }

@@ -9,7 +9,7 @@ use super::telegram::TELEGRAM_LEN;
 use super::{AsyncTelegramBus, LoopMode, StationId};
 use crate::asynch::io_error::{bus_error, closed};
 use crate::asynch::race::ready_now;
-use crate::asynch::{within, Timer};
+use crate::asynch::{within, within_alarm, Timer};
 use crate::error::BusError;
 
 /// Default time the drive has to answer (as the blocking host's default).
@@ -31,9 +31,12 @@ const MAX_DRAIN_READS: usize = 64;
 /// late answer is never read as the next request's. Bytes already buffered are dropped before
 /// every request, as the blocking host does. Nothing is repeated on its own.
 #[derive(Debug)]
-pub struct AsyncRs232Client<S, T> {
+pub struct AsyncRs232Client<S, T: Timer> {
     stream: S,
     timer: T,
+    /// The answer timeout, kept from one exchange to the next and moved at each: cheaper than
+    /// a timer armed afresh per exchange (docs/benchmarks.md, issue 30).
+    alarm: T::Alarm,
     mode: LoopMode,
     timeout: Duration,
     quiet: Duration,
@@ -47,6 +50,7 @@ impl<S: embedded_io_async::Read + embedded_io_async::Write, T: Timer> AsyncRs232
     pub fn new(stream: S, timer: T, mode: LoopMode) -> Self {
         Self {
             stream,
+            alarm: timer.alarm(),
             timer,
             mode,
             timeout: DEFAULT_TIMEOUT,
@@ -149,8 +153,8 @@ impl<S: embedded_io_async::Read + embedded_io_async::Write, T: Timer> AsyncTeleg
         // From here until the answer, a dropped future leaves the exchange open.
         self.open = true;
         self.send(exchange.telegram()).await?;
-        let waited = within(
-            &self.timer,
+        let waited = within_alarm(
+            &mut self.alarm,
             self.timeout,
             Self::answer(&mut self.stream, &mut exchange),
         )

@@ -2,17 +2,19 @@
 //! [`BlockingSdo`](crate::canopen::client::BlockingSdo) drives, driven with a [`Timer`].
 //!
 //! The transfers take time as an argument and the [`Timer`] has no clock, so the client keeps
-//! a logical one: each request's deadline is a sleep of the timeout, started when the request
-//! went out and kept running across frames that are not the transfer's, so foreign traffic
-//! cannot stretch it.
+//! a logical one: each request's deadline is the client's kept [`Alarm`] set to the timeout
+//! when the request went out, and not moved by frames that are not the transfer's, so foreign
+//! traffic cannot stretch it. The alarm is kept from transfer to transfer and moved at each,
+//! cheaper than a timer armed afresh per transfer (docs/benchmarks.md, issue 30).
 
 pub mod lss;
 
 use core::pin::pin;
 use core::time::Duration;
 
+use crate::asynch::alarm::due;
 use crate::asynch::race::{first, ready_now, First};
-use crate::asynch::Timer;
+use crate::asynch::{Alarm, Timer};
 use crate::canopen::address::NodeId;
 use crate::canopen::can::AsyncCanBus;
 use crate::canopen::client::backlog::{client_methods, outcome, Backlog, Settings};
@@ -42,9 +44,11 @@ const TICK: Duration = Duration::from_nanos(1);
 /// ([`CANCEL_CODE`]): at once if the bus can send without waiting
 /// ([`AsyncCanBus::try_send`]), otherwise before anything else this client sends.
 #[derive(Debug)]
-pub struct AsyncSdo<B, T> {
+pub struct AsyncSdo<B, T: Timer> {
     bus: B,
-    timer: T,
+    /// The transfers' deadline (the only use of the timer), kept from one transfer to the
+    /// next and moved at each.
+    alarm: T::Alarm,
     backlog: Backlog,
     settings: Settings,
     /// The abort of a transfer whose future was dropped, not yet sent.
@@ -57,7 +61,7 @@ impl<B: AsyncCanBus, T: Timer> AsyncSdo<B, T> {
     pub fn new(bus: B, timer: T) -> Self {
         Self {
             bus,
-            timer,
+            alarm: timer.alarm(),
             backlog: Backlog::default(),
             settings: Settings::new(DEFAULT_TIMEOUT),
             abort_due: None,
@@ -107,16 +111,15 @@ impl<B: AsyncCanBus, T: Timer> AsyncSdo<B, T> {
     async fn drive<X: Transfer>(&mut self, transfer: &mut X) -> Result<usize, BusError> {
         let Self {
             bus,
-            timer,
+            alarm,
             backlog,
             ..
         } = self;
         let response_cob = transfer.response_cob();
         let mut now = Duration::ZERO;
         let mut progress = Progress::Pending;
-        // The sleep until the deadline it was started for; restarted when the deadline moves.
-        let mut sleeping_until = transfer.deadline();
-        let mut sleep = pin!(timer.sleep(sleeping_until.unwrap_or_default()));
+        // The deadline the alarm is set for; it is moved when the transfer's deadline moves.
+        let mut alarm_for = None;
         loop {
             // Drained after the end too: a failure may have queued an abort for the server.
             while let Some(frame) = transfer.poll_transmit() {
@@ -128,11 +131,11 @@ impl<B: AsyncCanBus, T: Timer> AsyncSdo<B, T> {
             let Some(deadline) = transfer.deadline() else {
                 return Err(BusError::Frame("SDO transfer ended without a result"));
             };
-            if sleeping_until != Some(deadline) {
-                sleep.set(timer.sleep(deadline.saturating_sub(now)));
-                sleeping_until = Some(deadline);
+            if alarm_for != Some(deadline) {
+                alarm.set(deadline.saturating_sub(now));
+                alarm_for = Some(deadline);
             }
-            progress = match first(bus.recv(), sleep.as_mut()).await {
+            progress = match first(bus.recv(), pin!(due(alarm))).await {
                 First::A(frame) => match backlog.sort(frame?, response_cob) {
                     Some(frame) => {
                         now += TICK;
@@ -142,9 +145,8 @@ impl<B: AsyncCanBus, T: Timer> AsyncSdo<B, T> {
                 },
                 First::B(()) => {
                     now = deadline;
-                    // A finished sleep is not polled again.
-                    sleeping_until = None;
-                    sleep.set(timer.sleep(Duration::ZERO));
+                    // Set again for whatever deadline the transfer has next, even the same.
+                    alarm_for = None;
                     transfer.handle_timeout(now)
                 }
             };
@@ -154,12 +156,12 @@ impl<B: AsyncCanBus, T: Timer> AsyncSdo<B, T> {
 
 /// A transfer under way: if its future is dropped before it ended, its abort is sent at once
 /// when the bus allows, else kept due for the next send.
-struct InFlight<'a, B: AsyncCanBus, T> {
+struct InFlight<'a, B: AsyncCanBus, T: Timer> {
     sdo: &'a mut AsyncSdo<B, T>,
     armed: bool,
 }
 
-impl<'a, B: AsyncCanBus, T> InFlight<'a, B, T> {
+impl<'a, B: AsyncCanBus, T: Timer> InFlight<'a, B, T> {
     fn arm(sdo: &'a mut AsyncSdo<B, T>, abort: Option<CanFrame>) -> Self {
         sdo.abort_due = abort;
         Self {
@@ -175,7 +177,7 @@ impl<'a, B: AsyncCanBus, T> InFlight<'a, B, T> {
     }
 }
 
-impl<B: AsyncCanBus, T> Drop for InFlight<'_, B, T> {
+impl<B: AsyncCanBus, T: Timer> Drop for InFlight<'_, B, T> {
     fn drop(&mut self) {
         if !self.armed {
             return;

@@ -5,8 +5,8 @@
 
 use embedded_io_async::{Read, Write};
 
-use super::{SlotGuard, TcpPipeline};
-use crate::asynch::{within, Timer};
+use super::{Shared, SlotGuard, TcpPipeline};
+use crate::asynch::{within_alarm, Timer};
 use crate::error::BusError;
 use crate::modbus::async_client::count;
 use crate::modbus::pdu::{decode_registers, Request, MAX_PDU};
@@ -17,22 +17,25 @@ impl<R: Read, W: Write, T: Timer> TcpPipeline<R, W, T> {
     /// Reads the reads not done yet, [`MAX_IN_FLIGHT`] in flight at a time, marking each done
     /// once its registers are in; each window must complete within the timeout.
     pub(super) async fn read_batch(
-        &self,
+        &mut self,
         unit: UnitId,
         reads: &mut [RegisterRead<'_>],
     ) -> Result<(), BusError> {
+        let shared = &*self.shared;
         for window in reads.chunks_mut(MAX_IN_FLIGHT) {
-            within(
-                &self.shared.timer,
-                self.shared.timeout,
-                self.read_window(unit, window),
+            within_alarm(
+                &mut self.alarm,
+                shared.timeout,
+                shared.read_window(unit, window),
             )
             .await
             .map_err(|_| BusError::Timeout)??;
         }
         Ok(())
     }
+}
 
+impl<R: Read, W: Write, T> Shared<R, W, T> {
     /// Sends every read of `reads` not done yet, then takes their answers in order.
     async fn read_window(
         &self,

@@ -14,6 +14,8 @@
 //!   id: its answer, when it comes, is dropped, and no later request can take it for its own.
 //!   Dropped in the middle of sending its frame, it leaves a torn frame on the connection: the
 //!   pipeline is then closed ([`BusError::Closed`] to every request; open a new connection).
+//! * Each handle (clone) keeps one alarm for its requests' timeouts, moved at each request:
+//!   cheaper than a timer armed afresh per request (docs/benchmarks.md, issue 30).
 //! * The connection closed by the server, or failing, gives every waiting and later request a
 //!   typed error ([`BusError::Closed`], [`BusError::Io`]), never a hang; so does
 //!   [`TcpPipeline::close`] to every request that has not yet reached the reading (one that is
@@ -44,7 +46,7 @@ use super::in_flight::drop_front;
 use super::pdu::{decode_registers, decode_response, Request, MAX_PDU};
 use super::tcp::{encode_request, Header, HEADER_LEN, MAX_ADU};
 use super::{AsyncRegisterBus, RegisterRead, Table, UnitId};
-use crate::asynch::{within, Timer};
+use crate::asynch::{within_alarm, Timer};
 use crate::error::BusError;
 
 #[cfg(feature = "tokio")]
@@ -53,8 +55,10 @@ pub use self::tokio::TokioPipeline;
 /// One Modbus TCP connection shared by its clones, their requests pipelined: read half `R`,
 /// write half `W`, timed by `T`.
 #[derive(Debug)]
-pub struct TcpPipeline<R, W, T> {
+pub struct TcpPipeline<R, W, T: Timer> {
     shared: Arc<Shared<R, W, T>>,
+    /// This handle's answer timeout, kept from one request to the next and moved at each.
+    alarm: T::Alarm,
 }
 
 #[derive(Debug)]
@@ -64,22 +68,21 @@ struct Shared<R, W, T> {
     timeout: Duration,
 }
 
-impl<R, W, T> Clone for TcpPipeline<R, W, T> {
+/// A clone has an alarm of its own (a clone is another task's handle).
+impl<R, W, T: Timer> Clone for TcpPipeline<R, W, T> {
     fn clone(&self) -> Self {
         Self {
             shared: Arc::clone(&self.shared),
+            alarm: self.shared.timer.alarm(),
         }
     }
 }
 
-impl<R, W, T> TcpPipeline<R, W, T> {
+impl<R, W, T> Shared<R, W, T> {
     fn lock(&self) -> MutexGuard<'_, State<R, W>> {
         // A task that panicked holding the lock left the state consistent: every change is
         // one assignment or one `Vec` operation.
-        self.shared
-            .state
-            .lock()
-            .unwrap_or_else(PoisonError::into_inner)
+        self.state.lock().unwrap_or_else(PoisonError::into_inner)
     }
 }
 
@@ -108,6 +111,7 @@ impl<R: Read, W: Write, T: Timer> TcpPipeline<R, W, T> {
             closed: None,
         };
         Self {
+            alarm: timer.alarm(),
             shared: Arc::new(Shared {
                 state: Mutex::new(state),
                 timer,
@@ -119,39 +123,42 @@ impl<R: Read, W: Write, T: Timer> TcpPipeline<R, W, T> {
     /// Closes the pipeline: every request not yet reading, and every later one, gets
     /// [`BusError::Closed`].
     pub fn close(&self) {
-        self.lock().close(BusError::Closed);
+        self.shared.lock().close(BusError::Closed);
     }
 
     /// How many requests are in flight (sent or waiting to be).
     pub fn in_flight(&self) -> usize {
-        self.lock().slots.len()
+        self.shared.lock().slots.len()
     }
 
     /// Sends `request` to `unit` and hands its answer's PDU to `answer`, within the timeout.
     async fn exchange<A>(
-        &self,
+        &mut self,
         unit: UnitId,
         request: &Request<'_>,
         answer: impl FnOnce(&[u8]) -> Result<A, BusError>,
     ) -> Result<A, BusError> {
         request.validate()?;
-        let transaction = self.lock().open_slot(unit)?;
+        let shared = &*self.shared;
+        let transaction = shared.lock().open_slot(unit)?;
         let _slot = SlotGuard {
-            pipeline: self,
+            pipeline: shared,
             transaction,
         };
         let mut frame = [0u8; MAX_ADU];
         let len = encode_request(transaction, unit, request, &mut frame)?;
         let mut pdu = [0u8; MAX_PDU];
-        let pdu_len = within(&self.shared.timer, self.shared.timeout, async {
-            self.send(transaction, &frame[..len]).await?;
-            self.await_answer(transaction, &mut pdu).await
+        let pdu_len = within_alarm(&mut self.alarm, shared.timeout, async {
+            shared.send(transaction, &frame[..len]).await?;
+            shared.await_answer(transaction, &mut pdu).await
         })
         .await
         .map_err(|_| BusError::Timeout)??;
         answer(&pdu[..pdu_len])
     }
+}
 
+impl<R: Read, W: Write, T> Shared<R, W, T> {
     /// Waits for the write half, then sends `frame` whole.
     async fn send(&self, transaction: u16, frame: &[u8]) -> Result<(), BusError> {
         let writer = poll_fn(|cx| {
@@ -304,7 +311,7 @@ fn file_answers<R, W>(state: &mut State<R, W>, side: &mut ReadSide<R>) {
 
 /// Forgets its request when the request ends, however it ends.
 struct SlotGuard<'a, R, W, T> {
-    pipeline: &'a TcpPipeline<R, W, T>,
+    pipeline: &'a Shared<R, W, T>,
     transaction: u16,
 }
 
@@ -318,7 +325,7 @@ impl<R, W, T> Drop for SlotGuard<'_, R, W, T> {
 /// Puts the write half back and wakes a task waiting for it; a frame not sent whole closes the
 /// pipeline (the server would read the next frame out of step).
 struct WriterGuard<'a, R, W, T> {
-    pipeline: &'a TcpPipeline<R, W, T>,
+    pipeline: &'a Shared<R, W, T>,
     writer: Option<W>,
     whole: bool,
 }
@@ -337,7 +344,7 @@ impl<R, W, T> Drop for WriterGuard<'_, R, W, T> {
 /// Puts the read half back (with what it received) and wakes the tasks waiting for answers:
 /// one of them reads next.
 struct ReaderGuard<'a, R, W, T> {
-    pipeline: &'a TcpPipeline<R, W, T>,
+    pipeline: &'a Shared<R, W, T>,
     side: Option<Box<ReadSide<R>>>,
 }
 

@@ -1,7 +1,8 @@
 //! An async SDO client for one node of an [`AsyncNetwork`](super::AsyncNetwork): the sans-I/O
 //! transfer runs in the caller's future, fed the responses the router sorted into the node's
 //! inbox. Dropping the future mid-transfer queues the SDO abort, as
-//! [`AsyncSdo`](crate::canopen::async_client::AsyncSdo) sends it.
+//! [`AsyncSdo`](crate::canopen::async_client::AsyncSdo) sends it. Each handle keeps one alarm
+//! for its transfers' deadlines, moved at each transfer, as `AsyncSdo` does.
 
 use core::future::poll_fn;
 use core::pin::pin;
@@ -10,8 +11,9 @@ use core::time::Duration;
 use std::sync::Arc;
 
 use super::shared::{wake, Shared};
+use crate::asynch::alarm::due;
 use crate::asynch::race::{first, First};
-use crate::asynch::Timer;
+use crate::asynch::{Alarm, Timer};
 use crate::canopen::address::NodeId;
 use crate::canopen::async_client::CANCEL_CODE;
 use crate::canopen::client::backlog::{outcome, settings_methods, Settings};
@@ -24,12 +26,27 @@ use crate::error::BusError;
 
 /// An [`AsyncSdoBus`] for one node on a shared [`AsyncNetwork`](super::AsyncNetwork); transfers
 /// to other nodes than its own are refused ([`BusError::Unsupported`]).
-#[derive(Debug, Clone)]
-pub struct AsyncNodeSdo<T> {
+#[derive(Debug)]
+pub struct AsyncNodeSdo<T: Timer> {
     shared: Arc<Shared>,
     timer: T,
+    /// The transfers' deadline, kept from one transfer to the next and moved at each.
+    alarm: T::Alarm,
     node: NodeId,
     settings: Settings,
+}
+
+/// A clone has an alarm of its own (a clone is another task's handle).
+impl<T: Timer + Clone> Clone for AsyncNodeSdo<T> {
+    fn clone(&self) -> Self {
+        Self {
+            shared: Arc::clone(&self.shared),
+            alarm: self.timer.alarm(),
+            timer: self.timer.clone(),
+            node: self.node,
+            settings: self.settings,
+        }
+    }
 }
 
 /// The node's channel, claimed: released on drop, after queueing the abort of a transfer
@@ -59,6 +76,7 @@ impl<T: Timer> AsyncNodeSdo<T> {
     pub(crate) fn new(shared: Arc<Shared>, timer: T, node: NodeId) -> Self {
         Self {
             shared,
+            alarm: timer.alarm(),
             timer,
             node,
             settings: Settings::new(DEFAULT_TIMEOUT),
@@ -72,50 +90,19 @@ impl<T: Timer> AsyncNodeSdo<T> {
 
     settings_methods!();
 
-    /// Waits until no other transfer to the node is in flight, then claims its channel.
-    async fn claim(&self) -> Result<Claim<'_>, BusError> {
-        poll_fn(|cx| {
-            let mut state = self.shared.lock();
-            if let Some(error) = &state.ended {
-                return Poll::Ready(Err(error.clone()));
-            }
-            if state.core.claim_sdo(self.node) {
-                return Poll::Ready(Ok(()));
-            }
-            state.wait_on(self.node, cx);
-            Poll::Pending
-        })
-        .await?;
-        Ok(Claim {
-            shared: &self.shared,
-            node: self.node,
-            abort: None,
-        })
-    }
-
-    /// The next response for the node's transfer.
-    async fn response(&self) -> Result<CanFrame, BusError> {
-        poll_fn(|cx| {
-            let mut state = self.shared.lock();
-            if let Some(frame) = state.core.next_sdo_response(self.node) {
-                return Poll::Ready(Ok(frame));
-            }
-            if let Some(error) = &state.ended {
-                return Poll::Ready(Err(error.clone()));
-            }
-            state.wait_on(self.node, cx);
-            Poll::Pending
-        })
-        .await
-    }
-
     /// Claims the channel, starts the transfer `start` makes and drives it to its end.
-    async fn run<X: Transfer>(&self, start: impl FnOnce(Duration) -> X) -> Result<usize, BusError> {
-        let mut claim = self.claim().await?;
-        let mut transfer = start(self.shared.now());
+    async fn run<X: Transfer>(
+        &mut self,
+        start: impl FnOnce(Duration) -> X,
+    ) -> Result<usize, BusError> {
+        let (shared, node, alarm) = (&*self.shared, self.node, &mut self.alarm);
+        let mut claim = claim(shared, node).await?;
+        let mut transfer = start(shared.now());
         let mut progress = Progress::Pending;
+        // The deadline the alarm is set for; it is moved when the transfer's deadline moves.
+        let mut alarm_for = None;
         loop {
-            let queued = self.shared.update(|state| {
+            let queued = shared.update(|state| {
                 // Queued after the end too: a failure may have queued an abort for the server.
                 core::iter::from_fn(|| transfer.poll_transmit()).all(|f| state.core.transmit(f))
             });
@@ -130,14 +117,57 @@ impl<T: Timer> AsyncNodeSdo<T> {
             let Some(deadline) = transfer.deadline() else {
                 return Err(BusError::Frame("SDO transfer ended without a result"));
             };
-            let left = deadline.saturating_sub(self.shared.now());
-            let sleep = pin!(self.timer.sleep(left));
-            progress = match first(self.response(), sleep).await {
-                First::A(frame) => transfer.handle(&frame?, self.shared.now()),
-                First::B(()) => transfer.handle_timeout(self.shared.now().max(deadline)),
+            if alarm_for != Some(deadline) {
+                alarm.set(deadline.saturating_sub(shared.now()));
+                alarm_for = Some(deadline);
+            }
+            progress = match first(response(shared, node), pin!(due(alarm))).await {
+                First::A(frame) => transfer.handle(&frame?, shared.now()),
+                First::B(()) => {
+                    // Set again for whatever deadline the transfer has next, even the same.
+                    alarm_for = None;
+                    transfer.handle_timeout(shared.now().max(deadline))
+                }
             };
         }
     }
+}
+
+/// Waits until no other transfer to `node` is in flight, then claims its channel.
+async fn claim(shared: &Shared, node: NodeId) -> Result<Claim<'_>, BusError> {
+    poll_fn(|cx| {
+        let mut state = shared.lock();
+        if let Some(error) = &state.ended {
+            return Poll::Ready(Err(error.clone()));
+        }
+        if state.core.claim_sdo(node) {
+            return Poll::Ready(Ok(()));
+        }
+        state.wait_on(node, cx);
+        Poll::Pending
+    })
+    .await?;
+    Ok(Claim {
+        shared,
+        node,
+        abort: None,
+    })
+}
+
+/// The next response for `node`'s transfer.
+async fn response(shared: &Shared, node: NodeId) -> Result<CanFrame, BusError> {
+    poll_fn(|cx| {
+        let mut state = shared.lock();
+        if let Some(frame) = state.core.next_sdo_response(node) {
+            return Poll::Ready(Ok(frame));
+        }
+        if let Some(error) = &state.ended {
+            return Poll::Ready(Err(error.clone()));
+        }
+        state.wait_on(node, cx);
+        Poll::Pending
+    })
+    .await
 }
 
 impl<T: Timer> AsyncSdoBus for AsyncNodeSdo<T> {
