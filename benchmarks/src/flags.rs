@@ -38,7 +38,14 @@ impl Flags {
             .map_err(|_| format!("{flag} needs a number, not {value:?}"))
     }
 
-    /// Refuses the flags no [`Flags::number`] call read (unknown, or given twice).
+    /// The text after `flag`, or `None` without one.
+    pub fn text(&mut self, flag: &str) -> Option<String> {
+        let at = self.pairs.iter().position(|(name, _)| name == flag)?;
+        Some(self.pairs.remove(at).1)
+    }
+
+    /// Refuses the flags no [`Flags::number`] or [`Flags::text`] call read (unknown, or given
+    /// twice).
     pub fn finish(self) -> Result<(), String> {
         match self.pairs.first() {
             None => Ok(()),
@@ -77,6 +84,15 @@ mod tests {
             f.number("--seconds", 1),
             Err("--seconds needs a number, not \"ten\"".into())
         );
+    }
+
+    #[test]
+    fn texts_are_read_once() {
+        let mut f = flags("--can socketcan:vcan0").unwrap();
+        assert_eq!(f.text("--axis"), None);
+        assert_eq!(f.text("--can").as_deref(), Some("socketcan:vcan0"));
+        assert_eq!(f.text("--can"), None);
+        assert_eq!(f.finish(), Ok(()));
     }
 
     #[test]

@@ -13,7 +13,8 @@
 /// `verify_identity_async`; `variant(SELECTOR, RAW)`: `detect_variant_async`, over the
 /// generated `select_reported_variant`), and the async twins of the control driver's methods
 /// (`cia402`: `enable_operation_async`, `disable_async`, `quick_stop_async`,
-/// `fault_reset_async`, `cia402_state_async`; `modes`: `set_mode_async`;
+/// `fault_reset_async`, `cia402_state_async`; `quick_stop_option`:
+/// `quick_stop_by_option_code_async`; `modes`: `set_mode_async`;
 /// `machine(MODULE, GOTO, CURRENT)`: the vendor machine's walk and state, named `GOTO` and
 /// `CURRENT`), over `drivebus::control::async_driver`.
 #[cfg(feature = "async")]
@@ -151,6 +152,25 @@ macro_rules! async_handle {
                 &mut self,
             ) -> Result<Option<$crate::control::State>, $crate::Error> {
                 $crate::control::async_driver::state::<Self, L>(self.device()).await
+            }
+        }
+    };
+    (@item $handle:ident quick_stop_option) => {
+        impl<L: $crate::asynch::AsyncLink> $handle<$crate::asynch::Async<L>>
+        where
+            Self: $crate::control::objects_on::QuickStopOptionOn<L::Protocol>,
+        {
+            /// `quick_stop_by_option_code` awaited: quick stop seen through to the end the
+            /// drive's quick stop option code (605Ah, read first) gives, polling on `timer` for
+            /// at most `limit`; a failed read of the code does not hold the stop back.
+            pub async fn quick_stop_by_option_code_async(
+                &mut self,
+                timer: &impl $crate::asynch::Timer,
+                limit: ::core::time::Duration,
+            ) -> Result<(), $crate::control::ControlError> {
+                let device = self.device();
+                $crate::control::async_driver::quick_stop_by_option_code::<Self, L>(device, timer, limit)
+                    .await
             }
         }
     };

@@ -712,6 +712,11 @@ pub struct ModbusAddress {
     pub access: Access,
     /// Variant this address is limited to.
     pub variant: Option<String>,
+    /// The parameter whose register this address reads back, where the device has no register
+    /// of this parameter's own (Kinco FD: no 6061h over Modbus; the mode display is 6060h's
+    /// register 0x3500 read back). The register belongs to that parameter
+    /// (`read_backs_share_their_register`).
+    pub read_back_of: Option<String>,
     /// Where it is declared.
     #[serde(skip)]
     pub span: Span,

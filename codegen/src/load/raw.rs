@@ -397,6 +397,7 @@ pub struct RawModbusAddress {
     pub word_order: Option<String>,
     pub access: Option<String>,
     pub variant: Option<String>,
+    pub read_back_of: Option<String>,
 }
 
 #[derive(Debug, Deserialize)]

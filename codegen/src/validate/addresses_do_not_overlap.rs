@@ -1,9 +1,10 @@
 //! No two parameters share a Modbus register (per table) or a CANopen object entry, in any variant
-//! both exist in.
+//! both exist in; a read-back (`read_back_of`) shares the register of the parameter it names
+//! (`read_backs_share_their_register` checks it is that register).
 
 use super::commands_share_a_register::commands_share_a_register;
 use crate::diagnostic::Diagnostic;
-use crate::ir::{Device, Parameter};
+use crate::ir::{Device, ModbusAddress, Parameter};
 
 const RULE: &str = super::rule_name(module_path!());
 
@@ -17,6 +18,12 @@ fn variants_meet(a: &Option<String>, b: &Option<String>, pa: &Parameter, pb: &Pa
     };
     let (va, vb) = (active(a, pa), active(b, pb));
     va.is_empty() || vb.is_empty() || va.iter().any(|v| vb.contains(v))
+}
+
+/// Whether `a` of `p` or `b` of `q` is declared the read-back of the other parameter.
+fn reads_back(p: &Parameter, a: &ModbusAddress, q: &Parameter, b: &ModbusAddress) -> bool {
+    a.read_back_of.as_deref() == Some(q.name.as_str())
+        || b.read_back_of.as_deref() == Some(p.name.as_str())
 }
 
 /// Reports overlapping Modbus register ranges and repeated CANopen entries.
@@ -33,6 +40,7 @@ pub fn check(device: &Device) -> Vec<Diagnostic> {
                         && (b.address as u32) < end
                         && variants_meet(&a.variant, &b.variant, p, q)
                         && !commands_share_a_register(p, a, q, b)
+                        && !reads_back(p, a, q, b)
                 });
                 if let Some(b) = clash {
                     let message = format!(

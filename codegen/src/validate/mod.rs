@@ -43,6 +43,7 @@ passes![
     addresses_do_not_overlap,
     access_matches_functions,
     read_blocks_are_described,
+    read_backs_share_their_register,
     records_hold_their_members,
     state_machines_resolve,
     mapping_entries_are_mappable,

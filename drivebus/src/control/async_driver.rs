@@ -17,7 +17,7 @@ use super::cia402::{Observation, State, Target};
 use super::control_error::ControlError;
 use super::mode::{self, ModeStep};
 use super::objects::{Cia402Objects, VendorMachine};
-use super::objects_on::{ModeOn, WalkOn};
+use super::objects_on::{ModeOn, QuickStopOptionOn, WalkOn};
 use super::stop_option::QuickStopEnd;
 use super::walk::{self, Cia402Steps, Cia402Walk, MachineWalk, QuickStopWalk, Walk, POLL_INTERVAL};
 use super::Millis;
@@ -101,6 +101,24 @@ where
     };
     let outcome = within(timer, limit, procedure).await;
     in_time(outcome, late)
+}
+
+/// Quick stop seen through to the end the drive's own quick stop option code (605Ah, read
+/// first) gives, as the blocking driver's `quick_stop_by_option_code`: a failed read of the
+/// code does not hold the stop back (either end is taken). The read waits at most `limit`; the
+/// quick stop then has `limit` of its own.
+pub async fn quick_stop_by_option_code<O, L>(
+    device: &mut Device<Async<L>>,
+    timer: &impl Timer,
+    limit: Duration,
+) -> Result<(), ControlError>
+where
+    O: QuickStopOptionOn<L::Protocol>,
+    L: AsyncLink,
+{
+    let code = within(timer, limit, device.read_raw::<O::QuickStopOptionCode>()).await;
+    let end = QuickStopEnd::of_read(code.ok().and_then(Result::ok));
+    quick_stop_to::<O, L>(device, end, timer, limit).await
 }
 
 /// The walk `start` makes from the controlword read and the time, recording in `late` the error

@@ -12,7 +12,7 @@ pub use super::walk::POLL_INTERVAL;
 use super::cia402::{Observation, State, Target};
 use super::mode::{self, ModeStep};
 use super::objects::{Cia402Objects, VendorMachine};
-use super::objects_on::{ModeOn, WalkOn};
+use super::objects_on::{ModeOn, QuickStopOptionOn, WalkOn};
 use super::stop_option::QuickStopEnd;
 use super::walk::{self, Cia402Steps, Cia402Walk, MachineWalk, QuickStopWalk, Walk};
 use super::Millis;
@@ -165,6 +165,21 @@ where
     run_walk::<O, L, _>(device, deadline, statusword, |controlword, now| {
         QuickStopWalk::new(O::QUIRKS, end, state, controlword, now)
     })
+}
+
+/// Quick stop seen through to the end the drive's own quick stop option code (605Ah, read
+/// first) gives, as [`quick_stop_to`]. A failed read of the code does not hold the stop back: the
+/// quick stop goes out all the same and either end is taken ([`QuickStopEnd::of_read`]).
+pub fn quick_stop_by_option_code<O, L>(
+    device: &mut Device<L>,
+    deadline: Instant,
+) -> Result<(), ControlError>
+where
+    O: QuickStopOptionOn<L::Protocol>,
+    L: Link,
+{
+    let end = QuickStopEnd::of_read(device.read_raw::<O::QuickStopOptionCode>().ok());
+    quick_stop_to::<O, L>(device, end, deadline)
 }
 
 /// Fault reset: from fault (or fault reaction active) to switch on disabled; nothing to do otherwise.

@@ -82,7 +82,7 @@ pub use control_error::{ControlError, StuckReason};
 pub use machine::{Machine, Plan, StateDef, StatePattern, TransitionDef, TransitionKind};
 pub use objects::{
     Cia402Modes, Cia402Objects, HomingObjects, ProfilePositionObjects, ProfileTorqueObjects,
-    ProfileVelocityObjects, VendorMachine,
+    ProfileVelocityObjects, QuickStopOptionObjects, VendorMachine,
 };
 pub use quirks::{Quirk, Quirks};
 

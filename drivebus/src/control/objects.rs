@@ -33,6 +33,14 @@ pub trait Cia402Modes: Cia402Objects {
     type ModesOfOperationDisplay: Parameter<Raw = i8, Value = Self::Mode>;
 }
 
+/// The quick stop option code of a CiA 402 drive: drivegen implements it when the description
+/// has 605Ah (a 16-bit signed object, CiA 402-2), so the handle can quick stop to the end the
+/// drive's own code gives.
+pub trait QuickStopOptionObjects: Cia402Objects {
+    /// Quick stop option code (605Ah).
+    type QuickStopOptionCode: Parameter<Raw = i16>;
+}
+
 /// A vendor state machine described as data (e.g. the Lafert Smartris Modbus run sequence).
 pub trait VendorMachine {
     /// The register the states are recognised from.

@@ -6,7 +6,7 @@
 
 use super::objects::{
     Cia402Modes, Cia402Objects, HomingObjects, ProfilePositionObjects, ProfileTorqueObjects,
-    ProfileVelocityObjects,
+    ProfileVelocityObjects, QuickStopOptionObjects,
 };
 use crate::parameter::{Readable, Writable};
 use crate::Protocol;
@@ -31,6 +31,12 @@ bound_alias! {
 bound_alias! {
     /// [`ControlOn`], and the safe torque off word read: what walking the state machine needs.
     WalkOn: ControlOn<P> + Cia402Objects<SafeTorqueOffWord: Readable<P>>
+}
+
+bound_alias! {
+    /// [`WalkOn`], and the quick stop option code (605Ah) read: a quick stop seen through to the
+    /// end the drive's own code gives.
+    QuickStopOptionOn: WalkOn<P> + QuickStopOptionObjects<QuickStopOptionCode: Readable<P>>
 }
 
 bound_alias! {

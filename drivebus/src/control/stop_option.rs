@@ -104,6 +104,17 @@ impl QuickStopEnd {
             _ => QuickStopEnd::Either,
         }
     }
+
+    /// The end of the quick stop option code a read of 605Ah returned; [`Either`] when the read
+    /// failed (`None`): a quick stop is never held back by a value it only needs to know where
+    /// to stop waiting.
+    ///
+    /// [`Either`]: QuickStopEnd::Either
+    pub fn of_read(code: Option<i16>) -> QuickStopEnd {
+        code.map_or(QuickStopEnd::Either, |code| {
+            QuickStopEnd::of_code(code.into())
+        })
+    }
 }
 
 #[cfg(test)]
@@ -134,6 +145,19 @@ mod tests {
         assert_eq!(Braking::quick_stop(-1), None);
         assert_eq!(QuickStopEnd::of_code(-1), QuickStopEnd::Either);
         assert_eq!(QuickStopEnd::of_code(9), QuickStopEnd::Either);
+    }
+
+    #[test]
+    fn a_failed_read_of_the_code_accepts_either_end() {
+        assert_eq!(
+            QuickStopEnd::of_read(Some(6)),
+            QuickStopEnd::QuickStopActive
+        );
+        assert_eq!(
+            QuickStopEnd::of_read(Some(2)),
+            QuickStopEnd::SwitchOnDisabled
+        );
+        assert_eq!(QuickStopEnd::of_read(None), QuickStopEnd::Either);
     }
 
     #[test]

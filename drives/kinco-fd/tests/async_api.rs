@@ -159,11 +159,10 @@ async fn the_cia402_walk_awaited_sends_what_the_blocking_walk_sends() {
 }
 
 #[tokio::test]
-async fn homes_and_moves_through_the_async_motion_shell() {
-    use drivebus::control::async_motion_driver as motion;
+async fn homes_and_moves_through_the_generated_async_motion_methods() {
     use drivebus::control::motion_error::MotionError;
     use drivebus::control::position::{Move, SoftLimits};
-    use kinco_fd::types::HomingMethod;
+    use kinco_fd::types::{HomingMethod, StopMode};
 
     const LIMIT: Duration = Duration::from_secs(5);
     let sim = Simulator::load(DESCRIPTION).unwrap();
@@ -171,12 +170,17 @@ async fn homes_and_moves_through_the_async_motion_shell() {
     let mut drive = async_kinco(&sim);
 
     // Not operation enabled: refused before anything is sent.
-    let refused =
-        motion::move_to::<AsyncKinco, _>(drive.device(), Move::to(1_000), None, &TokioTimer, LIMIT)
-            .await;
+    let refused = drive
+        .move_to_async(Move::to(1_000), &TokioTimer, LIMIT)
+        .await;
     assert!(
         matches!(refused, Err(MotionError::NotOperationEnabled { .. })),
         "{refused:?}"
+    );
+    assert_eq!(
+        drive.target_position().read_raw().await,
+        Ok(0),
+        "nothing sent"
     );
 
     drive.profile_speed().write_raw(200_000).await.unwrap();
@@ -206,60 +210,78 @@ async fn homes_and_moves_through_the_async_motion_shell() {
         .await
         .unwrap();
 
-    let home =
-        motion::home::<AsyncKinco, _>(drive.device(), HomingMethod::METHOD17, &TokioTimer, LIMIT)
-            .await;
+    let home = drive
+        .home_async(HomingMethod::METHOD17, &TokioTimer, LIMIT)
+        .await;
     assert_eq!(home, Ok(-500), "home is minus the home offset");
-    let at = motion::move_to::<AsyncKinco, _>(
-        drive.device(),
-        Move::to(50_000),
-        None,
-        &TokioTimer,
-        LIMIT,
-    )
-    .await;
+    let at = drive
+        .move_to_async(Move::to(50_000), &TokioTimer, LIMIT)
+        .await;
     assert_eq!(at, Ok(50_000));
-    let by = motion::move_to::<AsyncKinco, _>(
-        drive.device(),
-        Move::by(-10_000),
-        None,
-        &TokioTimer,
-        LIMIT,
-    )
-    .await;
+    let by = drive
+        .move_to_async(Move::by(-10_000), &TokioTimer, LIMIT)
+        .await;
     assert_eq!(by, Ok(40_000));
 
-    // Outside the software limits: refused before anything is sent.
-    let limits = SoftLimits {
-        min: -100_000,
-        max: 45_000,
-    };
-    let outside = motion::move_to::<AsyncKinco, _>(
-        drive.device(),
-        Move::by(10_000),
-        Some(limits),
-        &TokioTimer,
-        LIMIT,
-    )
-    .await;
-    assert!(
-        matches!(
-            outside,
-            Err(MotionError::OutsideLimits { target: 50_000, .. })
-        ),
-        "{outside:?}"
+    // Outside the software limits the handle reads (607Dh): refused before anything is sent.
+    drive
+        .soft_negative_limit()
+        .write_raw(-100_000)
+        .await
+        .unwrap();
+    drive.soft_positive_limit().write_raw(45_000).await.unwrap();
+    let outside = drive
+        .move_to_async(Move::by(10_000), &TokioTimer, LIMIT)
+        .await;
+    let limits = SoftLimits::between(-100_000, 45_000).unwrap();
+    assert_eq!(
+        outside,
+        Err(MotionError::OutsideLimits {
+            target: 50_000,
+            limits
+        })
     );
+    // Nothing written: 607Ah still holds the last move's (relative) target.
+    assert_eq!(drive.target_position().read_raw().await, Ok(-10_000));
+    drive.soft_negative_limit().write_raw(0).await.unwrap();
+    drive.soft_positive_limit().write_raw(0).await.unwrap();
 
     // A move that cannot end within its limit: halted, then a time out.
-    let late = motion::move_to::<AsyncKinco, _>(
-        drive.device(),
-        Move::to(10_000_000),
-        None,
-        &TokioTimer,
-        Duration::from_millis(200),
-    )
-    .await;
+    let late = drive
+        .move_to_async(
+            Move::to(10_000_000),
+            &TokioTimer,
+            Duration::from_millis(200),
+        )
+        .await;
     assert!(matches!(late, Err(MotionError::Timeout { .. })), "{late:?}");
     let controlword = drive.controlword().read_raw().await.unwrap();
     assert_ne!(controlword & 0x0100, 0, "halted: {controlword:#06x}");
+
+    // Velocity and torque awaited; the mode display follows.
+    let speed = drive
+        .run_at_velocity_async(100_000, &TokioTimer, LIMIT)
+        .await;
+    assert_eq!(speed, Ok(100_000), "target reached at the set velocity");
+    assert_eq!(drive.modes_of_operation_display().read_raw().await, Ok(3));
+    drive
+        .apply_torque_async(10, &TokioTimer, LIMIT)
+        .await
+        .unwrap();
+    assert_eq!(drive.modes_of_operation_display().read_raw().await, Ok(4));
+
+    // Quick stop by the drive's own option code: "stay in quick stop active".
+    drive
+        .quick_stop_mode()
+        .write(StopMode::QUICK_STOP_DECELERATION_STAY)
+        .await
+        .unwrap();
+    drive
+        .quick_stop_by_option_code_async(&TokioTimer, LIMIT)
+        .await
+        .unwrap();
+    assert_eq!(
+        drive.cia402_state_async().await,
+        Ok(Some(State::QuickStopActive))
+    );
 }

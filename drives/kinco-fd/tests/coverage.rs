@@ -119,7 +119,8 @@ fn every_modbus_register_has_one_object() {
     let device = description();
     let mut seen = BTreeSet::new();
     for p in &device.parameters {
-        for m in &p.modbus {
+        // A read-back is its owner's register, no object of its own (ERRATA.md #51).
+        for m in p.modbus.iter().filter(|m| m.read_back_of.is_none()) {
             assert!(
                 seen.insert(m.address),
                 "{:#06x} twice ({})",
@@ -129,6 +130,21 @@ fn every_modbus_register_has_one_object() {
         }
     }
     assert!(seen.contains(&0x6810));
+    let read_backs: Vec<(&str, u16, Option<&str>)> = device
+        .parameters
+        .iter()
+        .flat_map(|p| p.modbus.iter().map(move |m| (p, m)))
+        .filter(|(_, m)| m.read_back_of.is_some())
+        .map(|(p, m)| (p.name.as_str(), m.address, m.read_back_of.as_deref()))
+        .collect();
+    assert_eq!(
+        read_backs,
+        [(
+            "modes_of_operation_display",
+            0x3500,
+            Some("modes_of_operation")
+        )]
+    );
 }
 
 /// Parameters the description includes from the CiA 301 profile whose values the manual does

@@ -1,9 +1,10 @@
 //! A quick stop seen through to the end the Kinco's quick stop option code gives (605Ah, manual
-//! section 8.13 line 2128), against the simulated Kinco over CANopen on an in-process bus: with
-//! "stop by using ramp, then switch off" (1) the driver waits, writing nothing, while the axis
-//! brakes in quick stop active, and returns once the drive has taken transition 12 to switch on
-//! disabled; with "stay in quick stop active" (5) it returns there; expecting the wrong end is a
-//! typed error.
+//! section 8.13 line 2128), against the simulated Kinco over CANopen on an in-process bus, through
+//! the generated `quick_stop_by_option_code` (which reads 605Ah itself): with "stop by using
+//! ramp, then switch off" (1) the driver waits, writing nothing, while the axis brakes in quick
+//! stop active, and returns once the drive has taken transition 12 to switch on disabled; with
+//! "stay in quick stop active" (5) it returns there; expecting the wrong end
+//! (`driver::quick_stop_to`) is a typed error.
 
 use std::time::{Duration, Instant};
 
@@ -66,7 +67,7 @@ fn a_ramp_then_off_quick_stop_returns_once_braked_and_switched_off() {
     let end = end(&mut drive);
     assert_eq!(end, QuickStopEnd::SwitchOnDisabled);
     let started = Instant::now();
-    driver::quick_stop_to::<Drive, _>(drive.device(), end, soon(3)).unwrap();
+    drive.quick_stop_by_option_code(soon(3)).unwrap();
     let braked = started.elapsed();
     assert!(
         braked >= Duration::from_millis(400),
@@ -81,7 +82,7 @@ fn a_quick_stop_that_stays_ends_in_quick_stop_active_and_a_wrong_expectation_is_
     let (mut drive, _node) = moving(StopMode::PROFILE_DECELERATION_STAY);
     let end = end(&mut drive);
     assert_eq!(end, QuickStopEnd::QuickStopActive);
-    driver::quick_stop_to::<Drive, _>(drive.device(), end, soon(3)).unwrap();
+    drive.quick_stop_by_option_code(soon(3)).unwrap();
     assert_eq!(drive.cia402_state(), Ok(Some(State::QuickStopActive)));
 
     // The drive switches off (code 0) where the caller expects it to stay.

@@ -38,9 +38,11 @@ impl RegisterMap {
             if !crate::variant_selection::exists_in(parameter, variant) {
                 continue;
             }
+            // A read-back (`read_back_of`) is another parameter's register: that one answers.
             let addresses = parameter
                 .modbus
                 .iter()
+                .filter(|a| a.read_back_of.is_none())
                 .filter(|a| a.variant.is_none() || a.variant.as_deref() == variant);
             for address in addresses {
                 let cell = Cell {

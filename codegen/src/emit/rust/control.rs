@@ -57,6 +57,12 @@ fn cia402(device: &Device, handle: &Ident) -> Option<TokenStream> {
         None => quote! { None },
     };
     let quirks = quirks(device);
+    let walk_bounds = quote! {
+        params::#control: ::drivebus::Readable<L::Protocol> + ::drivebus::Writable<L::Protocol>,
+        params::#status: ::drivebus::Readable<L::Protocol>,
+        #sto_bound
+    };
+    let quick_stop_option = super::quick_stop_option::emit(device, handle, &walk_bounds);
     let modes = modes(device, handle, &control);
     let motion = super::motion::emit(device, handle, &control, &status);
     Some(quote! {
@@ -75,9 +81,7 @@ fn cia402(device: &Device, handle: &Ident) -> Option<TokenStream> {
         #[cfg(feature = "std")]
         impl<L: ::drivebus::Link> #handle<L>
         where
-            params::#control: ::drivebus::Readable<L::Protocol> + ::drivebus::Writable<L::Protocol>,
-            params::#status: ::drivebus::Readable<L::Protocol>,
-            #sto_bound
+            #walk_bounds
         {
             /// Brings the drive to CiA 402 *operation enabled* (halt clear), polling the statusword
             /// until `deadline`; the error says which state it got stuck in and why.
@@ -105,6 +109,8 @@ fn cia402(device: &Device, handle: &Ident) -> Option<TokenStream> {
                 ::drivebus::control::driver::state::<Self, L>(&mut self.device)
             }
         }
+
+        #quick_stop_option
 
         #modes
 
@@ -273,10 +279,14 @@ fn vendor(device: &Device, handle: &Ident) -> Option<TokenStream> {
 }
 
 /// The control items of the async handle, as `drivebus::async_handle!` takes them: `, cia402`,
-/// `, modes` and `, machine(MODULE, GOTO, CURRENT)` where the blocking handle has the methods
-/// (the async ones are written once, in drivebus, over the same driver steps).
+/// `, quick_stop_option`, `, modes` and `, machine(MODULE, GOTO, CURRENT)` where the blocking
+/// handle has the methods (the async ones are written once, in drivebus, over the same driver
+/// steps).
 pub fn async_items(device: &Device) -> TokenStream {
-    let cia402 = cia402_objects(device).map(|_| quote! { , cia402 });
+    let cia402 = cia402_objects(device).map(|_| {
+        let quick_stop_option = super::quick_stop_option::async_item(device);
+        quote! { , cia402 #quick_stop_option }
+    });
     let modes = mode_objects(device).map(|_| quote! { , modes });
     let machine = device.state_machine.as_ref().filter(|m| {
         device.parameter(&m.status).is_some() && device.parameter(&m.command).is_some()

@@ -20,6 +20,7 @@ mod parameter;
 mod parameter_doc;
 mod pdo;
 mod pdo_communication;
+mod quick_stop_option;
 mod read_blocks;
 mod read_protocols;
 mod srdo;

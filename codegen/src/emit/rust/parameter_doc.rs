@@ -43,11 +43,16 @@ pub fn text(p: &Parameter, device: &Device) -> String {
             Table::Input => "Input",
             Table::Holding => "Holding",
         };
+        let read_back = a
+            .read_back_of
+            .as_deref()
+            .map(|owner| format!(", the register of `{owner}` read back"))
+            .unwrap_or_default();
         row(
             &mut rows,
             "Modbus",
             format!(
-                "{table} register `0x{:04X}`{words}, {}{variant}",
+                "{table} register `0x{:04X}`{words}, {}{variant}{read_back}",
                 a.address,
                 access(a.access)
             ),

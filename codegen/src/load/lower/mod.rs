@@ -811,6 +811,7 @@ impl Lowering<'_> {
             occupies,
             access,
             variant: raw.variant.clone(),
+            read_back_of: raw.read_back_of.clone(),
             span: span.clone(),
         })
     }

@@ -268,6 +268,20 @@ pub mod params {
             Enumerated;
         read canopen(0x6061 sub 0, 1 bytes);
     );
+    /// Quick stop option code: what a quick stop command does. 0 disable drive function; 1 slow
+    /// down on the slow down ramp, 2 on the quick stop ramp, then switch on disabled; 5 slow down
+    /// on the slow down ramp, 6 on the quick stop ramp, and stay in quick stop active.
+    ///
+    /// - CANopen: object `0x605A:0`, read/write
+    /// - Type: `i16`
+    /// - Source: `swd` §10.1 605Ah Quick stop option code, line 2727
+    #[doc(alias("0x605A", "605Ah"))]
+    pub struct QuickStopOptionCode;
+    ::drivebus::parameter!(
+        QuickStopOptionCode = "quick_stop_option_code": i16 => i16, Plain;
+        read canopen(0x605A sub 0, 2 bytes);
+        write canopen(0x605A sub 0, 2 bytes);
+    );
 }
 /// A Case drive, reached over the link `L`.
 ///
@@ -311,7 +325,7 @@ impl<L: ::drivebus::Link> Case<L> {
         self.device.read_many(set)
     }
 }
-::drivebus::async_handle!(Case, canopen, cia402, modes);
+::drivebus::async_handle!(Case, canopen, cia402, quick_stop_option, modes);
 /// The handle's accessors, one per parameter: in a module of their own so that their
 /// signatures name `Accessor` and the markers without a path.
 mod parameter_accessors {
@@ -363,6 +377,16 @@ mod parameter_accessors {
         pub fn modes_of_operation_display(
             &mut self,
         ) -> Accessor<'_, L, ModesOfOperationDisplay> {
+            self.device.parameter()
+        }
+        /// Quick stop option code: what a quick stop command does. 0 disable drive function; 1 slow
+        /// down on the slow down ramp, 2 on the quick stop ramp, then switch on disabled; 5 slow
+        /// down on the slow down ramp, 6 on the quick stop ramp, and stay in quick stop active.
+        /// Details: [`params::QuickStopOptionCode`].
+        #[doc(alias("0x605A", "605Ah"))]
+        pub fn quick_stop_option_code(
+            &mut self,
+        ) -> Accessor<'_, L, QuickStopOptionCode> {
             self.device.parameter()
         }
     }
@@ -427,6 +451,32 @@ where
         &mut self,
     ) -> Result<Option<::drivebus::control::State>, ::drivebus::Error> {
         ::drivebus::control::driver::state::<Self, L>(&mut self.device)
+    }
+}
+impl<L> ::drivebus::control::QuickStopOptionObjects for Case<L> {
+    type QuickStopOptionCode = params::QuickStopOptionCode;
+}
+#[cfg(feature = "std")]
+impl<L: ::drivebus::Link> Case<L>
+where
+    params::Controlword: ::drivebus::Readable<L::Protocol>
+        + ::drivebus::Writable<L::Protocol>,
+    params::Statusword: ::drivebus::Readable<L::Protocol>,
+    params::QuickStopOptionCode: ::drivebus::Readable<L::Protocol>,
+{
+    /// Quick stop seen through to the end the drive's quick stop option code (605Ah, read
+    /// first) gives: codes 0-4 wait, writing nothing, until the drive has braked and
+    /// switched off (switch on disabled); codes 5-8 end in *quick stop active*. Disables
+    /// from states other than operation enabled. A failed read of the code does not hold
+    /// the stop back: it goes out all the same and either end is taken.
+    pub fn quick_stop_by_option_code(
+        &mut self,
+        deadline: ::drivebus::control::driver::Instant,
+    ) -> Result<(), ::drivebus::control::driver::ControlError> {
+        ::drivebus::control::driver::quick_stop_by_option_code::<
+            Self,
+            L,
+        >(&mut self.device, deadline)
     }
 }
 impl<L> ::drivebus::control::Cia402Modes for Case<L> {
