@@ -268,7 +268,8 @@ impl<R: BufRead> Iterator for CandumpReader<R> {
             match self.reader.fill_buf() {
                 Ok(buf) => {
                     let window = &buf[..buf.len().min(MAX_LINE + 1)];
-                    if let Some(newline) = window.iter().position(|&b| b == b'\n') {
+                    // memchr: searched byte by byte, the newline took 12 % of `drivegen trace`'s time.
+                    if let Some(newline) = memchr::memchr(b'\n', window) {
                         let parsed = parse_line(&buf[..newline]);
                         self.reader.consume(newline + 1);
                         match parsed {

@@ -124,5 +124,5 @@ fn parse_compact(text: &[u8]) -> Option<CanFrame> {
     if high.is_some() {
         return None;
     }
-    CanFrame::new(id, &data[..len]).ok()
+    CanFrame::from_buffer(id, data, len).ok()
 }
