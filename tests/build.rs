@@ -23,8 +23,8 @@ fn main() {
 /// cases build with the tests' own dependencies, so trybuild only checks the failing half.
 fn write_pass_cases() -> std::io::Result<()> {
     println!("cargo:rerun-if-changed=compile/pass");
-    let dir = Path::new(&std::env::var("CARGO_MANIFEST_DIR").expect("set by cargo"))
-        .join("compile/pass");
+    let dir =
+        Path::new(&std::env::var("CARGO_MANIFEST_DIR").expect("set by cargo")).join("compile/pass");
     let mut names: Vec<String> = std::fs::read_dir(&dir)?
         .filter_map(|entry| entry.ok()?.file_name().into_string().ok())
         .filter_map(|name| name.strip_suffix(".rs").map(str::to_owned))
