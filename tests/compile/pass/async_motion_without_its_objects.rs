@@ -9,12 +9,12 @@ use kinco_fd::KincoFd;
 
 fn main() {
     // The Kinco describes the objects of profile position, homing, profile velocity and torque:
-    // the async handle has each motion method.
+    // the async handle has each motion method (each future made, not run: no runtime here).
     let link = CanOpenLink::new(MemoryBus::new(), NodeId(1));
     let mut drive = KincoFd::new_async(Immediate(link));
-    let _ = drive.move_to_async(Move::to(50_000), &TokioTimer, Duration::from_secs(1));
-    let _ = drive.home_async(HomingMethod::METHOD17, &TokioTimer, Duration::from_secs(1));
-    let _ = drive.run_at_velocity_async(1_000, &TokioTimer, Duration::from_secs(1));
-    let _ = drive.apply_torque_async(10, &TokioTimer, Duration::from_secs(1));
-    let _ = drive.quick_stop_by_option_code_async(&TokioTimer, Duration::from_secs(1));
+    drop(drive.move_to_async(Move::to(50_000), &TokioTimer, Duration::from_secs(1)));
+    drop(drive.home_async(HomingMethod::METHOD17, &TokioTimer, Duration::from_secs(1)));
+    drop(drive.run_at_velocity_async(1_000, &TokioTimer, Duration::from_secs(1)));
+    drop(drive.apply_torque_async(10, &TokioTimer, Duration::from_secs(1)));
+    drop(drive.quick_stop_by_option_code_async(&TokioTimer, Duration::from_secs(1)));
 }
