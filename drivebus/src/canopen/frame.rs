@@ -20,26 +20,17 @@ pub struct CanFrame {
 impl CanFrame {
     /// A data frame; fails if `id` exceeds 11 bits or `data` exceeds 8 bytes.
     pub fn new(id: u16, data: &[u8]) -> Result<Self, BusError> {
-        if id > MAX_ID {
-            return Err(BusError::Frame("CAN id exceeds 11 bits"));
-        }
         let mut bytes = [0u8; 8];
         bytes
             .get_mut(..data.len())
             .ok_or(BusError::Frame("CAN payload exceeds 8 bytes"))?
             .copy_from_slice(data);
-        Ok(Self {
-            id,
-            rtr: false,
-            len: data.len() as u8,
-            data: bytes,
-        })
+        Self::from_buffer(id, bytes, data.len())
     }
 
     /// A data frame of the first `len` bytes of `data` (the rest zeroed); fails as [`Self::new`]
     /// does. For a parser that fills an 8-byte buffer: no copy of a slice of run-time length,
     /// which is a `memcpy` call per frame (`drivegen trace` reads millions, issue 33).
-    #[cfg(feature = "canopen")]
     pub(crate) fn from_buffer(id: u16, data: [u8; 8], len: usize) -> Result<Self, BusError> {
         if id > MAX_ID {
             return Err(BusError::Frame("CAN id exceeds 11 bits"));

@@ -124,16 +124,16 @@ impl<'d> ByPdo<'d> {
         if self.mapped.is_empty() {
             return Ok(Vec::new());
         }
-        if self.setup.is_none() {
-            let Some(begun) = self.begin(drive, session, parameters, taken)? else {
-                return Ok(Vec::new());
-            };
-            // What came before (the drive's TPDO as it was mapped) is never taken.
-            self.taken = bus.mark(begun.bus())?;
-            self.setup = Some(begun);
-        }
-        let Some(setup) = &self.setup else {
-            return Ok(Vec::new());
+        let setup = match self.setup.take() {
+            Some(setup) => self.setup.insert(setup),
+            None => {
+                let Some(begun) = self.begin(drive, session, parameters, taken)? else {
+                    return Ok(Vec::new());
+                };
+                // What came before (the drive's TPDO as it was mapped) is never taken.
+                self.taken = bus.mark(begun.bus())?;
+                self.setup.insert(begun)
+            }
         };
         let Some(node) = setup.nodes().first() else {
             return Err(CliError::Io("no node set up".into()));
