@@ -2,7 +2,7 @@
 //! and the addresses, scales, limits and defaults behind them.
 
 use super::{match_by_name, Change, Impact};
-use crate::ir::{Effect, ModbusAddress, Number, ObjectAddress, Parameter, Scale, Table, WordOrder};
+use crate::ir::{Effect, ModbusAddress, Number, ObjectAddress, Parameter, Scale, WordOrder};
 
 /// Compares the parameter lists of two descriptions.
 pub(super) fn compare(old: &[Parameter], new: &[Parameter], out: &mut Vec<Change>) {
@@ -104,11 +104,7 @@ fn canopen(p: &Parameter, direction: Direction) -> Vec<String> {
 }
 
 fn describe_modbus(a: &ModbusAddress) -> String {
-    let table = match a.table {
-        Table::Input => "input",
-        Table::Holding => "holding",
-    };
-    let mut text = format!("{table} 0x{:04X}", a.address);
+    let mut text = format!("{} 0x{:04X}", a.table.name(), a.address);
     if a.words > 1 {
         let order = match a.word_order {
             WordOrder::HighFirst => "high first",

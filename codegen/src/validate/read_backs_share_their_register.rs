@@ -40,10 +40,11 @@ fn fault(p: &Parameter, a: &ModbusAddress, owner: Option<&Parameter>) -> Option<
     }
     if !owner.modbus.iter().any(|b| same_register(a, b)) {
         let message = format!(
-            "`{}` reads back `{name}` at {:?} register {:#06x}, where `{name}` is not readable",
-            p.name, a.table, a.address
-        )
-        .to_lowercase();
+            "`{}` reads back `{name}` at {} register {:#06x}, where `{name}` is not readable",
+            p.name,
+            a.table.name(),
+            a.address
+        );
         return Some((message, "give the table, address and words of the owner's own register"));
     }
     None

@@ -11,6 +11,16 @@ pub enum Table {
     Holding,
 }
 
+impl Table {
+    /// The table's name as a description writes it (`table = "holding"`).
+    pub const fn name(self) -> &'static str {
+        match self {
+            Table::Input => "input",
+            Table::Holding => "holding",
+        }
+    }
+}
+
 /// Order of the 16-bit words of a multi-register value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
