@@ -53,12 +53,47 @@ fn finish(ident: String, digit_prefix: &str, fallback: &str) -> String {
 
 /// A `snake_case` identifier (modules, methods, fields).
 pub fn snake(name: &str) -> String {
-    finish(ascii_words(name).to_snake_case(), "_", "unnamed")
+    finish(snake_words(name), "_", "unnamed")
 }
 
 /// An `UpperCamelCase` identifier (types, enum values, flag constants use [`constant`]).
 pub fn camel(name: &str) -> String {
-    finish(ascii_words(name).to_upper_camel_case(), "V", "Unnamed")
+    finish(camel_words(name), "V", "Unnamed")
+}
+
+/// Whether `name` is snake case already: words of lowercase ASCII letters and digits joined by
+/// single underscores, as most description names are. heck leaves such a name as it is and
+/// capitalizes each of its words; its general path formats character by character, which was a
+/// third of loading a description (issue 33: `drivegen trace` loads one before its first frame).
+fn is_plain_snake(name: &str) -> bool {
+    name.split('_').all(|word| {
+        !word.is_empty()
+            && word
+                .bytes()
+                .all(|b| b.is_ascii_lowercase() || b.is_ascii_digit())
+    })
+}
+
+/// `name`'s words in snake case, as heck writes them.
+fn snake_words(name: &str) -> String {
+    if is_plain_snake(name) {
+        return name.to_owned();
+    }
+    ascii_words(name).to_snake_case()
+}
+
+/// `name`'s words in upper camel case, as heck writes them.
+fn camel_words(name: &str) -> String {
+    if !is_plain_snake(name) {
+        return ascii_words(name).to_upper_camel_case();
+    }
+    let mut out = String::with_capacity(name.len());
+    for word in name.split('_') {
+        let (first, rest) = word.split_at(1);
+        out.push_str(&first.to_ascii_uppercase());
+        out.push_str(rest);
+    }
+    out
 }
 
 /// A `SCREAMING_SNAKE_CASE` identifier (associated constants).
@@ -96,6 +131,29 @@ mod tests {
         assert_eq!(constant("self"), "SELF");
         assert_eq!(snake(""), "unnamed");
         assert_eq!(method("read_many"), "read_many_");
+    }
+
+    /// The shortcut for names in snake case gives what heck gives, over names of the bytes
+    /// that matter to either (letters of both cases, digits, underscores, other characters).
+    #[test]
+    fn plain_snake_names_are_cased_as_heck_cases_them() {
+        const BYTES: &[u8] = b"abz09AZ__ -";
+        let mut state = 0x2545_F491_4F6C_DD1Du64;
+        let mut plain = 0;
+        for _ in 0..200_000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let len = (state % 9) as usize;
+            let name: String = (0..len)
+                .map(|i| char::from(BYTES[(state >> (6 * i + 4)) as usize % BYTES.len()]))
+                .collect();
+            plain += usize::from(is_plain_snake(&name));
+            let words = ascii_words(&name);
+            assert_eq!(snake_words(&name), words.to_snake_case(), "{name:?}");
+            assert_eq!(camel_words(&name), words.to_upper_camel_case(), "{name:?}");
+        }
+        assert!(plain > 1000, "{plain}");
     }
 
     #[test]
