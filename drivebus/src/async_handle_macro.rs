@@ -161,8 +161,9 @@ macro_rules! async_handle {
             Self: $crate::control::objects_on::QuickStopOptionOn<L::Protocol>,
         {
             /// `quick_stop_by_option_code` awaited: quick stop seen through to the end the
-            /// drive's quick stop option code (605Ah, read first) gives, polling on `timer` for
-            /// at most `limit`; a failed read of the code does not hold the stop back.
+            /// drive's quick stop option code (605Ah) gives, polling on `timer` for at most
+            /// `limit`. The quick stop command goes out first; 605Ah is read only then, within
+            /// the same `limit`, so a slow or failed read of the code never holds the stop back.
             pub async fn quick_stop_by_option_code_async(
                 &mut self,
                 timer: &impl $crate::asynch::Timer,

@@ -117,13 +117,11 @@ fn measure<B: CanBus + Send + 'static>(
 #[cfg(target_os = "linux")]
 mod kernel {
     use std::error::Error;
-    use std::sync::atomic::{AtomicBool, Ordering};
-    use std::sync::Arc;
 
     use drivebus::canopen::can::socketcan::SocketCanBus;
     use drivebus::control::cycle_stats::CycleStats;
     use drivebus::control::cyclic_driver::AxisLink;
-    use drivesim::canopen::{nodes, Node, NodeConfig};
+    use drivesim::canopen::{NodeConfig, ServedNodes};
     use drivesim::Simulator;
 
     use super::Run;
@@ -138,23 +136,12 @@ mod kernel {
         let iface = can
             .strip_prefix("socketcan:")
             .ok_or_else(|| format!("--can takes socketcan:IFACE, not {can:?}"))?;
-        let mut axes_bus = SocketCanBus::open(iface)?;
+        // Both sockets open before the axes boot, so the master sees their boot-up.
+        let axes_bus = SocketCanBus::open(iface)?;
         let master_bus = SocketCanBus::open(iface)?;
-        let stop = Arc::new(AtomicBool::new(false));
-        let serving = {
-            let stop = Arc::clone(&stop);
-            std::thread::spawn(move || {
-                let mut nodes: Vec<Node> = drives
-                    .into_iter()
-                    .map(|(sim, config)| Node::new(sim.clone(), config, sim.variant()))
-                    .collect();
-                nodes::run_while(&mut nodes, &mut axes_bus, || !stop.load(Ordering::Relaxed))
-            })
-        };
+        let axes = ServedNodes::serve_on(axes_bus, drives);
         let stats = super::measure(master_bus, links, run);
-        stop.store(true, Ordering::Relaxed);
-        let served = serving.join().map_err(|_| "the simulated axes panicked")?;
-        served?;
+        axes.stop()?;
         stats
     }
 }

@@ -71,9 +71,8 @@ where
     L: AsyncLink,
 {
     let mut late = no_answer(O::Controlword::NAME);
-    let walk = walk_cia402::<O, L, _>(device, timer, &mut late, |controlword, now| {
-        Cia402Walk::new(O::QUIRKS, target, controlword, now)
-    });
+    let start = |controlword, now| Cia402Walk::new(O::QUIRKS, target, controlword, now);
+    let walk = walk_cia402::<O, L, _>(device, timer, &mut late, start, async |_, _| {});
     let outcome = within(timer, limit, walk).await;
     in_time(outcome, late)
 }
@@ -91,22 +90,38 @@ where
     O: WalkOn<L::Protocol>,
     L: AsyncLink,
 {
+    quick_stop_walk::<O, L>(device, end, timer, limit, async |_, _| {}).await
+}
+
+/// [`quick_stop_to`], awaiting `after_write` after each command the walk writes, all within
+/// `limit`.
+async fn quick_stop_walk<O, L>(
+    device: &mut Device<Async<L>>,
+    end: QuickStopEnd,
+    timer: &impl Timer,
+    limit: Duration,
+    after_write: impl AsyncFnMut(&mut Device<Async<L>>, &mut QuickStopWalk),
+) -> Result<(), ControlError>
+where
+    O: WalkOn<L::Protocol>,
+    L: AsyncLink,
+{
     let mut late = no_answer(O::Controlword::NAME);
     let procedure = async {
         let state = state::<O, L>(device).await?;
-        walk_cia402::<O, L, _>(device, timer, &mut late, |controlword, now| {
-            QuickStopWalk::new(O::QUIRKS, end, state, controlword, now)
-        })
-        .await
+        let start = |controlword, now| QuickStopWalk::new(O::QUIRKS, end, state, controlword, now);
+        walk_cia402::<O, L, _>(device, timer, &mut late, start, after_write).await
     };
     let outcome = within(timer, limit, procedure).await;
     in_time(outcome, late)
 }
 
-/// Quick stop seen through to the end the drive's own quick stop option code (605Ah, read
-/// first) gives, as the blocking driver's `quick_stop_by_option_code`: a failed read of the
-/// code does not hold the stop back (either end is taken). The read waits at most `limit`; the
-/// quick stop then has `limit` of its own.
+/// Quick stop seen through to the end the drive's own quick stop option code (605Ah) gives, as
+/// the blocking driver's `quick_stop_by_option_code`, in the same order: the statusword (its
+/// state decides the command) and the controlword (the command keeps its other bits) are read,
+/// the quick stop command goes out, and only then is 605Ah read, once, to know what to wait
+/// for: a slow or failed read of the code never holds the stop back (a failed one takes either
+/// end). Everything, the read of the code included, runs within `limit`.
 pub async fn quick_stop_by_option_code<O, L>(
     device: &mut Device<Async<L>>,
     timer: &impl Timer,
@@ -116,18 +131,26 @@ where
     O: QuickStopOptionOn<L::Protocol>,
     L: AsyncLink,
 {
-    let code = within(timer, limit, device.read_raw::<O::QuickStopOptionCode>()).await;
-    let end = QuickStopEnd::of_read(code.ok().and_then(Result::ok));
-    quick_stop_to::<O, L>(device, end, timer, limit).await
+    // The end is open (either) until the command has gone out; then the code narrows it.
+    let open = QuickStopEnd::of_read(None);
+    let narrow = async |device: &mut Device<Async<L>>, walk: &mut QuickStopWalk| {
+        if walk.wants_end() {
+            let code = device.read_raw::<O::QuickStopOptionCode>().await.ok();
+            walk.narrow(QuickStopEnd::of_read(code));
+        }
+    };
+    quick_stop_walk::<O, L>(device, open, timer, limit, narrow).await
 }
 
 /// The walk `start` makes from the controlword read and the time, recording in `late` the error
-/// a deadline would end it with.
+/// a deadline would end it with. `after_write` runs right after each command has gone out:
+/// where a walk learns what it needs only then (the quick stop's end).
 async fn walk_cia402<O, L, W>(
     device: &mut Device<Async<L>>,
     timer: &impl Timer,
     late: &mut ControlError,
     start: impl FnOnce(u16, Millis) -> W,
+    mut after_write: impl AsyncFnMut(&mut Device<Async<L>>, &mut W),
 ) -> Result<(), ControlError>
 where
     O: Cia402Objects,
@@ -153,6 +176,7 @@ where
         if let Some(controlword) = write {
             device.write_raw::<O::Controlword>(controlword).await?;
             walk.sent(controlword, clock.now());
+            after_write(device, &mut walk).await;
         }
         clock.pause(timer).await;
     }

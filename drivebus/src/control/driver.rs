@@ -59,18 +59,19 @@ where
     O::Controlword: Readable<L::Protocol> + Writable<L::Protocol>,
     O::SafeTorqueOffWord: Readable<L::Protocol>,
 {
-    run_walk::<O, L, _>(device, deadline, statusword, |controlword, now| {
-        Cia402Walk::new(O::QUIRKS, target, controlword, now)
-    })
+    let start = |controlword, now| Cia402Walk::new(O::QUIRKS, target, controlword, now);
+    run_walk::<O, L, _>(device, deadline, statusword, start, |_, _| {})
 }
 
 /// Runs the walk `start` makes from the controlword read and the time, polling the statusword
-/// `statusword` gives until the walk ends or `deadline` passes.
+/// `statusword` gives until the walk ends or `deadline` passes. `after_write` runs right after
+/// each command has gone out: where a walk learns what it needs only then (the quick stop's end).
 fn run_walk<O, L, W>(
     device: &mut Device<L>,
     deadline: Instant,
     mut statusword: impl FnMut(&mut Device<L>) -> Result<u16, Error>,
     start: impl FnOnce(u16, Millis) -> W,
+    mut after_write: impl FnMut(&mut Device<L>, &mut W),
 ) -> Result<(), ControlError>
 where
     O: Cia402Objects,
@@ -92,6 +93,7 @@ where
         if let Some(controlword) = write {
             device.write_raw::<O::Controlword>(controlword)?;
             walk.sent(controlword, clock.now());
+            after_write(device, &mut walk);
         }
         if Instant::now() >= deadline {
             return Err(if_late);
@@ -160,16 +162,32 @@ where
     O::Statusword: Readable<L::Protocol>,
     O::SafeTorqueOffWord: Readable<L::Protocol>,
 {
-    let state = state::<O, L>(device)?;
-    let statusword = |device: &mut Device<L>| device.read_raw::<O::Statusword>();
-    run_walk::<O, L, _>(device, deadline, statusword, |controlword, now| {
-        QuickStopWalk::new(O::QUIRKS, end, state, controlword, now)
-    })
+    quick_stop_walk::<O, L>(device, end, deadline, |_, _| {})
 }
 
-/// Quick stop seen through to the end the drive's own quick stop option code (605Ah, read
-/// first) gives, as [`quick_stop_to`]. A failed read of the code does not hold the stop back: the
-/// quick stop goes out all the same and either end is taken ([`QuickStopEnd::of_read`]).
+/// [`quick_stop_to`], running `after_write` after each command the walk writes.
+fn quick_stop_walk<O, L>(
+    device: &mut Device<L>,
+    end: QuickStopEnd,
+    deadline: Instant,
+    after_write: impl FnMut(&mut Device<L>, &mut QuickStopWalk),
+) -> Result<(), ControlError>
+where
+    O: WalkOn<L::Protocol>,
+    L: Link,
+{
+    let state = state::<O, L>(device)?;
+    let statusword = |device: &mut Device<L>| device.read_raw::<O::Statusword>();
+    let start = |controlword, now| QuickStopWalk::new(O::QUIRKS, end, state, controlword, now);
+    run_walk::<O, L, _>(device, deadline, statusword, start, after_write)
+}
+
+/// Quick stop seen through to the end the drive's own quick stop option code (605Ah) gives, as
+/// [`quick_stop_to`]. The order: the statusword (its state decides the command) and the
+/// controlword (the command keeps its other bits) are read, the quick stop command goes out,
+/// and only then is 605Ah read, once, to know what to wait for: a slow or failed read of the
+/// code never holds the stop back. A failed read takes either end ([`QuickStopEnd::of_read`]);
+/// no read starts once `deadline` has passed (one under way ends with the bus's own timeout).
 pub fn quick_stop_by_option_code<O, L>(
     device: &mut Device<L>,
     deadline: Instant,
@@ -178,8 +196,14 @@ where
     O: QuickStopOptionOn<L::Protocol>,
     L: Link,
 {
-    let end = QuickStopEnd::of_read(device.read_raw::<O::QuickStopOptionCode>().ok());
-    quick_stop_to::<O, L>(device, end, deadline)
+    // The end is open (either) until the command has gone out; then the code narrows it.
+    let open = QuickStopEnd::of_read(None);
+    quick_stop_walk::<O, L>(device, open, deadline, |device, walk| {
+        if walk.wants_end() && Instant::now() < deadline {
+            let code = device.read_raw::<O::QuickStopOptionCode>().ok();
+            walk.narrow(QuickStopEnd::of_read(code));
+        }
+    })
 }
 
 /// Fault reset: from fault (or fault reaction active) to switch on disabled; nothing to do otherwise.

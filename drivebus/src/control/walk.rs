@@ -167,10 +167,19 @@ pub fn quick_stop_outcome(outcome: Result<(), ControlError>) -> Result<(), Contr
 /// the wait for the drive's own transition 12 once it has stopped; nothing is written while
 /// the drive brakes (disable voltage would cut the power mid-ramp). From any other state it
 /// disables, as [`quick_stop_target`] says.
+///
+/// The end may start open ([`QuickStopEnd::Either`]) and be narrowed once the command has gone
+/// out ([`wants_end`](QuickStopWalk::wants_end), [`narrow`](QuickStopWalk::narrow)): the end only
+/// decides what the walk waits for after the command, so a read of the option code comes after
+/// it and never holds it back.
 #[derive(Debug, Clone)]
 pub struct QuickStopWalk {
     walk: Cia402Walk,
     end: QuickStopEnd,
+    /// Whether a command has gone out (the quick stop, from operation enabled).
+    commanded: bool,
+    /// Whether the end was narrowed (or tried to be): the code is read once.
+    narrowed: bool,
 }
 
 impl QuickStopWalk {
@@ -192,7 +201,25 @@ impl QuickStopWalk {
         Self {
             walk: Cia402Walk::new(quirks, first, controlword, now),
             end,
+            commanded: false,
+            narrowed: false,
         }
+    }
+
+    /// Whether the walk wants its end now: it is open ([`QuickStopEnd::Either`]), its command
+    /// has gone out, and it was not narrowed yet. A driver then reads the option code (605Ah)
+    /// and hands the end it gives to [`narrow`](QuickStopWalk::narrow).
+    pub fn wants_end(&self) -> bool {
+        self.end == QuickStopEnd::Either && self.commanded && !self.narrowed
+    }
+
+    /// Narrows an open end to `end` (a failed read gives [`QuickStopEnd::Either`], which keeps
+    /// it open); an end already known is kept. Asked once: later calls change nothing.
+    pub fn narrow(&mut self, end: QuickStopEnd) {
+        if self.end == QuickStopEnd::Either && !self.narrowed {
+            self.end = end;
+        }
+        self.narrowed = true;
     }
 
     /// What to do after observing `seen`.
@@ -220,6 +247,7 @@ impl QuickStopWalk {
 
     /// Records that the step's command was written at `now`.
     pub fn sent(&mut self, controlword: u16, now: Millis) {
+        self.commanded = true;
         self.walk.sent(controlword, now);
     }
 }
@@ -354,6 +382,42 @@ mod tests {
         let mut either = quick_stop(QuickStopEnd::Either);
         assert_eq!(either.step(&seen(SWITCH_ON_DISABLED)), Walk::Done);
         assert_eq!(either.step(&seen(QUICK_STOP_ACTIVE)), Walk::Done);
+    }
+
+    #[test]
+    fn an_open_end_wants_the_code_only_after_the_command_then_waits_as_it_says() {
+        let mut walk = quick_stop(QuickStopEnd::Either);
+        assert!(!walk.wants_end(), "nothing is read before the command");
+        match walk.step(&seen(OPERATION_ENABLED)) {
+            Walk::Pending { write, .. } => assert_eq!(write, Some(0x02), "quick stop"),
+            other => panic!("{other:?}"),
+        }
+        assert!(!walk.wants_end(), "the command has not gone out yet");
+        walk.sent(0x02, Millis(1));
+        assert!(walk.wants_end());
+        walk.narrow(QuickStopEnd::SwitchOnDisabled);
+        assert!(!walk.wants_end(), "the code is read once");
+        // Codes 0-4: quick stop active is not the end, the walk waits for transition 12.
+        assert!(matches!(
+            walk.step(&seen(QUICK_STOP_ACTIVE)),
+            Walk::Pending { write: None, .. }
+        ));
+        assert_eq!(walk.step(&seen(SWITCH_ON_DISABLED)), Walk::Done);
+    }
+
+    #[test]
+    fn a_failed_read_keeps_the_end_open_and_a_known_end_is_not_narrowed() {
+        let mut walk = quick_stop(QuickStopEnd::Either);
+        walk.sent(0x02, Millis(1));
+        walk.narrow(QuickStopEnd::of_read(None));
+        assert!(!walk.wants_end(), "a failed read is not retried");
+        assert_eq!(walk.step(&seen(QUICK_STOP_ACTIVE)), Walk::Done);
+
+        let mut known = quick_stop(QuickStopEnd::QuickStopActive);
+        known.sent(0x02, Millis(1));
+        assert!(!known.wants_end());
+        known.narrow(QuickStopEnd::SwitchOnDisabled);
+        assert_eq!(known.step(&seen(QUICK_STOP_ACTIVE)), Walk::Done);
     }
 
     #[test]

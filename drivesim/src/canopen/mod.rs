@@ -7,10 +7,12 @@ pub mod lss;
 pub mod node;
 pub mod nodes;
 pub mod pdo;
+pub mod served;
 pub mod srdo;
 
 pub use dictionary::Dictionary;
 pub use in_process::InProcessNode;
 pub use node::{Node, NodeConfig};
 pub use pdo::Pdos;
+pub use served::ServedNodes;
 pub use srdo::Srdos;

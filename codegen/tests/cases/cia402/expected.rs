@@ -464,11 +464,13 @@ where
     params::Statusword: ::drivebus::Readable<L::Protocol>,
     params::QuickStopOptionCode: ::drivebus::Readable<L::Protocol>,
 {
-    /// Quick stop seen through to the end the drive's quick stop option code (605Ah, read
-    /// first) gives: codes 0-4 wait, writing nothing, until the drive has braked and
-    /// switched off (switch on disabled); codes 5-8 end in *quick stop active*. Disables
-    /// from states other than operation enabled. A failed read of the code does not hold
-    /// the stop back: it goes out all the same and either end is taken.
+    /// Quick stop seen through to the end the drive's quick stop option code (605Ah) gives:
+    /// codes 0-4 wait, writing nothing, until the drive has braked and switched off
+    /// (switch on disabled); codes 5-8 end in *quick stop active*. Disables from states
+    /// other than operation enabled. The quick stop command goes out first (after the
+    /// statusword and controlword reads it is made from); 605Ah is read only then, so a
+    /// slow or failed read of the code never holds the stop back (a failed one takes
+    /// either end).
     pub fn quick_stop_by_option_code(
         &mut self,
         deadline: ::drivebus::control::driver::Instant,

@@ -14,6 +14,7 @@ use super::exposed::Drive;
 use super::pdo_bus::PdoBus;
 use crate::commands::read;
 use crate::commands::watch::pdo_plan::{self, Trigger};
+use crate::commands::watch::tpdo_notice::{Notice, Severity};
 use crate::commands::watch::tpdo_setup::TpdoSetup;
 use crate::connect::Session;
 use crate::error::CliError;
@@ -182,6 +183,7 @@ impl<'d> ByPdo<'d> {
             self.trigger,
             self.start,
             taken,
+            in_the_log,
         );
         match setup {
             Ok(setup) => {
@@ -205,6 +207,15 @@ impl<'d> ByPdo<'d> {
     /// Puts the TPDO back, to set it up again once the drive answers.
     pub fn end(&mut self) {
         self.setup = None;
+    }
+}
+
+/// The gateway's way to show what a TPDO set-up tells: in its log, at the notice's level.
+fn in_the_log(notice: &Notice) {
+    match notice.severity() {
+        Severity::Info => tracing::info!("{notice}"),
+        Severity::Warning => tracing::warn!("{notice}"),
+        Severity::Error => tracing::error!("{notice}"),
     }
 }
 

@@ -13,6 +13,7 @@ pub mod sample;
 pub mod source_pdo;
 mod source_poll;
 mod tpdo_config;
+pub mod tpdo_notice;
 pub mod tpdo_setup;
 
 use std::path::PathBuf;
@@ -131,6 +132,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         trigger,
         args.start,
         &[],
+        tpdo_notice::on_stderr,
     )?;
     let mut source = PdoWatch::new(setup, settings, interrupt);
     let watched = show(&args, &device, &layout, &mut source, plot);

@@ -2,7 +2,8 @@
 //! (its configuration read by SDO first), written where it must change, the nodes started if
 //! asked, and, when the reader ends, the nodes' NMT state and each TPDO's configuration written
 //! back. Shared by `watch --pdo` (which reads the TPDOs on SYNC or event timer) and the gateway
-//! (whose poller reads them beside other drives' SDO polls).
+//! (whose poller reads them beside other drives' SDO polls), each showing what the set-up tells
+//! ([`Notice`]) its own way.
 
 use drivebus::canopen::nmt::NmtCommand;
 use drivebus::canopen::{CanBus, NodeId};
@@ -11,6 +12,7 @@ use drivegen::ir::{Device, Parameter};
 
 use super::pdo_plan::{self, Choice, Trigger};
 use super::tpdo_config::TpdoConfig;
+use super::tpdo_notice::{Notice, Report};
 use crate::connect::{hold, Session, SharedCan};
 use crate::drives::Outcome;
 use crate::error::CliError;
@@ -33,6 +35,8 @@ pub struct TpdoSetup<'d> {
     nodes: Vec<Node>,
     /// Whether the nodes were sent NMT Start (and go back to Pre-Operational at the end).
     started: bool,
+    /// Where what the set-up tells goes.
+    report: Report,
 }
 
 impl<'d> TpdoSetup<'d> {
@@ -40,7 +44,8 @@ impl<'d> TpdoSetup<'d> {
     /// drives' configuration by SDO; a parameter that cannot be mapped, or a node without a
     /// TPDO to map into, is refused before anything is written, as a [`CliError::Usage`]),
     /// never on a CAN identifier in `taken` (other readers' TPDOs on the bus), then writes the
-    /// TPDOs that need it and, with `start`, starts the nodes.
+    /// TPDOs that need it and, with `start`, starts the nodes. What it tells (a TPDO mapped, an
+    /// identifier clash, a TPDO not put back) goes to `report`.
     pub fn begin(
         drives: &[Session<'_>],
         device: &'d Device,
@@ -48,6 +53,7 @@ impl<'d> TpdoSetup<'d> {
         trigger: Trigger,
         start: bool,
         taken: &[u16],
+        report: Report,
     ) -> Result<Self, CliError> {
         let entries = pdo_plan::entries(parameters).map_err(|refused| {
             CliError::Usage(format!("cannot watch by PDO:\n  {}", refused.join("\n  ")))
@@ -63,7 +69,7 @@ impl<'d> TpdoSetup<'d> {
             let choice = choice.map_err(|why| {
                 CliError::Usage(format!("cannot watch node {} by PDO: {why}", id.0))
             })?;
-            warn_clashes(id, &held, &choice, &used);
+            warn_clashes(id, &held, &choice, &used, report);
             nodes.push(Node {
                 id,
                 choice,
@@ -76,6 +82,7 @@ impl<'d> TpdoSetup<'d> {
             parameters: parameters.to_vec(),
             nodes,
             started: false,
+            report,
         };
         setup.program(start)?;
         Ok(setup)
@@ -90,10 +97,10 @@ impl<'d> TpdoSetup<'d> {
             node.restore = Some(saved.clone());
             let written = node.choice.watched.write(&mut *hold(&self.bus), node.id);
             written.map_err(|cause| tpdo_error(node, "cannot configure", cause))?;
-            eprintln!(
-                "node {}: TPDO {} mapped for the watch (restored at the end)",
-                node.id.0, node.choice.watched.number
-            );
+            (self.report)(&Notice::Mapped {
+                node: node.id.0,
+                tpdo: node.choice.watched.number,
+            });
         }
         if start {
             self.started = true;
@@ -168,7 +175,7 @@ impl<'d> TpdoSetup<'d> {
 impl Drop for TpdoSetup<'_> {
     fn drop(&mut self) {
         if let Err(e) = self.restore() {
-            eprintln!("error: {e}");
+            (self.report)(&Notice::NotRestored(e));
         }
     }
 }
@@ -191,21 +198,18 @@ fn can_nodes(drives: &[Session<'_>]) -> Result<(SharedCan, Vec<NodeId>), CliErro
     Ok((bus, ids))
 }
 
-/// Warns of the TPDOs `id` sends besides the chosen one on an identifier another reader's TPDO
-/// uses (a drive whose TPDO identifiers do not follow its node id): they are left as they are,
-/// so both go out on it and the values may mix.
-fn warn_clashes(id: NodeId, held: &[TpdoConfig], choice: &Choice, used: &[u16]) {
+/// Warns (to `report`) of the TPDOs `id` sends besides the chosen one on an identifier another
+/// reader's TPDO uses (a drive whose TPDO identifiers do not follow its node id): they are left
+/// as they are, so both go out on it and the values may mix.
+fn warn_clashes(id: NodeId, held: &[TpdoConfig], choice: &Choice, used: &[u16], report: Report) {
     let chosen = choice.watched.number;
     for tpdo in held {
         if tpdo.is_valid() && tpdo.number != chosen && used.contains(&tpdo.can_id()) {
-            eprintln!(
-                "warning: node {}: its TPDO {} also goes out on CAN id {:03X}h, which another \
-                 node's watched TPDO uses: their values may mix (switch it off, or give it an \
-                 identifier of its own)",
-                id.0,
-                tpdo.number,
-                tpdo.can_id()
-            );
+            report(&Notice::Clash {
+                node: id.0,
+                tpdo: tpdo.number,
+                can_id: tpdo.can_id(),
+            });
         }
     }
 }
