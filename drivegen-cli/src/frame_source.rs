@@ -42,31 +42,18 @@ pub struct LiveArgs {
 pub enum Time {
     /// No timestamp.
     None,
-    /// Seconds and microseconds since the epoch.
-    Seconds {
-        /// Whole seconds.
-        secs: u64,
-        /// Microseconds, below 1,000,000.
-        micros: u32,
-    },
+    /// Microseconds since the epoch (split into seconds only when printed: a trace drops most
+    /// frames unprinted).
+    Micros(u64),
     /// An adapter's milliseconds.
     AdapterMillis(u16),
-}
-
-impl Time {
-    fn from_micros(us: u64) -> Self {
-        Self::Seconds {
-            secs: us / 1_000_000,
-            micros: (us % 1_000_000) as u32,
-        }
-    }
 }
 
 impl std::fmt::Display for Time {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Self::None => Ok(()),
-            Self::Seconds { secs, micros } => write!(f, "{secs}.{micros:06}"),
+            Self::Micros(us) => write!(f, "{}.{:06}", us / 1_000_000, us % 1_000_000),
             Self::AdapterMillis(ms) => write!(f, "{ms}ms"),
         }
     }
@@ -176,7 +163,7 @@ impl Iterator for FrameSource {
                 *records += 1;
                 Some(Ok(match record {
                     Ok(record) => Received::Frame {
-                        time: record.timestamp_us.map_or(Time::None, Time::from_micros),
+                        time: record.timestamp_us.map_or(Time::None, Time::Micros),
                         frame: record.frame,
                     },
                     Err(e) => Received::Malformed(format!("{path}, record {records}: {e}")),
@@ -221,13 +208,9 @@ impl Iterator for FrameSource {
 
 fn time(timestamp: Option<Timestamp>) -> Time {
     match timestamp {
-        Some(Timestamp::Kernel(at)) => {
-            at.duration_since(UNIX_EPOCH)
-                .map_or(Time::None, |d| Time::Seconds {
-                    secs: d.as_secs(),
-                    micros: d.subsec_micros(),
-                })
-        }
+        Some(Timestamp::Kernel(at)) => at.duration_since(UNIX_EPOCH).map_or(Time::None, |d| {
+            Time::Micros(u64::try_from(d.as_micros()).unwrap_or(u64::MAX))
+        }),
         Some(Timestamp::AdapterMillis(ms)) => Time::AdapterMillis(ms),
         None => Time::None,
     }

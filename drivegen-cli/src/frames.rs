@@ -331,13 +331,10 @@ impl<'a> FrameDecoder<'a> {
                 node,
                 frame,
             } => {
-                if let Some(decoded) =
-                    self.mappings
-                        .decode(objects, node.0, kind, number, frame.data())
-                {
-                    samples = decoded;
-                    joined = true;
-                }
+                let pdo = (node.0, kind, number);
+                joined = self
+                    .mappings
+                    .decode(objects, pdo, frame.data(), &mut samples);
             }
             _ => {}
         }

@@ -47,32 +47,41 @@ impl PdoMappings {
         entries[slot] = MappedObject::from_entry(value);
     }
 
-    /// The parameter values of a PDO payload, if its mapping is known and the payload holds
-    /// it: the mapping seen in the capture, else the one the description declares for the PDO.
+    /// The parameter values of a PDO payload into `values` (empty before), if its mapping is
+    /// known and the payload holds it: the mapping seen in the capture, else the one the
+    /// description declares for the PDO. `false` (and `values` left empty) if not. Filled in
+    /// place: a frame's values are not moved from one buffer to the next.
     pub fn decode<'a>(
         &self,
         objects: &'a Objects<'a>,
-        node: u8,
-        kind: PdoKind,
-        number: u8,
+        pdo: (u8, PdoKind, u8),
         payload: &[u8],
-    ) -> Option<Samples<'a>> {
+        values: &mut Samples<'a>,
+    ) -> bool {
+        let (node, kind, number) = pdo;
         let transmit = kind == PdoKind::Transmit;
         let entries = match self.maps.get(&(node, transmit, u16::from(number))) {
             Some(learned) => learned.as_slice(),
-            None => objects.declared_mapping(transmit, number)?,
+            None => match objects.declared_mapping(transmit, number) {
+                Some(declared) => declared,
+                None => return false,
+            },
         };
         let mut bit = 0usize;
-        let mut values = Samples::new();
         for entry in entries {
-            if bit % 8 != 0 || entry.bits % 8 != 0 {
-                return None; // Bit-packed mappings are left raw.
-            }
-            let bytes = payload.get(bit / 8..bit / 8 + usize::from(entry.bits) / 8)?;
+            let at = bit / 8..bit / 8 + usize::from(entry.bits) / 8;
+            // Bit-packed mappings are left raw.
+            let bytes = payload
+                .get(at)
+                .filter(|_| bit % 8 == 0 && entry.bits % 8 == 0);
+            let Some(bytes) = bytes else {
+                values.clear();
+                return false;
+            };
             bit += usize::from(entry.bits);
             values.push(Sample::of(objects, entry.index, entry.subindex, bytes));
         }
-        Some(values)
+        true
     }
 }
 
@@ -94,29 +103,30 @@ mod tests {
         maps.learn(1, 0x1A00, 2, &0x606C_0020u32.to_le_bytes());
         maps.learn(1, 0x1A00, 0, &[2]);
         let payload = [0x37, 0x00, 0xE8, 0x03, 0x00, 0x00];
-        let named = |samples: Samples<'_>| -> Vec<(String, Option<f64>)> {
-            samples
-                .iter()
-                .map(|s| (s.parameter().to_string(), s.value()))
-                .collect()
+        let decode = |kind, number| {
+            let mut samples = Samples::new();
+            let known = maps.decode(&device, (1, kind, number), &payload, &mut samples);
+            known.then(|| -> Vec<(String, Option<f64>)> {
+                samples
+                    .iter()
+                    .map(|s| (s.parameter().to_string(), s.value()))
+                    .collect()
+            })
         };
-        let learned = maps.decode(&device, 1, PdoKind::Transmit, 1, &payload);
         assert_eq!(
-            named(learned.unwrap()),
+            decode(PdoKind::Transmit, 1).unwrap(),
             [
                 ("statusword".to_owned(), Some(55.0)),
                 ("velocity_actual_value".to_owned(), Some(1000.0))
             ]
         );
         assert!(
-            maps.decode(&device, 1, PdoKind::Receive, 2, &payload)
-                .is_none(),
+            decode(PdoKind::Receive, 2).is_none(),
             "neither learned nor declared"
         );
         // TPDO 2 was not seen being mapped: the description's mapping decodes it.
-        let declared = maps.decode(&device, 1, PdoKind::Transmit, 2, &payload);
         assert_eq!(
-            named(declared.unwrap())[1],
+            decode(PdoKind::Transmit, 2).unwrap()[1],
             ("position_actual_value".to_owned(), Some(1000.0))
         );
     }

@@ -153,16 +153,20 @@ fn eight_digits(word: u64) -> Option<u64> {
 /// from there holds no separator, so it is the line's last field, the one the field parser
 /// takes.
 fn frame_start(line: &[u8], from: usize) -> Option<usize> {
-    let separator = |b: &u8| *b == b' ' || *b == b'\t';
-    let rest = line.get(from..)?;
-    let interface = rest.iter().position(|b| !separator(b))?;
-    let length = rest[interface..].iter().position(|&b| b <= b' ')?;
-    if length == 0 {
-        return None;
+    let separator = |b: u8| b == b' ' || b == b'\t';
+    let mut at = from;
+    while separator(*line.get(at)?) {
+        at += 1;
     }
-    let after = interface + length;
-    let frame = after + rest[after..].iter().position(|b| !separator(b))?;
-    (frame > after).then_some(from + frame)
+    let interface = at;
+    while *line.get(at)? > b' ' {
+        at += 1;
+    }
+    let after = at;
+    while separator(*line.get(at)?) {
+        at += 1;
+    }
+    (after > interface && at > after).then_some(at)
 }
 
 /// A compact frame (`123#DEADBEEF`, `123#DE.AD`, `123#R`, `123#R8`) at the start of `text`
@@ -278,6 +282,43 @@ mod tests {
                 .map(|t| t.parse::<u64>().unwrap());
             assert_eq!(eight_digits(word), expected, "{text:?}");
         }
+    }
+
+    /// A window read pair by pair reads what a digit-by-digit walk reads, over windows of hex
+    /// digits, dots, the bytes next to the digits' ranges, blanks and bytes above 0x7F.
+    #[test]
+    fn hex_pairs_read_as_digit_by_digit() {
+        const BYTES: &[u8] = b"0123456789abcdefABCDEF./:@G`g \n\x80\xC1\xE1\xB0";
+        let mut state = 0x9E37_79B9_7F4A_7C15u64;
+        let mut taken = 0;
+        for round in 0..200_000 {
+            let mut window = [0u8; 17];
+            for (i, byte) in window.iter_mut().enumerate() {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                // Mostly digits, so that long runs and whole frames come up.
+                let pick = state as usize % (BYTES.len() * 3);
+                *byte = BYTES[if pick < BYTES.len() * 2 {
+                    pick % 22
+                } else {
+                    pick % BYTES.len()
+                }];
+                if round % 4 == 0 && i == 2 * (round / 4 % 9) {
+                    *byte = b'\n';
+                }
+            }
+            let mask = |found: Option<([u8; 8], usize, usize)>| {
+                found.map(|(mut data, len, used)| {
+                    data[len..].fill(0);
+                    (data, len, used)
+                })
+            };
+            let read = mask(hex_window(&window, &window));
+            assert_eq!(read, mask(dotted_payload(&window)), "{window:?}");
+            taken += usize::from(read.is_some());
+        }
+        assert!(taken > 20_000, "{taken}");
     }
 
     #[test]
