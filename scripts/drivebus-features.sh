@@ -9,6 +9,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+# The checks are independent: they are listed first, then run in JOBS lanes (default: the number
+# of cores) side by side. A check of one crate keeps about one core busy (rustc's front end), so
+# the lanes take about 1/JOBS of the time one after the other would. Each lane has its own target
+# directory: cargo lets one build at a time use a target directory.
+checks=()
 metadata=$(cargo metadata --offline --no-deps --format-version 1)
 for crate in drivebus-model drivebus; do
     features=$(python3 -c '
@@ -16,26 +21,49 @@ import json, sys
 package = next(p for p in json.load(sys.stdin)["packages"] if p["name"] == sys.argv[1])
 print(" ".join(sorted(f for f in package["features"] if f != "default")))
 ' "$crate" <<<"$metadata")
-    check() {
-        echo "$crate: $*"
-        cargo check --quiet -p "$crate" --lib "$@"
-    }
-    check --no-default-features
+    checks+=("$crate --no-default-features")
     for feature in $features; do
-        check --no-default-features --features "$feature"
+        checks+=("$crate --no-default-features --features $feature")
     done
-    check --all-features
+    checks+=("$crate --all-features")
 done
-# `check` still names drivebus, the loop's last crate.
 for pair in server,modbus-core server,canopen server,srdo testing,modbus-core testing,canopen \
     testing,rs232 server,testing async,canopen tokio,canopen tokio,socketcan tokio,serial; do
-    check --no-default-features --features "$pair"
+    checks+=("drivebus --no-default-features --features $pair")
 done
 # The async layer and the Modbus core on a bare-metal target, as an embassy firmware would build
 # them: proves `async` names no executor and needs no std.
 no_std_target=thumbv7em-none-eabihf
 rustup target list --installed | grep -qx "$no_std_target" || rustup target add "$no_std_target"
 for features in async async,modbus-core; do
-    echo "drivebus for $no_std_target: $features"
-    cargo check --quiet -p drivebus --lib --no-default-features --features "$features" --target "$no_std_target"
+    checks+=("drivebus --no-default-features --features $features --target $no_std_target")
 done
+
+# Lane `lane` of `jobs`: every jobs-th check from the lane's index, stopping at the first failure.
+lane() {
+    local lane=$1 jobs=$2 i crate args
+    for ((i = lane; i < ${#checks[@]}; i += jobs)); do
+        read -r crate args <<<"${checks[$i]}"
+        echo "$crate: $args"
+        # shellcheck disable=SC2086 # one flag per word
+        cargo check --quiet -p "$crate" --lib $args || return 1
+    done
+}
+jobs="${JOBS:-$(nproc)}"
+logs=$(mktemp -d)
+trap 'rm -rf "$logs"' EXIT
+pids=()
+for ((l = 0; l < jobs; l++)); do
+    # Lane 0 builds in the usual target directory, the others in folders of it.
+    dir=${CARGO_TARGET_DIR:-target}
+    [ "$l" -eq 0 ] || dir=$dir/drivebus-features-$l
+    CARGO_TARGET_DIR=$dir lane "$l" "$jobs" >"$logs/$l" 2>&1 &
+    pids+=("$!")
+done
+status=0
+for ((l = 0; l < jobs; l++)); do
+    wait "${pids[$l]}" || status=1
+    cat "$logs/$l"
+done
+[ "$status" -eq 0 ] || echo "drivebus-features: a check failed (above)" >&2
+exit "$status"

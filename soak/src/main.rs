@@ -6,6 +6,7 @@
 //! cargo run --release -p soak -- [--transactions N] [--seed S] [--fault-rate P]
 //!                                         [--transport modbus-tcp|modbus-rtu|sdo-candump]...
 //!                                         [--max-seconds S]
+//! cargo run -p soak -- --list-transports
 //! ```
 //!
 //! Exits non-zero when a wrong value was delivered, a reported write is not held, or a
@@ -41,6 +42,9 @@ struct Options {
     transports: Vec<Transport>,
     /// Stops each transport's run after this many seconds (the report says how many ran).
     max_seconds: Option<u64>,
+    /// Prints the transports' names instead of running (scripts/soak-smoke runs each in its own
+    /// process).
+    list_transports: bool,
 }
 
 fn value<T: std::str::FromStr>(flag: &str, text: Option<String>) -> Result<T, String> {
@@ -55,6 +59,7 @@ fn parse(mut args: impl Iterator<Item = String>) -> Result<Options, String> {
         fault_rate: 0.01,
         transports: Vec::new(),
         max_seconds: None,
+        list_transports: false,
     };
     while let Some(flag) = args.next() {
         match flag.as_str() {
@@ -62,6 +67,7 @@ fn parse(mut args: impl Iterator<Item = String>) -> Result<Options, String> {
             "--seed" => options.seed = value(&flag, args.next())?,
             "--fault-rate" => options.fault_rate = value(&flag, args.next())?,
             "--max-seconds" => options.max_seconds = Some(value(&flag, args.next())?),
+            "--list-transports" => options.list_transports = true,
             "--transport" => {
                 let name = args.next().unwrap_or_default();
                 let transport = Transport::ALL
@@ -121,6 +127,12 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    if options.list_transports {
+        for transport in Transport::ALL {
+            println!("{}", transport.name());
+        }
+        return ExitCode::SUCCESS;
+    }
     println!(
         "soak: {} transactions per transport, seed {}, fault rate {}",
         options.transactions, options.seed, options.fault_rate

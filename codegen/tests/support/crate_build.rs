@@ -60,6 +60,10 @@ fn cargo_test(dir: &Path, args: &[&str]) -> Built {
             "CARGO_TARGET_DIR",
             workspace_root().join("target/fixtures/target"),
         )
+        // Without debug info, as scripts/package.sh builds: the scratch crates and their
+        // dependencies only need to build and run, and full debug info (a scratch crate has no
+        // workspace profile) made them slower to compile and link. Panics keep file and line.
+        .env("CARGO_PROFILE_DEV_DEBUG", "false")
         .output()
         .unwrap();
     Built {
