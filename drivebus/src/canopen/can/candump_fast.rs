@@ -3,7 +3,7 @@
 //! Each byte is looked at once: candump's own timestamp (`(1700000000.123456)`) is read eight
 //! digits at a time, the interface is skipped, the identifier and the data's hex pairs go
 //! straight to numbers, and the line's end is found where the frame ends, so a log read from a
-//! buffer needs no separate search for each newline. Anything else — a malformed line, another
+//! buffer needs no separate search for each newline. Anything else — a malformed line, a
 //! timestamp of over 13 digits of seconds, a line without an interface, a CAN FD frame, text
 //! after the frame — gives `None`, and [`super::candump::parse_line`] parses the line field by
 //! field, which names the error: what this pass accepts, it reads as that parser does.
