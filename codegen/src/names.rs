@@ -89,8 +89,9 @@ fn camel_words(name: &str) -> String {
     }
     let mut out = String::with_capacity(name.len());
     for word in name.split('_') {
+        // A plain word is ASCII and not empty: its first byte is a whole character.
         let (first, rest) = word.split_at(1);
-        out.push_str(&first.to_ascii_uppercase());
+        out.extend(first.chars().map(|c| c.to_ascii_uppercase()));
         out.push_str(rest);
     }
     out

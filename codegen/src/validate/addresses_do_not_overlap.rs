@@ -52,9 +52,10 @@ fn sharing_pairs(params: &[Parameter]) -> BTreeSet<(usize, usize)> {
             entries.entry((a.index, a.subindex)).or_default().push(i);
         }
     }
+    // Each entry's owners in declaration order, so each pairs with those before it.
     for owners in entries.values() {
         for (n, &i) in owners.iter().enumerate() {
-            pairs.extend(owners[..n].iter().filter(|&&j| j != i).map(|&j| (i.max(j), i.min(j))));
+            pairs.extend(owners[..n].iter().filter(|&&j| j != i).map(|&j| (i, j)));
         }
     }
     // Ranges by table and start; each meets the ones before it that end past its start.
