@@ -34,11 +34,38 @@ impl<A: Alarm + ?Sized> Alarm for &mut A {
     }
 }
 
-/// Completes once `alarm` is due: a kept alarm raced against other work (a transfer that
-/// waits for frames and its deadline alike) without giving it up.
+/// A kept alarm aimed at a transfer's deadline: set only when the deadline moves (a transfer's
+/// deadline often stays while its frames come), raced against the transfer's other waits
+/// without being given up.
 #[cfg_attr(not(feature = "canopen"), allow(dead_code))]
-pub(crate) fn due<A: Alarm + ?Sized>(alarm: &mut A) -> impl Future<Output = ()> + '_ {
-    poll_fn(move |cx| alarm.poll_due(cx))
+pub(crate) struct Aimed<'a, A: ?Sized> {
+    alarm: &'a mut A,
+    /// The deadline the alarm is set for, on the transfer's clock.
+    at: Option<Duration>,
+}
+
+#[cfg_attr(not(feature = "canopen"), allow(dead_code))]
+impl<'a, A: Alarm + ?Sized> Aimed<'a, A> {
+    /// `alarm`, not aimed yet.
+    pub(crate) fn new(alarm: &'a mut A) -> Self {
+        Self { alarm, at: None }
+    }
+
+    /// Aims the alarm at `deadline`, `now` being the time on the same clock; nothing to do
+    /// when it is aimed there already.
+    pub(crate) fn aim(&mut self, deadline: Duration, now: Duration) {
+        if self.at != Some(deadline) {
+            self.alarm.set(deadline.saturating_sub(now));
+            self.at = Some(deadline);
+        }
+    }
+
+    /// Completes once the deadline aimed at has passed; the next [`aim`](Self::aim) sets the
+    /// alarm again, even for the same deadline.
+    pub(crate) async fn due(&mut self) {
+        poll_fn(|cx| self.alarm.poll_due(cx)).await;
+        self.at = None;
+    }
 }
 
 /// Runs `work` for at most `limit`, timed by `alarm` (set here): [`within`](super::within) on
@@ -125,6 +152,22 @@ mod tests {
         for _ in 0..3 {
             let _ = poll_once(within_alarm(&mut alarm, Duration::ZERO, async { 1 }));
         }
+        assert_eq!(alarm.sets, 3);
+    }
+
+    /// Aimed at a transfer's deadline, the alarm is set when the deadline moves, not while it
+    /// stays; once due, aiming at the same deadline sets it again (a timeout handled, the
+    /// transfer may keep its deadline).
+    #[test]
+    fn an_aimed_alarm_is_set_only_when_its_deadline_moves_or_came() {
+        let ms = Duration::from_millis;
+        let mut alarm = Fixed { due: true, sets: 0 };
+        let mut aimed = Aimed::new(&mut alarm);
+        aimed.aim(ms(100), ms(0));
+        aimed.aim(ms(100), ms(10));
+        aimed.aim(ms(150), ms(20));
+        assert_eq!(poll_once(aimed.due()), Poll::Ready(()));
+        aimed.aim(ms(150), ms(150));
         assert_eq!(alarm.sets, 3);
     }
 }

@@ -12,9 +12,9 @@ pub mod lss;
 use core::pin::pin;
 use core::time::Duration;
 
-use crate::asynch::alarm::due;
+use crate::asynch::alarm::Aimed;
 use crate::asynch::race::{first, ready_now, First};
-use crate::asynch::{Alarm, Timer};
+use crate::asynch::Timer;
 use crate::canopen::address::NodeId;
 use crate::canopen::can::AsyncCanBus;
 use crate::canopen::client::backlog::{client_methods, outcome, Backlog, Settings};
@@ -118,8 +118,7 @@ impl<B: AsyncCanBus, T: Timer> AsyncSdo<B, T> {
         let response_cob = transfer.response_cob();
         let mut now = Duration::ZERO;
         let mut progress = Progress::Pending;
-        // The deadline the alarm is set for; it is moved when the transfer's deadline moves.
-        let mut alarm_for = None;
+        let mut alarm = Aimed::new(alarm);
         loop {
             // Drained after the end too: a failure may have queued an abort for the server.
             while let Some(frame) = transfer.poll_transmit() {
@@ -131,11 +130,8 @@ impl<B: AsyncCanBus, T: Timer> AsyncSdo<B, T> {
             let Some(deadline) = transfer.deadline() else {
                 return Err(BusError::Frame("SDO transfer ended without a result"));
             };
-            if alarm_for != Some(deadline) {
-                alarm.set(deadline.saturating_sub(now));
-                alarm_for = Some(deadline);
-            }
-            progress = match first(bus.recv(), pin!(due(alarm))).await {
+            alarm.aim(deadline, now);
+            progress = match first(bus.recv(), pin!(alarm.due())).await {
                 First::A(frame) => match backlog.sort(frame?, response_cob) {
                     Some(frame) => {
                         now += TICK;
@@ -145,8 +141,6 @@ impl<B: AsyncCanBus, T: Timer> AsyncSdo<B, T> {
                 },
                 First::B(()) => {
                     now = deadline;
-                    // Set again for whatever deadline the transfer has next, even the same.
-                    alarm_for = None;
                     transfer.handle_timeout(now)
                 }
             };

@@ -11,9 +11,9 @@ use core::time::Duration;
 use std::sync::Arc;
 
 use super::shared::{wake, Shared};
-use crate::asynch::alarm::due;
+use crate::asynch::alarm::Aimed;
 use crate::asynch::race::{first, First};
-use crate::asynch::{Alarm, Timer};
+use crate::asynch::Timer;
 use crate::canopen::address::NodeId;
 use crate::canopen::async_client::CANCEL_CODE;
 use crate::canopen::client::backlog::{outcome, settings_methods, Settings};
@@ -99,8 +99,7 @@ impl<T: Timer> AsyncNodeSdo<T> {
         let mut claim = claim(shared, node).await?;
         let mut transfer = start(shared.now());
         let mut progress = Progress::Pending;
-        // The deadline the alarm is set for; it is moved when the transfer's deadline moves.
-        let mut alarm_for = None;
+        let mut alarm = Aimed::new(alarm);
         loop {
             let queued = shared.update(|state| {
                 // Queued after the end too: a failure may have queued an abort for the server.
@@ -117,17 +116,10 @@ impl<T: Timer> AsyncNodeSdo<T> {
             let Some(deadline) = transfer.deadline() else {
                 return Err(BusError::Frame("SDO transfer ended without a result"));
             };
-            if alarm_for != Some(deadline) {
-                alarm.set(deadline.saturating_sub(shared.now()));
-                alarm_for = Some(deadline);
-            }
-            progress = match first(response(shared, node), pin!(due(alarm))).await {
+            alarm.aim(deadline, shared.now());
+            progress = match first(response(shared, node), pin!(alarm.due())).await {
                 First::A(frame) => transfer.handle(&frame?, shared.now()),
-                First::B(()) => {
-                    // Set again for whatever deadline the transfer has next, even the same.
-                    alarm_for = None;
-                    transfer.handle_timeout(shared.now().max(deadline))
-                }
+                First::B(()) => transfer.handle_timeout(shared.now().max(deadline)),
             };
         }
     }
