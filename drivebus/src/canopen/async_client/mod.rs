@@ -2,7 +2,7 @@
 //! [`BlockingSdo`](crate::canopen::client::BlockingSdo) drives, driven with a [`Timer`].
 //!
 //! The transfers take time as an argument and the [`Timer`] has no clock, so the client keeps
-//! a logical one: each request's deadline is the client's kept [`Alarm`] set to the timeout
+//! a logical one: each request's deadline is the client's kept [`Alarm`](crate::asynch::Alarm) set to the timeout
 //! when the request went out, and not moved by frames that are not the transfer's, so foreign
 //! traffic cannot stretch it. The alarm is kept from transfer to transfer and moved at each,
 //! cheaper than a timer armed afresh per transfer (docs/benchmarks.md, issue 30).
